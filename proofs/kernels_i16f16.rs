@@ -1,0 +1,1 @@
+//! I16F16 kernel properties.

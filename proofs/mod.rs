@@ -1,0 +1,23 @@
+//! Verification properties of `mrr-control`.
+//!
+//! Each property is a plain function of its inputs, written once, and run by
+//! every engine that can reach it (DESIGN.md, "one harness, several engines"):
+//!
+//! 1. **Kani** — `#[cfg_attr(kani, kani::proof)]` entries that draw inputs
+//!    with `kani::any()`; run with `cargo kani` where Kani is installed.
+//! 2. **Exhaustive** — the same body over *every* input of a type
+//!    ([`engine::exhaustive_u32`]); a complete proof for that type. These are
+//!    `#[ignore]`d unit tests named `exhaustive_*`, run in release by CI:
+//!    `cargo test --release --lib -- --ignored exhaustive --test-threads 1 --nocapture`.
+//! 3. **Random** — proptest strategies over physically meaningful ranges, run
+//!    by plain `cargo test`.
+//!
+//! Every `kani::assume` says whether it is a *precondition* of the property
+//! or a *solver budget* (a restriction only to keep the proof tractable).
+
+#![allow(dead_code)]
+
+pub mod engine;
+pub mod kernels_f32;
+pub mod kernels_i16f16;
+pub mod sat_sgn;

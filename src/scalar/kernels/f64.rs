@@ -1,0 +1,96 @@
+//! `f64` kernels: thin, NaN-free wrappers over the pure-Rust `libm` crate
+//! (a port of musl's libm, accurate to < 1 ulp). These are the design and
+//! simulation backend and the reference the other backends are checked
+//! against; the embedded paths use the `f32` and `I16F16` kernels instead.
+//!
+//! Conventions shared by all kernels here: a NaN argument is treated as 0;
+//! results are never NaN or infinite.
+
+/// Largest `f64` below π/2: the edge of the principal branch of [`tan`].
+pub const TAN_DOMAIN_EDGE: f64 = 1.570_796_326_794_896_6;
+
+#[inline]
+fn denan(x: f64) -> f64 {
+    if x.is_nan() {
+        0.0
+    } else {
+        x
+    }
+}
+
+#[inline]
+fn finite_or(x: f64, saturated: f64) -> f64 {
+    if x.is_finite() {
+        x
+    } else {
+        saturated
+    }
+}
+
+/// Arctangent in `[-π/2, π/2]`. Domain: every `f64`.
+#[inline]
+pub fn atan(x: f64) -> f64 {
+    libm::atan(denan(x))
+}
+
+/// Tangent on the principal branch `|x| ≤ TAN_DOMAIN_EDGE`; outside it,
+/// `±tan(TAN_DOMAIN_EDGE)` with the sign of `x`.
+#[inline]
+pub fn tan(x: f64) -> f64 {
+    let x = denan(x);
+    if x > TAN_DOMAIN_EDGE {
+        libm::tan(TAN_DOMAIN_EDGE)
+    } else if x < -TAN_DOMAIN_EDGE {
+        -libm::tan(TAN_DOMAIN_EDGE)
+    } else {
+        libm::tan(x)
+    }
+}
+
+/// `e^x`, saturating at `f64::MAX` (and underflowing to 0).
+#[inline]
+pub fn exp(x: f64) -> f64 {
+    finite_or(libm::exp(denan(x)), f64::MAX)
+}
+
+/// Sine; domain: every finite `f64` (`±∞` returns 0, like NaN).
+#[inline]
+pub fn sin(x: f64) -> f64 {
+    finite_or(libm::sin(denan(x)), 0.0)
+}
+
+/// Cosine; domain: every finite `f64` (`±∞` returns 1, like NaN).
+#[inline]
+pub fn cos(x: f64) -> f64 {
+    finite_or(libm::cos(denan(x)), 1.0)
+}
+
+/// `(sin x, cos x)`.
+#[inline]
+pub fn sin_cos(x: f64) -> (f64, f64) {
+    let x = if x.is_finite() { x } else { 0.0 };
+    libm::sincos(x)
+}
+
+/// Four-quadrant arctangent of `y/x` in `[-π, π]`; `atan2(0, 0) = 0`.
+#[inline]
+pub fn atan2(y: f64, x: f64) -> f64 {
+    libm::atan2(denan(y), denan(x))
+}
+
+/// Arccosine in `[0, π]`; the argument is clamped to `[-1, 1]`.
+#[inline]
+pub fn acos(x: f64) -> f64 {
+    libm::acos(denan(x).clamp(-1.0, 1.0))
+}
+
+/// Square root; negative arguments return 0, `+∞` returns `f64::MAX`.
+#[inline]
+pub fn sqrt(x: f64) -> f64 {
+    let x = denan(x);
+    if x <= 0.0 {
+        0.0
+    } else {
+        finite_or(libm::sqrt(x), f64::MAX)
+    }
+}
