@@ -30,6 +30,7 @@ use core::fmt::Debug;
 pub mod fixed;
 pub mod float;
 pub mod kernels;
+pub mod q15;
 
 pub use ::fixed::types::I16F16;
 
