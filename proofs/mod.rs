@@ -19,6 +19,7 @@
 
 pub mod engine;
 pub mod kernels_f32;
+pub mod kernels_f64;
 pub mod kernels_i16f16;
 pub mod kernels_q15;
 pub mod sat_sgn;

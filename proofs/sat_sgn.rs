@@ -1,1 +1,295 @@
-//! sat/sgn properties.
+//! Properties of the sign function (thesis eq. 2.17) and of the
+//! boundary-layer saturation `sat(x, y)` (thesis eq. 4.18), generic over the
+//! [`Scalar`] backends.
+//!
+//! | property | I16F16 | f32 | f64 |
+//! |---|---|---|---|
+//! | `sgn_exact` | Kani; exhaustive (all 2³² inputs) | Kani; exhaustive (all 2³² bit patterns) | random |
+//! | `sat_in_range`, `sat_matches_definition` | Kani; exhaustive over all 2³² pairs of a 16-bit lattice (`k·2⁻⁸`) | Kani; exhaustive over all 2³² pairs of bfloat16-valued inputs | random |
+//! | `sat_odd` | same | same | random |
+//! | `sat_monotone_step` (continuity + monotonicity in `x`) | same | same | random |
+//!
+//! The 16-bit lattices: for `I16F16`, every pair `(x, y)` whose bit patterns
+//! are `a << 8`, `b << 8` for 16-bit `a, b` (the `I8F8` values, range ±128,
+//! step 2⁻⁸); for `f32`, every pair whose bit patterns are `a << 16`,
+//! `b << 16` (the bfloat16 values: every sign, every exponent, including
+//! zeros, subnormals, infinities and NaNs).
+
+use super::engine::Verdict;
+use crate::scalar::Scalar;
+
+/// `sgn` returns exactly `1`, `0` or `-1` according to the sign of `x`,
+/// with `sgn(±0) = 0` and `sgn(NaN) = 0` (eq. 2.17).
+pub fn sgn_exact<S: Scalar>(x: S) -> Verdict {
+    let expected = if x > S::ZERO {
+        S::ONE
+    } else if x < S::ZERO {
+        S::ONE.neg()
+    } else {
+        S::ZERO
+    };
+    let got = x.sgn();
+    Verdict::logical(got == expected && !got.is_nan())
+}
+
+/// `sat(x, y)` is never NaN and lies in `[-1, 1]`.
+pub fn sat_in_range<S: Scalar>(x: S, y: S) -> Verdict {
+    let s = x.sat(y);
+    Verdict::logical(!s.is_nan() && s >= S::ONE.neg() && s <= S::ONE)
+}
+
+/// `sat(x, y)` equals the thesis definition evaluated exactly (in `f64` on
+/// the exact input values) to within half a unit of the backend's
+/// resolution at 1 (rounding of the quotient `x/|y|`), plus `1e-12` for the
+/// `f64` evaluation of the reference. The error is reported in units of
+/// [`Scalar::RESOLUTION`].
+pub fn sat_matches_definition<S: Scalar>(x: S, y: S) -> Verdict {
+    sat_value_matches_definition(x.sat(y).to_f64(), x, y)
+}
+
+/// The check behind [`sat_matches_definition`], for a given result `got`.
+pub fn sat_value_matches_definition<S: Scalar>(got: f64, x: S, y: S) -> Verdict {
+    let (xf, yf) = (x.to_f64(), y.to_f64());
+    let expected = if x.is_nan() {
+        0.0
+    } else if y.is_nan() || xf.abs() > yf {
+        // Outside the boundary layer: x / |x| (and 0 for x = 0).
+        if xf > 0.0 {
+            1.0
+        } else if xf < 0.0 {
+            -1.0
+        } else {
+            0.0
+        }
+    } else if yf == 0.0 {
+        0.0
+    } else if xf.is_infinite() {
+        // |x| = y = +inf: the limit of x/|y| along |x| = y.
+        xf.signum()
+    } else {
+        xf / yf.abs()
+    };
+    let res = S::RESOLUTION.to_f64();
+    Verdict::bounded((got - expected).abs() / res, 0.5 + 1e-12 / res)
+}
+
+/// Odd symmetry: `sat(-x, y) = -sat(x, y)` whenever `-x` is representable.
+pub fn sat_odd<S: Scalar>(x: S, y: S) -> Verdict {
+    if x == S::MIN {
+        // Precondition: -MIN is not representable in fixed point.
+        return Verdict::logical(true);
+    }
+    Verdict::logical(x.neg().sat(y) == x.sat(y).neg())
+}
+
+/// Monotone and continuous in `x`: for the next representable value `x'`
+/// after `x` (`x' > x`), `sat(x, y) <= sat(x', y)` and, for `y > 0`, the
+/// step is at most `(x' - x)/y` plus one resolution unit — so there is no
+/// jump at `|x| = y` or anywhere else. The error is the step in excess of
+/// `(x' - x)/y`, in resolution units.
+pub fn sat_monotone_step<S: Scalar>(x: S, x_next: S, y: S) -> Verdict {
+    if !(x < x_next) {
+        // Precondition: x_next is strictly above x.
+        return Verdict::logical(true);
+    }
+    let (a, b) = (x.sat(y), x_next.sat(y));
+    let monotone = a <= b;
+    if !(y > S::ZERO) {
+        return Verdict::logical(monotone);
+    }
+    let res = S::RESOLUTION.to_f64();
+    let allowed = (x_next.to_f64() - x.to_f64()) / y.to_f64();
+    let excess = ((b.to_f64() - a.to_f64()) - allowed).max(0.0) / res;
+    Verdict::logical(monotone).and(Verdict::bounded(excess, 1.0))
+}
+
+/// Next representable `f32` above `x` (not for NaN or `+∞`).
+pub fn next_up_f32(x: f32) -> f32 {
+    if x == 0.0 {
+        return f32::from_bits(1);
+    }
+    let b = x.to_bits();
+    f32::from_bits(if x > 0.0 { b + 1 } else { b - 1 })
+}
+
+#[cfg(kani)]
+mod kani_entries {
+    use super::*;
+    use crate::scalar::I16F16;
+
+    #[kani::proof]
+    fn kani_sgn_exact_i16f16() {
+        assert!(sgn_exact(I16F16::from_bits(kani::any())).holds);
+    }
+
+    #[kani::proof]
+    fn kani_sgn_exact_f32() {
+        assert!(sgn_exact::<f32>(kani::any()).holds);
+    }
+
+    #[kani::proof]
+    fn kani_sat_i16f16() {
+        let x = I16F16::from_bits(kani::any());
+        let y = I16F16::from_bits(kani::any());
+        assert!(sat_in_range(x, y).holds);
+        assert!(sat_matches_definition(x, y).holds);
+        assert!(sat_odd(x, y).holds);
+    }
+
+    #[kani::proof]
+    fn kani_sat_monotone_i16f16() {
+        let bits: i32 = kani::any();
+        // Precondition: the successor of x exists.
+        kani::assume(bits < i32::MAX);
+        let y = I16F16::from_bits(kani::any());
+        let (x, xn) = (I16F16::from_bits(bits), I16F16::from_bits(bits + 1));
+        assert!(sat_monotone_step(x, xn, y).holds);
+    }
+
+    #[kani::proof]
+    fn kani_sat_f32() {
+        let x: f32 = kani::any();
+        let y: f32 = kani::any();
+        assert!(sat_in_range(x, y).holds);
+        assert!(sat_odd(x, y).holds);
+        // Precondition: a finite successor exists.
+        kani::assume(x.is_finite() && x < f32::MAX);
+        assert!(sat_monotone_step(x, next_up_f32(x), y).holds);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::super::engine::exhaustive_u32;
+    use super::*;
+    use crate::scalar::I16F16;
+    use proptest::prelude::*;
+    use std::println;
+
+    fn i8f8_pair(code: u32) -> (I16F16, I16F16) {
+        let x = I16F16::from_bits(((code >> 16) as u16 as i16 as i32) << 8);
+        let y = I16F16::from_bits(((code & 0xffff) as u16 as i16 as i32) << 8);
+        (x, y)
+    }
+
+    fn bf16_pair(code: u32) -> (f32, f32) {
+        (
+            f32::from_bits(code & 0xffff_0000),
+            f32::from_bits(code << 16),
+        )
+    }
+
+    fn all_sat_properties<S: Scalar>(x: S, y: S, x_next: Option<S>) -> Verdict {
+        let mut v = sat_in_range(x, y)
+            .and(sat_matches_definition(x, y))
+            .and(sat_odd(x, y));
+        if let Some(xn) = x_next {
+            v = v.and(sat_monotone_step(x, xn, y));
+        }
+        v
+    }
+
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_sgn_i16f16() {
+        let r = exhaustive_u32(0, u32::MAX, |c| sgn_exact(I16F16::from_bits(c as i32)));
+        println!(
+            "PROOF kernel=sgn backend=I16F16 domain=all bound=exact max_err={} LSB at={} checked={} engine=exhaustive",
+            r.max_error, r.argmax, r.checked
+        );
+        assert_eq!(r.failures, 0, "first failure at code {:?}", r.first_failure);
+    }
+
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_sgn_f32() {
+        let r = exhaustive_u32(0, u32::MAX, |c| sgn_exact(f32::from_bits(c)));
+        println!(
+            "PROOF kernel=sgn backend=f32 domain=all(incl. NaN, inf) bound=exact max_err={} ulp at={:#x} checked={} engine=exhaustive",
+            r.max_error, r.argmax, r.checked
+        );
+        assert_eq!(r.failures, 0, "first failure at code {:?}", r.first_failure);
+    }
+
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_sat_i16f16() {
+        let r = exhaustive_u32(0, u32::MAX, |c| {
+            let (x, y) = i8f8_pair(c);
+            let xn = (x.to_bits() < i32::MAX).then(|| I16F16::from_bits(x.to_bits() + 1));
+            all_sat_properties(x, y, xn)
+        });
+        println!(
+            "PROOF kernel=sat backend=I16F16 domain=all pairs of I8F8 lattice bound=0.5 LSB max_err={} LSB at={:#x} checked={} engine=exhaustive",
+            r.max_error, r.argmax, r.checked
+        );
+        assert_eq!(r.failures, 0, "first failure at code {:?}", r.first_failure.map(i8f8_pair));
+    }
+
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_sat_f32() {
+        let r = exhaustive_u32(0, u32::MAX, |c| {
+            let (x, y) = bf16_pair(c);
+            let xn = (x.is_finite() && x < f32::MAX).then(|| next_up_f32(x));
+            all_sat_properties(x, y, xn)
+        });
+        println!(
+            "PROOF kernel=sat backend=f32 domain=all pairs of bfloat16 values bound=0.5 ulp(1) max_err={} at={:#x} checked={} engine=exhaustive",
+            r.max_error, r.argmax, r.checked
+        );
+        assert_eq!(r.failures, 0, "first failure at code {:?}", r.first_failure.map(bf16_pair));
+    }
+
+    #[test]
+    fn sat_is_continuous_exactly_at_the_boundary() {
+        // At |x| = y both branches of eq. (4.18) give ±1.
+        for y in [1e-4f64, 0.01, 0.1, 3.0] {
+            assert_eq!(y.sat(y), 1.0);
+            assert_eq!((-y).sat(y), -1.0);
+            let yf = I16F16::from_num(y);
+            assert_eq!(yf.sat(yf), I16F16::ONE);
+            assert_eq!(yf.neg().sat(yf), I16F16::ONE.neg());
+        }
+    }
+
+    /// The definition check can fail: a saturation that compares `|x|`
+    /// with `|y|` instead of `y` (misreading the `|y|` of eq. 4.18) is
+    /// rejected for a negative `y`, where the thesis saturates every `x != 0`.
+    #[test]
+    fn definition_check_rejects_a_misread_boundary() {
+        fn misread_sat(x: f64, y: f64) -> f64 {
+            if x.abs() > y.abs() {
+                x.signum()
+            } else {
+                x / y.abs()
+            }
+        }
+        let (x, y) = (-0.5f64, -1.0f64);
+        assert!(!sat_value_matches_definition(misread_sat(x, y), x, y).holds);
+        assert!(sat_value_matches_definition(x.sat(y), x, y).holds);
+        assert_eq!(x.sat(y), -1.0);
+    }
+
+    proptest! {
+        #[test]
+        fn sat_properties_f64(x in -10.0f64..10.0, y in -1.0f64..2.0, dx in 1e-9f64..1e-3) {
+            prop_assert!(sgn_exact(x).holds);
+            prop_assert!(all_sat_properties(x, y, Some(x + dx)).holds);
+        }
+
+        #[test]
+        fn sat_properties_f32(x in -10.0f32..10.0, y in -1.0f32..2.0) {
+            prop_assert!(sgn_exact(x).holds);
+            prop_assert!(all_sat_properties(x, y, Some(next_up_f32(x))).holds);
+        }
+
+        #[test]
+        fn sat_properties_i16f16(x in i32::MIN..i32::MAX, y in -(1i32 << 20)..(1i32 << 22)) {
+            let (x, y) = (I16F16::from_bits(x), I16F16::from_bits(y));
+            prop_assert!(sgn_exact(x).holds);
+            prop_assert!(all_sat_properties(x, y, Some(I16F16::from_bits(x.to_bits() + 1))).holds);
+        }
+    }
+}

@@ -1,5 +1,5 @@
 #![doc = include_str!("../README.md")]
-#![cfg_attr(not(any(feature = "std", test)), no_std)]
+#![cfg_attr(not(any(feature = "std", test, kani)), no_std)]
 
 pub mod error;
 pub mod scalar;
@@ -7,6 +7,9 @@ pub mod scalar;
 pub use error::ParamError;
 pub use scalar::{Scalar, I16F16};
 
-#[cfg(any(kani, test))]
+/// Verification properties (see `proofs/mod.rs`), compiled for the test,
+/// Kani and fuzz engines only.
+#[cfg(any(kani, test, feature = "proofs"))]
+#[doc(hidden)]
 #[path = "../proofs/mod.rs"]
-mod proofs;
+pub mod proofs;

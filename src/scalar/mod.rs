@@ -179,8 +179,14 @@ pub trait Scalar:
         } else {
             // |x| <= y with y > 0: |x / y| <= 1 exactly on every backend
             // (IEEE division and the fixed division are monotone and exact
-            // at ±1), so no clamp is needed.
-            x.div(y)
+            // at ±1), so no clamp is needed. The one NaN case is
+            // `±∞ / +∞` (floats), whose limit along |x| = y is sgn(x).
+            let q = x.div(y);
+            if q.is_nan() {
+                x.sgn()
+            } else {
+                q
+            }
         }
     }
 }
