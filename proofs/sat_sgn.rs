@@ -224,7 +224,12 @@ mod tests {
             "PROOF kernel=sat backend=I16F16 domain=all pairs of I8F8 lattice bound=0.5 LSB max_err={} LSB at={:#x} checked={} engine=exhaustive",
             r.max_error, r.argmax, r.checked
         );
-        assert_eq!(r.failures, 0, "first failure at code {:?}", r.first_failure.map(i8f8_pair));
+        assert_eq!(
+            r.failures,
+            0,
+            "first failure at code {:?}",
+            r.first_failure.map(i8f8_pair)
+        );
     }
 
     #[test]
@@ -239,7 +244,12 @@ mod tests {
             "PROOF kernel=sat backend=f32 domain=all pairs of bfloat16 values bound=0.5 ulp(1) max_err={} at={:#x} checked={} engine=exhaustive",
             r.max_error, r.argmax, r.checked
         );
-        assert_eq!(r.failures, 0, "first failure at code {:?}", r.first_failure.map(bf16_pair));
+        assert_eq!(
+            r.failures,
+            0,
+            "first failure at code {:?}",
+            r.first_failure.map(bf16_pair)
+        );
     }
 
     #[test]

@@ -78,7 +78,9 @@ macro_rules! float_scalar {
             #[inline]
             fn abs(self) -> Self {
                 // Clear the sign bit: exact, no libm call in no_std.
-                $t::from_bits(self.to_bits() & !(1 << ($t::MANTISSA_DIGITS + $t::MAX_EXP.trailing_zeros())))
+                $t::from_bits(
+                    self.to_bits() & !(1 << ($t::MANTISSA_DIGITS + $t::MAX_EXP.trailing_zeros())),
+                )
             }
             #[inline]
             fn atan(self) -> Self {

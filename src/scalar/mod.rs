@@ -11,8 +11,8 @@
 //!
 //! Models are *designed* in `f64` (`XxxParams`) and *quantized once* into a
 //! backend (`XxxConfig<S>`); the hot path only uses the methods of this trait.
-//! See [`fixed`](self::fixed) for how physical quantities are scaled into the
-//! fixed-point range and what resolution that leaves.
+//! See [`units`] for how physical quantities are scaled into the fixed-point
+//! range and what resolution that leaves.
 //!
 //! # Arithmetic semantics
 //!
@@ -31,6 +31,7 @@ pub mod fixed;
 pub mod float;
 pub mod kernels;
 pub mod q15;
+pub mod units;
 
 pub use ::fixed::types::I16F16;
 
