@@ -6,7 +6,7 @@
 //! 1. **Kani** — `#[cfg_attr(kani, kani::proof)]` entries that draw inputs
 //!    with `kani::any()`; run with `cargo kani` where Kani is installed.
 //! 2. **Exhaustive** — the same body over *every* input of a type
-//!    ([`engine::exhaustive_u32`]); a complete proof for that type. These are
+//!    (`engine::exhaustive_u32`); a complete proof for that type. These are
 //!    `#[ignore]`d unit tests named `exhaustive_*`, run in release by CI:
 //!    `cargo test --release --lib -- --ignored exhaustive --test-threads 1 --nocapture`.
 //! 3. **Random** — proptest strategies over physically meaningful ranges, run

@@ -88,13 +88,13 @@ pub fn sat_odd<S: Scalar>(x: S, y: S) -> Verdict {
 /// jump at `|x| = y` or anywhere else. The error is the step in excess of
 /// `(x' - x)/y`, in resolution units.
 pub fn sat_monotone_step<S: Scalar>(x: S, x_next: S, y: S) -> Verdict {
-    if !(x < x_next) {
+    if x.is_nan() || x_next.is_nan() || x >= x_next {
         // Precondition: x_next is strictly above x.
         return Verdict::logical(true);
     }
     let (a, b) = (x.sat(y), x_next.sat(y));
     let monotone = a <= b;
-    if !(y > S::ZERO) {
+    if y.is_nan() || y <= S::ZERO {
         return Verdict::logical(monotone);
     }
     let res = S::RESOLUTION.to_f64();

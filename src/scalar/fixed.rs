@@ -5,7 +5,7 @@
 //! operation saturates; nothing wraps or panics. Products are rounded to
 //! nearest (ties up), quotients to nearest (ties away from zero).
 //!
-//! The kernels are those of [`kernels::i16f16`](super::kernels::i16f16).
+//! The kernels are those of [`kernels::i16f16`].
 
 use super::{kernels, Scalar, I16F16};
 

@@ -169,8 +169,7 @@ pub trait Scalar:
         if x.is_nan() {
             return Self::ZERO;
         }
-        // `!(y > 0)` also catches a NaN `y`.
-        if !(y > Self::ZERO) {
+        if y.is_nan() || y <= Self::ZERO {
             return x.sgn();
         }
         if x > y {

@@ -6,8 +6,10 @@
 //! Conventions shared by all kernels here: a NaN argument is treated as 0;
 //! results are never NaN or infinite.
 
-/// Largest `f64` below π/2: the edge of the principal branch of [`tan`].
-pub const TAN_DOMAIN_EDGE: f64 = 1.570_796_326_794_896_6;
+/// Largest `f64` below π/2 (`FRAC_PI_2` rounds down: 1.5707963267948966 <
+/// π/2 = 1.57079632679489661923…): the edge of the principal branch of
+/// [`tan`].
+pub const TAN_DOMAIN_EDGE: f64 = core::f64::consts::FRAC_PI_2;
 
 #[inline]
 fn denan(x: f64) -> f64 {
