@@ -1,1 +1,666 @@
-//! f32 kernel properties.
+//! Properties of the `f32` kernels (`src/scalar/kernels/f32.rs`).
+//!
+//! Each property is a plain function of the kernel's input(s), returning a
+//! [`Verdict`]; the engines that run it:
+//!
+//! * **Exhaustive** — `exhaustive_*_f32` below, every `f32` bit pattern of the
+//!   kernel's domain (`atan2`: a 4096 × 4096 grid of codes). These are the
+//!   proofs of the bounds stated on the kernels. Each prints one line
+//!   `PROOF kernel=… backend=f32 domain=… bound=… max_err=… at=… checked=…
+//!   engine=exhaustive` (the README kernel table is built from them). Run:
+//!   `cargo test --release --lib -- --ignored exhaustive_ --test-threads 1 --nocapture`
+//!   (about 6–8 minutes for this file on two cores).
+//! * **Random** — `proptest` over physically meaningful ranges (motor angles,
+//!   force ratios, exponents of the friction and stiffness models), in plain
+//!   `cargo test`.
+//! * **Kani** — `kani_*_f32` entries wrapping the same bodies.
+//!
+//! The reference is the `f64` function of `std` in tests (glibc/LLVM, < 1 ulp
+//! of `f64`, i.e. ~2^-29 `f32` ulp) and the `libm` crate under Kani (`no_std`).
+//! Errors are measured by [`ulp_error_f32`]: in ulp of the `f32` binade of
+//! the reference, subnormal results in `2^-149`.
+
+use super::engine::{ulp_error_f32, Verdict};
+use crate::scalar::kernels::f32 as k;
+
+/// Proven bounds (ulp), as stated on the kernels.
+pub const ATAN_BOUND: f64 = 2.0;
+/// See [`ATAN_BOUND`].
+pub const TAN_BOUND: f64 = 3.0;
+/// See [`ATAN_BOUND`].
+pub const EXP_BOUND: f64 = 2.0;
+/// See [`ATAN_BOUND`].
+pub const SIN_COS_BOUND: f64 = 2.0;
+/// See [`ATAN_BOUND`].
+pub const ATAN2_BOUND: f64 = 2.0;
+/// See [`ATAN_BOUND`].
+pub const ACOS_BOUND: f64 = 3.0;
+/// Correct rounding.
+pub const SQRT_BOUND: f64 = 0.5;
+
+/// The `f64` reference functions.
+mod reference {
+    #[cfg(test)]
+    mod imp {
+        pub fn atan(x: f64) -> f64 {
+            x.atan()
+        }
+        pub fn tan(x: f64) -> f64 {
+            x.tan()
+        }
+        pub fn exp(x: f64) -> f64 {
+            x.exp()
+        }
+        pub fn sin(x: f64) -> f64 {
+            x.sin()
+        }
+        pub fn cos(x: f64) -> f64 {
+            x.cos()
+        }
+        pub fn atan2(y: f64, x: f64) -> f64 {
+            y.atan2(x)
+        }
+        pub fn acos(x: f64) -> f64 {
+            x.acos()
+        }
+        pub fn sqrt(x: f64) -> f64 {
+            x.sqrt()
+        }
+    }
+    #[cfg(not(test))]
+    mod imp {
+        pub use libm::{acos, atan, atan2, cos, exp, sin, sqrt, tan};
+    }
+    pub use imp::*;
+}
+
+/// The next `f32` above `x` (for finite `x` or `-∞`; `-0.0` → smallest
+/// positive subnormal).
+pub fn next_up(x: f32) -> f32 {
+    let b = x.to_bits();
+    if b == 0x8000_0000 {
+        f32::from_bits(1)
+    } else if b >> 31 == 0 {
+        f32::from_bits(b + 1)
+    } else {
+        f32::from_bits(b - 1)
+    }
+}
+
+/// `f(next_up(x)) ≥ f(x)` for every non-NaN `x < +∞`: over all codes this
+/// is monotonicity over every pair of adjacent `f32`s.
+fn monotone_at(f: fn(f32) -> f32, x: f32) -> Verdict {
+    if x.is_nan() || x == f32::INFINITY {
+        return Verdict::logical(true);
+    }
+    Verdict::logical(f(next_up(x)) >= f(x))
+}
+
+/// `f(-x) = -f(x)` bit for bit (non-NaN `x`).
+fn odd_at(f: fn(f32) -> f32, x: f32) -> Verdict {
+    if x.is_nan() {
+        return Verdict::logical(true);
+    }
+    Verdict::logical(f(-x).to_bits() == (-f(x)).to_bits())
+}
+
+fn within(got: f32, reference: f64, bound: f64) -> Verdict {
+    Verdict::bounded(ulp_error_f32(got, reference), bound)
+}
+
+// ---------------------------------------------------------------- atan ----
+
+/// `atan` is within [`ATAN_BOUND`] of `atan(x)` (NaN: exactly 0).
+/// Engines: exhaustive (every `f32`), random, Kani.
+pub fn atan_within_bound(x: f32) -> Verdict {
+    if x.is_nan() {
+        return Verdict::logical(k::atan(x) == 0.0);
+    }
+    within(k::atan(x), reference::atan(x as f64), ATAN_BOUND)
+}
+
+/// `atan` is non-decreasing at `x`. Engines: exhaustive, Kani.
+pub fn atan_monotone_at(x: f32) -> Verdict {
+    monotone_at(k::atan, x)
+}
+
+/// `atan(-x) = -atan(x)` exactly. Engines: exhaustive, Kani.
+pub fn atan_odd_at(x: f32) -> Verdict {
+    odd_at(k::atan, x)
+}
+
+// ----------------------------------------------------------------- tan ----
+
+/// `tan` is within [`TAN_BOUND`] of `tan(x)` for `|x| ≤ TAN_DOMAIN_EDGE`, and
+/// equals `±tan(TAN_DOMAIN_EDGE)` (sign of `x`) outside (NaN: exactly 0).
+/// Engines: exhaustive (every `f32`), random, Kani.
+pub fn tan_within_bound(x: f32) -> Verdict {
+    if x.is_nan() {
+        return Verdict::logical(k::tan(x) == 0.0);
+    }
+    if x > k::TAN_DOMAIN_EDGE {
+        return Verdict::logical(k::tan(x) == k::tan(k::TAN_DOMAIN_EDGE));
+    }
+    if x < -k::TAN_DOMAIN_EDGE {
+        return Verdict::logical(k::tan(x) == -k::tan(k::TAN_DOMAIN_EDGE));
+    }
+    within(k::tan(x), reference::tan(x as f64), TAN_BOUND)
+}
+
+/// `tan` is non-decreasing at `x` (over every `f32`, saturation included).
+/// Engines: exhaustive, Kani.
+pub fn tan_monotone_at(x: f32) -> Verdict {
+    monotone_at(k::tan, x)
+}
+
+/// `tan(-x) = -tan(x)` exactly. Engines: exhaustive, Kani.
+pub fn tan_odd_at(x: f32) -> Verdict {
+    odd_at(k::tan, x)
+}
+
+// ----------------------------------------------------------------- exp ----
+
+/// `exp` is within [`EXP_BOUND`] of `e^x` for `x ≤ EXP_MAX_ARG` (subnormal
+/// and flushed results included); above, `e^x` overflows `f32` and the
+/// result is `f32::MAX` (NaN: exactly 1). Engines: exhaustive, random, Kani.
+pub fn exp_within_bound(x: f32) -> Verdict {
+    if x.is_nan() {
+        return Verdict::logical(k::exp(x) == 1.0);
+    }
+    let reference = reference::exp(x as f64);
+    if x > k::EXP_MAX_ARG {
+        // Saturation is only allowed where the rounded e^x is infinite.
+        let overflows = reference >= f32::MAX as f64 * (1.0 + f64::powi(2.0, -24));
+        return Verdict::logical(k::exp(x) == f32::MAX && overflows);
+    }
+    within(k::exp(x), reference, EXP_BOUND)
+}
+
+/// `exp` is non-decreasing at `x`. Engines: exhaustive, Kani.
+pub fn exp_monotone_at(x: f32) -> Verdict {
+    monotone_at(k::exp, x)
+}
+
+// ------------------------------------------------------------- sin/cos ----
+
+/// `sin` is within [`SIN_COS_BOUND`] of `sin(x)` for finite `x`; `±∞` and
+/// NaN give exactly 0. Engines: exhaustive, random, Kani.
+pub fn sin_within_bound(x: f32) -> Verdict {
+    if !x.is_finite() {
+        return Verdict::logical(k::sin(x) == 0.0);
+    }
+    within(k::sin(x), reference::sin(x as f64), SIN_COS_BOUND)
+}
+
+/// `cos` is within [`SIN_COS_BOUND`] of `cos(x)` for finite `x`; `±∞` and
+/// NaN give exactly 1. Engines: exhaustive, random, Kani.
+pub fn cos_within_bound(x: f32) -> Verdict {
+    if !x.is_finite() {
+        return Verdict::logical(k::cos(x) == 1.0);
+    }
+    within(k::cos(x), reference::cos(x as f64), SIN_COS_BOUND)
+}
+
+/// `sin_cos(x)` equals `(sin x, cos x)` bit for bit, `sin` is exactly odd
+/// and `cos` exactly even. Engines: exhaustive, Kani.
+pub fn sin_cos_consistent_and_symmetric_at(x: f32) -> Verdict {
+    let (s, c) = k::sin_cos(x);
+    let same = s.to_bits() == k::sin(x).to_bits() && c.to_bits() == k::cos(x).to_bits();
+    let (sn, cn) = k::sin_cos(-x);
+    let symmetric = x.is_nan() || (sn.to_bits() == (-s).to_bits() && cn.to_bits() == c.to_bits());
+    Verdict::logical(same && symmetric)
+}
+
+// --------------------------------------------------------------- atan2 ----
+
+/// `atan2(y, x)` is within [`ATAN2_BOUND`] of the `f64` `atan2` (IEEE
+/// signed-zero conventions), lies in `[-π, π]` (π rounded to `f32`), and
+/// `atan2(±0, ±0) = 0`. NaN counts as 0. Engines: exhaustive grid, random,
+/// Kani.
+pub fn atan2_within_bound(y: f32, x: f32) -> Verdict {
+    let got = k::atan2(y, x);
+    let y = if y.is_nan() { 0.0 } else { y };
+    let x = if x.is_nan() { 0.0 } else { x };
+    if y == 0.0 && x == 0.0 {
+        return Verdict::logical(got.to_bits() == 0);
+    }
+    let in_range = got.abs() <= core::f32::consts::PI;
+    within(got, reference::atan2(y as f64, x as f64), ATAN2_BOUND).and(Verdict::logical(in_range))
+}
+
+// ---------------------------------------------------------------- acos ----
+
+/// `acos` is within [`ACOS_BOUND`] of `acos(x)` on `[-1, 1]`; outside, equal to
+/// `acos(±1)` (clamped; NaN: `acos(0)`). Engines: exhaustive, random, Kani.
+pub fn acos_within_bound(x: f32) -> Verdict {
+    if x.is_nan() {
+        return Verdict::logical(k::acos(x) == k::acos(0.0));
+    }
+    if x > 1.0 {
+        return Verdict::logical(k::acos(x) == k::acos(1.0));
+    }
+    if x < -1.0 {
+        return Verdict::logical(k::acos(x) == k::acos(-1.0));
+    }
+    within(k::acos(x), reference::acos(x as f64), ACOS_BOUND)
+}
+
+// ---------------------------------------------------------------- sqrt ----
+
+/// `sqrt` is correctly rounded: bit-equal to the `f64` square root rounded
+/// to `f32` (innocuous double rounding: 53 ≥ 2·24 + 2), for `x ≥ 0`;
+/// negatives and NaN give 0, `+∞` gives `f32::MAX`. Engines: exhaustive,
+/// random, Kani.
+pub fn sqrt_correctly_rounded(x: f32) -> Verdict {
+    let got = k::sqrt(x);
+    if x.is_nan() || x < 0.0 {
+        return Verdict::logical(got.to_bits() == 0);
+    }
+    if x == f32::INFINITY {
+        return Verdict::logical(got == f32::MAX);
+    }
+    let reference = reference::sqrt(x as f64);
+    within(got, reference, SQRT_BOUND).and(Verdict::logical(got == reference as f32))
+}
+
+/// `sqrt` is non-decreasing at `x`. Engines: exhaustive, Kani.
+pub fn sqrt_monotone_at(x: f32) -> Verdict {
+    monotone_at(k::sqrt, x)
+}
+
+// ---------------------------------------------------------- Kani entries --
+
+#[cfg(kani)]
+mod kani_entries {
+    use super::*;
+
+    #[kani::proof]
+    fn kani_atan_f32() {
+        let x: f32 = kani::any();
+        assert!(atan_within_bound(x).holds);
+    }
+
+    #[kani::proof]
+    fn kani_atan_monotone_f32() {
+        let x: f32 = kani::any();
+        assert!(atan_monotone_at(x).holds);
+    }
+
+    #[kani::proof]
+    fn kani_atan_odd_f32() {
+        let x: f32 = kani::any();
+        assert!(atan_odd_at(x).holds);
+    }
+
+    #[kani::proof]
+    fn kani_tan_f32() {
+        let x: f32 = kani::any();
+        assert!(tan_within_bound(x).holds);
+    }
+
+    #[kani::proof]
+    fn kani_tan_monotone_f32() {
+        let x: f32 = kani::any();
+        assert!(tan_monotone_at(x).holds);
+    }
+
+    #[kani::proof]
+    fn kani_exp_f32() {
+        let x: f32 = kani::any();
+        assert!(exp_within_bound(x).holds);
+    }
+
+    #[kani::proof]
+    fn kani_exp_monotone_f32() {
+        let x: f32 = kani::any();
+        assert!(exp_monotone_at(x).holds);
+    }
+
+    #[kani::proof]
+    fn kani_sin_f32() {
+        let x: f32 = kani::any();
+        // solver budget: the reduction is exercised up to 2^16 rad here; the
+        // exhaustive engine covers every finite f32.
+        kani::assume(x.abs() <= 65_536.0);
+        assert!(sin_within_bound(x).holds);
+    }
+
+    #[kani::proof]
+    fn kani_cos_f32() {
+        let x: f32 = kani::any();
+        // solver budget: as in kani_sin_f32.
+        kani::assume(x.abs() <= 65_536.0);
+        assert!(cos_within_bound(x).holds);
+    }
+
+    #[kani::proof]
+    fn kani_sin_cos_consistent_f32() {
+        let x: f32 = kani::any();
+        assert!(sin_cos_consistent_and_symmetric_at(x).holds);
+    }
+
+    #[kani::proof]
+    fn kani_atan2_f32() {
+        let y: f32 = kani::any();
+        let x: f32 = kani::any();
+        assert!(atan2_within_bound(y, x).holds);
+    }
+
+    #[kani::proof]
+    fn kani_acos_f32() {
+        let x: f32 = kani::any();
+        assert!(acos_within_bound(x).holds);
+    }
+
+    #[kani::proof]
+    fn kani_sqrt_f32() {
+        let x: f32 = kani::any();
+        assert!(sqrt_correctly_rounded(x).holds);
+    }
+
+    #[kani::proof]
+    fn kani_sqrt_monotone_f32() {
+        let x: f32 = kani::any();
+        assert!(sqrt_monotone_at(x).holds);
+    }
+}
+
+// ------------------------------------------------------ exhaustive engine --
+
+#[cfg(test)]
+mod exhaustive {
+    extern crate std;
+    use super::super::engine::{exhaustive_u32, Report};
+    use super::*;
+    use std::println;
+
+    /// Run `property` over the codes `lo..=hi`, print the summary line and
+    /// fail on any counterexample.
+    fn prove(
+        kernel: &str,
+        domain: &str,
+        bound: &str,
+        lo: u32,
+        hi: u32,
+        decode: impl Fn(u32) -> f32,
+        property: impl Fn(u32) -> Verdict + Sync,
+    ) -> Report {
+        let start = std::time::Instant::now();
+        let rep = exhaustive_u32(lo, hi, property);
+        let secs = start.elapsed().as_secs_f64();
+        let (max_err, unit) = if bound == "monotone" || bound == "exact" {
+            (std::format!("{}", rep.max_error), "")
+        } else {
+            (std::format!("{:.3}", rep.max_error), " ulp")
+        };
+        if rep.failures == 0 {
+            println!(
+                "PROOF kernel={kernel} backend=f32 domain={domain} bound={bound} max_err={max_err}{unit} at={:e} checked={} engine=exhaustive",
+                decode(rep.argmax),
+                rep.checked
+            );
+        } else {
+            let first = rep.first_failure.unwrap_or(0);
+            println!(
+                "FAILED kernel={kernel} backend=f32 domain={domain} bound={bound} failures={} first_failure={:e} (bits {:#010x}) max_err={max_err}{unit} at={:e} checked={} engine=exhaustive",
+                rep.failures,
+                decode(first),
+                decode(first).to_bits(),
+                decode(rep.argmax),
+                rep.checked
+            );
+        }
+        println!("  ({kernel}: {secs:.1} s)");
+        assert_eq!(rep.failures, 0, "{kernel}: property fails");
+        rep
+    }
+
+    fn bits(c: u32) -> f32 {
+        f32::from_bits(c)
+    }
+
+    /// Codes `0..2n` → `+code` for `c < n`, `-(c - n)` above: both signs of
+    /// the magnitudes `0..n`.
+    fn both_signs(n: u32) -> impl Fn(u32) -> f32 + Copy {
+        move |c| {
+            if c < n {
+                f32::from_bits(c)
+            } else {
+                f32::from_bits(0x8000_0000 | (c - n))
+            }
+        }
+    }
+
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_atan_f32() {
+        prove("atan", "all-f32", "2", 0, u32::MAX, bits, |c| {
+            atan_within_bound(bits(c))
+        });
+        prove("atan", "all-f32", "monotone", 0, u32::MAX, bits, |c| {
+            atan_monotone_at(bits(c))
+        });
+        prove("atan", "all-f32", "odd", 0, 0x7fff_ffff, bits, |c| {
+            atan_odd_at(bits(c))
+        });
+    }
+
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_tan_f32() {
+        // Bound on |x| ≤ TAN_DOMAIN_EDGE (both signs); the saturation and
+        // oddness are checked by the two passes over every code below.
+        let n = k::TAN_DOMAIN_EDGE.to_bits() + 1;
+        let dec = both_signs(n);
+        prove("tan", "|x|<=1.5707962", "3", 0, 2 * n - 1, dec, move |c| {
+            tan_within_bound(dec(c))
+        });
+        prove("tan", "all-f32", "monotone", 0, u32::MAX, bits, |c| {
+            tan_monotone_at(bits(c))
+        });
+        prove("tan", "all-f32", "odd", 0, 0x7fff_ffff, bits, |c| {
+            tan_odd_at(bits(c)).and(tan_within_bound(bits(c)))
+        });
+    }
+
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_exp_f32() {
+        prove(
+            "exp",
+            "x<=88.72283(all-f32;MAX-above)",
+            "2",
+            0,
+            u32::MAX,
+            bits,
+            |c| exp_within_bound(bits(c)),
+        );
+        prove("exp", "all-f32", "monotone", 0, u32::MAX, bits, |c| {
+            exp_monotone_at(bits(c))
+        });
+    }
+
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_sin_f32() {
+        // x ≥ 0 (every finite f32 and ±∞ by the exact symmetry proven in
+        // exhaustive_sin_cos_symmetry_f32).
+        prove("sin", "all-finite-f32", "2", 0, 0x7f80_0000, bits, |c| {
+            sin_within_bound(bits(c))
+        });
+    }
+
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_cos_f32() {
+        prove("cos", "all-finite-f32", "2", 0, 0x7f80_0000, bits, |c| {
+            cos_within_bound(bits(c))
+        });
+    }
+
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_sin_cos_symmetry_f32() {
+        prove("sin_cos", "all-f32", "exact", 0, 0x7fff_ffff, bits, |c| {
+            sin_cos_consistent_and_symmetric_at(bits(c))
+        });
+    }
+
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_acos_f32() {
+        let n = 1.0f32.to_bits() + 1;
+        let dec = both_signs(n);
+        prove("acos", "[-1,1]", "3", 0, 2 * n - 1, dec, move |c| {
+            acos_within_bound(dec(c))
+        });
+    }
+
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_sqrt_f32() {
+        prove("sqrt", "all-f32", "0.5", 0, u32::MAX, bits, |c| {
+            sqrt_correctly_rounded(bits(c))
+        });
+        prove("sqrt", "all-f32", "monotone", 0, u32::MAX, bits, |c| {
+            sqrt_monotone_at(bits(c))
+        });
+    }
+
+    /// The 4096 grid values per axis: 2048 magnitudes spread over every
+    /// exponent (0, subnormals, normals from 2^-126 to MAX, ∞), both signs.
+    fn atan2_axis(i: u32) -> f32 {
+        let j = i & 2047;
+        let mag = match j {
+            0 => 0,
+            2047 => 0x7f80_0000,
+            // Spread j = 1..2046 over the finite positive codes, plus a
+            // per-index odd offset so mantissas vary.
+            _ => ((j as u64 * 0x7f7f_ffff / 2046) as u32 | 1).wrapping_sub(j & 0x3e),
+        };
+        if i < 2048 {
+            f32::from_bits(mag)
+        } else {
+            f32::from_bits(mag | 0x8000_0000)
+        }
+    }
+
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_atan2_f32() {
+        let dec = |c: u32| atan2_axis(c >> 12);
+        prove(
+            "atan2",
+            "grid-4096x4096-all-exponents",
+            "2",
+            0,
+            (1 << 24) - 1,
+            dec,
+            |c| atan2_within_bound(atan2_axis(c >> 12), atan2_axis(c & 4095)),
+        );
+    }
+}
+
+// --------------------------------------------------------- random engine --
+
+#[cfg(test)]
+mod random {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// Joint angles and motor angles (after the gear ratio) in ±10⁴ rad.
+        #[test]
+        fn sin_cos_within_bound_on_motor_angles(x in -1.0e4f32..1.0e4) {
+            prop_assert!(sin_within_bound(x).holds);
+            prop_assert!(cos_within_bound(x).holds);
+            prop_assert!(sin_cos_consistent_and_symmetric_at(x).holds);
+        }
+
+        /// Small wrist angles, where the unreduced branch is used.
+        #[test]
+        fn sin_cos_within_bound_near_zero(x in -1.0f32..1.0) {
+            prop_assert!(sin_within_bound(x).holds);
+            prop_assert!(cos_within_bound(x).holds);
+        }
+
+        /// Compliance arguments `c_f·τ` (eq. 2.26): torques up to ±500 N·m
+        /// times compliance up to 10 rad/(N·m).
+        #[test]
+        fn atan_within_bound_on_compliance_arguments(x in -5.0e3f32..5.0e3) {
+            prop_assert!(atan_within_bound(x).holds);
+            prop_assert!(atan_monotone_at(x).holds);
+        }
+
+        #[test]
+        fn tan_within_bound_on_principal_branch(x in -1.570_796_2f32..1.570_796_2) {
+            prop_assert!(tan_within_bound(x).holds);
+            prop_assert!(tan_monotone_at(x).holds);
+        }
+
+        /// Exponents of the stiffness (eq. 2.29) and Stribeck (eq. 4.7) terms.
+        #[test]
+        fn exp_within_bound_on_model_exponents(x in -100.0f32..88.0) {
+            prop_assert!(exp_within_bound(x).holds);
+            prop_assert!(exp_monotone_at(x).holds);
+        }
+
+        /// Force components in ±10³ N (F/T sensor mapping, ch. 5).
+        #[test]
+        fn atan2_within_bound_on_forces(y in -1.0e3f32..1.0e3, x in -1.0e3f32..1.0e3) {
+            prop_assert!(atan2_within_bound(y, x).holds);
+        }
+
+        /// Direction cosines of the wrist kinematics.
+        #[test]
+        fn acos_within_bound_on_direction_cosines(x in -1.0f32..=1.0) {
+            prop_assert!(acos_within_bound(x).holds);
+        }
+
+        /// Sums of squares of forces and velocities.
+        #[test]
+        fn sqrt_correctly_rounded_on_norms(x in 0.0f32..1.0e7) {
+            prop_assert!(sqrt_correctly_rounded(x).holds);
+            prop_assert!(sqrt_monotone_at(x).holds);
+        }
+    }
+
+    #[test]
+    fn special_values() {
+        assert_eq!(k::atan(f32::INFINITY), core::f32::consts::FRAC_PI_2);
+        assert_eq!(k::atan(f32::NAN), 0.0);
+        assert_eq!(k::tan(f32::NAN), 0.0);
+        assert_eq!(k::tan(f32::INFINITY), k::tan(k::TAN_DOMAIN_EDGE));
+        assert_eq!(k::exp(f32::NAN), 1.0);
+        assert_eq!(k::exp(f32::INFINITY), f32::MAX);
+        assert_eq!(k::exp(f32::NEG_INFINITY), 0.0);
+        assert_eq!(k::exp(0.0), 1.0);
+        assert_eq!(k::sin_cos(f32::INFINITY), (0.0, 1.0));
+        assert_eq!(k::sin_cos(f32::NAN), (0.0, 1.0));
+        assert_eq!(k::atan2(0.0, 0.0), 0.0);
+        assert_eq!(k::atan2(-0.0, -0.0), 0.0);
+        assert_eq!(k::atan2(0.0, -1.0), core::f32::consts::PI);
+        assert_eq!(k::atan2(1.0, 0.0), core::f32::consts::FRAC_PI_2);
+        assert_eq!(k::acos(2.0), 0.0);
+        assert_eq!(k::acos(-1.0), core::f32::consts::PI);
+        assert_eq!(k::sqrt(-4.0), 0.0);
+        assert_eq!(k::sqrt(4.0), 2.0);
+        assert_eq!(k::sqrt(f32::INFINITY), f32::MAX);
+        for x in [
+            0.0f32,
+            1e-30,
+            0.5,
+            1.0,
+            3.0,
+            1e10,
+            f32::MAX,
+            f32::MIN_POSITIVE,
+        ] {
+            assert!(atan_within_bound(x).holds, "atan {x}");
+            assert!(exp_within_bound(-x).holds, "exp {x}");
+            assert!(sin_within_bound(x).holds, "sin {x}");
+            assert!(cos_within_bound(x).holds, "cos {x}");
+            assert!(sqrt_correctly_rounded(x).holds, "sqrt {x}");
+        }
+    }
+}
