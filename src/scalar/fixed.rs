@@ -59,6 +59,7 @@ impl Scalar for I16F16 {
     const RESOLUTION: Self = I16F16::DELTA;
     const PI: Self = I16F16::PI;
     const FRAC_PI_2: Self = I16F16::FRAC_PI_2;
+    const UNITS: super::units::Units = super::units::FIXED;
 
     #[inline]
     fn from_f64(x: f64) -> Self {

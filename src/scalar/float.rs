@@ -18,6 +18,7 @@ macro_rules! float_scalar {
             const RESOLUTION: Self = $t::EPSILON;
             const PI: Self = core::$t::consts::PI;
             const FRAC_PI_2: Self = core::$t::consts::FRAC_PI_2;
+            const UNITS: super::units::Units = super::units::SI;
 
             #[inline]
             fn from_f64(x: f64) -> Self {

@@ -60,6 +60,9 @@ pub trait Scalar:
     const PI: Self;
     /// π/2 rounded to nearest.
     const FRAC_PI_2: Self;
+    /// The unit scales this backend stores physical quantities with
+    /// ([`units::SI`] for floats, [`units::FIXED`] for `I16F16`).
+    const UNITS: units::Units;
 
     /// Nearest representable value; saturates at `MIN`/`MAX`; NaN maps to 0.
     fn from_f64(x: f64) -> Self;

@@ -57,6 +57,51 @@ pub const STIFFNESS: f64 = 1e-3;
 /// a motor torque in mN·m).
 pub const INERTIA: f64 = 1e3;
 
+/// The unit scales a backend stores quantities with (`stored = SI · scale`).
+///
+/// Generic components convert at their boundaries with [`quantize`] /
+/// [`dequantize`] using `S::UNITS`, and fold every scale ratio into their
+/// configuration coefficients once, so the same code serves every backend.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Units {
+    /// Link-side torque.
+    pub link_torque: f64,
+    /// Motor-side torque.
+    pub motor_torque: f64,
+    /// Harmonic-drive torsion and kinematic error.
+    pub torsion: f64,
+    /// Joint angles.
+    pub angle: f64,
+    /// Angular speeds.
+    pub speed: f64,
+    /// Torsional stiffness.
+    pub stiffness: f64,
+    /// Rotor inertia.
+    pub inertia: f64,
+}
+
+/// Floats store plain SI values.
+pub const SI: Units = Units {
+    link_torque: 1.0,
+    motor_torque: 1.0,
+    torsion: 1.0,
+    angle: 1.0,
+    speed: 1.0,
+    stiffness: 1.0,
+    inertia: 1.0,
+};
+
+/// The scales of the table above, used by `I16F16`.
+pub const FIXED: Units = Units {
+    link_torque: LINK_TORQUE,
+    motor_torque: MOTOR_TORQUE,
+    torsion: TORSION,
+    angle: ANGLE,
+    speed: SPEED,
+    stiffness: STIFFNESS,
+    inertia: INERTIA,
+};
+
 /// `value_si · scale`, rounded to the backend (saturating, NaN → 0).
 #[inline]
 pub fn quantize<S: Scalar>(value_si: f64, scale: f64) -> S {

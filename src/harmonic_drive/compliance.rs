@@ -1,0 +1,544 @@
+//! Compliance models of a harmonic drive (thesis §2.2.2–2.2.3).
+//!
+//! * [`CataloguePiecewise`] — the manufacturer's piecewise-linear curve,
+//!   eq. (2.11) (as the catalogue means it: see the errata).
+//! * [`CubicStiffness`] — the cubic polynomial of eq. (2.10).
+//! * [`FlexsplineParams`] — the proposed flexspline stiffness, eq. (2.24)–(2.26),
+//!   and its inverse, eq. (3.10).
+//! * [`WaveGeneratorParams`] — the wave-generator compliance, eq. (2.27)–(2.29).
+//! * [`HarmonicDriveParams`] — the total torsion, eq. (2.30).
+//!
+//! Units: torques in N·m, torsion in rad (output side), stiffness in N·m/rad,
+//! `c_f`, `c_w` in 1/(N·m). Torques are *flexspline* (link-side) torques
+//! `τ_f` unless named wave-generator torques `τ_w` (motor side).
+//!
+//! The `…Params` types are `f64` designs; [`FlexsplineConfig`] and
+//! [`WaveGeneratorConfig`] are the same models quantized for a backend `S`
+//! (stored units `S::UNITS`), and the `f64` methods are those configs with
+//! `S = f64`, so each formula exists once.
+
+use crate::error::{finite, positive, ParamError};
+use crate::scalar::{units::Units, Scalar};
+
+/// The catalogue's piecewise-linear torsion curve, eq. (2.11), odd in the
+/// torque: slopes `K1` up to `T1`, `K2` from `T1` to `T2`, `K3` above `T2`.
+///
+/// $$ \Delta\theta(\tau) = \begin{cases} \tau/K_1 & 0 \le \tau \le T_1 \\
+/// T_1/K_1 + (\tau-T_1)/K_2 & T_1 < \tau \le T_2 \\
+/// T_1/K_1 + (T_2-T_1)/K_2 + (\tau-T_2)/K_3 & \tau > T_2 \end{cases},\quad
+/// \Delta\theta(-\tau) = -\Delta\theta(\tau) $$
+///
+/// The printed eq. (2.11) divides the third piece by `K2` and writes `τ_1`,
+/// `T_f` for `T_1`, `τ_f`; it also leaves the negative torques out. See
+/// errata E2.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CataloguePiecewise {
+    k1: f64,
+    k2: f64,
+    k3: f64,
+    t1: f64,
+    t2: f64,
+}
+
+impl CataloguePiecewise {
+    /// Validates `K1, K2, K3 > 0` (N·m/rad) and `0 < T1 < T2` (N·m).
+    pub fn try_new(k1: f64, k2: f64, k3: f64, t1: f64, t2: f64) -> Result<Self, ParamError> {
+        let (k1, k2, k3) = (
+            positive("k1", k1)?,
+            positive("k2", k2)?,
+            positive("k3", k3)?,
+        );
+        let (t1, t2) = (positive("t1", t1)?, positive("t2", t2)?);
+        if t2 <= t1 {
+            return Err(ParamError::NotIncreasing {
+                lower: "t1",
+                lower_value: t1,
+                upper: "t2",
+                upper_value: t2,
+            });
+        }
+        Ok(CataloguePiecewise { k1, k2, k3, t1, t2 })
+    }
+
+    /// Torsion at the knee `T1`, rad.
+    pub fn torsion_at_t1(&self) -> f64 {
+        self.t1 / self.k1
+    }
+
+    /// Torsion at the knee `T2`, rad.
+    pub fn torsion_at_t2(&self) -> f64 {
+        self.torsion_at_t1() + (self.t2 - self.t1) / self.k2
+    }
+
+    /// Eq. (2.11): torsion (rad) for a flexspline torque (N·m).
+    pub fn torsion(&self, torque: f64) -> f64 {
+        let t = torque.abs();
+        let d = if t <= self.t1 {
+            t / self.k1
+        } else if t <= self.t2 {
+            self.torsion_at_t1() + (t - self.t1) / self.k2
+        } else {
+            self.torsion_at_t2() + (t - self.t2) / self.k3
+        };
+        d.copysign(torque)
+    }
+
+    /// The exact inverse of [`torsion`](Self::torsion): torque (N·m) for a
+    /// torsion (rad).
+    pub fn torque(&self, torsion: f64) -> f64 {
+        let d = torsion.abs();
+        let (d1, d2) = (self.torsion_at_t1(), self.torsion_at_t2());
+        let t = if d <= d1 {
+            d * self.k1
+        } else if d <= d2 {
+            self.t1 + (d - d1) * self.k2
+        } else {
+            self.t2 + (d - d2) * self.k3
+        };
+        t.copysign(torsion)
+    }
+
+    /// Local stiffness `dτ/dΔθ` at a torque (N·m/rad): `K1`, `K2` or `K3`.
+    pub fn local_stiffness(&self, torque: f64) -> f64 {
+        let t = torque.abs();
+        if t <= self.t1 {
+            self.k1
+        } else if t <= self.t2 {
+            self.k2
+        } else {
+            self.k3
+        }
+    }
+}
+
+/// The cubic stiffness of eq. (2.10), `τ_f = a1 Δθ + a3 Δθ³`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CubicStiffness {
+    a1: f64,
+    a3: f64,
+}
+
+impl CubicStiffness {
+    /// Validates `a1 > 0` (N·m/rad) and `a3 ≥ 0` (N·m/rad³), which make the
+    /// curve strictly increasing and so invertible.
+    pub fn try_new(a1: f64, a3: f64) -> Result<Self, ParamError> {
+        let a1 = positive("a1", a1)?;
+        let a3 = finite("a3", a3)?;
+        if a3 < 0.0 {
+            return Err(ParamError::Negative {
+                name: "a3",
+                value: a3,
+            });
+        }
+        Ok(CubicStiffness { a1, a3 })
+    }
+
+    /// The cubic through the catalogue's two knee points `(Δθ(T1), T1)` and
+    /// `(Δθ(T2), T2)` of a [`CataloguePiecewise`] curve — the identification
+    /// used to compare the models (thesis Fig. 2.11–2.12). Fails with
+    /// [`ParamError::NotRepresentable`] (`name = "a3"`) when the knees bend
+    /// the wrong way (softening), which no admissible cubic fits.
+    pub fn through_catalogue_knees(c: &CataloguePiecewise) -> Result<Self, ParamError> {
+        let (x1, x2) = (c.torsion_at_t1(), c.torsion_at_t2());
+        // [x1 x1³; x2 x2³] [a1; a3] = [T1; T2], solved by Cramer's rule.
+        let det = x1 * x2 * x2 * x2 - x2 * x1 * x1 * x1;
+        let a1 = (c.t1 * x2 * x2 * x2 - c.t2 * x1 * x1 * x1) / det;
+        let a3 = (x1 * c.t2 - x2 * c.t1) / det;
+        if a3 < 0.0 || a1 <= 0.0 || !a1.is_finite() || !a3.is_finite() {
+            return Err(ParamError::NotRepresentable {
+                name: "a3",
+                value: a3,
+            });
+        }
+        Self::try_new(a1, a3)
+    }
+
+    /// The linear coefficient `a1`, N·m/rad.
+    pub fn a1(&self) -> f64 {
+        self.a1
+    }
+
+    /// The cubic coefficient `a3`, N·m/rad³.
+    pub fn a3(&self) -> f64 {
+        self.a3
+    }
+
+    /// Eq. (2.10): torque (N·m) for a torsion (rad).
+    pub fn torque(&self, torsion: f64) -> f64 {
+        torsion * (self.a1 + self.a3 * torsion * torsion)
+    }
+
+    /// Local stiffness `a1 + 3 a3 Δθ²` (N·m/rad) at a torsion (rad).
+    pub fn local_stiffness(&self, torsion: f64) -> f64 {
+        self.a1 + 3.0 * self.a3 * torsion * torsion
+    }
+
+    /// Torsion (rad) for a torque (N·m): the real root of the cubic
+    /// (Remark 1: the inverse the controller needs), by Newton's method from
+    /// the linear guess; the function is increasing and convex for
+    /// `Δθ > 0`, so Newton from `τ/a1` (which over-estimates) decreases
+    /// monotonically to the root.
+    pub fn torsion(&self, torque: f64) -> f64 {
+        if !torque.is_finite() {
+            return 0.0;
+        }
+        let t = torque.abs();
+        let mut x = t / self.a1;
+        for _ in 0..60 {
+            let f = self.torque(x) - t;
+            let step = f / self.local_stiffness(x);
+            x -= step;
+            if step.abs() <= 1e-17 * x.abs() {
+                break;
+            }
+        }
+        x.copysign(torque)
+    }
+}
+
+/// Flexspline stiffness of the proposed model, eq. (2.24):
+/// `K_fl = K_f0 (1 + (c_f τ_f)²)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FlexsplineParams {
+    /// Stiffness at zero torque `K_f0`, N·m/rad.
+    pub k_f0: f64,
+    /// Stiffening coefficient `c_f`, 1/(N·m).
+    pub c_f: f64,
+}
+
+impl FlexsplineParams {
+    /// Validates `K_f0 > 0` and `c_f > 0` (both finite).
+    pub fn try_new(k_f0: f64, c_f: f64) -> Result<Self, ParamError> {
+        Ok(FlexsplineParams {
+            k_f0: positive("k_f0", k_f0)?,
+            c_f: positive("c_f", c_f)?,
+        })
+    }
+
+    /// Eq. (2.24): local stiffness (N·m/rad) at a flexspline torque (N·m).
+    pub fn local_stiffness(&self, torque: f64) -> f64 {
+        let u = self.c_f * torque;
+        self.k_f0 * (1.0 + u * u)
+    }
+
+    /// Largest flexspline torsion the model can produce, `π / (2 c_f K_f0)`
+    /// (rad): the torsion as `τ_f → ∞`, and the edge of the inverse's domain.
+    pub fn max_torsion(&self) -> f64 {
+        core::f64::consts::FRAC_PI_2 / (self.c_f * self.k_f0)
+    }
+
+    /// Eq. (2.26): flexspline torsion (rad) for a torque (N·m),
+    /// `Δθ_f = atan(c_f τ_f) / (c_f K_f0)`.
+    pub fn torsion(&self, torque: f64) -> f64 {
+        FlexsplineConfig::<f64>::new(self).torsion(torque)
+    }
+
+    /// Eq. (3.10): torque (N·m) for a flexspline torsion (rad),
+    /// `τ_f = tan(Δθ_f c_f K_f0) / c_f`, with the saturation of
+    /// [`FlexsplineConfig::torque`].
+    pub fn torque(&self, torsion: f64) -> FlexsplineTorque<f64> {
+        FlexsplineConfig::<f64>::new(self).torque(torsion)
+    }
+}
+
+/// The result of inverting the flexspline compliance (eq. 3.10).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FlexsplineTorque<S> {
+    /// The torque, in the backend's stored link-torque unit.
+    pub torque: S,
+    /// `true` when the torsion was at or beyond `±max_torsion` (the
+    /// principal branch of `tan` ends there) and the torque was saturated.
+    pub saturated: bool,
+}
+
+/// [`FlexsplineParams`] quantized for backend `S`: torques in
+/// `S::UNITS.link_torque`, torsion in `S::UNITS.torsion`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FlexsplineConfig<S> {
+    /// `c_f` per stored torque unit.
+    c_f: S,
+    /// Stored torsion per radian of `atan` (`1 / (c_f K_f0)` scaled).
+    torsion_per_angle: S,
+    /// Radian of `tan` argument per stored torsion (`c_f K_f0` scaled).
+    angle_per_torsion: S,
+    /// Stored torque per unit of `tan` (`1 / c_f` scaled).
+    torque_per_tan: S,
+}
+
+impl<S: Scalar> FlexsplineConfig<S> {
+    /// Quantize validated parameters once.
+    pub fn new(p: &FlexsplineParams) -> Self {
+        let u: Units = S::UNITS;
+        let ck = p.c_f * p.k_f0;
+        FlexsplineConfig {
+            c_f: S::from_f64(p.c_f / u.link_torque),
+            torsion_per_angle: S::from_f64(u.torsion / ck),
+            angle_per_torsion: S::from_f64(ck / u.torsion),
+            torque_per_tan: S::from_f64(u.link_torque / p.c_f),
+        }
+    }
+
+    /// Eq. (2.26) in stored units.
+    #[inline]
+    pub fn torsion(&self, torque: S) -> S {
+        self.c_f.mul(torque).atan().mul(self.torsion_per_angle)
+    }
+
+    /// Eq. (3.10) in stored units. The argument `Δθ_f c_f K_f0` must stay
+    /// inside the principal branch `(-π/2, π/2)`; at or beyond it the torque
+    /// saturates at the backend's largest in-branch value (sign of the
+    /// torsion) and `saturated` is set — a value from the wrong branch is
+    /// never returned.
+    #[inline]
+    pub fn torque(&self, torsion: S) -> FlexsplineTorque<S> {
+        let angle = torsion.mul(self.angle_per_torsion);
+        let saturated = angle.abs() >= S::FRAC_PI_2;
+        FlexsplineTorque {
+            torque: angle.tan().mul(self.torque_per_tan),
+            saturated,
+        }
+    }
+}
+
+/// Wave-generator compliance of the proposed model, eq. (2.27):
+/// `K_wl = K_w0 e^{c_w |τ_w|}`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WaveGeneratorParams {
+    /// Stiffness at zero torque `K_w0`, N·m/rad (wave-generator side).
+    pub k_w0: f64,
+    /// Stiffening coefficient `c_w`, 1/(N·m).
+    pub c_w: f64,
+}
+
+impl WaveGeneratorParams {
+    /// Validates `K_w0 > 0` and `c_w > 0`.
+    pub fn try_new(k_w0: f64, c_w: f64) -> Result<Self, ParamError> {
+        Ok(WaveGeneratorParams {
+            k_w0: positive("k_w0", k_w0)?,
+            c_w: positive("c_w", c_w)?,
+        })
+    }
+
+    /// Eq. (2.27): local stiffness (N·m/rad) at a wave-generator torque.
+    pub fn local_stiffness(&self, torque: f64) -> f64 {
+        self.k_w0 * libm::exp(self.c_w * torque.abs())
+    }
+
+    /// Eq. (2.29): wave-generator torsion `Δθ_w` (rad, input side) for a
+    /// wave-generator torque `τ_w` (N·m):
+    /// `Δθ_w = sgn(τ_w) (1 − e^{−c_w |τ_w|}) / (c_w K_w0)`.
+    pub fn torsion(&self, torque: f64) -> f64 {
+        let e = libm::exp(-self.c_w * torque.abs());
+        torque.sgn() * (1.0 - e) / (self.c_w * self.k_w0)
+    }
+}
+
+/// The wave-generator term of eq. (2.30) quantized for backend `S`: the
+/// output-side torsion `Δθ_w / N` for a motor-side torque in
+/// `S::UNITS.motor_torque`, returned in `S::UNITS.torsion`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WaveGeneratorConfig<S> {
+    /// `c_w` per stored motor-torque unit.
+    c_w: S,
+    /// `1 / (c_w N K_w0)` in stored torsion units (half the hysteresis
+    /// width, eq. 2.36).
+    amplitude: S,
+}
+
+impl<S: Scalar> WaveGeneratorConfig<S> {
+    /// Quantize validated parameters for a drive of ratio `N`.
+    pub fn new(p: &WaveGeneratorParams, ratio: f64) -> Self {
+        let u = S::UNITS;
+        WaveGeneratorConfig {
+            c_w: S::from_f64(p.c_w / u.motor_torque),
+            amplitude: S::from_f64(u.torsion / (p.c_w * ratio * p.k_w0)),
+        }
+    }
+
+    /// Output-side wave-generator torsion `Δθ_w / N` of eq. (2.29)/(2.30).
+    #[inline]
+    pub fn output_torsion(&self, motor_torque: S) -> S {
+        let e = self.c_w.mul(motor_torque.abs()).neg().exp();
+        motor_torque.sgn().mul(S::ONE.sub(e)).mul(self.amplitude)
+    }
+}
+
+/// The proposed harmonic-drive compliance, eq. (2.30).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HarmonicDriveParams {
+    /// Flexspline stiffness, eq. (2.24)–(2.26).
+    pub flexspline: FlexsplineParams,
+    /// Wave-generator compliance, eq. (2.27)–(2.29).
+    pub wave_generator: WaveGeneratorParams,
+    /// Gear ratio `N` (≥ 1).
+    pub ratio: f64,
+}
+
+impl HarmonicDriveParams {
+    /// Validates the ratio (`N ≥ 1`, finite).
+    pub fn try_new(
+        flexspline: FlexsplineParams,
+        wave_generator: WaveGeneratorParams,
+        ratio: f64,
+    ) -> Result<Self, ParamError> {
+        let ratio = finite("ratio", ratio)?;
+        if ratio < 1.0 {
+            return Err(ParamError::OutOfRange {
+                name: "ratio",
+                value: ratio,
+                min: 1.0,
+                max: f64::INFINITY,
+            });
+        }
+        Ok(HarmonicDriveParams {
+            flexspline,
+            wave_generator,
+            ratio,
+        })
+    }
+
+    /// Eq. (2.30): total output-side torsion (rad) for a flexspline torque
+    /// `τ_f` and a wave-generator torque `τ_w` (both N·m):
+    /// `Δθ = atan(c_f τ_f)/(c_f K_f0) − sgn(τ_w)(1 − e^{−c_w|τ_w|})/(c_w N K_w0)`.
+    pub fn torsion(&self, flexspline_torque: f64, wave_generator_torque: f64) -> f64 {
+        self.flexspline.torsion(flexspline_torque)
+            - WaveGeneratorConfig::<f64>::new(&self.wave_generator, self.ratio)
+                .output_torsion(wave_generator_torque)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scalar::I16F16;
+    use proptest::prelude::*;
+
+    fn shd17() -> FlexsplineParams {
+        FlexsplineParams::try_new(8.336e3, 0.0449).unwrap()
+    }
+
+    #[test]
+    fn piecewise_is_continuous_at_the_knees_and_odd() {
+        let c = CataloguePiecewise::try_new(8.4e3, 9.4e3, 1.2e4, 3.9, 12.0).unwrap();
+        for t in [3.9, 12.0] {
+            let below = c.torsion(t - 1e-9);
+            let above = c.torsion(t + 1e-9);
+            assert!((above - below).abs() < 1e-12, "jump at {t}");
+        }
+        assert_eq!(c.torsion(-5.0), -c.torsion(5.0));
+        // Hand values: 3.9/8400 and 3.9/8400 + 8.1/9400 + 3/12000.
+        assert!((c.torsion(3.9) - 3.9 / 8400.0).abs() < 1e-15);
+        assert!((c.torsion(15.0) - (3.9 / 8400.0 + 8.1 / 9400.0 + 3.0 / 12000.0)).abs() < 1e-15);
+    }
+
+    #[test]
+    fn piecewise_rejects_unordered_knees() {
+        assert_eq!(
+            CataloguePiecewise::try_new(1.0, 2.0, 3.0, 5.0, 5.0),
+            Err(ParamError::NotIncreasing {
+                lower: "t1",
+                lower_value: 5.0,
+                upper: "t2",
+                upper_value: 5.0
+            })
+        );
+        assert!(matches!(
+            CataloguePiecewise::try_new(-1.0, 2.0, 3.0, 1.0, 5.0),
+            Err(ParamError::NotPositive { name: "k1", .. })
+        ));
+    }
+
+    #[test]
+    fn cubic_passes_through_the_knees() {
+        let c = CataloguePiecewise::try_new(8.4e3, 9.4e3, 1.2e4, 3.9, 12.0).unwrap();
+        let q = CubicStiffness::through_catalogue_knees(&c).unwrap();
+        assert!((q.torque(c.torsion_at_t1()) - 3.9).abs() < 1e-9);
+        assert!((q.torque(c.torsion_at_t2()) - 12.0).abs() < 1e-9);
+        // A softening catalogue (K2 < K1) has no admissible cubic.
+        let soft = CataloguePiecewise::try_new(9.4e3, 8.4e3, 8e3, 3.9, 12.0).unwrap();
+        assert!(CubicStiffness::through_catalogue_knees(&soft).is_err());
+    }
+
+    #[test]
+    fn flexspline_torsion_saturates_at_max_torsion() {
+        let p = shd17();
+        // atan(u) = π/2 − 1/u + O(u⁻³): the torsion approaches the maximum
+        // from below by 1/(c_f τ) / (c_f K_f0).
+        let t = 1e9;
+        let expected = p.max_torsion() - 1.0 / (p.c_f * t) / (p.c_f * p.k_f0);
+        assert!((p.torsion(t) - expected).abs() <= 1e-15 * p.max_torsion());
+        let r = p.torque(1.5 * p.max_torsion());
+        assert!(r.saturated && r.torque > 0.0 && r.torque.is_finite());
+        let r = p.torque(-1.5 * p.max_torsion());
+        assert!(r.saturated && r.torque < 0.0);
+    }
+
+    proptest! {
+        /// Eq. (2.25): the torsion is the integral of 1/K_fl; its derivative
+        /// (central difference) must equal 1/K_fl of eq. (2.24).
+        #[test]
+        fn flexspline_torsion_derivative_is_inverse_local_stiffness(t in -150.0f64..150.0) {
+            let p = shd17();
+            let h = 1e-4;
+            let fd = (p.torsion(t + h) - p.torsion(t - h)) / (2.0 * h);
+            let exact = 1.0 / p.local_stiffness(t);
+            prop_assert!((fd - exact).abs() <= 1e-6 * exact, "{fd} vs {exact}");
+        }
+
+        /// Eq. (2.28): same for the wave generator and eq. (2.27).
+        #[test]
+        fn wave_generator_torsion_derivative_is_inverse_local_stiffness(t in 0.001f64..0.1) {
+            let p = WaveGeneratorParams::try_new(0.8276, 83.33).unwrap();
+            let h = 1e-7;
+            for t in [t, -t] {
+                let fd = (p.torsion(t + h) - p.torsion(t - h)) / (2.0 * h);
+                let exact = 1.0 / p.local_stiffness(t);
+                prop_assert!((fd - exact).abs() <= 1e-5 * exact, "{fd} vs {exact}");
+            }
+        }
+
+        /// Eq. (3.10) inverts eq. (2.26) inside the domain.
+        #[test]
+        fn flexspline_round_trip_f64(t in -500.0f64..500.0) {
+            let p = shd17();
+            let back = p.torque(p.torsion(t));
+            prop_assert!(!back.saturated);
+            prop_assert!((back.torque - t).abs() <= 1e-9 * (1.0 + t.abs()));
+        }
+
+        /// The cubic's inverse is exact to rounding.
+        #[test]
+        fn cubic_round_trip(t in -100.0f64..100.0) {
+            let q = CubicStiffness::try_new(8.0e3, 2.0e9).unwrap();
+            prop_assert!((q.torque(q.torsion(t)) - t).abs() <= 1e-9 * (1.0 + t.abs()));
+        }
+
+        /// The piecewise inverse is exact to rounding.
+        #[test]
+        fn piecewise_round_trip(t in -100.0f64..100.0) {
+            let c = CataloguePiecewise::try_new(8.4e3, 9.4e3, 1.2e4, 3.9, 12.0).unwrap();
+            prop_assert!((c.torque(c.torsion(t)) - t).abs() <= 1e-10 * (1.0 + t.abs()));
+        }
+
+        /// The fixed-point configuration agrees with f64 within its error
+        /// budget, derived term by term in stored units (LSB = 2⁻¹⁶):
+        /// quantizing τ (½ LSB) and c_f (½ LSB·|τ|) moves u = c_f τ by
+        /// `du ≤ ½(c_f + |τ|)` LSB, which atan shrinks by 1/(1+u²); the
+        /// product c_f·τ rounds (½), atan errs (≤ 2 LSB, its proven bound);
+        /// all that is scaled by `1/(c_f K_f0)` in mrad; quantizing that
+        /// scale costs ½ LSB·|atan| ≤ ½·π/2 and the last product rounds (½).
+        #[test]
+        fn fixed_config_tracks_f64(t in -150.0f64..150.0) {
+            let p = shd17();
+            let cfg = FlexsplineConfig::<I16F16>::new(&p);
+            let got = cfg.torsion(I16F16::from_f64(t)).to_f64(); // mrad
+            let exact = p.torsion(t) * 1e3;
+            let u = p.c_f * t;
+            let scale = 1e3 / (p.c_f * p.k_f0);
+            let bound_lsb = (0.5 * (p.c_f + t.abs()) / (1.0 + u * u) + 0.5 + 2.0) * scale
+                + 0.5 * core::f64::consts::FRAC_PI_2
+                + 0.5;
+            prop_assert!((got - exact).abs() <= bound_lsb / 65536.0, "{got} vs {exact}");
+        }
+    }
+}

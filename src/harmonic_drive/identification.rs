@@ -1,0 +1,217 @@
+//! Identification of the proposed compliance model from catalogue numbers
+//! (thesis §2.3, eq. 2.31–2.37).
+//!
+//! The flexspline stiffness of eq. (2.24) is matched to the catalogue's
+//! piecewise slopes at the middle of the first two pieces: `K_fl(T1/2) = K1`
+//! (2.31) and `K_fl((T1+T2)/2) = K2` (2.32). Solving the pair gives
+//!
+//! $$ K_{f0} = \frac{K_1 S^2 - K_2 T_1^2}{S^2 - T_1^2}
+//!          = K_1 + \frac{(K_1-K_2)T_1^2}{S^2-T_1^2}, \qquad
+//!    c_f = 2\sqrt{\frac{K_2-K_1}{K_1 S^2 - K_2 T_1^2}}, \qquad S = T_1+T_2 $$
+//!
+//! (eq. 2.33, 2.34). The wave generator is matched to the hysteresis loss
+//! `Ψ` and the starting torque `τ_fs`: `K_w0 = 2 τ_fs / (N Ψ)` (2.35) and
+//! `c_w = 2 / (N K_w0 Ψ)` (2.37), which simplifies to `c_w = 1/τ_fs`.
+//!
+//! The thesis's printed SHD-17-100 results (`K_f0 = 8.2e3`, `c_f = 0.012`)
+//! do not follow from its own equations and inputs; the equations give
+//! `K_f0 = 8.336e3 N·m/rad`, `c_f = 0.04494 1/(N·m)` (errata E4).
+
+use super::compliance::{FlexsplineParams, HarmonicDriveParams, WaveGeneratorParams};
+use crate::error::{positive, ParamError};
+
+/// Catalogue data of a harmonic drive and two measured friction torques.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CatalogueData {
+    /// Slope of the first piece `K1`, N·m/rad.
+    pub k1: f64,
+    /// Slope of the second piece `K2`, N·m/rad (must exceed `K1`).
+    pub k2: f64,
+    /// End of the first piece `T1`, N·m.
+    pub t1: f64,
+    /// End of the second piece `T2`, N·m (must exceed `T1`).
+    pub t2: f64,
+    /// Hysteresis loss `Ψ`, rad (output side).
+    pub hysteresis_loss: f64,
+    /// Starting torque on the wave generator `τ_fs`, N·m.
+    pub starting_torque: f64,
+    /// Gear ratio `N`.
+    pub ratio: f64,
+}
+
+impl CatalogueData {
+    /// The SHD-17-100-2SH data used in thesis §2.4: `K1 = 8.4e3`,
+    /// `K2 = 9.4e3` N·m/rad, `T1 = 3.9`, `T2 = 12` N·m, `Ψ = 2.9e-4` rad,
+    /// `τ_fs = 1.2` N·cm, `N = 100`.
+    pub const SHD_17_100: CatalogueData = CatalogueData {
+        k1: 8.4e3,
+        k2: 9.4e3,
+        t1: 3.9,
+        t2: 12.0,
+        hysteresis_loss: 2.9e-4,
+        starting_torque: 0.012,
+        ratio: 100.0,
+    };
+
+    /// Eq. (2.31)–(2.37): the parameters of the proposed model.
+    ///
+    /// Errors name the offending value: any input not finite or not
+    /// positive; `T2 ≤ T1` or `K2 ≤ K1` ([`ParamError::NotIncreasing`]: the
+    /// model stiffens with torque, so a flat or softening catalogue has no
+    /// real `c_f`); `K2/K1 ≥ ((T1+T2)/T1)²` ([`ParamError::OutOfRange`] on
+    /// `k2`: the stiffening would be faster than eq. 2.24 can produce); and a
+    /// ratio below 1.
+    pub fn identify(&self) -> Result<HarmonicDriveParams, ParamError> {
+        let k1 = positive("k1", self.k1)?;
+        let k2 = positive("k2", self.k2)?;
+        let t1 = positive("t1", self.t1)?;
+        let t2 = positive("t2", self.t2)?;
+        let psi = positive("hysteresis_loss", self.hysteresis_loss)?;
+        let tau_fs = positive("starting_torque", self.starting_torque)?;
+        let n = positive("ratio", self.ratio)?;
+        if t2 <= t1 {
+            return Err(ParamError::NotIncreasing {
+                lower: "t1",
+                lower_value: t1,
+                upper: "t2",
+                upper_value: t2,
+            });
+        }
+        if k2 <= k1 {
+            return Err(ParamError::NotIncreasing {
+                lower: "k1",
+                lower_value: k1,
+                upper: "k2",
+                upper_value: k2,
+            });
+        }
+        let s2 = (t1 + t2) * (t1 + t2);
+        let denom = k1 * s2 - k2 * t1 * t1;
+        if denom <= 0.0 {
+            return Err(ParamError::OutOfRange {
+                name: "k2",
+                value: k2,
+                min: k1,
+                max: k1 * s2 / (t1 * t1),
+            });
+        }
+        let k_f0 = denom / (s2 - t1 * t1); // eq. (2.33)
+        let c_f = 2.0 * libm::sqrt((k2 - k1) / denom); // eq. (2.34)
+        let k_w0 = 2.0 * tau_fs / (n * psi); // eq. (2.35)
+        let c_w = 2.0 / (n * k_w0 * psi); // eq. (2.37)
+        HarmonicDriveParams::try_new(
+            FlexsplineParams::try_new(k_f0, c_f)?,
+            WaveGeneratorParams::try_new(k_w0, c_w)?,
+            n,
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// The SHD-17-100 example recomputed by hand from eq. (2.33)–(2.37):
+    /// S² = 15.9² = 252.81, K1 S² − K2 T1² = 2 123 604 − 142 974 = 1 980 630,
+    /// K_f0 = 1 980 630 / 237.6 = 8336.07…, c_f = 2 √(1000 / 1 980 630),
+    /// K_w0 = 0.024 / 0.029, c_w = 1 / 0.012.
+    #[test]
+    fn shd17_example_follows_the_equations() {
+        let p = CatalogueData::SHD_17_100.identify().unwrap();
+        assert!((p.flexspline.k_f0 - 1_980_630.0 / 237.6).abs() < 1e-6);
+        assert!((p.flexspline.c_f - 2.0 * (1000.0f64 / 1_980_630.0).sqrt()).abs() < 1e-12);
+        assert!((p.wave_generator.k_w0 - 0.024 / 0.029).abs() < 1e-12);
+        assert!((p.wave_generator.c_w - 1.0 / 0.012).abs() < 1e-9);
+        // The thesis prints K_f0 = 8.2e3 and c_f = 0.012 (errata E4): the
+        // equations do not give those numbers.
+        assert!((p.flexspline.k_f0 - 8.2e3).abs() > 100.0);
+        assert!((p.flexspline.c_f - 0.012).abs() > 0.03);
+    }
+
+    #[test]
+    fn nonsense_inputs_are_rejected_by_name() {
+        let ok = CatalogueData::SHD_17_100;
+        let e = CatalogueData { k2: ok.k1, ..ok }.identify().unwrap_err();
+        assert!(matches!(
+            e,
+            ParamError::NotIncreasing {
+                lower: "k1",
+                upper: "k2",
+                ..
+            }
+        ));
+        let e = CatalogueData { t2: 1.0, ..ok }.identify().unwrap_err();
+        assert!(matches!(
+            e,
+            ParamError::NotIncreasing {
+                lower: "t1",
+                upper: "t2",
+                ..
+            }
+        ));
+        let e = CatalogueData {
+            hysteresis_loss: 0.0,
+            ..ok
+        }
+        .identify()
+        .unwrap_err();
+        assert!(matches!(
+            e,
+            ParamError::NotPositive {
+                name: "hysteresis_loss",
+                ..
+            }
+        ));
+        let e = CatalogueData {
+            starting_torque: f64::NAN,
+            ..ok
+        }
+        .identify()
+        .unwrap_err();
+        assert!(matches!(
+            e,
+            ParamError::NotFinite {
+                name: "starting_torque",
+                ..
+            }
+        ));
+        let e = CatalogueData { ratio: 0.5, ..ok }.identify().unwrap_err();
+        assert!(matches!(e, ParamError::OutOfRange { name: "ratio", .. }));
+        // K2/K1 = 300 > (15.9/3.9)² ≈ 16.6: too steep for eq. (2.24).
+        let e = CatalogueData {
+            k2: 300.0 * ok.k1,
+            ..ok
+        }
+        .identify()
+        .unwrap_err();
+        assert!(matches!(e, ParamError::OutOfRange { name: "k2", .. }));
+    }
+
+    proptest! {
+        /// Round trip: the identified model reproduces the catalogue slopes
+        /// at the piece centres (eq. 2.31, 2.32) and the hysteresis half
+        /// width Ψ/2 of eq. (2.36).
+        #[test]
+        fn identified_model_matches_its_defining_equations(
+            k1 in 1e3f64..1e5, ratio_k in 1.01f64..3.0, t1 in 0.5f64..50.0, ratio_t in 1.2f64..5.0,
+            psi in 1e-5f64..1e-3, tau_fs in 1e-3f64..0.1, n in 30.0f64..200.0,
+        ) {
+            let data = CatalogueData {
+                k1, k2: k1 * ratio_k, t1, t2: t1 * ratio_t,
+                hysteresis_loss: psi, starting_torque: tau_fs, ratio: n,
+            };
+            // Only admissible catalogues (K2/K1 below the limit) identify.
+            let limit = ((data.t1 + data.t2) / data.t1).powi(2);
+            prop_assume!(ratio_k < limit);
+            let p = data.identify().unwrap();
+            let f = p.flexspline;
+            prop_assert!((f.local_stiffness(t1 / 2.0) - k1).abs() <= 1e-9 * k1);
+            prop_assert!((f.local_stiffness((t1 + data.t2) / 2.0) - data.k2).abs() <= 1e-9 * data.k2);
+            let w = p.wave_generator;
+            prop_assert!((1.0 / (w.c_w * n * w.k_w0) - psi / 2.0).abs() <= 1e-12 * psi);
+            // Eq. (2.35): slope of the WG torsion at zero torque.
+            prop_assert!((w.k_w0 * n * psi / 2.0 - tau_fs).abs() <= 1e-12 * tau_fs);
+        }
+    }
+}

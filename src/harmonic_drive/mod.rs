@@ -1,0 +1,14 @@
+//! Harmonic-drive models (thesis ch. 2): rigid kinematics and statics,
+//! the catalogue and cubic stiffness models, the proposed flexspline +
+//! wave-generator compliance, its identification from catalogue numbers,
+//! and encoder calibration.
+
+pub mod compliance;
+pub mod identification;
+pub mod kinematics;
+
+pub use compliance::{
+    CataloguePiecewise, CubicStiffness, FlexsplineConfig, FlexsplineParams, FlexsplineTorque,
+    HarmonicDriveParams, WaveGeneratorConfig, WaveGeneratorParams,
+};
+pub use identification::CatalogueData;
