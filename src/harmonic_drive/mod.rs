@@ -3,12 +3,17 @@
 //! wave-generator compliance, its identification from catalogue numbers,
 //! and encoder calibration.
 
+pub mod calibration;
 pub mod compliance;
 pub mod identification;
 pub mod kinematics;
+pub mod wave_generator_torque;
 
 pub use compliance::{
     CataloguePiecewise, CubicStiffness, FlexsplineConfig, FlexsplineParams, FlexsplineTorque,
     HarmonicDriveParams, WaveGeneratorConfig, WaveGeneratorParams,
 };
 pub use identification::CatalogueData;
+pub use wave_generator_torque::{
+    WaveGeneratorTorqueConfig, WaveGeneratorTorqueParams, WaveGeneratorTorqueState,
+};
