@@ -6,6 +6,7 @@
 pub mod calibration;
 pub mod compliance;
 pub mod identification;
+pub mod kinematic_error;
 pub mod kinematics;
 pub mod wave_generator_torque;
 
