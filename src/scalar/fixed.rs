@@ -79,6 +79,10 @@ impl Scalar for I16F16 {
         I16F16::from_bits(sat_i64((x as i64) << 16))
     }
     #[inline]
+    fn from_counts(counts: i64, scale: &super::CountScale) -> Self {
+        I16F16::from_bits(scale.fixed_bits(counts))
+    }
+    #[inline]
     fn add(self, rhs: Self) -> Self {
         self.saturating_add(rhs)
     }

@@ -8,7 +8,7 @@
 use super::{kernels, Scalar};
 
 macro_rules! float_scalar {
-    ($t:ident, $name:literal, $k:ident) => {
+    ($t:ident, $name:literal, $k:ident, $countfn:ident) => {
         impl Scalar for $t {
             const NAME: &'static str = $name;
             const ZERO: Self = 0.0;
@@ -45,6 +45,10 @@ macro_rules! float_scalar {
             #[inline]
             fn from_i32(x: i32) -> Self {
                 x as $t
+            }
+            #[inline]
+            fn from_counts(counts: i64, scale: &super::CountScale) -> Self {
+                scale.$countfn(counts)
             }
             #[inline]
             fn add(self, rhs: Self) -> Self {
@@ -123,8 +127,8 @@ macro_rules! float_scalar {
     };
 }
 
-float_scalar!(f32, "f32", f32);
-float_scalar!(f64, "f64", f64);
+float_scalar!(f32, "f32", f32, f32_value);
+float_scalar!(f64, "f64", f64, f64_value);
 
 #[cfg(test)]
 mod tests {

@@ -70,6 +70,12 @@ pub trait Scalar:
     fn to_f64(self) -> f64;
     /// Nearest representable value of an integer; saturates.
     fn from_i32(x: i32) -> Self;
+    /// `counts · factor` for an exact integer measurement (encoder counts)
+    /// and a [`CountScale`] built once from `factor`. Fixed point computes it
+    /// in integer arithmetic (no rounding of `counts` first), so an encoder
+    /// reading keeps its full resolution even when one count is far below
+    /// one LSB of the scaled unit. Rounded to nearest; saturates.
+    fn from_counts(counts: i64, scale: &CountScale) -> Self;
 
     /// `self + rhs` (fixed: saturating).
     fn add(self, rhs: Self) -> Self;
@@ -194,6 +200,76 @@ pub trait Scalar:
     }
 }
 
+/// A conversion factor from integer counts to a backend value, prepared
+/// once for every backend (see [`Scalar::from_counts`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CountScale {
+    factor: f64,
+    factor_f32: f32,
+    /// Fixed point: `value_bits = (counts · mult) >> shift` (rounded).
+    mult: i64,
+    shift: u32,
+}
+
+impl CountScale {
+    /// Prepare `factor` (value per count, e.g. stored mrad per encoder
+    /// count). For `I16F16` the factor is held to 31 significant bits.
+    /// A zero or non-finite factor yields a scale that maps every count to 0.
+    pub fn new(factor: f64) -> Self {
+        if !factor.is_finite() || factor == 0.0 {
+            return CountScale {
+                factor: 0.0,
+                factor_f32: 0.0,
+                mult: 0,
+                shift: 0,
+            };
+        }
+        // factor · 2^16 · 2^shift ∈ [2^30, 2^31): the largest shift whose
+        // multiplier still fits 31 bits, capped so counts (≤ 2^31 after
+        // clamping) times mult (< 2^31) stays below 2^62.
+        let bits = factor.abs() * 65536.0;
+        let e = libm::floor(libm::log2(bits)) as i32;
+        let shift = (30 - e).clamp(0, 62) as u32;
+        let mult = libm::round(bits * libm::exp2(shift as f64)) as i64;
+        CountScale {
+            factor,
+            factor_f32: factor as f32,
+            mult: if factor < 0.0 { -mult } else { mult },
+            shift,
+        }
+    }
+
+    /// The factor this scale was built from.
+    pub fn factor(&self) -> f64 {
+        self.factor
+    }
+
+    /// `I16F16` bits of `counts · factor`, rounded to nearest, saturated.
+    #[inline]
+    pub(crate) fn fixed_bits(&self, counts: i64) -> i32 {
+        let c = counts.clamp(-(1i64 << 31), 1i64 << 31);
+        let p = c * self.mult; // |p| < 2^62
+        let r = if self.shift == 0 {
+            p
+        } else {
+            (p + (1i64 << (self.shift - 1))) >> self.shift
+        };
+        fixed::sat_i64(r)
+    }
+
+    /// `f32` value of `counts · factor`.
+    #[inline]
+    pub(crate) fn f32_value(&self, counts: i64) -> f32 {
+        counts as f32 * self.factor_f32
+    }
+
+    /// `f64` value of `counts · factor`.
+    #[inline]
+    pub(crate) fn f64_value(&self, counts: i64) -> f64 {
+        counts as f64 * self.factor
+    }
+}
+
 mod sealed {
     pub trait Sealed {}
     impl Sealed for f32 {}
@@ -223,6 +299,37 @@ mod tests {
         sat_examples::<f32>();
         sat_examples::<f64>();
         sat_examples::<I16F16>();
+    }
+
+    proptest::proptest! {
+        /// `from_counts` on I16F16 is the correctly rounded product within
+        /// the 31-bit precision of the prepared factor: |error| ≤ ½ LSB plus
+        /// |counts·factor|·2⁻³⁰ (relative error of the multiplier).
+        #[test]
+        fn from_counts_is_rounded_product(
+            counts in -(1i64 << 31)..(1i64 << 31),
+            mant in 1.0f64..2.0, exp in -40i32..10,
+        ) {
+            let factor = mant * 2f64.powi(exp);
+            let sc = CountScale::new(factor);
+            let exact = counts as f64 * factor;
+            proptest::prop_assume!(exact.abs() < 32767.0);
+            let got = I16F16::from_counts(counts, &sc).to_f64();
+            let bound = 0.5 / 65536.0 + exact.abs() * 2f64.powi(-30);
+            proptest::prop_assert!((got - exact).abs() <= bound, "{got} vs {exact}");
+        }
+    }
+
+    #[test]
+    fn from_counts_saturates_and_handles_zero_factor() {
+        let sc = CountScale::new(1.0);
+        assert_eq!(I16F16::from_counts(1 << 40, &sc), I16F16::MAX);
+        assert_eq!(I16F16::from_counts(-(1 << 40), &sc), I16F16::MIN);
+        let z = CountScale::new(0.0);
+        assert_eq!(I16F16::from_counts(12345, &z), I16F16::ZERO);
+        assert_eq!(f32::from_counts(12345, &CountScale::new(f64::NAN)), 0.0);
+        let neg = CountScale::new(-0.25);
+        assert_eq!(I16F16::from_counts(6, &neg).to_f64(), -1.5);
     }
 
     #[test]
