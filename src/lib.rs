@@ -2,6 +2,7 @@
 #![cfg_attr(not(any(feature = "std", test, kani)), no_std)]
 
 pub mod error;
+pub mod estimation;
 pub mod harmonic_drive;
 pub mod scalar;
 

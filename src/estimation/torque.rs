@@ -1,0 +1,506 @@
+//! The joint-torque estimator of thesis §3.1, eq. (3.8)–(3.10), as a
+//! Config/State/update component on every backend.
+//!
+//! Per sample:
+//!
+//! 1. torsion from the encoders, eq. (2.13): `Δθ = θ_fo + θ_wi / N`, computed
+//!    exactly in integer counts (see below);
+//! 2. kinematic error `θ_err` of eq. (3.7) at the link and motor angles
+//!    (optional);
+//! 3. flexspline torsion, eq. (3.9):
+//!    `Δθ_f = Δθ + sgn(τ_w)(1 − e^{−c_w|τ_w|})/(c_w N K_w0) − θ_err`, with the
+//!    wave-generator torque `τ_w` approximated by the motor torque command;
+//! 4. joint torque, eq. (3.10): `τ_f = tan(Δθ_f c_f K_f0) / c_f`.
+//!
+//! **Exact torsion from counts.** With a link encoder of `L` counts per
+//! revolution, a motor encoder of `M` counts per motor revolution and an
+//! integer ratio `N`, the torsion in units of `2π/(L M N)` is the integer
+//! `D = c_l · M N + p · L` (reduced to `[−LMN/2, LMN/2)`), where `c_l` is the
+//! link count and `p` the motor position modulo one output revolution
+//! (`M N` counts). No rounding happens before the single scaling
+//! [`Scalar::from_counts`], so a fixed-point estimate keeps the encoders'
+//! full resolution.
+//!
+//! **Saturation.** `tan` is valid only for `|Δθ_f c_f K_f0| < π/2`. At or
+//! beyond it, and whenever the estimate would exceed the configured
+//! `max_torque`, the output is `±max_torque` (sign of the torsion) and
+//! `saturated` is set; a value from the wrong branch of `tan` is never
+//! returned.
+
+use crate::error::{positive, ParamError};
+use crate::harmonic_drive::{
+    kinematic_error::KinematicErrorModel, FlexsplineConfig, HarmonicDriveParams,
+    WaveGeneratorConfig,
+};
+use crate::scalar::{CountScale, Scalar};
+use core::f64::consts::TAU;
+
+/// Physical parameters of the estimator.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TorqueEstimatorParams {
+    /// The identified compliance model, eq. (2.30). Its ratio must be an
+    /// integer for the count path.
+    pub drive: HarmonicDriveParams,
+    /// Kinematic-error model of eq. (3.7), or `None` to leave it out.
+    pub kinematic_error: Option<KinematicErrorModel>,
+    /// Link-side absolute encoder counts per revolution `L`.
+    pub link_counts_per_rev: u32,
+    /// Motor-side incremental counts per motor revolution `M` (after
+    /// quadrature decoding).
+    pub motor_counts_per_rev: u32,
+    /// Largest torque the estimate may report, N·m (> 0); larger estimates
+    /// saturate here and are flagged.
+    pub max_torque: f64,
+}
+
+impl TorqueEstimatorParams {
+    /// Validate: integer ratio in `[1, 65535]`; `L, M ≥ 1`; `max_torque > 0`
+    /// and representable by every backend (≤ 30 000 N·m); and encoder
+    /// resolutions whose count range (2³¹ counts of `2π/(LMN)`) covers the
+    /// model's whole torsion range (`2 × max torsion`).
+    pub fn try_new(
+        drive: HarmonicDriveParams,
+        kinematic_error: Option<KinematicErrorModel>,
+        link_counts_per_rev: u32,
+        motor_counts_per_rev: u32,
+        max_torque: f64,
+    ) -> Result<Self, ParamError> {
+        let n = drive.ratio;
+        if n != libm::floor(n) || !(1.0..=65535.0).contains(&n) {
+            return Err(ParamError::OutOfRange {
+                name: "ratio",
+                value: n,
+                min: 1.0,
+                max: 65535.0,
+            });
+        }
+        for (name, v) in [
+            ("link_counts_per_rev", link_counts_per_rev),
+            ("motor_counts_per_rev", motor_counts_per_rev),
+        ] {
+            if v == 0 {
+                return Err(ParamError::NotPositive { name, value: 0.0 });
+            }
+        }
+        let max_torque = positive("max_torque", max_torque)?;
+        if max_torque > 30_000.0 {
+            return Err(ParamError::OutOfRange {
+                name: "max_torque",
+                value: max_torque,
+                min: 0.0,
+                max: 30_000.0,
+            });
+        }
+        let lmn = link_counts_per_rev as f64 * motor_counts_per_rev as f64 * n;
+        let count_range = 2_147_483_648.0 * TAU / lmn;
+        let needed = 2.0 * drive.flexspline.max_torsion()
+            + 2.0 / (drive.wave_generator.c_w * n * drive.wave_generator.k_w0);
+        if count_range < needed || lmn > 70_368_744_177_664.0 {
+            return Err(ParamError::OutOfRange {
+                name: "link_counts_per_rev",
+                value: link_counts_per_rev as f64,
+                min: 1.0,
+                max: libm::floor(
+                    2_147_483_648.0 * TAU / needed / (motor_counts_per_rev as f64 * n),
+                ),
+            });
+        }
+        Ok(TorqueEstimatorParams {
+            drive,
+            kinematic_error,
+            link_counts_per_rev,
+            motor_counts_per_rev,
+            max_torque,
+        })
+    }
+}
+
+/// The estimator quantized for backend `S`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TorqueEstimatorConfig<S> {
+    flexspline: FlexsplineConfig<S>,
+    wave_generator: WaveGeneratorConfig<S>,
+    kinematic_error: Option<[S; 7]>,
+    max_torque: S,
+    /// Stored torsion per count of `D` (`2π/(LMN)` scaled).
+    torsion_per_count: CountScale,
+    /// Radians per link count, `2π/L`.
+    link_rad_per_count: CountScale,
+    /// Radians per motor count, `2π/M`.
+    motor_rad_per_count: CountScale,
+    /// Stored torsion per stored angle, for the radian path.
+    torsion_per_angle: S,
+    inv_ratio: S,
+    l: u32,
+    m: u32,
+    n: u32,
+}
+
+/// The estimator's state: the motor position within one output revolution,
+/// and the last raw motor counter (to follow a wrapping hardware counter).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TorqueEstimatorState {
+    /// Motor revolution index within the output revolution, `[0, N)`.
+    motor_turn: u32,
+    /// Motor count within the motor revolution, `[0, M)`.
+    motor_in_turn: u32,
+    /// Last raw value of the free-running motor counter.
+    last_counter: u32,
+}
+
+/// One torque estimate.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TorqueEstimate<S> {
+    /// Estimated joint (flexspline) torque `τ_f`, stored link-torque units.
+    pub torque: S,
+    /// Total torsion `Δθ` of eq. (2.13), stored torsion units.
+    pub torsion: S,
+    /// Flexspline torsion `Δθ_f` of eq. (3.9), stored torsion units.
+    pub flexspline_torsion: S,
+    /// The torque was saturated at `±max_torque` (out of the `tan` branch or
+    /// beyond the limit).
+    pub saturated: bool,
+    /// The link count was not below `L`; it was reduced modulo `L`.
+    pub link_count_invalid: bool,
+}
+
+impl<S: Scalar> TorqueEstimatorConfig<S> {
+    /// Quantize validated parameters once.
+    pub fn new(p: &TorqueEstimatorParams) -> Self {
+        let u = S::UNITS;
+        let n = p.drive.ratio as u32;
+        let (l, m) = (p.link_counts_per_rev, p.motor_counts_per_rev);
+        let lmn = l as f64 * m as f64 * n as f64;
+        TorqueEstimatorConfig {
+            flexspline: FlexsplineConfig::new(&p.drive.flexspline),
+            wave_generator: WaveGeneratorConfig::new(&p.drive.wave_generator, p.drive.ratio),
+            kinematic_error: p
+                .kinematic_error
+                .map(|k| k.coefficients.map(|c| S::from_f64(c * u.torsion))),
+            max_torque: S::from_f64(p.max_torque * u.link_torque),
+            torsion_per_count: CountScale::new(TAU / lmn * u.torsion),
+            link_rad_per_count: CountScale::new(TAU / l as f64),
+            motor_rad_per_count: CountScale::new(TAU / m as f64),
+            torsion_per_angle: S::from_f64(u.torsion / u.angle),
+            inv_ratio: S::from_f64(1.0 / p.drive.ratio),
+            l,
+            m,
+            n,
+        }
+    }
+
+    /// A state for a motor at absolute position `motor_position` (motor
+    /// counts, e.g. from eq. 2.39 times `M/(2π)`, any integer) while the
+    /// free-running hardware counter reads `counter`.
+    pub fn state(&self, motor_position: i64, counter: u32) -> TorqueEstimatorState {
+        let mn = self.m as i64 * self.n as i64;
+        let p = motor_position.rem_euclid(mn);
+        TorqueEstimatorState {
+            motor_turn: (p / self.m as i64) as u32,
+            motor_in_turn: (p % self.m as i64) as u32,
+            last_counter: counter,
+        }
+    }
+
+    /// Advance the motor position by the counter change since the last call
+    /// (wrapping 32-bit difference: valid while the motor moves fewer than
+    /// 2³¹ counts per sample).
+    #[inline]
+    fn advance(&self, st: &mut TorqueEstimatorState, counter: u32) {
+        let delta = counter.wrapping_sub(st.last_counter) as i32 as i64;
+        st.last_counter = counter;
+        let m = self.m as i64;
+        let mut in_turn = st.motor_in_turn as i64 + delta;
+        let mut turn = st.motor_turn as i64;
+        if (0..m).contains(&in_turn) {
+            // common case: no carry
+        } else if in_turn >= m && in_turn < 2 * m {
+            in_turn -= m;
+            turn += 1;
+        } else if in_turn < 0 && in_turn >= -m {
+            in_turn += m;
+            turn -= 1;
+        } else {
+            turn += in_turn.div_euclid(m);
+            in_turn = in_turn.rem_euclid(m);
+        }
+        let n = self.n as i64;
+        if !(0..n).contains(&turn) {
+            turn = turn.rem_euclid(n);
+        }
+        st.motor_turn = turn as u32;
+        st.motor_in_turn = in_turn as u32;
+    }
+
+    /// Eq. (3.7) at link and motor angles (rad) given as `(sin, cos)` pairs.
+    #[inline]
+    fn kinematic_error(&self, link: (S, S), motor: (S, S)) -> S {
+        let Some(a) = self.kinematic_error else {
+            return S::ZERO;
+        };
+        let (sl, cl) = link;
+        let (s1, c1) = motor;
+        let s2 = s1.mul(c1).add(s1.mul(c1));
+        let c2 = c1.sub(s1).mul(c1.add(s1));
+        a[0].add(a[1].mul(cl))
+            .add(a[2].mul(sl))
+            .add(a[3].mul(c1))
+            .add(a[4].mul(s1))
+            .add(a[5].mul(c2))
+            .add(a[6].mul(s2))
+    }
+
+    /// Eq. (3.9)–(3.10) from a torsion, the kinematic error and the motor
+    /// torque, with the output saturation.
+    #[inline]
+    fn finish(
+        &self,
+        torsion: S,
+        kin_err: S,
+        motor_torque: S,
+        link_count_invalid: bool,
+    ) -> TorqueEstimate<S> {
+        let flexspline_torsion = torsion
+            .add(self.wave_generator.output_torsion(motor_torque))
+            .sub(kin_err);
+        let t = self.flexspline.torque(flexspline_torsion);
+        let over = t.torque.abs() > self.max_torque;
+        let saturated = t.saturated || over;
+        let torque = if saturated {
+            let limit = self.max_torque;
+            if flexspline_torsion < S::ZERO {
+                limit.neg()
+            } else {
+                limit
+            }
+        } else {
+            t.torque
+        };
+        TorqueEstimate {
+            torque,
+            torsion,
+            flexspline_torsion,
+            saturated,
+            link_count_invalid,
+        }
+    }
+
+    /// One estimate from raw encoder readings: the link-side absolute count
+    /// (`[0, L)`; larger values are reduced modulo `L` and flagged), the
+    /// free-running motor counter, and the motor torque command `τ_w` in
+    /// stored motor-torque units.
+    pub fn update(
+        &self,
+        st: &mut TorqueEstimatorState,
+        link_count: u32,
+        motor_counter: u32,
+        motor_torque: S,
+    ) -> TorqueEstimate<S> {
+        self.advance(st, motor_counter);
+        let invalid = link_count >= self.l;
+        let c_l = if invalid {
+            link_count % self.l
+        } else {
+            link_count
+        };
+        let mn = self.m as i64 * self.n as i64;
+        let lmn = mn * self.l as i64;
+        let p = st.motor_turn as i64 * self.m as i64 + st.motor_in_turn as i64;
+        // D ∈ [0, 2·LMN); reduce to [−LMN/2, LMN/2).
+        let mut d = c_l as i64 * mn + p * self.l as i64;
+        if d >= lmn / 2 {
+            d -= lmn;
+        }
+        if d >= lmn / 2 {
+            d -= lmn;
+        }
+        let torsion = S::from_counts(d, &self.torsion_per_count);
+        let kin_err = if self.kinematic_error.is_some() {
+            let link = S::from_counts(c_l as i64, &self.link_rad_per_count).sin_cos();
+            let motor =
+                S::from_counts(st.motor_in_turn as i64, &self.motor_rad_per_count).sin_cos();
+            self.kinematic_error(link, motor)
+        } else {
+            S::ZERO
+        };
+        self.finish(torsion, kin_err, motor_torque, invalid)
+    }
+
+    /// One estimate from angles in radians (stored angle units): the link
+    /// angle `θ_fo` and the motor angle `θ_wi` of eq. (2.13), and the motor
+    /// torque command. A convenience for float backends: in `I16F16` the
+    /// torsion then has the resolution of a radian angle (1.5e-5 rad), not
+    /// that of the encoders — use [`update`](Self::update) there.
+    pub fn update_radians(
+        &self,
+        link_angle: S,
+        motor_angle: S,
+        motor_torque: S,
+    ) -> TorqueEstimate<S> {
+        let torsion = link_angle
+            .add(motor_angle.mul(self.inv_ratio))
+            .mul(self.torsion_per_angle);
+        let kin_err = if self.kinematic_error.is_some() {
+            self.kinematic_error(link_angle.sin_cos(), motor_angle.sin_cos())
+        } else {
+            S::ZERO
+        };
+        self.finish(torsion, kin_err, motor_torque, false)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::harmonic_drive::CatalogueData;
+    use crate::scalar::I16F16;
+    use proptest::prelude::*;
+
+    const L: u32 = 1 << 17;
+    const M: u32 = 2000;
+
+    fn params(ke: Option<KinematicErrorModel>) -> TorqueEstimatorParams {
+        let drive = CatalogueData::SHD_17_100.identify().unwrap();
+        TorqueEstimatorParams::try_new(drive, ke, L, M, 60.0).unwrap()
+    }
+
+    /// Encoder readings for a joint at link angle `link` (rad) carrying a
+    /// flexspline torque `tau` with motor torque `tau_w` (forward model,
+    /// eq. 2.30 and 3.8), and the half-width of the torsion quantization.
+    fn readings(p: &TorqueEstimatorParams, link: f64, tau: f64, tau_w: f64) -> (u32, i64, f64) {
+        let n = p.drive.ratio;
+        let base = p.drive.torsion(tau, tau_w);
+        let mut torsion = base;
+        if let Some(k) = p.kinematic_error {
+            // θ_err depends on the measured motor angle θ_wi = N(Δθ − θ_fo),
+            // which depends on the torsion: solve Δθ = base + θ_err by
+            // fixed-point iteration (a contraction: N·|dθ_err/dθ_wi| < 0.02).
+            for _ in 0..30 {
+                torsion = base + k.evaluate(link, n * (torsion - link));
+            }
+        }
+        let motor = n * (torsion - link); // eq. (2.13) solved for θ_wi
+        let c_l = libm::round(link / TAU * L as f64) as i64;
+        let p_m = libm::round(motor / TAU * M as f64) as i64;
+        let q = TAU / L as f64 * 0.5 + TAU / (M as f64 * n) * 0.5;
+        (c_l.rem_euclid(L as i64) as u32, p_m, q)
+    }
+
+    proptest! {
+        /// Round trip through the forward model: the estimate lies between
+        /// the torques of the flexspline torsions ± the encoder quantization
+        /// (plus the kinematic error's change over one count), by
+        /// monotonicity of eq. (3.10).
+        #[test]
+        fn estimate_inverts_the_forward_model(
+            link in 0.0f64..TAU, tau in -40.0f64..40.0, tau_w in -0.2f64..0.2, with_ke: bool,
+        ) {
+            let ke = with_ke.then(KinematicErrorModel::table_3_2);
+            let p = params(ke);
+            let (c_l, p_m, q) = readings(&p, link, tau, tau_w);
+            let cfg = TorqueEstimatorConfig::<f64>::new(&p);
+            let mut st = cfg.state(p_m, 12345);
+            let est = cfg.update(&mut st, c_l, 12345, tau_w);
+            prop_assert!(!est.saturated);
+            let ke_slope = ke.map_or(0.0, |k| {
+                let c = k.coefficients;
+                (c[1].abs() + c[2].abs()) * TAU / L as f64 + (c[3].abs() + c[4].abs() + 2.0 * (c[5].abs() + c[6].abs())) * TAU / M as f64
+            });
+            let d = q + ke_slope + 1e-12;
+            let f = p.drive.flexspline;
+            let true_tf = f.torsion(tau);
+            let (lo, hi) = (f.torque(true_tf - d).torque, f.torque(true_tf + d).torque);
+            prop_assert!(est.torque >= lo - 1e-9 && est.torque <= hi + 1e-9, "{} not in [{lo}, {hi}] (τ = {tau})", est.torque);
+        }
+
+        /// The motor position follows a wrapping 32-bit counter through any
+        /// sequence of moves (each under 2³¹ counts).
+        #[test]
+        fn motor_position_follows_wrapping_counter(
+            start in any::<u32>(), pos0 in -1_000_000i64..1_000_000,
+            moves in proptest::collection::vec(-5_000_000i64..5_000_000, 1..50),
+        ) {
+            let p = params(None);
+            let cfg = TorqueEstimatorConfig::<f64>::new(&p);
+            let mut st = cfg.state(pos0, start);
+            let (mut counter, mut pos) = (start, pos0);
+            let mn = (M * 100) as i64;
+            for mv in moves {
+                counter = counter.wrapping_add(mv as i32 as u32);
+                pos += mv;
+                cfg.advance(&mut st, counter);
+                let want = pos.rem_euclid(mn);
+                prop_assert_eq!(st.motor_turn as i64 * M as i64 + st.motor_in_turn as i64, want);
+            }
+        }
+
+        /// I16F16 agrees with f64 on the count path (the full-range
+        /// exhaustive sweep is in proofs/); here: within 0.5 % of the rated
+        /// 16 N·m over the torque range.
+        #[test]
+        fn fixed_agrees_with_f64(link in 0.0f64..TAU, tau in -40.0f64..40.0, tau_w in -0.2f64..0.2) {
+            let p = params(Some(KinematicErrorModel::table_3_2()));
+            let (c_l, p_m, _) = readings(&p, link, tau, tau_w);
+            let cf = TorqueEstimatorConfig::<f64>::new(&p);
+            let cx = TorqueEstimatorConfig::<I16F16>::new(&p);
+            let a = cf.update(&mut cf.state(p_m, 0), c_l, 0, tau_w).torque;
+            let b = cx.update(&mut cx.state(p_m, 0), c_l, 0, I16F16::from_f64(tau_w * 1e3)).torque.to_f64();
+            prop_assert!((a - b).abs() <= 0.005 * 16.0, "{a} vs {b}");
+        }
+    }
+
+    #[test]
+    fn out_of_branch_torsion_saturates_at_max_torque_with_flag() {
+        let p = params(None);
+        let cfg = TorqueEstimatorConfig::<f32>::new(&p);
+        let n = 100i64;
+        // A link angle of +0.01 rad with the motor at rest: Δθ = 10 mrad,
+        // beyond the flexspline's 4.2 mrad maximum.
+        let c_l = (0.01 / TAU * L as f64) as u32;
+        let mut st = cfg.state(0, 0);
+        let e = cfg.update(&mut st, c_l, 0, 0.0);
+        assert!(e.saturated && e.torque == 60.0, "{e:?}");
+        let mut st = cfg.state(0, 0);
+        let e = cfg.update(&mut st, L - c_l, 0, 0.0);
+        assert!(e.saturated && e.torque == -60.0, "{e:?}");
+        // An invalid link count is reduced and flagged.
+        let mut st = cfg.state(0, 0);
+        let e = cfg.update(&mut st, L, 0, 0.0);
+        assert!(e.link_count_invalid && e.torque == 0.0);
+        let _ = n;
+    }
+
+    #[test]
+    fn rejects_non_integer_ratio_and_coarse_encoders() {
+        let mut drive = CatalogueData::SHD_17_100.identify().unwrap();
+        drive.ratio = 100.5;
+        assert!(matches!(
+            TorqueEstimatorParams::try_new(drive, None, L, M, 60.0),
+            Err(ParamError::OutOfRange { name: "ratio", .. })
+        ));
+        let drive = CatalogueData::SHD_17_100.identify().unwrap();
+        assert!(matches!(
+            TorqueEstimatorParams::try_new(drive, None, 0, M, 60.0),
+            Err(ParamError::NotPositive {
+                name: "link_counts_per_rev",
+                ..
+            })
+        ));
+        assert!(matches!(
+            TorqueEstimatorParams::try_new(drive, None, L, M, -1.0),
+            Err(ParamError::NotPositive {
+                name: "max_torque",
+                ..
+            })
+        ));
+        // 2^31 counts must span the torsion range: 2^26 link counts with a
+        // 2^16-count motor encoder is too fine.
+        assert!(matches!(
+            TorqueEstimatorParams::try_new(drive, None, 1 << 26, 1 << 16, 60.0),
+            Err(ParamError::OutOfRange {
+                name: "link_counts_per_rev",
+                ..
+            })
+        ));
+    }
+}
