@@ -32,7 +32,7 @@ use crate::harmonic_drive::{
     kinematic_error::KinematicErrorModel, FlexsplineConfig, HarmonicDriveParams,
     WaveGeneratorConfig,
 };
-use crate::scalar::{CountScale, Scalar};
+use crate::scalar::{Coef, Scalar};
 use core::f64::consts::TAU;
 
 /// Physical parameters of the estimator.
@@ -123,14 +123,14 @@ pub struct TorqueEstimatorConfig<S> {
     kinematic_error: Option<[S; 7]>,
     max_torque: S,
     /// Stored torsion per count of `D` (`2π/(LMN)` scaled).
-    torsion_per_count: CountScale,
+    torsion_per_count: Coef,
     /// Radians per link count, `2π/L`.
-    link_rad_per_count: CountScale,
+    link_rad_per_count: Coef,
     /// Radians per motor count, `2π/M`.
-    motor_rad_per_count: CountScale,
+    motor_rad_per_count: Coef,
     /// Stored torsion per stored angle, for the radian path.
-    torsion_per_angle: S,
-    inv_ratio: S,
+    torsion_per_angle: Coef,
+    inv_ratio: Coef,
     l: u32,
     m: u32,
     n: u32,
@@ -178,11 +178,11 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
                 .kinematic_error
                 .map(|k| k.coefficients.map(|c| S::from_f64(c * u.torsion))),
             max_torque: S::from_f64(p.max_torque * u.link_torque),
-            torsion_per_count: CountScale::new(TAU / lmn * u.torsion),
-            link_rad_per_count: CountScale::new(TAU / l as f64),
-            motor_rad_per_count: CountScale::new(TAU / m as f64),
-            torsion_per_angle: S::from_f64(u.torsion / u.angle),
-            inv_ratio: S::from_f64(1.0 / p.drive.ratio),
+            torsion_per_count: Coef::new(TAU / lmn * u.torsion),
+            link_rad_per_count: Coef::new(TAU / l as f64),
+            motor_rad_per_count: Coef::new(TAU / m as f64),
+            torsion_per_angle: Coef::new(u.torsion / u.angle),
+            inv_ratio: Coef::new(1.0 / p.drive.ratio),
             l,
             m,
             n,
@@ -338,8 +338,8 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         motor_torque: S,
     ) -> TorqueEstimate<S> {
         let torsion = link_angle
-            .add(motor_angle.mul(self.inv_ratio))
-            .mul(self.torsion_per_angle);
+            .add(motor_angle.mul_coef(&self.inv_ratio))
+            .mul_coef(&self.torsion_per_angle);
         let kin_err = if self.kinematic_error.is_some() {
             self.kinematic_error(link_angle.sin_cos(), motor_angle.sin_cos())
         } else {

@@ -18,7 +18,7 @@
 //! `S = f64`, so each formula exists once.
 
 use crate::error::{finite, positive, ParamError};
-use crate::scalar::{units::Units, Scalar};
+use crate::scalar::{units::Units, Coef, Scalar};
 
 /// The catalogue's piecewise-linear torsion curve, eq. (2.11), odd in the
 /// torque: slopes `K1` up to `T1`, `K2` from `T1` to `T2`, `K3` above `T2`.
@@ -256,13 +256,14 @@ pub struct FlexsplineTorque<S> {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FlexsplineConfig<S> {
     /// `c_f` per stored torque unit.
-    c_f: S,
+    c_f: Coef,
     /// Stored torsion per radian of `atan` (`1 / (c_f K_f0)` scaled).
-    torsion_per_angle: S,
+    torsion_per_angle: Coef,
     /// Radian of `tan` argument per stored torsion (`c_f K_f0` scaled).
-    angle_per_torsion: S,
+    angle_per_torsion: Coef,
     /// Stored torque per unit of `tan` (`1 / c_f` scaled).
-    torque_per_tan: S,
+    torque_per_tan: Coef,
+    _backend: core::marker::PhantomData<S>,
 }
 
 impl<S: Scalar> FlexsplineConfig<S> {
@@ -271,17 +272,21 @@ impl<S: Scalar> FlexsplineConfig<S> {
         let u: Units = S::UNITS;
         let ck = p.c_f * p.k_f0;
         FlexsplineConfig {
-            c_f: S::from_f64(p.c_f / u.link_torque),
-            torsion_per_angle: S::from_f64(u.torsion / ck),
-            angle_per_torsion: S::from_f64(ck / u.torsion),
-            torque_per_tan: S::from_f64(u.link_torque / p.c_f),
+            c_f: Coef::new(p.c_f / u.link_torque),
+            torsion_per_angle: Coef::new(u.torsion / ck),
+            angle_per_torsion: Coef::new(ck / u.torsion),
+            torque_per_tan: Coef::new(u.link_torque / p.c_f),
+            _backend: core::marker::PhantomData,
         }
     }
 
     /// Eq. (2.26) in stored units.
     #[inline]
     pub fn torsion(&self, torque: S) -> S {
-        self.c_f.mul(torque).atan().mul(self.torsion_per_angle)
+        torque
+            .mul_coef(&self.c_f)
+            .atan()
+            .mul_coef(&self.torsion_per_angle)
     }
 
     /// Eq. (3.10) in stored units. The argument `Δθ_f c_f K_f0` must stay
@@ -291,10 +296,10 @@ impl<S: Scalar> FlexsplineConfig<S> {
     /// never returned.
     #[inline]
     pub fn torque(&self, torsion: S) -> FlexsplineTorque<S> {
-        let angle = torsion.mul(self.angle_per_torsion);
+        let angle = torsion.mul_coef(&self.angle_per_torsion);
         let saturated = angle.abs() >= S::FRAC_PI_2;
         FlexsplineTorque {
-            torque: angle.tan().mul(self.torque_per_tan),
+            torque: angle.tan().mul_coef(&self.torque_per_tan),
             saturated,
         }
     }
@@ -339,10 +344,11 @@ impl WaveGeneratorParams {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WaveGeneratorConfig<S> {
     /// `c_w` per stored motor-torque unit.
-    c_w: S,
+    c_w: Coef,
     /// `1 / (c_w N K_w0)` in stored torsion units (half the hysteresis
     /// width, eq. 2.36).
-    amplitude: S,
+    amplitude: Coef,
+    _backend: core::marker::PhantomData<S>,
 }
 
 impl<S: Scalar> WaveGeneratorConfig<S> {
@@ -350,16 +356,20 @@ impl<S: Scalar> WaveGeneratorConfig<S> {
     pub fn new(p: &WaveGeneratorParams, ratio: f64) -> Self {
         let u = S::UNITS;
         WaveGeneratorConfig {
-            c_w: S::from_f64(p.c_w / u.motor_torque),
-            amplitude: S::from_f64(u.torsion / (p.c_w * ratio * p.k_w0)),
+            c_w: Coef::new(p.c_w / u.motor_torque),
+            amplitude: Coef::new(u.torsion / (p.c_w * ratio * p.k_w0)),
+            _backend: core::marker::PhantomData,
         }
     }
 
     /// Output-side wave-generator torsion `Δθ_w / N` of eq. (2.29)/(2.30).
     #[inline]
     pub fn output_torsion(&self, motor_torque: S) -> S {
-        let e = self.c_w.mul(motor_torque.abs()).neg().exp();
-        motor_torque.sgn().mul(S::ONE.sub(e)).mul(self.amplitude)
+        let e = motor_torque.abs().mul_coef(&self.c_w).neg().exp();
+        motor_torque
+            .sgn()
+            .mul(S::ONE.sub(e))
+            .mul_coef(&self.amplitude)
     }
 }
 
@@ -522,11 +532,11 @@ mod tests {
 
         /// The fixed-point configuration agrees with f64 within its error
         /// budget, derived term by term in stored units (LSB = 2⁻¹⁶):
-        /// quantizing τ (½ LSB) and c_f (½ LSB·|τ|) moves u = c_f τ by
-        /// `du ≤ ½(c_f + |τ|)` LSB, which atan shrinks by 1/(1+u²); the
-        /// product c_f·τ rounds (½), atan errs (≤ 2 LSB, its proven bound);
-        /// all that is scaled by `1/(c_f K_f0)` in mrad; quantizing that
-        /// scale costs ½ LSB·|atan| ≤ ½·π/2 and the last product rounds (½).
+        /// quantizing τ costs ½ LSB, moving u = c_f τ by ½ c_f LSB; the
+        /// product with the 31-bit c_f rounds (½ LSB, plus |u|·2⁻³⁰); atan
+        /// errs by ≤ 2 LSB (its proven bound) and shrinks the first two by
+        /// 1/(1+u²); the scale 1/(c_f K_f0) multiplies all of it, and the
+        /// last product rounds (½ LSB, plus 2⁻³⁰ relative).
         #[test]
         fn fixed_config_tracks_f64(t in -150.0f64..150.0) {
             let p = shd17();
@@ -535,9 +545,9 @@ mod tests {
             let exact = p.torsion(t) * 1e3;
             let u = p.c_f * t;
             let scale = 1e3 / (p.c_f * p.k_f0);
-            let bound_lsb = (0.5 * (p.c_f + t.abs()) / (1.0 + u * u) + 0.5 + 2.0) * scale
-                + 0.5 * core::f64::consts::FRAC_PI_2
-                + 0.5;
+            let bound_lsb = ((0.5 * p.c_f + 0.5 + u.abs() * 65536.0 * 2f64.powi(-30)) / (1.0 + u * u) + 2.0) * scale
+                + 0.5
+                + exact.abs() * 65536.0 * 2f64.powi(-30);
             prop_assert!((got - exact).abs() <= bound_lsb / 65536.0, "{got} vs {exact}");
         }
     }

@@ -16,7 +16,7 @@
 //! hysteresis of Fig. 2.22 without any derivative of a measured signal.
 
 use crate::error::{positive, ParamError};
-use crate::scalar::Scalar;
+use crate::scalar::{Coef, Scalar};
 
 /// Parameters of the back-driving friction play, eq. (2.40).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -54,7 +54,7 @@ pub struct WaveGeneratorTorqueConfig<S> {
     /// `τ_fb / N` in stored motor-torque units.
     half_width: S,
     /// Stored motor torque per stored link torque, `1/N` with unit scales.
-    motor_per_link: S,
+    motor_per_link: Coef,
 }
 
 /// State of eq. (2.40): the previous wave-generator torque `τ_w(t−1)`.
@@ -70,7 +70,7 @@ impl<S: Scalar> WaveGeneratorTorqueConfig<S> {
         let u = S::UNITS;
         WaveGeneratorTorqueConfig {
             half_width: S::from_f64(p.backdrive_friction / p.ratio * u.motor_torque),
-            motor_per_link: S::from_f64(u.motor_torque / (p.ratio * u.link_torque)),
+            motor_per_link: Coef::new(u.motor_torque / (p.ratio * u.link_torque)),
         }
     }
 
@@ -81,7 +81,7 @@ impl<S: Scalar> WaveGeneratorTorqueConfig<S> {
     /// the play — the same three cases as the module docs.
     #[inline]
     pub fn update(&self, state: &mut WaveGeneratorTorqueState<S>, flexspline_torque: S) -> S {
-        let x = flexspline_torque.mul(self.motor_per_link).neg();
+        let x = flexspline_torque.mul_coef(&self.motor_per_link).neg();
         let lo = x.sub(self.half_width);
         let hi = x.add(self.half_width);
         state.torque = state.torque.clamp(lo, hi);

@@ -79,8 +79,12 @@ impl Scalar for I16F16 {
         I16F16::from_bits(sat_i64((x as i64) << 16))
     }
     #[inline]
-    fn from_counts(counts: i64, scale: &super::CountScale) -> Self {
-        I16F16::from_bits(scale.fixed_bits(counts))
+    fn from_counts(counts: i64, scale: &super::Coef) -> Self {
+        I16F16::from_bits(scale.scale_int(counts, 16))
+    }
+    #[inline]
+    fn mul_coef(self, c: &super::Coef) -> Self {
+        I16F16::from_bits(c.scale_int(self.to_bits() as i64, 0))
     }
     #[inline]
     fn add(self, rhs: Self) -> Self {

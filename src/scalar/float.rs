@@ -47,8 +47,12 @@ macro_rules! float_scalar {
                 x as $t
             }
             #[inline]
-            fn from_counts(counts: i64, scale: &super::CountScale) -> Self {
-                scale.$countfn(counts)
+            fn from_counts(counts: i64, scale: &super::Coef) -> Self {
+                counts as $t * scale.$countfn()
+            }
+            #[inline]
+            fn mul_coef(self, c: &super::Coef) -> Self {
+                self * c.$countfn()
             }
             #[inline]
             fn add(self, rhs: Self) -> Self {
@@ -128,7 +132,7 @@ macro_rules! float_scalar {
 }
 
 float_scalar!(f32, "f32", f32, f32_value);
-float_scalar!(f64, "f64", f64, f64_value);
+float_scalar!(f64, "f64", f64, value);
 
 #[cfg(test)]
 mod tests {

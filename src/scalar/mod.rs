@@ -71,11 +71,14 @@ pub trait Scalar:
     /// Nearest representable value of an integer; saturates.
     fn from_i32(x: i32) -> Self;
     /// `counts · factor` for an exact integer measurement (encoder counts)
-    /// and a [`CountScale`] built once from `factor`. Fixed point computes it
+    /// and a [`Coef`] built once from `factor`. Fixed point computes it
     /// in integer arithmetic (no rounding of `counts` first), so an encoder
     /// reading keeps its full resolution even when one count is far below
     /// one LSB of the scaled unit. Rounded to nearest; saturates.
-    fn from_counts(counts: i64, scale: &CountScale) -> Self;
+    fn from_counts(counts: i64, scale: &Coef) -> Self;
+    /// `self · c` for a prepared constant `c`; in fixed point with the
+    /// coefficient's full 31-bit precision, rounded to nearest, saturating.
+    fn mul_coef(self, c: &Coef) -> Self;
 
     /// `self + rhs` (fixed: saturating).
     fn add(self, rhs: Self) -> Self;
@@ -200,73 +203,82 @@ pub trait Scalar:
     }
 }
 
-/// A conversion factor from integer counts to a backend value, prepared
-/// once for every backend (see [`Scalar::from_counts`]).
+/// A constant coefficient prepared once for every backend: the factor of
+/// [`Scalar::mul_coef`] and [`Scalar::from_counts`].
+///
+/// Fixed point stores it as a 31-bit mantissa and a binary exponent
+/// (`c ≈ mult · 2^-shift`), so a small coefficient such as `c_f = 0.045 1/(N·m)`
+/// keeps 31 significant bits instead of the 12 an `I16F16` constant would
+/// have. Floats store the rounded value.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct CountScale {
-    factor: f64,
-    factor_f32: f32,
-    /// Fixed point: `value_bits = (counts · mult) >> shift` (rounded).
+pub struct Coef {
+    value: f64,
+    value_f32: f32,
     mult: i64,
-    shift: u32,
+    shift: i32,
 }
 
-impl CountScale {
-    /// Prepare `factor` (value per count, e.g. stored mrad per encoder
-    /// count). For `I16F16` the factor is held to 31 significant bits.
-    /// A zero or non-finite factor yields a scale that maps every count to 0.
-    pub fn new(factor: f64) -> Self {
-        if !factor.is_finite() || factor == 0.0 {
-            return CountScale {
-                factor: 0.0,
-                factor_f32: 0.0,
+impl Coef {
+    /// Prepare a coefficient. A zero or non-finite value yields the zero
+    /// coefficient. Magnitudes are limited to `[2^-60, 2^40]`; smaller
+    /// values act as 0 in fixed point, larger ones saturate every product.
+    pub fn new(value: f64) -> Self {
+        if !value.is_finite() || value == 0.0 {
+            return Coef {
+                value: 0.0,
+                value_f32: 0.0,
                 mult: 0,
                 shift: 0,
             };
         }
-        // factor · 2^16 · 2^shift ∈ [2^30, 2^31): the largest shift whose
-        // multiplier still fits 31 bits, capped so counts (≤ 2^31 after
-        // clamping) times mult (< 2^31) stays below 2^62.
-        let bits = factor.abs() * 65536.0;
-        let e = libm::floor(libm::log2(bits)) as i32;
-        let shift = (30 - e).clamp(0, 62) as u32;
-        let mult = libm::round(bits * libm::exp2(shift as f64)) as i64;
-        CountScale {
-            factor,
-            factor_f32: factor as f32,
-            mult: if factor < 0.0 { -mult } else { mult },
+        // |value| · 2^shift ∈ [2^30, 2^31).
+        let e = libm::floor(libm::log2(value.abs())) as i32;
+        let shift = (30 - e).clamp(-10, 90);
+        let mult = libm::round(value.abs() * libm::exp2(shift as f64)) as i64;
+        Coef {
+            value,
+            value_f32: value as f32,
+            mult: if value < 0.0 { -mult } else { mult },
             shift,
         }
     }
 
-    /// The factor this scale was built from.
-    pub fn factor(&self) -> f64 {
-        self.factor
+    /// The value this coefficient was built from.
+    pub fn value(&self) -> f64 {
+        self.value
     }
 
-    /// `I16F16` bits of `counts · factor`, rounded to nearest, saturated.
+    /// `round(x · c · 2^extra)` saturated to `i32`, for an integer `x`
+    /// clamped to `±2^31` (`extra` = 16 turns counts into `I16F16` bits).
     #[inline]
-    pub(crate) fn fixed_bits(&self, counts: i64) -> i32 {
-        let c = counts.clamp(-(1i64 << 31), 1i64 << 31);
-        let p = c * self.mult; // |p| < 2^62
-        let r = if self.shift == 0 {
-            p
+    pub(crate) fn scale_int(&self, x: i64, extra: i32) -> i32 {
+        let x = x.clamp(-(1i64 << 31), 1i64 << 31);
+        let p = x * self.mult; // |p| ≤ 2^62
+        let sh = self.shift - extra;
+        let r = if sh > 0 {
+            if sh >= 63 {
+                0
+            } else {
+                (p + (1i64 << (sh - 1))) >> sh
+            }
+        } else if p == 0 {
+            0
+        } else if -sh >= 32 || p.unsigned_abs() > (i64::MAX as u64 >> -sh) {
+            if p > 0 {
+                i64::MAX
+            } else {
+                i64::MIN
+            }
         } else {
-            (p + (1i64 << (self.shift - 1))) >> self.shift
+            p << -sh
         };
         fixed::sat_i64(r)
     }
 
-    /// `f32` value of `counts · factor`.
+    /// The `f32` value.
     #[inline]
-    pub(crate) fn f32_value(&self, counts: i64) -> f32 {
-        counts as f32 * self.factor_f32
-    }
-
-    /// `f64` value of `counts · factor`.
-    #[inline]
-    pub(crate) fn f64_value(&self, counts: i64) -> f64 {
-        counts as f64 * self.factor
+    pub(crate) fn f32_value(&self) -> f32 {
+        self.value_f32
     }
 }
 
@@ -311,7 +323,7 @@ mod tests {
             mant in 1.0f64..2.0, exp in -40i32..10,
         ) {
             let factor = mant * 2f64.powi(exp);
-            let sc = CountScale::new(factor);
+            let sc = Coef::new(factor);
             let exact = counts as f64 * factor;
             proptest::prop_assume!(exact.abs() < 32767.0);
             let got = I16F16::from_counts(counts, &sc).to_f64();
@@ -320,15 +332,39 @@ mod tests {
         }
     }
 
+    proptest::proptest! {
+        /// `mul_coef` on I16F16: |error| ≤ ½ LSB + |x·c|·2⁻³⁰.
+        #[test]
+        fn mul_coef_is_rounded_product(
+            bits in proptest::prelude::any::<i32>(), mant in 1.0f64..2.0, exp in -40i32..20, neg: bool,
+        ) {
+            let c = if neg { -mant } else { mant } * 2f64.powi(exp);
+            let x = I16F16::from_bits(bits);
+            let exact = x.to_f64() * c;
+            proptest::prop_assume!(exact.abs() < 32767.0);
+            let got = x.mul_coef(&Coef::new(c)).to_f64();
+            let bound = 0.5 / 65536.0 + exact.abs() * 2f64.powi(-30);
+            proptest::prop_assert!((got - exact).abs() <= bound, "{got} vs {exact}");
+        }
+    }
+
+    #[test]
+    fn mul_coef_saturates() {
+        let big = Coef::new(1e6);
+        assert_eq!(I16F16::from_num(2).mul_coef(&big), I16F16::MAX);
+        assert_eq!(I16F16::from_num(-2).mul_coef(&big), I16F16::MIN);
+        assert_eq!(3.0f32.mul_coef(&Coef::new(0.5)), 1.5);
+    }
+
     #[test]
     fn from_counts_saturates_and_handles_zero_factor() {
-        let sc = CountScale::new(1.0);
+        let sc = Coef::new(1.0);
         assert_eq!(I16F16::from_counts(1 << 40, &sc), I16F16::MAX);
         assert_eq!(I16F16::from_counts(-(1 << 40), &sc), I16F16::MIN);
-        let z = CountScale::new(0.0);
+        let z = Coef::new(0.0);
         assert_eq!(I16F16::from_counts(12345, &z), I16F16::ZERO);
-        assert_eq!(f32::from_counts(12345, &CountScale::new(f64::NAN)), 0.0);
-        let neg = CountScale::new(-0.25);
+        assert_eq!(f32::from_counts(12345, &Coef::new(f64::NAN)), 0.0);
+        let neg = Coef::new(-0.25);
         assert_eq!(I16F16::from_counts(6, &neg).to_f64(), -1.5);
     }
 
