@@ -541,7 +541,7 @@ mod tests {
             "sat",
             "all-2^32-(x,y)-bit-pairs;bound+rounding+range+odd+monotone+lipschitz+continuity+zero",
             SAT_BOUND,
-            ("x", "y"),
+            ("y", "x"),
             // code = y << 16 | x
             |y, x| sat_all(x, y),
         );

@@ -52,10 +52,10 @@
 //!
 //! All kernels are integer-only: 16 × 16 → 32 products, 32-bit shifts, adds
 //! and compares, and three tables totalling 902 bytes (`SIN_Q16` 512 B,
-//! `ATAN_Q16` 258 B, `EXP_NEG_Q30` 132 B). `atan2` additionally needs one
-//! 32-bit unsigned division and `sat` one 32-bit unsigned division (a
-//! `__aeabi_uidiv` call on the M0+, which has no divider); no kernel uses a
-//! 64-bit operation.
+//! `ATAN_Q16` 258 B, `EXP_NEG_Q30` 132 B). The quotients of `atan2` and
+//! `sat` use a 15/16-step shift-and-subtract division instead of a divide
+//! instruction (the M0+ has none; `__aeabi_uidiv` costs ~190
+//! instructions). No kernel uses a 64-bit operation, a float or a call.
 //!
 //! The bounds are *proven* by exhaustive enumeration of every input (every
 //! one of the `2¹⁶` inputs of a unary kernel, every one of the `2³²` input
@@ -234,7 +234,8 @@ const fn sgn_bits(x: i16) -> i16 {
 /// Same semantics as [`Scalar::sat`](crate::scalar::Scalar::sat): for
 /// `y ≤ 0` every `x ≠ 0` lies outside the layer and the result is
 /// [`sgn`]`(x)`; `sat(0, y) = 0`. Inside the layer `x / y` is rounded to
-/// nearest (ties away from zero) with one 32-bit unsigned division; `±1`
+/// nearest (ties away from zero) by a 15-step shift-and-subtract division
+/// (no divide instruction); `±1`
 /// is returned as `±MAX` (as by [`sgn`]), so the result lies in
 /// `[-MAX, MAX]`.
 ///
@@ -265,8 +266,8 @@ fn sat_bits(x: i16, y: i16) -> i16 {
         // |x| > y is outside the layer; |x| = y gives x/y = ±1 exactly.
         return sgn_bits(x);
     }
-    // round(|x| / y · 2¹⁵) = floor((|x|·2¹⁶ + y) / (2y)); |x|·2¹⁶ < 2³¹.
-    let q = ((ax << 16) + y) / (y << 1);
+    // round(|x| / y · 2¹⁵), ties up, without a divide instruction.
+    let q = ratio::<15>(ax, y);
     // |x| ≤ y - 1 gives |x|/y·2¹⁵ ≤ 2¹⁵ - 2¹⁵/y < 2¹⁵ - 1 (y < 2¹⁵), so q
     // fits in i16; the clamp only documents it.
     let q = if q > i16::MAX as u32 {
@@ -530,9 +531,9 @@ pub fn atan(x: Q15) -> Q15 {
 /// Four-quadrant arctangent of `y / x` as a [`BinaryAngle`] in `[-π, π)`
 /// (`atan2(0, -x) = -π ≡ π`); `atan2(0, 0) = 0`.
 ///
-/// Octant reduction `r = min(|x|,|y|) / max(|x|,|y|)` with one rounded
-/// 32-bit unsigned division into Q16, `atan(r)` from the `ATAN_Q16` table
-/// (Q25 radians), conversion to `2⁻¹¹` codes with two 16 × 16 products
+/// Octant reduction `r = min(|x|,|y|) / max(|x|,|y|)` rounded into Q16
+/// by a 16-step shift-and-subtract division (no divide instruction),
+/// `atan(r)` from the `ATAN_Q16` table (Q25 radians), conversion to `2⁻¹¹` codes with two 16 × 16 products
 /// (`× 2/π`), exact octant reflections, one final rounding.
 /// Domain: every pair. Proven bound: ≤ 1 code (`≈ 9.6e-5 rad`) modulo the
 /// turn, exhaustive over all `2³²` pairs `(y, x)`.
@@ -547,13 +548,14 @@ pub fn atan2(y: Q15, x: Q15) -> BinaryAngle {
     let (yb, xb) = (y.to_bits(), x.to_bits());
     let ax = (xb as i32).unsigned_abs(); // ≤ 2¹⁵
     let ay = (yb as i32).unsigned_abs();
-    if ax == 0 && ay == 0 {
-        return BinaryAngle::ZERO;
-    }
     let steep = ay > ax;
     let (num, den) = if steep { (ax, ay) } else { (ay, ax) };
-    // round(num/den · 2¹⁶) ∈ [0, 2¹⁶]; num·2¹⁶ ≤ 2³¹.
-    let r = ((num << 16) + (den >> 1)) / den;
+    if den == 0 {
+        // den = max(|x|, |y|): only atan2(0, 0) = 0 (no division-by-zero
+        // branch in the generated code).
+        return BinaryAngle::ZERO;
+    }
+    let r = ratio::<16>(num, den);
     // Q25 rad → units of 2⁻¹¹ code: × (2¹¹·32768/π)/2²⁵ = × 2/π.
     let mut a = mulhi_u32_u16(atan_unit_q25(r), TWO_OVER_PI_Q16) as i32; // ≤ 2²⁴
     if steep {
@@ -567,6 +569,33 @@ pub fn atan2(y: Q15, x: Q15) -> BinaryAngle {
     }
     // a ∈ [-2²⁶, 2²⁶]: round to codes; +π (32768) wraps to -π.
     BinaryAngle(((a + (1 << 10)) >> 11) as i16)
+}
+
+/// `round(num / den · 2^BITS) ∈ [0, 2^BITS]` (ties up) for `0 ≤ num ≤ den`,
+/// `0 < den ≤ 2¹⁵`, `BITS ≤ 16`, by `BITS` steps of restoring long
+/// division (shift, compare, subtract) on one register holding the remainder in its high half and the
+/// quotient bits in its low half. A Cortex-M0+ has no divide instruction;
+/// this is about 5 instructions a step, against ~190 for the generic
+/// `__aeabi_uidiv`.
+#[inline]
+fn ratio<const BITS: u32>(num: u32, den: u32) -> u32 {
+    if num >= den {
+        return 1 << BITS; // num = den
+    }
+    // R = rem·2¹⁶ + q, with rem < den ≤ 2¹⁵ so 2·rem fits in the high half.
+    let d = den << 16;
+    let mut r = num << 16;
+    let mut k = 0;
+    while k < BITS {
+        r <<= 1;
+        if r >= d {
+            r = r - d + 1;
+        }
+        k += 1;
+    }
+    // q = ⌊num·2^BITS/den⌋ (in the low BITS bits), rem = the high half.
+    let (q, rem) = (r & 0xFFFF, r >> 16);
+    q + ((rem << 1) >= den) as u32
 }
 
 /// `2/π` in Q16, rounded (`41721.5…`).
@@ -739,6 +768,24 @@ mod tests {
             + core::mem::size_of_val(&ATAN_Q16)
             + core::mem::size_of_val(&EXP_NEG_Q30);
         assert_eq!(tables, 902);
+    }
+
+    #[test]
+    fn ratio_matches_rounded_integer_division() {
+        // Every denominator; numerators on a stride plus the edges (the
+        // exhaustive atan2 proof covers every pair through the kernel).
+        for den in 1..=32768u32 {
+            let mut nums: std::vec::Vec<u32> = (0..=den).step_by(97).collect();
+            nums.extend([den, den - 1, den / 2, den.div_ceil(2)]);
+            for num in nums {
+                let expected = ((num << 16) + (den >> 1)) / den;
+                assert_eq!(ratio::<16>(num, den), expected, "{num}/{den}");
+                if den < 32768 {
+                    let expected = ((num << 15) + (den >> 1)) / den;
+                    assert_eq!(ratio::<15>(num, den), expected, "{num}/{den} Q15");
+                }
+            }
+        }
     }
 
     #[test]
