@@ -38,40 +38,25 @@ pub const ACOS_BOUND: f64 = 3.0;
 /// Correct rounding.
 pub const SQRT_BOUND: f64 = 0.5;
 
-/// The `f64` reference functions.
+/// The `f64` reference functions: `std` in tests, `libm` under Kani.
 mod reference {
-    #[cfg(test)]
-    mod imp {
-        pub fn atan(x: f64) -> f64 {
-            x.atan()
-        }
-        pub fn tan(x: f64) -> f64 {
-            x.tan()
-        }
-        pub fn exp(x: f64) -> f64 {
-            x.exp()
-        }
-        pub fn sin(x: f64) -> f64 {
-            x.sin()
-        }
-        pub fn cos(x: f64) -> f64 {
-            x.cos()
-        }
-        pub fn atan2(y: f64, x: f64) -> f64 {
-            y.atan2(x)
-        }
-        pub fn acos(x: f64) -> f64 {
-            x.acos()
-        }
-        pub fn sqrt(x: f64) -> f64 {
-            x.sqrt()
-        }
-    }
     #[cfg(not(test))]
-    mod imp {
-        pub use libm::{acos, atan, atan2, cos, exp, sin, sqrt, tan};
+    pub use libm::{acos, atan, atan2, cos, exp, sin, sqrt, tan};
+
+    macro_rules! std_reference {
+        ($($name:ident),*) => {$(
+            #[cfg(test)]
+            pub fn $name(x: f64) -> f64 {
+                x.$name()
+            }
+        )*};
     }
-    pub use imp::*;
+    std_reference!(acos, atan, cos, exp, sin, sqrt, tan);
+
+    #[cfg(test)]
+    pub fn atan2(y: f64, x: f64) -> f64 {
+        y.atan2(x)
+    }
 }
 
 /// The next `f32` above `x` (for finite `x` or `-∞`; `-0.0` → smallest
@@ -114,7 +99,7 @@ fn within(got: f32, reference: f64, bound: f64) -> Verdict {
 /// Engines: exhaustive (every `f32`), random, Kani.
 pub fn atan_within_bound(x: f32) -> Verdict {
     if x.is_nan() {
-        return Verdict::logical(k::atan(x) == 0.0);
+        return Verdict::logical(k::atan(x) == 0.0 && k::atan(-x) == 0.0);
     }
     within(k::atan(x), reference::atan(x as f64), ATAN_BOUND)
 }
@@ -136,7 +121,7 @@ pub fn atan_odd_at(x: f32) -> Verdict {
 /// Engines: exhaustive (every `f32`), random, Kani.
 pub fn tan_within_bound(x: f32) -> Verdict {
     if x.is_nan() {
-        return Verdict::logical(k::tan(x) == 0.0);
+        return Verdict::logical(k::tan(x) == 0.0 && k::tan(-x) == 0.0);
     }
     if x > k::TAN_DOMAIN_EDGE {
         return Verdict::logical(k::tan(x) == k::tan(k::TAN_DOMAIN_EDGE));
@@ -187,7 +172,7 @@ pub fn exp_monotone_at(x: f32) -> Verdict {
 /// NaN give exactly 0. Engines: exhaustive, random, Kani.
 pub fn sin_within_bound(x: f32) -> Verdict {
     if !x.is_finite() {
-        return Verdict::logical(k::sin(x) == 0.0);
+        return Verdict::logical(k::sin(x) == 0.0 && k::sin(-x) == 0.0);
     }
     within(k::sin(x), reference::sin(x as f64), SIN_COS_BOUND)
 }
@@ -196,18 +181,20 @@ pub fn sin_within_bound(x: f32) -> Verdict {
 /// NaN give exactly 1. Engines: exhaustive, random, Kani.
 pub fn cos_within_bound(x: f32) -> Verdict {
     if !x.is_finite() {
-        return Verdict::logical(k::cos(x) == 1.0);
+        return Verdict::logical(k::cos(x) == 1.0 && k::cos(-x) == 1.0);
     }
     within(k::cos(x), reference::cos(x as f64), SIN_COS_BOUND)
 }
 
-/// `sin_cos(x)` equals `(sin x, cos x)` bit for bit, `sin` is exactly odd
-/// and `cos` exactly even. Engines: exhaustive, Kani.
+/// `sin_cos(x)` equals `(sin x, cos x)` bit for bit, and for finite `x`
+/// `sin` is exactly odd and `cos` exactly even (`±∞`, NaN: see
+/// [`sin_within_bound`]). Engines: exhaustive, Kani.
 pub fn sin_cos_consistent_and_symmetric_at(x: f32) -> Verdict {
     let (s, c) = k::sin_cos(x);
     let same = s.to_bits() == k::sin(x).to_bits() && c.to_bits() == k::cos(x).to_bits();
     let (sn, cn) = k::sin_cos(-x);
-    let symmetric = x.is_nan() || (sn.to_bits() == (-s).to_bits() && cn.to_bits() == c.to_bits());
+    let symmetric =
+        !x.is_finite() || (sn.to_bits() == (-s).to_bits() && cn.to_bits() == c.to_bits());
     Verdict::logical(same && symmetric)
 }
 
@@ -374,12 +361,14 @@ mod exhaustive {
     use super::*;
     use std::println;
 
-    /// Run `property` over the codes `lo..=hi`, print the summary line and
-    /// fail on any counterexample.
+    /// Run `property` over the codes `lo..=hi` (decoded by `decode`), print
+    /// one summary line per entry of `claims` — `(domain, bound)`; the
+    /// property checks all of them at once, sharing the kernel evaluations —
+    /// and fail on any counterexample. Error bounds print the maximum error
+    /// and its argument; logical claims (`monotone`, `odd`, `exact`) print 0.
     fn prove(
         kernel: &str,
-        domain: &str,
-        bound: &str,
+        claims: &[(&str, &str)],
         lo: u32,
         hi: u32,
         decode: impl Fn(u32) -> f32,
@@ -388,29 +377,40 @@ mod exhaustive {
         let start = std::time::Instant::now();
         let rep = exhaustive_u32(lo, hi, property);
         let secs = start.elapsed().as_secs_f64();
-        let (max_err, unit) = if bound == "monotone" || bound == "exact" {
-            (std::format!("{}", rep.max_error), "")
-        } else {
-            (std::format!("{:.3}", rep.max_error), " ulp")
-        };
-        if rep.failures == 0 {
-            println!(
-                "PROOF kernel={kernel} backend=f32 domain={domain} bound={bound} max_err={max_err}{unit} at={:e} checked={} engine=exhaustive",
-                decode(rep.argmax),
-                rep.checked
-            );
-        } else {
-            let first = rep.first_failure.unwrap_or(0);
-            println!(
-                "FAILED kernel={kernel} backend=f32 domain={domain} bound={bound} failures={} first_failure={:e} (bits {:#010x}) max_err={max_err}{unit} at={:e} checked={} engine=exhaustive",
-                rep.failures,
-                decode(first),
-                decode(first).to_bits(),
-                decode(rep.argmax),
-                rep.checked
-            );
+        for &(domain, bound) in claims {
+            let logical = bound.parse::<f64>().is_err();
+            let (max_err, at) = if logical {
+                (
+                    std::string::String::from("0"),
+                    std::string::String::from("-"),
+                )
+            } else {
+                (
+                    std::format!("{:.3} ulp", rep.max_error),
+                    std::format!("{:e}", decode(rep.argmax)),
+                )
+            };
+            let bound = if logical {
+                std::string::String::from(bound)
+            } else {
+                std::format!("{bound} ulp")
+            };
+            if rep.failures == 0 {
+                println!(
+                    "PROOF kernel={kernel} backend=f32 domain={domain} bound={bound} max_err={max_err} at={at} checked={} engine=exhaustive",
+                    rep.checked
+                );
+            } else {
+                let first = decode(rep.first_failure.unwrap_or(0));
+                println!(
+                    "FAILED kernel={kernel} backend=f32 domain={domain} bound={bound} failures={} first_failure={first:e} (bits {:#010x}) max_err={max_err} at={at} checked={} engine=exhaustive",
+                    rep.failures,
+                    first.to_bits(),
+                    rep.checked
+                );
+            }
         }
-        println!("  ({kernel}: {secs:.1} s)");
+        println!("  ({kernel}: {} codes in {secs:.1} s)", rep.checked);
         assert_eq!(rep.failures, 0, "{kernel}: property fails");
         rep
     }
@@ -431,36 +431,56 @@ mod exhaustive {
         }
     }
 
+    /// Odd kernels are checked on the codes of `x ≥ 0` (including +∞ and the
+    /// NaNs): the bound and monotonicity there, plus exact oddness, give the
+    /// bound and monotonicity over every `f32` (for `a < b ≤ 0`,
+    /// `f(a) = −f(−a) ≤ −f(−b) = f(b)`).
+    const POSITIVE_CODES: (u32, u32) = (0, 0x7fff_ffff);
+
     #[test]
     #[ignore = "exhaustive: run in release by .ci/run"]
     fn exhaustive_atan_f32() {
-        prove("atan", "all-f32", "2", 0, u32::MAX, bits, |c| {
-            atan_within_bound(bits(c))
-        });
-        prove("atan", "all-f32", "monotone", 0, u32::MAX, bits, |c| {
-            atan_monotone_at(bits(c))
-        });
-        prove("atan", "all-f32", "odd", 0, 0x7fff_ffff, bits, |c| {
-            atan_odd_at(bits(c))
-        });
+        let (lo, hi) = POSITIVE_CODES;
+        prove(
+            "atan",
+            &[
+                ("all-f32", "2"),
+                ("all-f32", "monotone"),
+                ("all-f32", "odd"),
+            ],
+            lo,
+            hi,
+            bits,
+            |c| {
+                let x = bits(c);
+                atan_within_bound(x)
+                    .and(atan_monotone_at(x))
+                    .and(atan_odd_at(x))
+            },
+        );
     }
 
     #[test]
     #[ignore = "exhaustive: run in release by .ci/run"]
     fn exhaustive_tan_f32() {
-        // Bound on |x| ≤ TAN_DOMAIN_EDGE (both signs); the saturation and
-        // oddness are checked by the two passes over every code below.
-        let n = k::TAN_DOMAIN_EDGE.to_bits() + 1;
-        let dec = both_signs(n);
-        prove("tan", "|x|<=1.5707962", "3", 0, 2 * n - 1, dec, move |c| {
-            tan_within_bound(dec(c))
-        });
-        prove("tan", "all-f32", "monotone", 0, u32::MAX, bits, |c| {
-            tan_monotone_at(bits(c))
-        });
-        prove("tan", "all-f32", "odd", 0, 0x7fff_ffff, bits, |c| {
-            tan_odd_at(bits(c)).and(tan_within_bound(bits(c)))
-        });
+        let (lo, hi) = POSITIVE_CODES;
+        prove(
+            "tan",
+            &[
+                ("|x|<=1.5707962(all-f32;saturated-outside)", "3"),
+                ("all-f32", "monotone"),
+                ("all-f32", "odd"),
+            ],
+            lo,
+            hi,
+            bits,
+            |c| {
+                let x = bits(c);
+                tan_within_bound(x)
+                    .and(tan_monotone_at(x))
+                    .and(tan_odd_at(x))
+            },
+        );
     }
 
     #[test]
@@ -468,42 +488,53 @@ mod exhaustive {
     fn exhaustive_exp_f32() {
         prove(
             "exp",
-            "x<=88.72283(all-f32;MAX-above)",
-            "2",
+            &[
+                ("x<=88.72283(all-f32;MAX-above;0-below-103.97208)", "2"),
+                ("all-f32", "monotone"),
+            ],
             0,
             u32::MAX,
             bits,
-            |c| exp_within_bound(bits(c)),
+            |c| {
+                let x = bits(c);
+                exp_within_bound(x).and(exp_monotone_at(x))
+            },
         );
-        prove("exp", "all-f32", "monotone", 0, u32::MAX, bits, |c| {
-            exp_monotone_at(bits(c))
-        });
     }
 
     #[test]
     #[ignore = "exhaustive: run in release by .ci/run"]
     fn exhaustive_sin_f32() {
-        // x ≥ 0 (every finite f32 and ±∞ by the exact symmetry proven in
-        // exhaustive_sin_cos_symmetry_f32).
-        prove("sin", "all-finite-f32", "2", 0, 0x7f80_0000, bits, |c| {
-            sin_within_bound(bits(c))
-        });
+        // x ≥ 0; x < 0 by the exact oddness checked in the same pass.
+        prove(
+            "sin",
+            &[
+                ("all-finite-f32", "2"),
+                ("all-f32", "odd"),
+                ("all-f32(sin_cos=(sin,cos))", "exact"),
+            ],
+            0,
+            0x7fff_ffff,
+            bits,
+            |c| {
+                let x = bits(c);
+                sin_within_bound(x).and(sin_cos_consistent_and_symmetric_at(x))
+            },
+        );
     }
 
     #[test]
     #[ignore = "exhaustive: run in release by .ci/run"]
     fn exhaustive_cos_f32() {
-        prove("cos", "all-finite-f32", "2", 0, 0x7f80_0000, bits, |c| {
-            cos_within_bound(bits(c))
-        });
-    }
-
-    #[test]
-    #[ignore = "exhaustive: run in release by .ci/run"]
-    fn exhaustive_sin_cos_symmetry_f32() {
-        prove("sin_cos", "all-f32", "exact", 0, 0x7fff_ffff, bits, |c| {
-            sin_cos_consistent_and_symmetric_at(bits(c))
-        });
+        // x ≥ 0; x < 0 by the exact evenness checked in exhaustive_sin_f32.
+        prove(
+            "cos",
+            &[("all-finite-f32", "2")],
+            0,
+            0x7fff_ffff,
+            bits,
+            |c| cos_within_bound(bits(c)),
+        );
     }
 
     #[test]
@@ -511,7 +542,7 @@ mod exhaustive {
     fn exhaustive_acos_f32() {
         let n = 1.0f32.to_bits() + 1;
         let dec = both_signs(n);
-        prove("acos", "[-1,1]", "3", 0, 2 * n - 1, dec, move |c| {
+        prove("acos", &[("[-1,1]", "3")], 0, 2 * n - 1, dec, move |c| {
             acos_within_bound(dec(c))
         });
     }
@@ -519,12 +550,26 @@ mod exhaustive {
     #[test]
     #[ignore = "exhaustive: run in release by .ci/run"]
     fn exhaustive_sqrt_f32() {
-        prove("sqrt", "all-f32", "0.5", 0, u32::MAX, bits, |c| {
-            sqrt_correctly_rounded(bits(c))
-        });
-        prove("sqrt", "all-f32", "monotone", 0, u32::MAX, bits, |c| {
-            sqrt_monotone_at(bits(c))
-        });
+        prove(
+            "sqrt",
+            &[("x>=0", "0.5"), ("x>=0", "monotone")],
+            0,
+            0x7fff_ffff,
+            bits,
+            |c| {
+                let x = bits(c);
+                sqrt_correctly_rounded(x).and(sqrt_monotone_at(x))
+            },
+        );
+        // x < 0 (and negative NaNs) → 0: then monotone over every f32 too.
+        prove(
+            "sqrt",
+            &[("x<0", "exact")],
+            0x8000_0000,
+            u32::MAX,
+            bits,
+            |c| sqrt_correctly_rounded(bits(c)),
+        );
     }
 
     /// The 4096 grid values per axis: 2048 magnitudes spread over every
@@ -535,7 +580,7 @@ mod exhaustive {
             0 => 0,
             2047 => 0x7f80_0000,
             // Spread j = 1..2046 over the finite positive codes, plus a
-            // per-index odd offset so mantissas vary.
+            // per-index offset so mantissas vary.
             _ => ((j as u64 * 0x7f7f_ffff / 2046) as u32 | 1).wrapping_sub(j & 0x3e),
         };
         if i < 2048 {
@@ -551,8 +596,7 @@ mod exhaustive {
         let dec = |c: u32| atan2_axis(c >> 12);
         prove(
             "atan2",
-            "grid-4096x4096-all-exponents",
-            "2",
+            &[("grid-4096x4096-all-exponents-signs-zeros-inf", "2")],
             0,
             (1 << 24) - 1,
             dec,

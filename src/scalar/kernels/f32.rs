@@ -35,11 +35,11 @@ pub const TAN_DOMAIN_EDGE: f32 = 1.570_796_2;
 
 /// Largest `f32` whose exponential is finite in `f32` (just below
 /// `ln(f32::MAX) = 88.722839…`); [`exp`] returns `f32::MAX` above it.
-pub const EXP_MAX_ARG: f32 = 88.722_83;
+pub const EXP_MAX_ARG: f32 = f32::from_bits(0x42b1_7217); // 88.722_83
 
 /// Smallest argument for which [`exp`] is not flushed to 0: `e^x` rounds to
 /// 0 (is below half the smallest subnormal, `2^-150`) for every `f32` below it.
-pub const EXP_MIN_ARG: f32 = -103.972_076;
+pub const EXP_MIN_ARG: f32 = f32::from_bits(0xc2cf_f1b4); // -103.972_08
 
 const SIGN: u32 = 0x8000_0000;
 
@@ -80,34 +80,58 @@ fn horner<const N: usize>(z: f32, c: &[f32; N]) -> f32 {
 
 // ---------------------------------------------------------------- atan ----
 
-/// `atan(u) ≈ u + u³·Q(u²)` on `u ∈ [0, 1]` (degree 9 in `u²`).
-const ATAN_Q: [f32; 10] = [
+/// `atan(u) ≈ u + u³·Q(u²)` on `u ∈ [0, 0.6]` (degree 6 in `u²`).
+const ATAN_Q: [f32; 7] = [
     -0.333_333_34,
-    0.199_999_5,
-    -0.142_840_04,
-    0.110_882_62,
-    -0.089_318_27,
-    0.070_319_15,
-    -0.048_960_514,
-    0.026_305_001,
-    -0.009_144_629,
-    0.001_488_691_9,
+    0.199_999_44,
+    -0.142_831_73,
+    0.110_673_43,
+    -0.087_226_37,
+    0.060_235_15,
+    -0.024_739_42,
 ];
+/// π/4 = `FRAC_PI_4_HI + FRAC_PI_4_LO` (+ 8.6e-16).
+const FRAC_PI_4_HI: f32 = f32::from_bits(0x3f49_0fdb);
+const FRAC_PI_4_LO: f32 = f32::from_bits(0xb2bb_bd2e);
+/// 0.6 and 1/0.6: the branch points of [`atan_nonneg`].
+const ATAN_LOW: f32 = 0.6;
+const ATAN_HIGH: f32 = 1.666_666_6;
 
-/// Arctangent of `u ∈ [0, 1]` (also correct for subnormal `u`).
+/// `atan(u)` for `|u| ≤ 0.6` by the polynomial (exact for subnormal `u`).
 #[inline(always)]
-fn atan_unit(u: f32) -> f32 {
+fn atan_poly(u: f32) -> f32 {
     let z = u * u;
     u + u * z * horner(z, &ATAN_Q)
+}
+
+/// Arctangent of a non-negative `u` (`+∞` included) in three branches, each
+/// non-decreasing in `u` (every rounding step is monotone and the
+/// polynomial's correction term is small against the step of its argument):
+///
+/// * `u ≤ 0.6`: `atan_poly(u)`;
+/// * `0.6 < u ≤ 1/0.6`: `π/4 + atan v` with `v = (u−1)/(u+1) ∈ [−¼, ¼]`
+///   (`u − 1` is exact by Sterbenz);
+/// * `u > 1/0.6`: `π/2 − atan(1/u)`.
+#[inline(always)]
+fn atan_nonneg(u: f32) -> f32 {
+    if u <= ATAN_LOW {
+        atan_poly(u)
+    } else if u <= ATAN_HIGH {
+        FRAC_PI_4_HI + (atan_poly((u - 1.0) / (u + 1.0)) + FRAC_PI_4_LO)
+    } else {
+        FRAC_PI_2_HI - (atan_poly(1.0 / u) - FRAC_PI_2_LO)
+    }
 }
 
 /// Arctangent, in radians, in `[-π/2, π/2]` (thesis eq. 2.26 uses it for the
 /// kinematic-error phase).
 ///
 /// * Domain: every `f32` (`±∞ → ±π/2` rounded to nearest, NaN → 0).
-/// * Algorithm: odd symmetry, then `atan|x|` directly for `|x| ≤ 1` and
-///   `π/2 − atan(1/|x|)` above (π/2 split in two `f32`s); `atan(u) = u +
-///   u³·Q(u²)` with `Q` a degree-9 Chebyshev fit on `[0, 1]`.
+/// * Algorithm: odd symmetry; then [`atan_nonneg`]: the reductions
+///   `atan u = π/4 + atan((u−1)/(u+1))` on `(0.6, 1/0.6]` and
+///   `atan u = π/2 − atan(1/u)` above bring the argument to `[0, 0.6]`, where
+///   `atan u = u + u³·Q(u²)` with `Q` a degree-6 Chebyshev fit; π/4 and π/2
+///   are split in two `f32`s.
 /// * Proven bound: **2 ulp** over every `f32`, non-decreasing over every pair
 ///   of adjacent `f32`s, and exactly odd. Measured maximum error: see the
 ///   `PROOF kernel=atan` line of `exhaustive_atan_f32` (README table).
@@ -118,13 +142,7 @@ pub fn atan(x: f32) -> f32 {
     if abits > 0x7f80_0000 {
         return 0.0;
     }
-    let ax = f32::from_bits(abits);
-    let r = if ax <= 1.0 {
-        atan_unit(ax)
-    } else {
-        (FRAC_PI_2_HI - atan_unit(1.0 / ax)) + FRAC_PI_2_LO
-    };
-    with_sign(r, bits & SIGN)
+    with_sign(atan_nonneg(f32::from_bits(abits)), bits & SIGN)
 }
 
 // ----------------------------------------------------------------- tan ----
@@ -188,7 +206,6 @@ const EXP_E: [f32; 6] = [
     0.001_393_364_2,
     0.000_198_909_81,
 ];
-const LOG2_E: f32 = 1.442_695;
 /// ln 2 = `LN2_HI + LN2_LO`; `LN2_HI` has 16 significant bits so `k·LN2_HI`
 /// is exact for `|k| ≤ 255`.
 const LN2_HI: f32 = 0.693_145_75;
@@ -224,7 +241,7 @@ pub fn exp(x: f32) -> f32 {
     // Round to nearest integer: |x·log2 e| < 2^22, so adding 1.5·2^23 leaves
     // the integer part in the last bits.
     const ROUNDER: f32 = 12_582_912.0;
-    let kf = (x * LOG2_E + ROUNDER) - ROUNDER;
+    let kf = (x * core::f32::consts::LOG2_E + ROUNDER) - ROUNDER;
     let k = kf as i32; // in [-150, 128]
     let r = (x - kf * LN2_HI) - kf * LN2_LO;
     let p = 1.0 + (r + r * r * horner(r, &EXP_E));
@@ -357,8 +374,8 @@ pub fn cos(x: f32) -> f32 {
 /// * Domain: every pair of `f32`s, including zeros, subnormals and `±∞`
 ///   (`atan2(±∞, ±∞) = ±π/4, ±3π/4`). `atan2(±0, ±0) = 0`; otherwise signed
 ///   zeros follow IEEE-754 (`atan2(±0, x<0) = ±π`). NaN is treated as 0.
-/// * Algorithm: `a = atan(min/max)` of the magnitudes with the `[0, 1]`
-///   polynomial of [`atan`], then `a`, `π/2 − a`, `π − a` or `π/2 + a`
+/// * Algorithm: `a = atan(min/max)` of the magnitudes (the non-negative
+///   branch of [`atan`]), then `a`, `π/2 − a`, `π − a` or `π/2 + a`
 ///   (constants split in two `f32`s) and the sign of `y`.
 /// * Proven bound: **2 ulp** on a 4096 × 4096 grid of codes spanning every
 ///   exponent and sign (`exhaustive_atan2_f32`), plus random pairs.
@@ -377,7 +394,7 @@ pub fn atan2(y: f32, x: f32) -> f32 {
     let (num, den) = if swap { (ax, ay) } else { (ay, ax) };
     // num == den also covers ∞/∞.
     let ratio = if num == den { 1.0 } else { num / den };
-    let a = atan_unit(ratio);
+    let a = atan_nonneg(ratio);
     let (hi, lo, a) = match (swap, xbits & SIGN != 0) {
         (false, false) => (0.0, 0.0, a),
         (true, false) => (FRAC_PI_2_HI, FRAC_PI_2_LO, -a),
