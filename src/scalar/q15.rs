@@ -33,7 +33,35 @@
 //!
 //! # Cost of one product on a Cortex-M0+ (`thumbv6m-none-eabi`)
 //!
-//! COST_TABLE
+//! Measured, not estimated: each operation wrapped in one
+//! `#[inline(never)] extern "C"` function, built for `thumbv6m-none-eabi`
+//! (release, `opt-level = 3`, fat LTO), linked, and executed in the
+//! `unicorn` Cortex-M0+ emulator over 3 000 inputs (edge cases and random
+//! values). Counts are *instructions executed*, including the wrapper's
+//! frame (`push`, `add r7`, `pop`: 3 instructions).
+//!
+//! | operation | instructions | what they are |
+//! |---|---|---|
+//! | [`mul`] (Q15) | 11 | `muls`; `movs`+`lsls`+`adds` (round, +2¹⁴); `asrs #15`; `ldr`+`cmp`+`blt` (saturation; +1 `mov` when it saturates) |
+//! | `I16F16` `Scalar::mul` | 66–68 | 37 inside `__aeabi_lmul` (the 32 × 32 → 64 product), ~26 for the 64-bit rounding add, 64-bit shift and 64-bit saturation compares |
+//!
+//! So one Q15 product is 8 instructions inline against ~63 for `I16F16`
+//! (about 8×). Cycles follow the same ratio on a part with the
+//! single-cycle multiplier; with the optional 32-cycle iterative
+//! multiplier, each `muls` adds 31 cycles, once for Q15 and several times
+//! inside `__aeabi_lmul`.
+//!
+//! Whole kernels, same method (instructions executed, min–max):
+//!
+//! | kernel | Q15 | `I16F16` (integer kernels of [`kernels::i16f16`](super::kernels::i16f16)) |
+//! |---|---|---|
+//! | `sin` | 21–40 | 217–267 (3 `__aeabi_lmul`) |
+//! | `sin_cos` | 69–98 | — |
+//! | `atan` | 15–31 | — |
+//! | `atan2` | 25–137 | 486–528 (2 `__aeabi_lmul`) |
+//! | `sqrt` | 8–186 | — |
+//! | `exp_neg` | 7–35 | — |
+//! | `sat` | 19–86 | — |
 //!
 //! # Arithmetic semantics
 //!
@@ -63,7 +91,22 @@
 //! `exhaustive_*_q15` tests in `proofs/kernels_q15.rs`
 //! (`cargo test --release --lib -- --ignored exhaustive_ --test-threads 1 --nocapture`).
 //!
-//! KERNEL_TABLE
+//! | kernel | algorithm | domain (all checked) | proven bound | measured max error |
+//! |---|---|---|---|---|
+//! | [`mul`] | one 16 × 16 → 32 product, round, saturate | 2³² pairs | 0.5 LSB; 1 LSB for `(-1)(-1)` | 0.5; 1.0 at `(-1)(-1)` |
+//! | [`sgn`] | compares | 2¹⁶ | exact (`±MAX`) | 0 |
+//! | [`sat`] | compares + 15-step division | 2³² pairs `(x, y)` | 1 LSB (0.5 LSB where the exact value is not `±1`) | 1.0 where the exact value is `±1` |
+//! | [`sin`], [`cos`] | quadrant reduction, 256-segment quarter-wave Q16 table, linear interpolation | 2¹⁶ angles | 1 LSB | 1.0 at `±π/2` (`±1 → ±MAX`); 0.83 elsewhere |
+//! | [`sin_cos`] | as `sin`, `cos` | 2¹⁶ angles | bit-equal to `(sin, cos)`; `\|s² + c² - 1\| ≤ 2` LSB | 2.0 (at `0`: `MAX²`) |
+//! | [`atan`] | 128-segment Q16 table, linear interpolation | 2¹⁶ | 1 LSB | 0.84 |
+//! | [`atan2`] | octant reduction, 16-step ratio, `atan` table, `× 2/π` | 2³² pairs `(y, x)` | 1 code mod 2π | 0.71 code |
+//! | [`sqrt`] | digit-by-digit integer root, one rounding | 2¹⁶ | 0.5 LSB (correctly rounded) | 0.5 |
+//! | [`exp_neg`] | 33-entry Q30 table `e^{-i/32}` × `(1 - f + f²/2)` | 2¹⁶ (bound on `[-1, 0]`, `MAX` above) | 1 LSB | 1.0 at `0` (`1 → MAX`); 0.90 elsewhere |
+//!
+//! `atan`, `sqrt` and `exp_neg` are also proven non-decreasing over every
+//! input; `sin`, `atan` and `sat` odd. On this 2-core machine the `2³²`-pair
+//! proofs take about 1.5 min (`sat`), 2–4 min (`atan2`, dominated by the
+//! `libm::atan2` reference) and 40 s (`mul`) in release.
 
 use core::ops::{Add, Neg, Sub};
 
