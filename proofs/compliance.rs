@@ -1,0 +1,253 @@
+//! Properties of the flexspline compliance and its inverse (thesis eq. 2.26
+//! and 3.10) as configured for a backend: the map the torque estimator
+//! inverts on every sample.
+//!
+//! | property | I16F16 | f32 |
+//! |---|---|---|
+//! | `inverse_sign_and_saturation` — never a value from the wrong branch of `tan`: the torque has the sign of the torsion; `saturated` exactly outside the branch (to the angle's rounding); never NaN | Kani; exhaustive (all 2³² torsions) | Kani; exhaustive (all 2³² bit patterns) |
+//! | `inverse_monotone_step`, `forward_monotone_step` — both maps non-decreasing | same | same |
+//! | `round_trip` — `torsion(torque(δ))` within the derived bound of δ wherever the torque is not saturated | exhaustive | exhaustive |
+//!
+//! The configuration is the SHD-17-100 drive identified from its catalogue
+//! (eq. 2.33–2.34).
+
+use super::engine::Verdict;
+use crate::harmonic_drive::{CatalogueData, FlexsplineConfig, FlexsplineParams};
+use crate::scalar::Scalar;
+
+/// The drive the properties are stated for.
+pub fn shd17() -> FlexsplineParams {
+    match CatalogueData::SHD_17_100.identify() {
+        Ok(p) => p.flexspline,
+        // The catalogue constants are valid; this arm is unreachable.
+        Err(_) => FlexsplineParams {
+            k_f0: 8.336e3,
+            c_f: 0.0449,
+        },
+    }
+}
+
+/// Sign and saturation of the inverse at torsion `d` (stored units).
+pub fn inverse_sign_and_saturation<S: Scalar>(
+    cfg: &FlexsplineConfig<S>,
+    p: &FlexsplineParams,
+    d: S,
+) -> Verdict {
+    let r = cfg.torque(d);
+    let no_nan = !r.torque.is_nan();
+    let sign_ok = if d > S::ZERO {
+        r.torque >= S::ZERO
+    } else if d < S::ZERO {
+        r.torque <= S::ZERO
+    } else {
+        r.torque == S::ZERO || d.is_nan()
+    };
+    // The flag is computed from the rounded angle: exact angle within one
+    // resolution step (relative for floats) of π/2 may go either way.
+    let angle = d.to_f64() * (p.c_f * p.k_f0) / S::UNITS.torsion;
+    let slack = S::RESOLUTION.to_f64() * (1.0 + angle.abs());
+    let half_pi = core::f64::consts::FRAC_PI_2;
+    let flag_ok = d.is_nan()
+        || (angle.abs() >= half_pi + slack && r.saturated)
+        || (angle.abs() < half_pi - slack && !r.saturated)
+        || (angle.abs() - half_pi).abs() <= slack;
+    Verdict::logical(no_nan && sign_ok && flag_ok)
+}
+
+/// Monotone inverse: `torque(d) ≤ torque(d_next)` for `d < d_next`.
+pub fn inverse_monotone_step<S: Scalar>(cfg: &FlexsplineConfig<S>, d: S, d_next: S) -> Verdict {
+    Verdict::logical(
+        d.is_nan()
+            || d_next.is_nan()
+            || d >= d_next
+            || cfg.torque(d).torque <= cfg.torque(d_next).torque,
+    )
+}
+
+/// Monotone forward map: `torsion(t) ≤ torsion(t_next)` for `t < t_next`.
+pub fn forward_monotone_step<S: Scalar>(cfg: &FlexsplineConfig<S>, t: S, t_next: S) -> Verdict {
+    Verdict::logical(
+        t.is_nan() || t_next.is_nan() || t >= t_next || cfg.torsion(t) <= cfg.torsion(t_next),
+    )
+}
+
+/// Round trip `torsion(torque(d))` against `d`, where the torque is neither
+/// flagged nor clipped at the backend's range. The error is reported in
+/// units of the derived bound (so `≤ 1` holds).
+///
+/// The bound, derived in the backend's arithmetic (see the module docs of
+/// `FlexsplineConfig`): with `θ = d·c_f K_f0` the `tan` argument,
+/// `t = tan θ`, `g = 1/(c_f K_f0)` in stored units and `q` the resolution
+/// (`2⁻¹⁶` for I16F16; for f32, `2⁻²³·|x|` of each value `x`):
+///
+/// * fixed: `g·[(½q + |θ|2⁻³⁰) + (|t|2⁻²⁵ + (1.5 + ½c_f)q)/(1 + m²) + 2q] + |d|2⁻³⁰ + ½q`,
+///   `m = |t| − (|t|2⁻²⁵ + (1.5 + ½c_f)q)` (`m ≥ 0`): the rounded
+///   angle, the tan kernel (≤ 1 LSB + 2⁻²⁶|t|), the rounded torque and
+///   argument of `atan` and the quantized coefficients (each 2⁻³⁰
+///   relative), `atan` (≤ 2 LSB), the final rounding;
+/// * f32: `10·2⁻²³·|d| + 4·2⁻¹²⁶`: angle (2 ulp-relative terms), tan (3 ulp),
+///   torque and `atan` argument (1 each), their product's deviation from 1
+///   (1), `atan` (2 ulp), final product (1): 9 relative units on `|θ|`
+///   because `|t|/(1+t²) ≤ |θ|`, and one more on the last rounding.
+pub fn round_trip<S: Scalar>(cfg: &FlexsplineConfig<S>, p: &FlexsplineParams, d: S) -> Verdict {
+    let r = cfg.torque(d);
+    if d.is_nan() || r.saturated || r.torque.abs() >= S::MAX {
+        return Verdict::logical(true);
+    }
+    let back = cfg.torsion(r.torque).to_f64();
+    let df = d.to_f64();
+    let g = S::UNITS.torsion / (p.c_f * p.k_f0);
+    let theta = df / g;
+    let bound = if S::RESOLUTION.to_f64() < 1e-6 {
+        // f32 and f64: relative.
+        let u = S::RESOLUTION.to_f64(); // 2^-23 for f32
+        10.0 * u * df.abs() + 4.0 * f64::from(f32::MIN_POSITIVE)
+    } else {
+        let q = S::RESOLUTION.to_f64();
+        let t = libm::tan(theta).abs();
+        let e_u = t * 2f64.powi(-25) + (1.5 + 0.5 * p.c_f) * q;
+        let m = (t - e_u).max(0.0);
+        g * ((0.5 * q + theta.abs() * 2f64.powi(-30)) + e_u / (1.0 + m * m) + 2.0 * q)
+            + df.abs() * 2f64.powi(-30)
+            + 0.5 * q
+    };
+    Verdict::bounded((back - df).abs() / bound, 1.0)
+}
+
+#[cfg(kani)]
+mod kani_entries {
+    use super::*;
+    use crate::scalar::I16F16;
+
+    #[kani::proof]
+    fn kani_inverse_sign_and_saturation_i16f16() {
+        let p = shd17();
+        let cfg = FlexsplineConfig::<I16F16>::new(&p);
+        let d = I16F16::from_bits(kani::any());
+        assert!(inverse_sign_and_saturation(&cfg, &p, d).holds);
+    }
+
+    #[kani::proof]
+    fn kani_inverse_monotone_i16f16() {
+        let p = shd17();
+        let cfg = FlexsplineConfig::<I16F16>::new(&p);
+        let b: i32 = kani::any();
+        // Precondition: the successor exists.
+        kani::assume(b < i32::MAX);
+        assert!(inverse_monotone_step(&cfg, I16F16::from_bits(b), I16F16::from_bits(b + 1)).holds);
+        assert!(forward_monotone_step(&cfg, I16F16::from_bits(b), I16F16::from_bits(b + 1)).holds);
+    }
+
+    #[kani::proof]
+    fn kani_inverse_sign_and_saturation_f32() {
+        let p = shd17();
+        let cfg = FlexsplineConfig::<f32>::new(&p);
+        assert!(inverse_sign_and_saturation(&cfg, &p, kani::any::<f32>()).holds);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::super::engine::exhaustive_u32;
+    use super::super::sat_sgn::next_up_f32;
+    use super::*;
+    use crate::scalar::I16F16;
+    use proptest::prelude::*;
+    use std::println;
+
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_compliance_inverse_i16f16() {
+        let p = shd17();
+        let cfg = FlexsplineConfig::<I16F16>::new(&p);
+        let r = exhaustive_u32(0, u32::MAX, |c| {
+            let d = I16F16::from_bits(c as i32);
+            let mut v = inverse_sign_and_saturation(&cfg, &p, d).and(round_trip(&cfg, &p, d));
+            if (c as i32) < i32::MAX {
+                let n = I16F16::from_bits(c as i32 + 1);
+                v = v
+                    .and(inverse_monotone_step(&cfg, d, n))
+                    .and(forward_monotone_step(&cfg, d, n));
+            }
+            v
+        });
+        println!(
+            "PROOF kernel=compliance-inverse(SHD-17) backend=I16F16 domain=all torsions bound=derived round trip, monotone, branch-safe max_err={:.3} of bound at={} checked={} engine=exhaustive",
+            r.max_error, r.argmax as i32, r.checked
+        );
+        assert_eq!(
+            r.failures,
+            0,
+            "first failure at bits {:?}",
+            r.first_failure.map(|c| c as i32)
+        );
+    }
+
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_compliance_inverse_f32() {
+        let p = shd17();
+        let cfg = FlexsplineConfig::<f32>::new(&p);
+        let r = exhaustive_u32(0, u32::MAX, |c| {
+            let d = f32::from_bits(c);
+            let mut v = inverse_sign_and_saturation(&cfg, &p, d).and(round_trip(&cfg, &p, d));
+            if d.is_finite() && d < f32::MAX {
+                let n = next_up_f32(d);
+                v = v
+                    .and(inverse_monotone_step(&cfg, d, n))
+                    .and(forward_monotone_step(&cfg, d, n));
+            }
+            v
+        });
+        println!(
+            "PROOF kernel=compliance-inverse(SHD-17) backend=f32 domain=all bit patterns bound=derived round trip, monotone, branch-safe max_err={:.3} of bound at={:#x} checked={} engine=exhaustive",
+            r.max_error, r.argmax, r.checked
+        );
+        assert_eq!(
+            r.failures,
+            0,
+            "first failure at {:?}",
+            r.first_failure.map(f32::from_bits)
+        );
+    }
+
+    proptest! {
+        #[test]
+        fn compliance_properties_f64(d in -0.01f64..0.01, dd in 1e-12f64..1e-6) {
+            let p = shd17();
+            let cfg = FlexsplineConfig::<f64>::new(&p);
+            prop_assert!(inverse_sign_and_saturation(&cfg, &p, d).holds);
+            prop_assert!(inverse_monotone_step(&cfg, d, d + dd).holds);
+            prop_assert!(forward_monotone_step(&cfg, d * 1e4, d * 1e4 + dd).holds);
+            prop_assert!(round_trip(&cfg, &p, d).holds);
+        }
+
+        #[test]
+        fn compliance_properties_i16f16(bits in -(1i32 << 20)..(1i32 << 20)) {
+            let p = shd17();
+            let cfg = FlexsplineConfig::<I16F16>::new(&p);
+            let d = I16F16::from_bits(bits);
+            prop_assert!(inverse_sign_and_saturation(&cfg, &p, d).holds);
+            prop_assert!(round_trip(&cfg, &p, d).holds);
+        }
+    }
+
+    /// The round-trip check fails for a configuration whose forward and
+    /// inverse disagree (a 1e-4 relative error in c_f on one side only).
+    #[test]
+    fn round_trip_check_detects_inconsistent_coefficients() {
+        let p = shd17();
+        let skewed = FlexsplineParams {
+            c_f: p.c_f * (1.0 + 1e-4),
+            ..p
+        };
+        let inv = FlexsplineConfig::<f32>::new(&skewed);
+        let fwd = FlexsplineConfig::<f32>::new(&p);
+        let d = 0.9 * p.max_torsion() as f32;
+        let back = fwd.torsion(inv.torque(d).torque);
+        let bound = 10.0 * 2f64.powi(-23) * d as f64;
+        assert!(((back - d) as f64).abs() > bound);
+        assert!(round_trip(&fwd, &p, d).holds);
+    }
+}
