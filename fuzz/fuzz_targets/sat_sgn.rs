@@ -10,17 +10,27 @@ use mrr_control::scalar::{Scalar, I16F16};
 fn check<S: Scalar>(x: S, y: S, x_next: Option<S>) {
     assert!(sgn_exact(x).holds, "sgn({x:?})");
     assert!(sat_in_range(x, y).holds, "sat({x:?}, {y:?}) out of range");
-    assert!(sat_matches_definition(x, y).holds, "sat({x:?}, {y:?}) off the definition");
+    assert!(
+        sat_matches_definition(x, y).holds,
+        "sat({x:?}, {y:?}) off the definition"
+    );
     assert!(sat_odd(x, y).holds, "sat({x:?}, {y:?}) not odd");
     if let Some(xn) = x_next {
-        assert!(sat_monotone_step(x, xn, y).holds, "sat step at {x:?}, {y:?}");
+        assert!(
+            sat_monotone_step(x, xn, y).holds,
+            "sat step at {x:?}, {y:?}"
+        );
     }
 }
 
 fuzz_target!(|data: [u64; 2]| {
     let [a, b] = data;
     let (x32, y32) = (f32::from_bits(a as u32), f32::from_bits(b as u32));
-    check(x32, y32, (x32.is_finite() && x32 < f32::MAX).then(|| next_up_f32(x32)));
+    check(
+        x32,
+        y32,
+        (x32.is_finite() && x32 < f32::MAX).then(|| next_up_f32(x32)),
+    );
     let (x64, y64) = (f64::from_bits(a), f64::from_bits(b));
     let next64 = (x64.is_finite() && x64 < f64::MAX).then(|| {
         if x64 == 0.0 {
