@@ -104,9 +104,11 @@
 //! | [`exp_neg`] | 33-entry Q30 table `e^{-i/32}` × `(1 - f + f²/2)` | 2¹⁶ (bound on `[-1, 0]`, `MAX` above) | 1 LSB | 1.0 at `0` (`1 → MAX`); 0.90 elsewhere |
 //!
 //! `atan`, `sqrt` and `exp_neg` are also proven non-decreasing over every
-//! input; `sin`, `atan` and `sat` odd. On this 2-core machine the `2³²`-pair
-//! proofs take about 1.5 min (`sat`), 2–4 min (`atan2`, dominated by the
-//! `libm::atan2` reference) and 40 s (`mul`) in release.
+//! input; `sin`, `atan` and `sat` odd. The `2³²`-pair proofs cost, in
+//! release, about 155 s of CPU for `atan2` (dominated by the `libm::atan2`
+//! reference), 40 s for `sat` and 18 s for `mul`: about half that in wall
+//! time on two idle cores (`atan2` took 240 s on the shared 2-core CI
+//! machine).
 
 use core::ops::{Add, Neg, Sub};
 
