@@ -13,7 +13,7 @@
 //! | `sat_within_bound` (≤ 1 LSB), `sat_correctly_rounded` | exhaustive (all 2³² pairs `(x, y)`); Kani (integer form) |
 //! | `sat_in_range`, `sat_odd`, `sat_monotone_step`, `sat_continuous_at_layer`, `sat_zero` | exhaustive (all 2³² pairs); Kani |
 //! | `sin_within_bound`, `cos_within_bound` (≤ 1 LSB) | exhaustive (all 2¹⁶ angles); random |
-//! | `sin_cos_matches` (bit-exact), `sin_odd` | exhaustive; Kani |
+//! | `sin_cos_matches` (bit-exact), `sin_odd`, `cos_is_shifted_even_sin` | exhaustive; Kani |
 //! | `pythagorean_within_bound` (`|sin² + cos² - 1| ≤ 2` LSB) | exhaustive; random |
 //! | `atan_within_bound` (≤ 1 LSB) | exhaustive (all 2¹⁶); random |
 //! | `atan_monotone`, `atan_odd` | exhaustive; Kani |
@@ -224,6 +224,14 @@ pub fn cos_within_bound(a: i16) -> Verdict {
     )
 }
 
+/// `cos(a) == sin(a + π/2)` and `cos(-a) == cos(a)`, bit for bit.
+pub fn cos_is_shifted_even_sin(a: i16) -> Verdict {
+    let c = q15::cos(BinaryAngle::from_bits(a));
+    let shifted = q15::sin(BinaryAngle::from_bits(a) + BinaryAngle::FRAC_PI_2);
+    let mirrored = q15::cos(BinaryAngle::from_bits(a).wrapping_neg());
+    Verdict::logical(c == shifted && c == mirrored)
+}
+
 /// `sin_cos(a) == (sin(a), cos(a))` bit for bit.
 pub fn sin_cos_matches(a: i16) -> Verdict {
     let a = BinaryAngle::from_bits(a);
@@ -407,6 +415,11 @@ mod kani_entries {
     }
 
     #[kani::proof]
+    fn kani_cos_is_shifted_even_sin_q15() {
+        assert!(cos_is_shifted_even_sin(kani::any()).holds);
+    }
+
+    #[kani::proof]
     fn kani_sin_odd_q15() {
         let a: i16 = kani::any();
         kani::assume(a != i16::MIN); // precondition: -(-π) wraps to -π
@@ -560,10 +573,10 @@ mod tests {
     fn exhaustive_cos_q15() {
         unary(
             "cos",
-            "all-2^16-angle-codes",
+            "all-2^16-angle-codes;even;=sin(a+pi/2)",
             SIN_COS_BOUND,
             "a",
-            cos_within_bound,
+            |a| cos_within_bound(a).and(cos_is_shifted_even_sin(a)),
         );
     }
 
@@ -650,6 +663,7 @@ mod tests {
             prop_assert!(sin_within_bound(a).holds);
             prop_assert!(cos_within_bound(a).holds);
             prop_assert!(sin_cos_matches(a).holds);
+            prop_assert!(cos_is_shifted_even_sin(a).holds);
             prop_assert!(pythagorean_within_bound(a).holds);
         }
 

@@ -56,7 +56,7 @@
 //! | kernel | Q15 | `I16F16` (integer kernels of [`kernels::i16f16`](super::kernels::i16f16)) |
 //! |---|---|---|
 //! | `sin` | 21–40 | 217–267 (3 `__aeabi_lmul`) |
-//! | `sin_cos` | 69–98 | — |
+//! | `sin_cos` | 52–81 | — |
 //! | `atan` | 15–31 | — |
 //! | `atan2` | 25–137 | 486–528 (2 `__aeabi_lmul`) |
 //! | `sqrt` | 8–186 | — |
@@ -482,19 +482,50 @@ fn sin_quadrant_q22(t: u32) -> u32 {
     (lo << 6) + (hi - lo) * f
 }
 
-/// Sine of the angle `turn_code · 2π/65536`.
+/// `|sin|` in Q15 of a first-quadrant angle `t ∈ [0, 16384]` codes;
+/// `sin(π/2) = 1` saturates to `MAX`.
 #[inline]
-fn sin_turn_code(u: u16) -> i16 {
-    let quadrant = u >> 14;
-    let r = (u & 0x3FFF) as u32;
-    let t = if quadrant & 1 == 0 { r } else { (1 << 14) - r };
+fn sin_quadrant_magnitude(t: u32) -> i16 {
     let m = (sin_quadrant_q22(t) + (1 << 6)) >> 7; // round Q22 → Q15
-    let m = if m > i16::MAX as u32 {
+    if m > i16::MAX as u32 {
         i16::MAX
     } else {
         m as i16
-    };
+    }
+}
+
+/// Quadrant reduction of the angle `u · 2π/65536`: the first-quadrant
+/// angle `t` with `|sin u| = sin t` (then `|cos u| = sin(π/2 - t)`), and
+/// the quadrant `u >> 14`.
+#[inline]
+fn reduce_quadrant(u: u16) -> (u32, u16) {
+    let quadrant = u >> 14;
+    let r = (u & 0x3FFF) as u32;
+    let t = if quadrant & 1 == 0 { r } else { (1 << 14) - r };
+    (t, quadrant)
+}
+
+/// Sine of the angle `u · 2π/65536`.
+#[inline]
+fn sin_turn_code(u: u16) -> i16 {
+    let (t, quadrant) = reduce_quadrant(u);
+    let m = sin_quadrant_magnitude(t);
+    // sin < 0 in quadrants 2, 3.
     if quadrant >= 2 {
+        -m
+    } else {
+        m
+    }
+}
+
+/// Cosine of the angle `u · 2π/65536`, from the same reduction as
+/// [`sin_turn_code`]: `|cos u| = sin(π/2 - t)`.
+#[inline]
+fn cos_turn_code(u: u16) -> i16 {
+    let (t, quadrant) = reduce_quadrant(u);
+    let m = sin_quadrant_magnitude((1 << 14) - t);
+    // cos < 0 in quadrants 1, 2.
+    if quadrant == 1 || quadrant == 2 {
         -m
     } else {
         m
@@ -519,21 +550,30 @@ pub fn sin(a: BinaryAngle) -> Q15 {
     Q15::from_bits(sin_turn_code(a.to_turn_code()))
 }
 
-/// Cosine of a binary angle: `cos(a) = sin(a + π/2)`, so it shares
-/// [`sin`]'s bound (≤ 1 LSB, exhaustive); `cos(0) = MAX`.
+/// Cosine of a binary angle: `±sin(π/2 - t)` from [`sin`]'s quadrant
+/// reduction, bit-equal to `sin(a + π/2)`; `cos(0) = MAX`. Even:
+/// `cos(-a) = cos(a)` exactly. Proven bound: ≤ 1 LSB (exhaustive over all
+/// `2¹⁶` angles).
 #[inline]
 pub fn cos(a: BinaryAngle) -> Q15 {
-    Q15::from_bits(sin_turn_code(a.to_turn_code().wrapping_add(1 << 14)))
+    Q15::from_bits(cos_turn_code(a.to_turn_code()))
 }
 
 /// `(sin a, cos a)`, equal bit for bit to `(sin(a), cos(a))` (proven
 /// exhaustively).
 #[inline]
 pub fn sin_cos(a: BinaryAngle) -> (Q15, Q15) {
-    let u = a.to_turn_code();
+    // One quadrant reduction for both; bit-equal to (sin(a), cos(a)).
+    let (t, quadrant) = reduce_quadrant(a.to_turn_code());
+    let s = sin_quadrant_magnitude(t);
+    let c = sin_quadrant_magnitude((1 << 14) - t);
     (
-        Q15::from_bits(sin_turn_code(u)),
-        Q15::from_bits(sin_turn_code(u.wrapping_add(1 << 14))),
+        Q15::from_bits(if quadrant >= 2 { -s } else { s }),
+        Q15::from_bits(if quadrant == 1 || quadrant == 2 {
+            -c
+        } else {
+            c
+        }),
     )
 }
 
