@@ -155,7 +155,7 @@ pub fn exp_within_bound(x: f32) -> Verdict {
     let reference = reference::exp(x as f64);
     if x > k::EXP_MAX_ARG {
         // Saturation is only allowed where the rounded e^x is infinite.
-        let overflows = reference >= f32::MAX as f64 * (1.0 + f64::powi(2.0, -24));
+        let overflows = reference >= f32::MAX as f64 * (1.0 + 1.0 / 16_777_216.0);
         return Verdict::logical(k::exp(x) == f32::MAX && overflows);
     }
     within(k::exp(x), reference, EXP_BOUND)

@@ -130,7 +130,7 @@ fn atan_nonneg(u: f32) -> f32 {
 /// kinematic-error phase).
 ///
 /// * Domain: every `f32` (`±∞ → ±π/2` rounded to nearest, NaN → 0).
-/// * Algorithm: odd symmetry; then [`atan_nonneg`]: the reductions
+/// * Algorithm: odd symmetry; then `atan_nonneg`: the reductions
 ///   `atan u = π/4 + atan((u−1)/(u+1))` on `(0.6, 1/0.6]` and
 ///   `atan u = π/2 − atan(1/u)` above bring the argument to `[0, 0.6]`, where
 ///   `atan u = u + u³·Q(u²)` with `Q` a degree-6 Chebyshev fit; π/4 and π/2
@@ -337,7 +337,7 @@ fn reduce_quadrant(abits: u32) -> (f32, u32) {
 ///
 /// * Domain: every finite `f32` (the reduction is exact, so e.g.
 ///   `sin(1e30)` is accurate); `±∞` and NaN give `(0, 1)`.
-/// * Algorithm: `|x| < π/4` is used as is; otherwise [`reduce_quadrant`]
+/// * Algorithm: `|x| < π/4` is used as is; otherwise `reduce_quadrant`
 ///   (integer Payne–Hanek with 224 bits of 2/π) gives `|x| = n·π/2 + r`.
 ///   `sin r = r + r³·S(r²)`, `cos r = 1 − (r²/2 − r⁴·C(r²))` with `S`, `C`
 ///   Chebyshev fits on `[0, π/4]`; the quadrant `n` swaps and negates them;
