@@ -82,16 +82,14 @@ const ATAN_TABLE: [[i32; 4]; 32] = [
 ];
 // 2^(j/64) in Q1.31.
 const EXP2_TABLE: [u32; 64] = [
-    2147483648, 2170868212, 2194507417, 2218404036, 2242560872, 2266980759, 2291666561,
-    2316621173, 2341847524, 2367348571, 2393127307, 2419186755, 2445529972, 2472160047,
-    2499080105, 2526293303, 2553802834, 2581611923, 2609723834, 2638141863, 2666869345,
-    2695909648, 2725266179, 2754942382, 2784941738, 2815267765, 2845924021, 2876914102,
-    2908241642, 2939910317, 2971923842, 3004285971, 3037000500, 3070071267, 3103502151,
-    3137297074, 3171459999, 3205994934, 3240905930, 3276197082, 3311872529, 3347936457,
-    3384393094, 3421246719, 3458501653, 3496162267, 3534232978, 3572718252, 3611622603,
-    3650950594, 3690706840, 3730896002, 3771522796, 3812591987, 3854108391, 3896076880,
-    3938502376, 3981389855, 4024744348, 4068570940, 4112874773, 4157661043, 4202935003,
-    4248701965,
+    2147483648, 2170868212, 2194507417, 2218404036, 2242560872, 2266980759, 2291666561, 2316621173,
+    2341847524, 2367348571, 2393127307, 2419186755, 2445529972, 2472160047, 2499080105, 2526293303,
+    2553802834, 2581611923, 2609723834, 2638141863, 2666869345, 2695909648, 2725266179, 2754942382,
+    2784941738, 2815267765, 2845924021, 2876914102, 2908241642, 2939910317, 2971923842, 3004285971,
+    3037000500, 3070071267, 3103502151, 3137297074, 3171459999, 3205994934, 3240905930, 3276197082,
+    3311872529, 3347936457, 3384393094, 3421246719, 3458501653, 3496162267, 3534232978, 3572718252,
+    3611622603, 3650950594, 3690706840, 3730896002, 3771522796, 3812591987, 3854108391, 3896076880,
+    3938502376, 3981389855, 4024744348, 4068570940, 4112874773, 4157661043, 4202935003, 4248701965,
 ];
 // 2^(R/64) − 1 = R·(C1 + R·(C2 + R·C3)), R ∈ [0, 1), Q0.32.
 const EXP_C1: u32 = 46516320;
@@ -145,14 +143,23 @@ pub(crate) fn div_frac(n: u32, d: u32, k: u32) -> u32 {
         r -= d;
         q += 1;
     }
-    let mut i = 0;
+    // The first `lz(r) − lz(d) − 1` quotient bits are 0 (`r·2^skip < d`):
+    // start there. Same result, ~18 instead of 32 steps for `|x| ≫ 1`.
+    if r == 0 {
+        return q.checked_shl(k).unwrap_or(0);
+    }
+    let skip = (r.leading_zeros() - d.leading_zeros())
+        .saturating_sub(1)
+        .min(k);
+    r <<= skip;
+    q <<= skip;
+    // Branch-free step (constant time; no mispredictions on the host).
+    let mut i = skip;
     while i < k {
         r <<= 1;
-        q <<= 1;
-        if r >= d {
-            r -= d;
-            q |= 1;
-        }
+        let ge = (r >= d) as u32;
+        r -= d & ge.wrapping_neg();
+        q = (q << 1) | ge;
         i += 1;
     }
     q
@@ -169,12 +176,9 @@ pub(crate) fn sqrt_q16(n: u32) -> (u32, u32) {
         let pair = if i < 16 { (n >> (30 - 2 * i)) & 3 } else { 0 };
         rem = (rem << 2) | pair;
         let trial = (root << 2) | 1;
-        if rem >= trial {
-            rem -= trial;
-            root = (root << 1) | 1;
-        } else {
-            root <<= 1;
-        }
+        let ge = (rem >= trial) as u32;
+        rem -= trial & ge.wrapping_neg();
+        root = (root << 1) | ge;
         i += 1;
     }
     (root, rem)
@@ -318,7 +322,8 @@ fn sin_cos_q30(a: u32, want_sin: bool, want_cos: bool) -> (i32, i32) {
         0
     };
     let c = if need_c {
-        ((1u32 << 30) - ((one_minus_cos_poly(z) >> 1) + 1) / 2) as i32
+        let m = one_minus_cos_poly(z) >> 1; // round(m/2) = (m >> 1) + (m & 1)
+        ((1u32 << 30) - ((m >> 1) + (m & 1))) as i32
     } else {
         0
     };
@@ -367,7 +372,10 @@ pub fn cos(x: I16F16) -> I16F16 {
 pub fn sin_cos(x: I16F16) -> (I16F16, I16F16) {
     let bits = x.to_bits();
     let (s, c) = sin_cos_q30(bits.unsigned_abs(), true, true);
-    (q30_signed_to_fixed(s, bits < 0), q30_signed_to_fixed(c, false))
+    (
+        q30_signed_to_fixed(s, bits < 0),
+        q30_signed_to_fixed(c, false),
+    )
 }
 
 /// Tangent on the principal branch (thesis eq. 3.10).
@@ -400,7 +408,7 @@ pub fn tan(x: I16F16) -> I16F16 {
         let z = mulhi(theta, theta);
         let s = sin_poly(theta, z); // Q0.32
         let c31 = (1u32 << 31) - (one_minus_cos_poly(z) >> 1); // Q1.31
-        // tan·2¹⁷ = s·2¹⁶ / c31
+                                                               // tan·2¹⁷ = s·2¹⁶ / c31
         div_frac(s, c31, 16)
     } else {
         let d48 = PIO2_Q48 - ((a as u64) << 32); // δ·2⁴⁸, δ ∈ (2⁻¹⁵, π/4]
@@ -444,11 +452,7 @@ pub fn exp(x: I16F16) -> I16F16 {
     let u = bits.unsigned_abs(); // < 2²⁰
     let hi = ((mulhi(u, LOG2E_Q31) as u64) << 32) | u.wrapping_mul(LOG2E_Q31) as u64;
     let y47 = hi + ((u * LOG2E_LO_Q43) >> 12) as u64; // |x|·log₂e·2⁴⁷
-    let y = if bits < 0 {
-        -(y47 as i64)
-    } else {
-        y47 as i64
-    };
+    let y = if bits < 0 { -(y47 as i64) } else { y47 as i64 };
     let k = (y >> 47) as i32; // −18..=14
     let f = (y as u64) & ((1 << 47) - 1);
     let j = (f >> 41) as usize;
@@ -501,8 +505,15 @@ pub fn atan2(y: I16F16, x: I16F16) -> I16F16 {
 ///   Cost: 1 `MULS`, 24 root steps, as [`atan`] afterwards.
 pub fn acos(x: I16F16) -> I16F16 {
     let bits = x.to_bits();
-    let a = bits.unsigned_abs().min(1 << 16);
-    let ang = if a == 0 {
+    let a = bits.unsigned_abs();
+    let ang = if a >= 1 << 16 {
+        // |x| ≥ 1: clamped to ±1.
+        if bits < 0 {
+            PI_Q30
+        } else {
+            0
+        }
+    } else if a == 0 {
         PIO2_Q30
     } else {
         // (1−a)(1+a) in Q0.32 (< 2³² since a ≥ 1 LSB).
