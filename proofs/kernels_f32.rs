@@ -34,7 +34,7 @@ pub const SIN_COS_BOUND: f64 = 2.0;
 /// See [`ATAN_BOUND`].
 pub const ATAN2_BOUND: f64 = 2.0;
 /// See [`ATAN_BOUND`].
-pub const ACOS_BOUND: f64 = 3.0;
+pub const ACOS_BOUND: f64 = 2.0;
 /// Correct rounding.
 pub const SQRT_BOUND: f64 = 0.5;
 
@@ -557,7 +557,7 @@ mod exhaustive {
         let show_dec = move |c| std::format!("{:e}", dec(c));
         prove(
             "acos",
-            &[("[-1,1]", "3")],
+            &[("[-1,1]", "2")],
             0,
             2 * n - 1,
             show_dec,
