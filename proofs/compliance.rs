@@ -12,7 +12,7 @@
 //! (eq. 2.33–2.34).
 
 use super::engine::Verdict;
-use crate::harmonic_drive::{CatalogueData, FlexsplineConfig, FlexsplineParams};
+use crate::harmonic_drive::{CatalogueData, FlexsplineConfig, FlexsplineParams, FlexsplineTorque};
 use crate::scalar::Scalar;
 
 /// The drive the properties are stated for.
@@ -33,7 +33,15 @@ pub fn inverse_sign_and_saturation<S: Scalar>(
     p: &FlexsplineParams,
     d: S,
 ) -> Verdict {
-    let r = cfg.torque(d);
+    sign_and_saturation_of(p, d, cfg.torque(d))
+}
+
+/// The check behind [`inverse_sign_and_saturation`] for a computed `r`.
+pub fn sign_and_saturation_of<S: Scalar>(
+    p: &FlexsplineParams,
+    d: S,
+    r: FlexsplineTorque<S>,
+) -> Verdict {
     let no_nan = !r.torque.is_nan();
     let sign_ok = if d > S::ZERO {
         r.torque >= S::ZERO
@@ -90,7 +98,16 @@ pub fn forward_monotone_step<S: Scalar>(cfg: &FlexsplineConfig<S>, t: S, t_next:
 ///   (1), `atan` (2 ulp), final product (1): 9 relative units on `|θ|`
 ///   because `|t|/(1+t²) ≤ |θ|`, and one more on the last rounding.
 pub fn round_trip<S: Scalar>(cfg: &FlexsplineConfig<S>, p: &FlexsplineParams, d: S) -> Verdict {
-    let r = cfg.torque(d);
+    round_trip_of(cfg, p, d, cfg.torque(d))
+}
+
+/// The check behind [`round_trip`] for a computed inverse `r`.
+pub fn round_trip_of<S: Scalar>(
+    cfg: &FlexsplineConfig<S>,
+    p: &FlexsplineParams,
+    d: S,
+    r: FlexsplineTorque<S>,
+) -> Verdict {
     if d.is_nan() || r.saturated || r.torque.abs() >= S::MAX {
         return Verdict::logical(true);
     }
@@ -104,9 +121,13 @@ pub fn round_trip<S: Scalar>(cfg: &FlexsplineConfig<S>, p: &FlexsplineParams, d:
         10.0 * u * df.abs() + 4.0 * f64::from(f32::MIN_POSITIVE)
     } else {
         let q = S::RESOLUTION.to_f64();
-        let t = libm::tan(theta).abs();
+        // |tan θ| from the computed torque: t̂ = |T|·c_f within the tan
+        // kernel's bound (1 LSB + 2⁻²⁶|t|) and the roundings (½ LSB + 2⁻³⁰),
+        // so t ≤ (t̂ + 2q)(1 + 2⁻²⁵) bounds it from above.
+        let t_hat = r.torque.to_f64().abs() * p.c_f / S::UNITS.link_torque;
+        let t = (t_hat + 2.0 * q) * (1.0 + 2f64.powi(-25));
         let e_u = t * 2f64.powi(-25) + (1.5 + 0.5 * p.c_f) * q;
-        let m = (t - e_u).max(0.0);
+        let m = (t_hat - 2.0 * q - e_u).max(0.0);
         g * ((0.5 * q + theta.abs() * 2f64.powi(-30)) + e_u / (1.0 + m * m) + 2.0 * q)
             + df.abs() * 2f64.powi(-30)
             + 0.5 * q
@@ -149,38 +170,53 @@ mod kani_entries {
 #[cfg(test)]
 mod tests {
     extern crate std;
-    use super::super::engine::exhaustive_u32;
-    use super::super::sat_sgn::next_up_f32;
+    use super::super::engine::exhaustive_u32_chained;
     use super::*;
     use crate::scalar::I16F16;
     use proptest::prelude::*;
     use std::println;
+
+    /// One pass per input: the inverse, the forward map, and the checks
+    /// against the predecessor's values.
+    fn chained<S: Scalar>(
+        cfg: &FlexsplineConfig<S>,
+        p: &FlexsplineParams,
+        d: S,
+        cur: &(FlexsplineTorque<S>, S),
+        prev: Option<&(FlexsplineTorque<S>, S)>,
+    ) -> Verdict {
+        let mut v = sign_and_saturation_of(p, d, cur.0).and(round_trip_of(cfg, p, d, cur.0));
+        if let Some(pr) = prev {
+            // Predecessor in the input order; both maps non-decreasing.
+            v = v.and(Verdict::logical(
+                pr.0.torque <= cur.0.torque && pr.1 <= cur.1,
+            ));
+        }
+        v
+    }
 
     #[test]
     #[ignore = "exhaustive: run in release by .ci/run"]
     fn exhaustive_compliance_inverse_i16f16() {
         let p = shd17();
         let cfg = FlexsplineConfig::<I16F16>::new(&p);
-        let r = exhaustive_u32(0, u32::MAX, |c| {
-            let d = I16F16::from_bits(c as i32);
-            let mut v = inverse_sign_and_saturation(&cfg, &p, d).and(round_trip(&cfg, &p, d));
-            if (c as i32) < i32::MAX {
-                let n = I16F16::from_bits(c as i32 + 1);
-                v = v
-                    .and(inverse_monotone_step(&cfg, d, n))
-                    .and(forward_monotone_step(&cfg, d, n));
-            }
-            v
-        });
+        // Codes in signed order: code c stands for bits c − 2³¹.
+        let bits = |c: u32| I16F16::from_bits((c ^ 0x8000_0000) as i32);
+        let r = exhaustive_u32_chained(
+            0,
+            u32::MAX,
+            |c| (cfg.torque(bits(c)), cfg.torsion(bits(c))),
+            |c, cur, prev| chained(&cfg, &p, bits(c), cur, prev),
+        );
         println!(
             "PROOF kernel=compliance-inverse(SHD-17) backend=I16F16 domain=all torsions bound=derived round trip, monotone, branch-safe max_err={:.3} of bound at={} checked={} engine=exhaustive",
-            r.max_error, r.argmax as i32, r.checked
+            r.max_error, bits(r.argmax).to_bits(), r.checked
         );
         assert_eq!(
             r.failures,
             0,
             "first failure at bits {:?}",
-            r.first_failure.map(|c| c as i32)
+            r.first_failure.map(|c| bits(c).to_bits())
         );
     }
 
@@ -189,26 +225,31 @@ mod tests {
     fn exhaustive_compliance_inverse_f32() {
         let p = shd17();
         let cfg = FlexsplineConfig::<f32>::new(&p);
-        let r = exhaustive_u32(0, u32::MAX, |c| {
-            let d = f32::from_bits(c);
-            let mut v = inverse_sign_and_saturation(&cfg, &p, d).and(round_trip(&cfg, &p, d));
-            if d.is_finite() && d < f32::MAX {
-                let n = next_up_f32(d);
-                v = v
-                    .and(inverse_monotone_step(&cfg, d, n))
-                    .and(forward_monotone_step(&cfg, d, n));
-            }
-            v
-        });
+        // Codes in numeric order: negative floats (descending bit patterns)
+        // first, then positive ones; NaN codes have no predecessor check.
+        let val = |c: u32| {
+            let b = if c < 0x8000_0000 { !c } else { c & 0x7fff_ffff };
+            f32::from_bits(b)
+        };
+        let r = exhaustive_u32_chained(
+            0,
+            u32::MAX,
+            |c| (cfg.torque(val(c)), cfg.torsion(val(c))),
+            |c, cur, prev| {
+                let d = val(c);
+                let prev = prev.filter(|_| c > 0 && !val(c - 1).is_nan() && !d.is_nan());
+                chained(&cfg, &p, d, cur, prev)
+            },
+        );
         println!(
-            "PROOF kernel=compliance-inverse(SHD-17) backend=f32 domain=all bit patterns bound=derived round trip, monotone, branch-safe max_err={:.3} of bound at={:#x} checked={} engine=exhaustive",
-            r.max_error, r.argmax, r.checked
+            "PROOF kernel=compliance-inverse(SHD-17) backend=f32 domain=all bit patterns bound=derived round trip, monotone, branch-safe max_err={:.3} of bound at={:e} checked={} engine=exhaustive",
+            r.max_error, val(r.argmax), r.checked
         );
         assert_eq!(
             r.failures,
             0,
             "first failure at {:?}",
-            r.first_failure.map(f32::from_bits)
+            r.first_failure.map(val)
         );
     }
 

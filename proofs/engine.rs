@@ -140,6 +140,67 @@ where
     })
 }
 
+/// Like [`exhaustive_u32`], for properties that relate each input to its
+/// predecessor (monotonicity, continuity): `eval` runs once per code and
+/// `property(code, value, previous)` gets the value at `code − 1` (`None`
+/// at `lo`), so nothing is evaluated twice.
+#[cfg(test)]
+pub fn exhaustive_u32_chained<T, E, P>(lo: u32, hi: u32, eval: E, property: P) -> Report
+where
+    T: Send,
+    E: Fn(u32) -> T + Sync,
+    P: Fn(u32, &T, Option<&T>) -> Verdict + Sync,
+{
+    extern crate std;
+    assert!(lo <= hi);
+    let threads = std::thread::available_parallelism()
+        .map(|n| n.get())
+        .unwrap_or(1)
+        .max(1) as u64;
+    const BLOCK: u64 = 1 << 16;
+    let total = hi as u64 - lo as u64 + 1;
+    let blocks = total.div_ceil(BLOCK);
+    let (eval, property) = (&eval, &property);
+    std::thread::scope(|s| {
+        let handles: std::vec::Vec<_> = (0..threads)
+            .map(|t| {
+                s.spawn(move || {
+                    let mut rep = Report::empty();
+                    let mut b = t;
+                    while b < blocks {
+                        let start = lo as u64 + b * BLOCK;
+                        let end = (start + BLOCK).min(hi as u64 + 1);
+                        let mut prev = (start > lo as u64).then(|| eval((start - 1) as u32));
+                        for code in start..end {
+                            let code = code as u32;
+                            let cur = eval(code);
+                            let v = property(code, &cur, prev.as_ref());
+                            rep.checked += 1;
+                            if !v.holds {
+                                rep.failures += 1;
+                                if rep.first_failure.is_none_or(|f| code < f) {
+                                    rep.first_failure = Some(code);
+                                }
+                            }
+                            if v.error > rep.max_error {
+                                rep.max_error = v.error;
+                                rep.argmax = code;
+                            }
+                            prev = Some(cur);
+                        }
+                        b += threads;
+                    }
+                    rep
+                })
+            })
+            .collect();
+        handles
+            .into_iter()
+            .map(|h| h.join().expect("exhaustive worker panicked"))
+            .fold(Report::empty(), Report::merge)
+    })
+}
+
 /// Error of an `f32` result in units in the last place of the reference.
 ///
 /// The ulp is that of the `f32` binade containing `|reference|`
@@ -189,6 +250,25 @@ mod tests {
         // Subnormal reference: ulp is 2^-149.
         assert_eq!(ulp_error_f32(0.0, 3.0 * 2f64.powi(-149)), 3.0);
         assert_eq!(ulp_error_f32(f32::NAN, 1.0), f64::INFINITY);
+    }
+
+    #[test]
+    fn chained_engine_sees_every_predecessor() {
+        // Property: value(code) = value(code - 1) + 1 for value = code, and a
+        // deliberate break at 200_000 is found.
+        let r = exhaustive_u32_chained(
+            5,
+            400_000,
+            |c| if c == 200_000 { c + 7 } else { c },
+            |c, v, p| {
+                Verdict::logical(
+                    p.is_none_or(|p| *v == p + 1) || c == 200_001 && *v + 6 == *p.unwrap(),
+                )
+            },
+        );
+        assert_eq!(r.checked, 400_000 - 5 + 1);
+        assert_eq!(r.failures, 1);
+        assert_eq!(r.first_failure, Some(200_000));
     }
 
     #[test]
