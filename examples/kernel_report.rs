@@ -8,6 +8,7 @@
 //!
 //! Run: `cargo run --release --example kernel_report`
 
+use mrr_control::scalar::q15::{self, BinaryAngle, Q15};
 use mrr_control::scalar::{kernels, units, Scalar, I16F16};
 use std::hint::black_box;
 use std::time::Instant;
@@ -130,6 +131,53 @@ fn main() {
             "{:<6} [{:>8}, {:>8}]   {:>14.3} {:>10.2} {:>16.3} {:>10.2}",
             k.name, k.lo, k.hi, e32, t32, efx, tfx
         );
+    }
+
+    println!();
+    println!("Q15 kernels over all 2^16 inputs (angles: binary, 2^16 codes per turn)");
+    println!("{:<8} {:>14} {:>10}", "kernel", "max err (LSB)", "ns/call");
+    let codes: Vec<i16> = (i16::MIN..=i16::MAX).collect();
+    let lsb = 1.0 / 32768.0;
+    let angle = |c: i16| BinaryAngle::from_bits(c);
+    let q = |c: i16| Q15::from_bits(c);
+    type Q15Row<'a> = (&'a str, Box<dyn Fn(i16) -> f64>, Box<dyn Fn(i16) -> f64>);
+    let rows: Vec<Q15Row> = vec![
+        (
+            "sin",
+            Box::new(move |c| q15::to_f64(q15::sin(angle(c)))),
+            Box::new(move |c| angle(c).to_radians().sin()),
+        ),
+        (
+            "cos",
+            Box::new(move |c| q15::to_f64(q15::cos(angle(c)))),
+            Box::new(move |c| angle(c).to_radians().cos()),
+        ),
+        (
+            "atan",
+            Box::new(move |c| q15::to_f64(q15::atan(q(c)))),
+            Box::new(move |c| q15::to_f64(q(c)).atan()),
+        ),
+        (
+            "sqrt",
+            Box::new(move |c| q15::to_f64(q15::sqrt(q(c)))),
+            Box::new(move |c| q15::to_f64(q(c)).max(0.0).sqrt()),
+        ),
+        (
+            "exp_neg",
+            Box::new(move |c| q15::to_f64(q15::exp_neg(q(c)))),
+            Box::new(move |c| q15::to_f64(q(c)).min(0.0).exp().min(q15::to_f64(q15::MAX))),
+        ),
+    ];
+    for (name, kernel, reference) in &rows {
+        let err = codes
+            .iter()
+            .map(|&c| (kernel(c) - reference(c)).abs() / lsb)
+            .fold(0.0, f64::max);
+        let t = time_per_call(&codes[..4096], |c| {
+            black_box(kernel(c));
+            c
+        });
+        println!("{name:<8} {err:>14.3} {t:>10.2}");
     }
 
     println!();
