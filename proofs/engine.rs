@@ -92,52 +92,7 @@ pub fn exhaustive_u32<F>(lo: u32, hi: u32, property: F) -> Report
 where
     F: Fn(u32) -> Verdict + Sync,
 {
-    extern crate std;
-    assert!(lo <= hi);
-    let threads = std::thread::available_parallelism()
-        .map(|n| n.get())
-        .unwrap_or(1)
-        .max(1) as u64;
-    // Interleaved blocks balance the load when cost varies with the input.
-    const BLOCK: u64 = 1 << 16;
-    let total = hi as u64 - lo as u64 + 1;
-    let blocks = total.div_ceil(BLOCK);
-    let property = &property;
-    std::thread::scope(|s| {
-        let handles: std::vec::Vec<_> = (0..threads)
-            .map(|t| {
-                s.spawn(move || {
-                    let mut rep = Report::empty();
-                    let mut b = t;
-                    while b < blocks {
-                        let start = lo as u64 + b * BLOCK;
-                        let end = (start + BLOCK).min(hi as u64 + 1);
-                        for code in start..end {
-                            let code = code as u32;
-                            let v = property(code);
-                            rep.checked += 1;
-                            if !v.holds {
-                                rep.failures += 1;
-                                if rep.first_failure.is_none_or(|f| code < f) {
-                                    rep.first_failure = Some(code);
-                                }
-                            }
-                            if v.error > rep.max_error {
-                                rep.max_error = v.error;
-                                rep.argmax = code;
-                            }
-                        }
-                        b += threads;
-                    }
-                    rep
-                })
-            })
-            .collect();
-        handles
-            .into_iter()
-            .map(|h| h.join().expect("exhaustive worker panicked"))
-            .fold(Report::empty(), Report::merge)
-    })
+    exhaustive_u32_chained(lo, hi, |_| (), |code, _, _| property(code))
 }
 
 /// Like [`exhaustive_u32`], for properties that relate each input to its

@@ -126,6 +126,38 @@ pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64, ParamError
     }
 }
 
+/// Check `lower < upper` for two named parameters.
+pub(crate) fn increasing(
+    lower: (&'static str, f64),
+    upper: (&'static str, f64),
+) -> Result<(), ParamError> {
+    if lower.1 < upper.1 {
+        Ok(())
+    } else {
+        Err(ParamError::NotIncreasing {
+            lower: lower.0,
+            lower_value: lower.1,
+            upper: upper.0,
+            upper_value: upper.1,
+        })
+    }
+}
+
+/// Check a gear ratio: finite and at least 1.
+pub(crate) fn gear_ratio(value: f64) -> Result<f64, ParamError> {
+    let value = finite("ratio", value)?;
+    if value >= 1.0 {
+        Ok(value)
+    } else {
+        Err(ParamError::OutOfRange {
+            name: "ratio",
+            value,
+            min: 1.0,
+            max: f64::INFINITY,
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -17,7 +17,7 @@
 //! (stored units `S::UNITS`), and the `f64` methods are those configs with
 //! `S = f64`, so each formula exists once.
 
-use crate::error::{finite, positive, ParamError};
+use crate::error::{finite, gear_ratio, increasing, positive, ParamError};
 use crate::scalar::{units::Units, Coef, Scalar};
 
 /// The catalogue's piecewise-linear torsion curve, eq. (2.11), odd in the
@@ -49,14 +49,7 @@ impl CataloguePiecewise {
             positive("k3", k3)?,
         );
         let (t1, t2) = (positive("t1", t1)?, positive("t2", t2)?);
-        if t2 <= t1 {
-            return Err(ParamError::NotIncreasing {
-                lower: "t1",
-                lower_value: t1,
-                upper: "t2",
-                upper_value: t2,
-            });
-        }
+        increasing(("t1", t1), ("t2", t2))?;
         Ok(CataloguePiecewise { k1, k2, k3, t1, t2 })
     }
 
@@ -391,15 +384,7 @@ impl HarmonicDriveParams {
         wave_generator: WaveGeneratorParams,
         ratio: f64,
     ) -> Result<Self, ParamError> {
-        let ratio = finite("ratio", ratio)?;
-        if ratio < 1.0 {
-            return Err(ParamError::OutOfRange {
-                name: "ratio",
-                value: ratio,
-                min: 1.0,
-                max: f64::INFINITY,
-            });
-        }
+        let ratio = gear_ratio(ratio)?;
         Ok(HarmonicDriveParams {
             flexspline,
             wave_generator,

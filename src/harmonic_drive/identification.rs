@@ -18,7 +18,7 @@
 //! `K_f0 = 8.336e3 N·m/rad`, `c_f = 0.04494 1/(N·m)` (errata E4).
 
 use super::compliance::{FlexsplineParams, HarmonicDriveParams, WaveGeneratorParams};
-use crate::error::{positive, ParamError};
+use crate::error::{gear_ratio, increasing, positive, ParamError};
 
 /// Catalogue data of a harmonic drive and two measured friction torques.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -68,23 +68,9 @@ impl CatalogueData {
         let t2 = positive("t2", self.t2)?;
         let psi = positive("hysteresis_loss", self.hysteresis_loss)?;
         let tau_fs = positive("starting_torque", self.starting_torque)?;
-        let n = positive("ratio", self.ratio)?;
-        if t2 <= t1 {
-            return Err(ParamError::NotIncreasing {
-                lower: "t1",
-                lower_value: t1,
-                upper: "t2",
-                upper_value: t2,
-            });
-        }
-        if k2 <= k1 {
-            return Err(ParamError::NotIncreasing {
-                lower: "k1",
-                lower_value: k1,
-                upper: "k2",
-                upper_value: k2,
-            });
-        }
+        let n = gear_ratio(self.ratio)?;
+        increasing(("t1", t1), ("t2", t2))?;
+        increasing(("k1", k1), ("k2", k2))?;
         let s2 = (t1 + t2) * (t1 + t2);
         let denom = k1 * s2 - k2 * t1 * t1;
         if denom <= 0.0 {

@@ -15,7 +15,7 @@
 //! width `2 τ_fb` acting on `−τ_f / N`: rate independent, so it produces the
 //! hysteresis of Fig. 2.22 without any derivative of a measured signal.
 
-use crate::error::{positive, ParamError};
+use crate::error::{gear_ratio, positive, ParamError};
 use crate::scalar::{Coef, Scalar};
 
 /// Parameters of the back-driving friction play, eq. (2.40).
@@ -31,15 +31,7 @@ impl WaveGeneratorTorqueParams {
     /// Validates `τ_fb > 0` and `N ≥ 1`.
     pub fn try_new(backdrive_friction: f64, ratio: f64) -> Result<Self, ParamError> {
         let backdrive_friction = positive("backdrive_friction", backdrive_friction)?;
-        let ratio = positive("ratio", ratio)?;
-        if ratio < 1.0 {
-            return Err(ParamError::OutOfRange {
-                name: "ratio",
-                value: ratio,
-                min: 1.0,
-                max: f64::INFINITY,
-            });
-        }
+        let ratio = gear_ratio(ratio)?;
         Ok(WaveGeneratorTorqueParams {
             backdrive_friction,
             ratio,
