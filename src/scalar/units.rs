@@ -23,10 +23,14 @@
 //! | link / motor angle | 1.7e-4 – 628 rad | rad (1) | ±32 768 rad | 1.5e-5 rad | 3.8e-2 (0.01°) |
 //! | speed | 0.01 – 500 rad/s | rad/s (1) | ±32 768 rad/s | 1.5e-5 rad/s | 5.5e-4 (0.01 rad/s) |
 //! | stiffness | 3.7e3 – 1.4e5 Nm/rad | Nm/mrad (1e-3) | ±3.3e7 Nm/rad | 0.015 Nm/rad | 8.3e-7 |
-//! | `c_f` | 0.012 1/Nm | 1/Nm (1) | ±32 768 | 1.5e-5 | 5.5e-4 |
 //! | rotor inertia | 1.05e-6 – 1.14e-5 kg·m² | mNm·s²/rad (1e3) | ±32.8 kg·m² | 1.5e-8 kg·m² | 2.7e-3 (Table 6.1) |
 //! | gains λ, K_I, μ, ρ_base | 0.1 – 1e4 | SI (1) | ±32 768 | 1.5e-5 | 0 |
 //! | boundary layers ε | 1e-4 – 0.1 | SI (1) | ±32 768 | 1.5e-5 | 6.8e-2 (ε_F1 = 1e-4) |
+//!
+//! Model constants that only ever multiply (`c_f`, `1/(c_f K_f0)`, `1/N`, …)
+//! are not stored as `I16F16` values at all but as prepared
+//! [`Coef`](super::Coef)s with a 31-bit mantissa, so their relative
+//! precision is 2⁻³¹ whatever their magnitude.
 //!
 //! Two entries deserve care, and the components that use them say so: a
 //! link angle at the 0.01° accuracy of the thesis's link encoder is only 11
@@ -186,12 +190,6 @@ pub const QUANTITIES: &[Quantity] = &[
             (8.2e3, "K_f0"),
             (1.4e5, "SHD-40 K2"),
         ],
-    },
-    Quantity {
-        name: "c_f",
-        unit: "1/(N·m)",
-        scale: 1.0,
-        thesis_values: &[(0.012, "SHD-17 c_f")],
     },
     Quantity {
         name: "rotor inertia",
