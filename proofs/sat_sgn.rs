@@ -16,6 +16,7 @@
 //! zeros, subnormals, infinities and NaNs).
 
 use super::engine::Verdict;
+pub use super::kernels_f32::next_up;
 use crate::scalar::Scalar;
 
 /// `sgn` returns exactly `1`, `0` or `-1` according to the sign of `x`,
@@ -103,15 +104,6 @@ pub fn sat_monotone_step<S: Scalar>(x: S, x_next: S, y: S) -> Verdict {
     Verdict::logical(monotone).and(Verdict::bounded(excess, 1.0))
 }
 
-/// Next representable `f32` above `x` (not for NaN or `+∞`).
-pub fn next_up_f32(x: f32) -> f32 {
-    if x == 0.0 {
-        return f32::from_bits(1);
-    }
-    let b = x.to_bits();
-    f32::from_bits(if x > 0.0 { b + 1 } else { b - 1 })
-}
-
 #[cfg(kani)]
 mod kani_entries {
     use super::*;
@@ -154,7 +146,7 @@ mod kani_entries {
         assert!(sat_odd(x, y).holds);
         // Precondition: a finite successor exists.
         kani::assume(x.is_finite() && x < f32::MAX);
-        assert!(sat_monotone_step(x, next_up_f32(x), y).holds);
+        assert!(sat_monotone_step(x, next_up(x), y).holds);
     }
 }
 
@@ -239,7 +231,7 @@ mod tests {
     fn exhaustive_sat_f32() {
         let r = exhaustive_u32(0, u32::MAX, |c| {
             let (x, y) = bf16_pair(c);
-            let xn = (x.is_finite() && x < f32::MAX).then(|| next_up_f32(x));
+            let xn = (x.is_finite() && x < f32::MAX).then(|| next_up(x));
             all_sat_properties(x, y, xn)
         });
         println!(
@@ -294,7 +286,7 @@ mod tests {
         #[test]
         fn sat_properties_f32(x in -10.0f32..10.0, y in -1.0f32..2.0) {
             prop_assert!(sgn_exact(x).holds);
-            prop_assert!(all_sat_properties(x, y, Some(next_up_f32(x))).holds);
+            prop_assert!(all_sat_properties(x, y, Some(next_up(x))).holds);
         }
 
         #[test]
