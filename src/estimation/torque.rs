@@ -235,19 +235,10 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     /// Eq. (3.7) at link and motor angles (rad) given as `(sin, cos)` pairs.
     #[inline]
     fn kinematic_error(&self, link: (S, S), motor: (S, S)) -> S {
-        let Some(a) = self.kinematic_error else {
-            return S::ZERO;
-        };
-        let (sl, cl) = link;
-        let (s1, c1) = motor;
-        let s2 = s1.mul(c1).add(s1.mul(c1));
-        let c2 = c1.sub(s1).mul(c1.add(s1));
-        a[0].add(a[1].mul(cl))
-            .add(a[2].mul(sl))
-            .add(a[3].mul(c1))
-            .add(a[4].mul(s1))
-            .add(a[5].mul(c2))
-            .add(a[6].mul(s2))
+        match &self.kinematic_error {
+            Some(a) => KinematicErrorModel::series(a, link, motor),
+            None => S::ZERO,
+        }
     }
 
     /// Eq. (3.9)–(3.10) from a torsion, the kinematic error and the motor

@@ -122,6 +122,10 @@ mod tests {
             let cw: Vec<f64> = (0..n as usize).map(|i| offset + i as f64 * p + lag * p + noise[i] * p).collect();
             let ccw: Vec<f64> = (0..n as usize).map(|i| offset + i as f64 * p - lag * p + noise[160 + i] * p).collect();
             let got = encoder_offset(&cw, &ccw, n).unwrap();
+            // Each cw/ccw pair of unit phasors sums to a vector at the mean
+            // of their phases, offset + (n₁ + n₂)/2 (the lags cancel), so
+            // every pair's resultant lies within ±0.01 p of the offset and so
+            // does their sum's direction; 1e-3 p covers rounding.
             prop_assert!((got - offset).abs() <= 0.011 * p, "{got} vs {offset}");
             let printed = printed_offset(&cw, &ccw);
             prop_assert!((got - printed).abs() <= 1e-3 * p, "{got} vs printed {printed}");

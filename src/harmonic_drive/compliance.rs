@@ -326,8 +326,8 @@ impl WaveGeneratorParams {
     /// wave-generator torque `τ_w` (N·m):
     /// `Δθ_w = sgn(τ_w) (1 − e^{−c_w |τ_w|}) / (c_w K_w0)`.
     pub fn torsion(&self, torque: f64) -> f64 {
-        let e = libm::exp(-self.c_w * torque.abs());
-        torque.sgn() * (1.0 - e) / (self.c_w * self.k_w0)
+        // The output-side term of eq. (2.30) with N = 1 is Δθ_w itself.
+        WaveGeneratorConfig::<f64>::new(self, 1.0).output_torsion(torque)
     }
 }
 
