@@ -19,6 +19,7 @@
 
 pub mod compliance;
 pub mod engine;
+pub mod estimator_sizes;
 pub mod kernels_f32;
 pub mod kernels_f64;
 pub mod kernels_i16f16;

@@ -305,7 +305,6 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         if d >= lmn / 2 {
             d -= lmn;
         }
-        let torsion = S::from_counts(d, &self.torsion_per_count);
         let kin_err = if self.kinematic_error.is_some() {
             let link = S::from_counts(c_l as i64, &self.link_rad_per_count).sin_cos();
             let motor =
@@ -314,7 +313,23 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         } else {
             S::ZERO
         };
-        self.finish(torsion, kin_err, motor_torque, invalid)
+        self.from_torsion_counts(d, kin_err, motor_torque, invalid)
+    }
+
+    /// Steps 3–4 from the torsion in counts `D` of `2π/(LMN)` (the reduced
+    /// eq. 2.13 torsion [`update`](Self::update) computes): one scaling,
+    /// then eq. (3.9)–(3.10). The per-drive-size proofs sweep this over
+    /// every `D`.
+    #[inline]
+    pub(crate) fn from_torsion_counts(
+        &self,
+        d: i64,
+        kin_err: S,
+        motor_torque: S,
+        link_count_invalid: bool,
+    ) -> TorqueEstimate<S> {
+        let torsion = S::from_counts(d, &self.torsion_per_count);
+        self.finish(torsion, kin_err, motor_torque, link_count_invalid)
     }
 
     /// One estimate from angles in radians (stored angle units): the link

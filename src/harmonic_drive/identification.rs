@@ -53,6 +53,39 @@ impl CatalogueData {
         ratio: 100.0,
     };
 
+    /// Catalogue data for another SHD size, scaled from the shape of
+    /// [`SHD_17_100`](Self::SHD_17_100) — for drives where only the rated
+    /// torque, `K2` and the ratio are known (Table 3.1 gives just those).
+    ///
+    /// **Assumption, not thesis data.** The shape of the SHD-17-100
+    /// catalogue is kept: `K1/K2 = 8.4/9.4`, `T1/T_rated = 3.9/16`,
+    /// `T2/T_rated = 12/16`, the same hysteresis loss `Ψ = 2.9e-4` rad, and a
+    /// starting torque that is the same share of the rated torque seen from
+    /// the motor side, `τ_fs = 0.012 · (T_rated/16) · (100/N)` N·m. Because
+    /// the ratios `K2/K1` and `T2/T1` are those of the SHD-17-100, every
+    /// scaled catalogue is admissible for [`identify`](Self::identify);
+    /// identification then gives `K_f0 ∝ K2` and `c_f ∝ 1/T_rated`.
+    ///
+    /// Errors: a rated torque or `K2` that is not finite and positive, or a
+    /// ratio below 1, named by field.
+    pub fn scaled_from_shd17(rated_torque: f64, k2: f64, ratio: f64) -> Result<Self, ParamError> {
+        let rated = positive("rated_torque", rated_torque)?;
+        let k2 = positive("k2", k2)?;
+        let n = gear_ratio(ratio)?;
+        let base = Self::SHD_17_100;
+        let rated_base = 16.0;
+        let scale = rated / rated_base;
+        Ok(CatalogueData {
+            k1: k2 * (base.k1 / base.k2),
+            k2,
+            t1: base.t1 * scale,
+            t2: base.t2 * scale,
+            hysteresis_loss: base.hysteresis_loss,
+            starting_torque: base.starting_torque * scale * (base.ratio / n),
+            ratio: n,
+        })
+    }
+
     /// Eq. (2.31)–(2.37): the parameters of the proposed model.
     ///
     /// Errors name the offending value: any input not finite or not
@@ -172,6 +205,47 @@ mod tests {
         .identify()
         .unwrap_err();
         assert!(matches!(e, ParamError::OutOfRange { name: "k2", .. }));
+    }
+
+    /// The scaled catalogue of the SHD-17-100's own row reproduces its
+    /// catalogue; other sizes keep the shape, so `K_f0/K2` and `c_f·T_rated`
+    /// are the same for every size (by eq. 2.33–2.34, `K_f0` is linear in
+    /// the slopes and `c_f` scales as 1/torque).
+    #[test]
+    fn scaled_catalogues_keep_the_shd17_shape() {
+        let base = CatalogueData::SHD_17_100;
+        let same = CatalogueData::scaled_from_shd17(16.0, 9.4e3, 100.0).unwrap();
+        for (a, b) in [
+            (same.k1, base.k1),
+            (same.t1, base.t1),
+            (same.t2, base.t2),
+            (same.starting_torque, base.starting_torque),
+        ] {
+            assert!((a - b).abs() <= 1e-12 * b, "{a} vs {b}");
+        }
+        let p0 = base.identify().unwrap().flexspline;
+        for row in crate::harmonic_drive::kinematic_error::TABLE_3_1 {
+            let c = CatalogueData::scaled_from_shd17(row.rated_torque, row.k2, row.ratio as f64)
+                .unwrap();
+            let p = c.identify().unwrap();
+            let f = p.flexspline;
+            assert!((f.k_f0 / row.k2 - p0.k_f0 / 9.4e3).abs() < 1e-12);
+            assert!((f.c_f * row.rated_torque - p0.c_f * 16.0).abs() < 1e-12);
+            // Eq. (2.35): K_w0 N Ψ / 2 is the starting torque.
+            let w = p.wave_generator;
+            assert!((w.k_w0 * p.ratio * c.hysteresis_loss / 2.0 - c.starting_torque).abs() < 1e-15);
+        }
+        assert!(matches!(
+            CatalogueData::scaled_from_shd17(0.0, 9.4e3, 100.0),
+            Err(ParamError::NotPositive {
+                name: "rated_torque",
+                ..
+            })
+        ));
+        assert!(matches!(
+            CatalogueData::scaled_from_shd17(16.0, f64::INFINITY, 100.0),
+            Err(ParamError::NotFinite { name: "k2", .. })
+        ));
     }
 
     proptest! {
