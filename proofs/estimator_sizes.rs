@@ -132,7 +132,7 @@ pub fn estimate<S: Scalar>(
     motor_torque: f64,
 ) -> TorqueEstimate<S> {
     let tau_w = S::from_f64(motor_torque * S::UNITS.motor_torque);
-    cfg.from_torsion_counts(d, S::ZERO, tau_w, false)
+    cfg.estimate_from_torsion_counts(d, S::ZERO, tau_w, false)
 }
 
 #[cfg(kani)]

@@ -313,7 +313,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         } else {
             S::ZERO
         };
-        self.from_torsion_counts(d, kin_err, motor_torque, invalid)
+        self.estimate_from_torsion_counts(d, kin_err, motor_torque, invalid)
     }
 
     /// Steps 3–4 from the torsion in counts `D` of `2π/(LMN)` (the reduced
@@ -321,7 +321,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     /// then eq. (3.9)–(3.10). The per-drive-size proofs sweep this over
     /// every `D`.
     #[inline]
-    pub(crate) fn from_torsion_counts(
+    pub(crate) fn estimate_from_torsion_counts(
         &self,
         d: i64,
         kin_err: S,
