@@ -52,6 +52,13 @@ pub fn ideal_flexspline_angle(ratio: f64, wave_generator: f64) -> f64 {
     -wave_generator / ratio
 }
 
+/// Ideal flexspline speed for a wave-generator speed with the circular
+/// spline fixed, eq. (2.8): `ω_fi = −ω_w / N` (rad/s; the time derivative of
+/// eq. 2.7).
+pub fn ideal_flexspline_speed(ratio: f64, wave_generator_speed: f64) -> f64 {
+    -wave_generator_speed / ratio
+}
+
 /// Harmonic-drive torsion from the two encoders, eq. (2.13)/(2.21):
 /// `Δθ = θ_fo + θ_wi / N` (rad, output side), where `θ_fo` is the link-side
 /// (flexspline output) angle and `θ_wi` the motor-side (wave-generator
@@ -86,6 +93,26 @@ mod tests {
             let lhs = torsion_from_encoders(ratio, fo, wi);
             let rhs = total_torsion(ratio, d_f, d_w);
             prop_assert!((lhs - rhs).abs() <= 1e-12 * (1.0 + fo.abs() + wi.abs() / ratio));
+        }
+
+        /// Eq. (2.8) is the derivative of eq. (2.7): a central difference
+        /// of the ideal flexspline angle along a wave-generator trajectory
+        /// θ_w(t) = a sin(ωt) matches the speed map.
+        #[test]
+        fn ideal_speed_is_the_derivative_of_the_ideal_angle(
+            ratio in 1.0f64..300.0, a in 0.1f64..50.0, w in 0.1f64..20.0, t in 0.0f64..10.0,
+        ) {
+            let h = 1e-5;
+            let angle = |t: f64| ideal_flexspline_angle(ratio, a * (w * t).sin());
+            let fd = (angle(t + h) - angle(t - h)) / (2.0 * h);
+            let exact = ideal_flexspline_speed(ratio, a * w * (w * t).cos());
+            // Central-difference truncation a w³ h² / 6 / N; rounding of
+            // t ± h (ulp(t) ≤ ε t) moves the phase, an error of up to
+            // a w² ε t / h / N; and the sums' own rounding.
+            let eps = f64::EPSILON;
+            let tol = (a * w.powi(3) * h * h / 6.0 + a * w * w * eps * (t + 1.0) / h
+                + 4.0 * eps * a / h) / ratio;
+            prop_assert!((fd - exact).abs() <= tol, "{fd} vs {exact}");
         }
 
         /// With θ_c = 0, eq. (2.1) reduces to (2.4) and the rigid drive has

@@ -8,6 +8,7 @@ pub mod compliance;
 pub mod identification;
 pub mod kinematic_error;
 pub mod kinematics;
+pub mod two_spring;
 pub mod wave_generator_torque;
 
 pub use compliance::{
