@@ -7,9 +7,10 @@
 //! Table 3.1) overflows, and a rotor inertia of `1.14e-5 kg·m²` (Table 4.1)
 //! is less than one LSB. Each quantity therefore has a **unit scale** `s`:
 //! the stored number is `value_SI · s`. Configurations (`XxxConfig<S>`)
-//! multiply by the scale once, at build time, with [`quantize`]; floats use
-//! the same scales so that one code path serves every backend (a power-of-ten
-//! scale costs floats nothing in accuracy beyond one rounding).
+//! multiply by the scale once, at build time, with [`quantize`]. Each backend
+//! names its scales in `S::UNITS`: floats use [`SI`] (every scale 1) and
+//! `I16F16` uses [`FIXED`], so one generic code path serves every backend
+//! and a float configuration stores plain SI values.
 //!
 //! Consequences, computed by [`QUANTITIES`] and printed by
 //! `cargo run --release --example kernel_report` (relative error = the
