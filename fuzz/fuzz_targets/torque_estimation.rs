@@ -40,9 +40,21 @@ fuzz_target!(
         };
         // Identification never panics; arbitrary input mostly fails cleanly.
         let drive = match catalogue.identify() {
-            Ok(d) => d,
+            Ok(d) => {
+                // An accepted catalogue gives a physical model.
+                let (f, w) = (d.flexspline, d.wave_generator);
+                for v in [f.k_f0, f.c_f, w.k_w0, w.c_w, d.ratio] {
+                    assert!(v.is_finite() && v > 0.0, "{d:?} from {catalogue:?}");
+                }
+                d
+            }
             Err(_) => CatalogueData::SHD_17_100.identify().unwrap(),
         };
+        // Scaled catalogues either fail by name or identify.
+        if let Ok(c) = CatalogueData::scaled_from_shd17(cat[0], cat[1], cat[6]) {
+            let d = c.identify().expect("a scaled SHD-17 catalogue always identifies");
+            assert!(d.flexspline.k_f0.is_finite() && d.flexspline.c_f.is_finite());
+        }
         let ke = with_ke.then(KinematicErrorModel::table_3_2);
         let max_torque = (max_t % 30_000) as f64 + 0.5;
         let Ok(p) = TorqueEstimatorParams::try_new(drive, ke, l, m, max_torque) else {

@@ -67,7 +67,9 @@ impl CatalogueData {
     /// identification then gives `K_f0 ∝ K2` and `c_f ∝ 1/T_rated`.
     ///
     /// Errors: a rated torque or `K2` that is not finite and positive, or a
-    /// ratio below 1, named by field.
+    /// ratio below 1, named by field; and extreme values whose scaled
+    /// catalogue does not identify (e.g. a starting torque that underflows
+    /// to a zero `K_w0`), with the error [`identify`](Self::identify) gives.
     pub fn scaled_from_shd17(rated_torque: f64, k2: f64, ratio: f64) -> Result<Self, ParamError> {
         let rated = positive("rated_torque", rated_torque)?;
         let k2 = positive("k2", k2)?;
@@ -75,7 +77,7 @@ impl CatalogueData {
         let base = Self::SHD_17_100;
         let rated_base = 16.0;
         let scale = rated / rated_base;
-        Ok(CatalogueData {
+        let c = CatalogueData {
             k1: k2 * (base.k1 / base.k2),
             k2,
             t1: base.t1 * scale,
@@ -83,7 +85,11 @@ impl CatalogueData {
             hysteresis_loss: base.hysteresis_loss,
             starting_torque: base.starting_torque * scale * (base.ratio / n),
             ratio: n,
-        })
+        };
+        // Extreme inputs can overflow or underflow a derived value; the
+        // identification's own checks name it.
+        c.identify()?;
+        Ok(c)
     }
 
     /// Eq. (2.31)–(2.37): the parameters of the proposed model.
@@ -104,18 +110,23 @@ impl CatalogueData {
         let n = gear_ratio(self.ratio)?;
         increasing(("t1", t1), ("t2", t2))?;
         increasing(("k1", k1), ("k2", k2))?;
-        let s2 = (t1 + t2) * (t1 + t2);
-        let denom = k1 * s2 - k2 * t1 * t1;
+        // Eq. (2.33)–(2.34) divided through by T1², in terms of
+        // r² = ((T1 + T2)/T1)², so that no product of torques can underflow
+        // or overflow: K_f0 = (K1 r² − K2)/(r² − 1) and
+        // c_f = 2 √((K2 − K1)/(K1 r² − K2)) / T1.
+        let r = (t1 + t2) / t1;
+        let r2 = r * r;
+        let denom = k1 * r2 - k2;
         if denom <= 0.0 {
             return Err(ParamError::OutOfRange {
                 name: "k2",
                 value: k2,
                 min: k1,
-                max: k1 * s2 / (t1 * t1),
+                max: k1 * r2,
             });
         }
-        let k_f0 = denom / (s2 - t1 * t1); // eq. (2.33)
-        let c_f = 2.0 * libm::sqrt((k2 - k1) / denom); // eq. (2.34)
+        let k_f0 = denom / (r2 - 1.0); // eq. (2.33)
+        let c_f = 2.0 * libm::sqrt((k2 - k1) / denom) / t1; // eq. (2.34)
         let k_w0 = 2.0 * tau_fs / (n * psi); // eq. (2.35)
         let c_w = 2.0 / (n * k_w0 * psi); // eq. (2.37)
         HarmonicDriveParams::try_new(
@@ -246,6 +257,8 @@ mod tests {
             CatalogueData::scaled_from_shd17(16.0, f64::INFINITY, 100.0),
             Err(ParamError::NotFinite { name: "k2", .. })
         ));
+        // A rated torque so small that c_f overflows: an error, not a model.
+        assert!(CatalogueData::scaled_from_shd17(1e-310, 9.4e3, 1e10).is_err());
     }
 
     proptest! {
