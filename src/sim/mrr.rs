@@ -621,6 +621,16 @@ impl Mrr {
         e
     }
 
+    /// Energy stored in the drive of module `i` (backbone and slip
+    /// elements), J.
+    pub fn drive_energy(&self, i: usize) -> f64 {
+        let m = &self.modules[i];
+        let (dc, _, _) = m
+            .drive
+            .compliance_torsion(self.link_angles()[i], self.motor_angles()[i]);
+        m.drive.elastic_energy(dc, &self.slip_anchor[i])
+    }
+
     /// Read the sensors now (encoders quantize and add their noise).
     pub fn read_sensors(&mut self) -> Sensors {
         let n = self.len();
