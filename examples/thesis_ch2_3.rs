@@ -100,6 +100,10 @@ fn main() -> std::io::Result<()> {
         &b.compliance.piecewise,
     );
     row("cubic eq. (2.10), tau_f", &b.compliance.cubic);
+    println!(
+        "  hysteresis dissipation: loop integral {:.4e} J, Maxwell-slip law from the reversals {:.4e} J",
+        b.compliance.loop_energy, b.compliance.maxwell_slip_energy
+    );
     println!("  ({:.1} s)", t0.elapsed().as_secs_f64());
 
     let t0 = Instant::now();

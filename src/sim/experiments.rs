@@ -500,7 +500,7 @@ impl Default for TorqueEstimationConfig {
             settle: 0.5,
             control_period: 4e-3,
             steps_per_period: 40,
-            calibration_speed: 2.0,
+            calibration_speed: 0.5,
             seed: 3,
         }
     }
@@ -541,7 +541,7 @@ pub fn calibrate_kinematic_error(cfg: &TorqueEstimationConfig) -> KinematicError
         vec![module],
         [0.0, 0.0, -9.81],
         cfg.control_period,
-        cfg.steps_per_period / 2,
+        cfg.steps_per_period / 4,
         cfg.seed ^ 0xCA1,
     );
     let mut fit = KinematicErrorFit::new();

@@ -412,6 +412,11 @@ impl Mrr {
     /// Recursive Newton–Euler: the inertial generalized forces
     /// `M(q) a + c(q, v) + g(q)` (links then motors) for speeds `(v_l, v_m)`
     /// and accelerations `(a_l, a_m)`; gravity included when `gravity`.
+    /// These are the left-hand sides of eq. (4.1)–(4.6) without friction
+    /// (the motor rows are `I_mi (q̈_mi + z_miᵀ ω̇_{i−1})`, whose
+    /// `z_miᵀ ω̇_{i−1}` expands into the `z_miᵀ z_lj q̈_lj` and
+    /// `z_miᵀ (z_lk × z_lj) q̇_lk q̇_lj` terms of eq. 4.4/4.6), plus the
+    /// reactions of the upper modules that eq. (4.1)–(4.5) leave in `τ_ext`.
     #[allow(clippy::too_many_arguments)]
     fn inverse_dynamics(
         &self,
@@ -475,7 +480,9 @@ impl Mrr {
     }
 
     /// Applied generalized forces (links then motors) and transmission
-    /// torques at state `x`.
+    /// torques at state `x`: the right-hand sides of eq. (4.1)/(4.2),
+    /// `τ_t + τ_ext − f_l` and `τ_m − f_m − τ_t/N`, with the kinematic
+    /// error's gradient terms (see the module docs).
     fn applied_forces(&self, x: &[f64], q: &mut [f64], tau_t: &mut [f64]) {
         let n = self.len();
         for i in 0..n {
@@ -492,7 +499,9 @@ impl Mrr {
         }
     }
 
-    /// The state derivative `ẋ` at `x` (the current torques held).
+    /// The state derivative `ẋ` at `x` (the current torques held): solves
+    /// eq. (4.1)–(4.6) in matrix form, `M(q) q̈ = Q − c − g`, with the
+    /// applied forces `Q` of eq. (4.1)/(4.2) (friction eq. 4.7/4.8).
     fn derivative(&self, x: &[f64], dx: &mut [f64]) {
         let n = self.len();
         let (ql, rest) = x.split_at(n);
