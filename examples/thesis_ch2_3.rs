@@ -82,6 +82,30 @@ fn main() -> std::io::Result<()> {
         "  hysteresis dissipation: loop integral {:.4e} J, Maxwell-slip law from the reversals {:.4e} J",
         a.loop_energy, a.maxwell_slip_energy
     );
+    let a0 = locked_output(&LockedOutputConfig {
+        slip_elements: 0,
+        ..LockedOutputConfig::default()
+    });
+    write_compliance_csv(
+        "target/figures/fig2_17_20_locked_output_friction_only.csv",
+        &a0,
+    )?;
+    println!("  variant: drive without internal hysteresis (loop from the motor friction only):");
+    row("proposed eq. (2.30), tau_f + tau_w", &a0.proposed);
+    row("catalogue piecewise eq. (2.11), tau_f", &a0.piecewise);
+    row("cubic eq. (2.10), tau_f", &a0.cubic);
+    row("piecewise eq. (2.11), -N tau_w", &a0.piecewise_input);
+    let w0 = width_at_zero(
+        &a0.samples,
+        |s| -s.wave_generator_torque,
+        |s| s.measured_torsion,
+        0.0,
+        6.0,
+    );
+    println!(
+        "  loop width at zero input torque (first 6 s): plant {:.3e} rad",
+        w0
+    );
     println!("  ({:.1} s)", t0.elapsed().as_secs_f64());
 
     let t0 = Instant::now();

@@ -130,6 +130,19 @@ fn eq_2_30_exceeds_its_catalogue_curve_by_half_the_hysteresis_loss() {
         (0.04494f64 * 10.0).atan() / (0.04494 * 8336.07) + 1.45e-4 * (1.0 - (-8.333f64).exp());
     assert!((proposed - hand).abs() < 2e-7, "{proposed} vs {hand}");
     assert!(proposed - catalogue > SHD.hysteresis_loss / 2.0);
+    // At zero torque the two compliances add: slope 1/K_f0 + 1/(N² K_w0),
+    // and N² K_w0 = 2 N τ_fs/Ψ = 8276 N·m/rad is itself close to K1, so
+    // the model's stiffness there (4153 N·m/rad) is half the catalogue's K1.
+    let h = 1e-3;
+    let fd =
+        (m.proposed.torsion(h, -h / SHD.ratio) - m.proposed.torsion(-h, h / SHD.ratio)) / (2.0 * h);
+    let hand = 1.0 / 8336.07 + 1.0 / (100.0 * 100.0 * 0.024 / 0.029);
+    assert!((fd - hand).abs() < 1e-3 * hand, "{fd} vs {hand}");
+    assert!(
+        (1.0 / fd - SHD.k1 / 2.0).abs() < 0.02 * SHD.k1,
+        "{}",
+        1.0 / fd
+    );
 }
 
 /// Locked-output comparison of the models (thesis Fig. 2.19–2.20 claim the
@@ -261,7 +274,7 @@ fn energy_is_conserved_within_the_rk4_bound() {
         m.link_friction = FrictionParams::NONE;
     }
     let (period, steps) = (1e-3, 10);
-    let mut r = Mrr::new(mods, [0.0, 0.0, -9.81], period, steps, 7);
+    let mut r = Mrr::try_new(mods, [0.0, 0.0, -9.81], period, steps, 7).expect("valid plant");
     // Small torsions (first catalogue slope) and link speeds.
     let q_l = [0.1, -0.4, 0.6];
     let q_m: Vec<f64> = q_l
@@ -379,7 +392,7 @@ fn static_deflection_under_gravity_matches_the_catalogue_compliance() {
     }
     mods[0].link_mass = 1.84;
     let (m1, m2, l, g) = (1.84, 0.64, 0.45, 9.81);
-    let mut r = Mrr::new(mods, [0.0, 0.0, -9.81], 4e-3, 40, 11);
+    let mut r = Mrr::try_new(mods, [0.0, 0.0, -9.81], 4e-3, 40, 11).expect("valid plant");
     let q_m = 2.0 * core::f64::consts::PI / 2000.0;
     let mut prev: Option<[i64; 2]> = None;
     let mut ctl = |s: &Sensors, out: &mut [f64]| {

@@ -11,7 +11,7 @@
 //! (eq. 2.40) and the estimator [`TorqueEstimatorConfig`] (eq. 3.8–3.10).
 
 use super::mrr::{ModuleParams, Mrr, Sensors};
-use super::transmission::SHD_17_100_K3;
+use super::transmission::{DrivePlantParams, SHD_17_100_K3};
 use crate::estimation::torque::{
     TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorState,
 };
@@ -287,6 +287,9 @@ pub struct LockedOutputConfig {
     pub steps_per_period: usize,
     /// Record every `record_every`-th sample.
     pub record_every: usize,
+    /// Maxwell-slip elements of the plant's drive (0: the drive's own
+    /// hysteresis removed, leaving the motor friction's loop only).
+    pub slip_elements: usize,
     /// Noise seed.
     pub seed: u64,
 }
@@ -300,6 +303,7 @@ impl Default for LockedOutputConfig {
             control_period: 1e-3,
             steps_per_period: 10,
             record_every: 4,
+            slip_elements: 8,
             seed: 1,
         }
     }
@@ -312,13 +316,21 @@ pub fn locked_output(cfg: &LockedOutputConfig) -> ComplianceResult {
     let models = Models::shd_17_100();
     let mut module = ModuleParams::thesis_joint();
     module.link_locked = true;
-    let mut r = Mrr::new(
+    module.drive = DrivePlantParams::from_catalogue(
+        &CatalogueData::SHD_17_100,
+        SHD_17_100_K3,
+        cfg.slip_elements,
+        Some(KinematicErrorModel::table_3_2()),
+    )
+    .expect("catalogue constants are valid");
+    let mut r = Mrr::try_new(
         vec![module],
         [0.0, 0.0, -9.81],
         cfg.control_period,
         cfg.steps_per_period,
         cfg.seed,
-    );
+    )
+    .expect("valid plant");
     let mut dis = Dissipation::new(&r);
     let samples_total = (cfg.duration / cfg.control_period).round() as usize;
     let mut samples = Vec::new();
@@ -395,13 +407,14 @@ pub fn back_driven(cfg: &BackDrivenConfig) -> BackDrivenResult {
     let module = ModuleParams::thesis_joint();
     let (kp, kd) = cfg.hold_gains;
     let q_m = module.motor_encoder.rad_per_count();
-    let mut r = Mrr::new(
+    let mut r = Mrr::try_new(
         vec![module],
         [0.0, 0.0, -9.81],
         cfg.control_period,
         cfg.steps_per_period,
         cfg.seed,
-    );
+    )
+    .expect("valid plant");
     let n = r.modules()[0].drive.ratio;
     let play = WaveGeneratorTorqueConfig::<f64>::new(
         &WaveGeneratorTorqueParams::try_new(BACKDRIVE_FRICTION, n).expect("valid"),
@@ -537,13 +550,14 @@ pub fn calibrate_kinematic_error(cfg: &TorqueEstimationConfig) -> KinematicError
     let models = Models::shd_17_100();
     let module = ModuleParams::thesis_joint();
     let (qm, n) = (module.motor_encoder.rad_per_count(), module.drive.ratio);
-    let mut r = Mrr::new(
+    let mut r = Mrr::try_new(
         vec![module],
         [0.0, 0.0, -9.81],
         cfg.control_period,
         cfg.steps_per_period / 4,
         cfg.seed ^ 0xCA1,
-    );
+    )
+    .expect("valid plant");
     let mut fit = KinematicErrorFit::new();
     let dt = cfg.control_period;
     for dir in [1.0, -1.0] {
@@ -624,13 +638,14 @@ pub fn torque_estimation(cfg: &TorqueEstimationConfig) -> TorqueEstimationResult
     let mut levels = Vec::new();
     let mut all: Vec<Vec<f64>> = vec![Vec::new(); ESTIMATORS.len()];
     for (li, &tau_m) in cfg.motor_torques.iter().enumerate() {
-        let mut r = Mrr::new(
+        let mut r = Mrr::try_new(
             vec![module.clone()],
             [0.0, 0.0, -9.81],
             cfg.control_period,
             cfg.steps_per_period,
             cfg.seed.wrapping_add(li as u64),
-        );
+        )
+        .expect("valid plant");
         // Start at a different link angle per level (the thesis's runs did
         // not start at the encoder zero).
         let q0 = 0.9 * li as f64;

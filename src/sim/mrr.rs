@@ -37,6 +37,7 @@ use super::friction::FrictionParams;
 use super::integrator::Rk4;
 use super::sensors::{Encoder, SplitMix64, TorqueSensor};
 use super::transmission::DrivePlantParams;
+use crate::error::{finite, gear_ratio, positive, ParamError};
 
 type V3 = [f64; 3];
 type M3 = [[f64; 3]; 3];
@@ -258,10 +259,76 @@ struct Kin {
 }
 
 impl Mrr {
-    /// A robot of the given modules at rest at `q_l = 0`, `q_m = 0`.
-    /// `steps_per_period ≥ 1`; the integration step is
-    /// `control_period / steps_per_period`.
-    pub fn new(
+    /// A robot of the given modules at rest at `q_l = 0`, `q_m = 0`; the
+    /// integration step is `control_period / steps_per_period`.
+    ///
+    /// Validated, each error naming the value: `control_period` positive
+    /// and at most 4 ms (the servo tick the thesis targets);
+    /// `steps_per_period ≥ 1`; gravity finite; per module a unit axis
+    /// (within 1e-9), positive rotor inertia and link mass, finite origin
+    /// and centre of mass, non-zero encoder resolutions, a positive motor
+    /// torque limit and a gear ratio ≥ 1.
+    pub fn try_new(
+        modules: Vec<ModuleParams>,
+        gravity: V3,
+        control_period: f64,
+        steps_per_period: usize,
+        seed: u64,
+    ) -> Result<Self, ParamError> {
+        let period = positive("control_period", control_period)?;
+        if period > 4e-3 {
+            return Err(ParamError::OutOfRange {
+                name: "control_period",
+                value: period,
+                min: 0.0,
+                max: 4e-3,
+            });
+        }
+        if steps_per_period == 0 {
+            return Err(ParamError::NotPositive {
+                name: "steps_per_period",
+                value: 0.0,
+            });
+        }
+        for g in gravity {
+            finite("gravity", g)?;
+        }
+        for m in &modules {
+            let norm = libm::sqrt(dot(m.axis, m.axis));
+            if (norm - 1.0).abs() > 1e-9 || norm.is_nan() {
+                return Err(ParamError::OutOfRange {
+                    name: "axis",
+                    value: norm,
+                    min: 1.0 - 1e-9,
+                    max: 1.0 + 1e-9,
+                });
+            }
+            positive("rotor_inertia", m.rotor_inertia)?;
+            positive("link_mass", m.link_mass)?;
+            positive("max_motor_torque", m.max_motor_torque)?;
+            gear_ratio(m.drive.ratio)?;
+            for v in m.origin.iter().chain(&m.link_com) {
+                finite("origin", *v)?;
+            }
+            for (name, c) in [
+                ("motor_encoder", m.motor_encoder.counts_per_rev),
+                ("link_encoder", m.link_encoder.counts_per_rev),
+            ] {
+                if c == 0 {
+                    return Err(ParamError::NotPositive { name, value: 0.0 });
+                }
+            }
+        }
+        Ok(Self::build(
+            modules,
+            gravity,
+            period,
+            steps_per_period,
+            seed,
+        ))
+    }
+
+    fn build(
         modules: Vec<ModuleParams>,
         gravity: V3,
         control_period: f64,
@@ -779,7 +846,7 @@ mod tests {
     /// `M[m_i, l_j] = I_mi z_miᵀ z_lj` for the links j < i below the rotor.
     #[test]
     fn inertia_matrix_has_the_couplings_of_eq_4_6() {
-        let mut r = Mrr::new(three_modules(), [0.0, 0.0, -9.81], 1e-3, 1, 0);
+        let mut r = Mrr::try_new(three_modules(), [0.0, 0.0, -9.81], 1e-3, 1, 0).unwrap();
         r.set_state(&[0.3, -0.7, 1.1], &[0.0; 3], &[0.0; 3], &[0.0; 3]);
         let m = r.inertia_matrix();
         let dim = 6;
@@ -810,7 +877,7 @@ mod tests {
     /// matrix and the independent energy expression agree).
     #[test]
     fn kinetic_energy_is_quadratic_form_of_inertia_matrix() {
-        let mut r = Mrr::new(three_modules(), [0.0; 3], 1e-3, 1, 0);
+        let mut r = Mrr::try_new(three_modules(), [0.0; 3], 1e-3, 1, 0).unwrap();
         for m in r.modules.iter_mut() {
             m.drive = m.drive.elastic();
         }
@@ -836,5 +903,49 @@ mod tests {
             (kinetic - quad).abs() < 1e-12 * quad.abs(),
             "{kinetic} vs {quad}"
         );
+    }
+
+    #[test]
+    fn bad_parameters_are_rejected_by_name() {
+        let ok = || vec![ModuleParams::thesis_joint()];
+        let g = [0.0, 0.0, -9.81];
+        let e = Mrr::try_new(ok(), g, 5e-3, 10, 0).unwrap_err();
+        assert!(matches!(
+            e,
+            ParamError::OutOfRange {
+                name: "control_period",
+                ..
+            }
+        ));
+        let e = Mrr::try_new(ok(), g, 1e-3, 0, 0).unwrap_err();
+        assert!(matches!(
+            e,
+            ParamError::NotPositive {
+                name: "steps_per_period",
+                ..
+            }
+        ));
+        let mut m = ok();
+        m[0].axis = [0.0, 0.0, 2.0];
+        let e = Mrr::try_new(m, g, 1e-3, 10, 0).unwrap_err();
+        assert!(matches!(e, ParamError::OutOfRange { name: "axis", .. }));
+        let mut m = ok();
+        m[0].rotor_inertia = f64::NAN;
+        let e = Mrr::try_new(m, g, 1e-3, 10, 0).unwrap_err();
+        assert!(matches!(
+            e,
+            ParamError::NotFinite {
+                name: "rotor_inertia",
+                ..
+            }
+        ));
+        let e = Mrr::try_new(ok(), [0.0, f64::INFINITY, 0.0], 1e-3, 10, 0).unwrap_err();
+        assert!(matches!(
+            e,
+            ParamError::NotFinite {
+                name: "gravity",
+                ..
+            }
+        ));
     }
 }

@@ -11,6 +11,14 @@
 use core::f64::consts::TAU;
 
 /// SplitMix64 pseudo-random generator.
+///
+/// ```
+/// use mrr_control::sim::SplitMix64;
+/// let mut r = SplitMix64::new(0);
+/// assert_eq!(r.next_u64(), 0xE220_A839_7B1D_CDAF);
+/// let u = r.uniform();
+/// assert!((0.0..1.0).contains(&u));
+/// ```
 #[derive(Debug, Clone)]
 pub struct SplitMix64 {
     state: u64,
