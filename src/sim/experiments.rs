@@ -144,12 +144,25 @@ pub struct ComplianceResult {
     pub maxwell_slip_energy: f64,
 }
 
-fn record(models: &Models, r: &Mrr, s: &Sensors, tau_w: f64, t_true: f64) -> ComplianceSample {
+/// The plant's true transmission torque and chapter-2 torsion now.
+fn truth(r: &Mrr) -> (f64, f64) {
+    let n = r.modules()[0].drive.ratio;
+    (
+        r.transmission_torques()[0],
+        r.link_angles()[0] - r.motor_angles()[0] / n,
+    )
+}
+
+fn record(
+    models: &Models,
+    r: &Mrr,
+    s: &Sensors,
+    tau_w: f64,
+    (t_true, true_torsion): (f64, f64),
+) -> ComplianceSample {
     let m = &r.modules()[0];
     let n = m.drive.ratio;
     let tau_f = -s.link_torque[0];
-    let ql = r.link_angles()[0];
-    let qm = r.motor_angles()[0];
     ComplianceSample {
         time: s.time,
         wave_generator_torque: tau_w,
@@ -157,7 +170,7 @@ fn record(models: &Models, r: &Mrr, s: &Sensors, tau_w: f64, t_true: f64) -> Com
         true_flexspline_torque: -t_true,
         motor_angle: -(s.motor_counts[0] as f64) * m.motor_encoder.rad_per_count(),
         measured_torsion: measured_torsion(m, s, 0),
-        true_torsion: ql - qm / n,
+        true_torsion,
         proposed: models.proposed.torsion(tau_f, tau_w),
         piecewise: models.piecewise.torsion(tau_f),
         cubic: models.cubic.torsion(tau_f),
@@ -337,7 +350,7 @@ pub fn locked_output(cfg: &LockedOutputConfig) -> ComplianceResult {
     for k in 0..samples_total {
         let t = k as f64 * cfg.control_period;
         let tau = cfg.amplitude * (1.0 - t / cfg.duration) * (TAU * cfg.frequency * t).sin();
-        let t_true = r.transmission_torques()[0];
+        let t_true = truth(&r);
         let mut ctl = |_: &Sensors, out: &mut [f64]| out[0] = tau;
         let s = r.sample(&mut ctl, &mut |_, _| {});
         if k % cfg.record_every == 0 {
@@ -432,7 +445,7 @@ pub fn back_driven(cfg: &BackDrivenConfig) -> BackDrivenResult {
         cfg.control_period,
     );
     for k in 0..samples_total {
-        let t_true = r.transmission_torques()[0];
+        let t_true = truth(&r);
         let mut ctl = |s: &Sensors, out: &mut [f64]| {
             let c = s.motor_counts[0];
             let speed = prev_counts.map_or(0.0, |p| (c - p) as f64 * q_m / dt);

@@ -226,6 +226,35 @@ impl<F: FnMut(&Sensors, &mut [f64])> Controller for F {
 }
 
 /// The simulated robot.
+///
+/// A controller plugs in through [`Controller`] (a closure works): it sees
+/// only [`Sensors`] and returns motor torques, held for one period.
+///
+/// ```
+/// use mrr_control::sim::{ModuleParams, Mrr, Sensors};
+/// // One thesis joint, vertical axis; hold the link at 0.2 rad with a PD
+/// // law on the motor counts, sampled every 4 ms.
+/// let joint = ModuleParams::thesis_joint();
+/// let rad = joint.motor_encoder.rad_per_count();
+/// let mut robot = Mrr::try_new(vec![joint], [0.0, 0.0, -9.81], 4e-3, 40, 1).unwrap();
+/// let target = 0.2 * 100.0; // motor angle, rad
+/// let mut last: Option<i64> = None;
+/// let mut pd = |s: &Sensors, tau: &mut [f64]| {
+///     let c = s.motor_counts[0];
+///     let v = last.map_or(0.0, |p| (c - p) as f64 * rad / 4e-3);
+///     last = Some(c);
+///     tau[0] = 0.02 * (target - c as f64 * rad) - 5e-4 * v;
+/// };
+/// while robot.time() < 3.0 {
+///     robot.sample(&mut pd, &mut |_, _| {});
+/// }
+/// // It stops where the P term no longer overcomes the breakaway of the
+/// // motor (0.012 N·m) plus the link's seen at the motor (0.8 N·m / N):
+/// // |e_m| ≤ 0.02 N·m / 0.02 N·m/rad = 1 rad, i.e. 0.01 rad at the link,
+/// // plus the drive's torsion under ≤ 0.8 N·m (< 1e-4 rad).
+/// let bound = (0.012 + 0.8 / 100.0) / 0.02 / 100.0 + 1e-4;
+/// assert!((robot.link_angles()[0] - 0.2).abs() <= bound);
+/// ```
 #[derive(Debug, Clone)]
 pub struct Mrr {
     modules: Vec<ModuleParams>,
@@ -903,6 +932,20 @@ mod tests {
             (kinetic - quad).abs() < 1e-12 * quad.abs(),
             "{kinetic} vs {quad}"
         );
+    }
+
+    /// The motor angles returned for a torque make the drive carry it.
+    #[test]
+    fn motor_angles_for_torque_round_trip() {
+        let r = Mrr::try_new(three_modules(), [0.0; 3], 1e-3, 1, 0).unwrap();
+        let q_l = [0.3, -1.0, 2.0];
+        let want = [5.0, -2.0, 0.5];
+        let q_m = r.motor_angles_for_torque(&q_l, &want);
+        let mut r2 = r.clone();
+        r2.set_state(&q_l, &q_m, &[0.0; 3], &[0.0; 3]);
+        for (t, w) in r2.transmission_torques().iter().zip(want) {
+            assert!((t - w).abs() < 1e-9, "{t} vs {w}");
+        }
     }
 
     #[test]
