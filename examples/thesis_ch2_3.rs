@@ -42,7 +42,7 @@ fn write_compliance_csv(path: &str, r: &ComplianceResult) -> std::io::Result<()>
 
 fn row(name: &str, e: &ErrorStats) {
     println!(
-        "  {:<34} rms {:>8.2e}  max {:>9.2e}  min {:>9.2e}",
+        "  {:<38} rms {:>8.2e}  max {:>9.2e}  min {:>9.2e}",
         name, e.rms, e.max, e.min
     );
 }
@@ -146,19 +146,19 @@ fn main() -> std::io::Result<()> {
     );
     println!("\nTorque estimation error at different motor outputs (Table 3.3), N·m (estimate - true tau_f)");
     let mut csv = String::from("motor_torque_Ncm,max_speed_rad_s,estimator,rms_Nm,max_Nm,min_Nm\n");
-    print!("{:<24}", "motor torque (N·cm)");
+    print!("{:<32}", "motor torque (N·cm)");
     for l in &c.levels {
         print!("{:>8.0}", l.motor_torque * 100.0);
     }
     println!();
-    print!("{:<24}", "max speed (rad/s)");
+    print!("{:<32}", "max speed (rad/s)");
     for l in &c.levels {
         print!("{:>8.2}", l.max_speed);
     }
     println!();
     for (j, name) in ESTIMATORS.iter().enumerate() {
         for (label, f) in [("max", 0usize), ("min", 1), ("rms", 2)] {
-            print!("{:<24}", format!("{name} {label}"));
+            print!("{:<32}", format!("{name} {label}"));
             for l in &c.levels {
                 let e = &l.errors[j];
                 print!("{:>8.2}", [e.max, e.min, e.rms][f]);

@@ -474,13 +474,18 @@ pub fn back_driven(cfg: &BackDrivenConfig) -> BackDrivenResult {
 }
 
 /// The estimator variants evaluated in the Table 3.3 experiment.
-pub const ESTIMATORS: [&str; 6] = [
+///
+/// The last entry feeds `τ_w = 0`, which switches off the wave-generator
+/// term of eq. (3.9) and leaves the flexspline model of eq. (2.26) alone:
+/// it isolates that term's contribution.
+pub const ESTIMATORS: [&str; 7] = [
     "f64, no KE",
     "f64, KE Table 3.2",
     "f64, KE fitted",
     "I16F16, no KE",
     "I16F16, KE Table 3.2",
     "I16F16, KE fitted",
+    "f64, KE fitted, tau_w = 0",
 ];
 
 /// One row of the Table 3.3 reproduction.
@@ -665,8 +670,11 @@ pub fn torque_estimation(cfg: &TorqueEstimationConfig) -> TorqueEstimationResult
         r.set_state(&[q0], &[q0 * 100.0], &[0.0], &[0.0]);
         let s0 = r.read_sensors();
         let (_, c0) = estimator_counts(&module, &s0, 0);
+        // Four f64 states: the three models, and the fitted one again for
+        // the τ_w = 0 variant.
         let mut st_f: Vec<TorqueEstimatorState> = f64_cfg
             .iter()
+            .chain(core::iter::once(&f64_cfg[2]))
             .map(|c| c.state(-s0.motor_counts[0], c0))
             .collect();
         let mut st_x: Vec<TorqueEstimatorState> = fx_cfg
@@ -686,7 +694,7 @@ pub fn torque_estimation(cfg: &TorqueEstimationConfig) -> TorqueEstimationResult
             // command it is about to apply.
             let s = r.read_sensors();
             let (cl, cm) = estimator_counts(&module, &s, 0);
-            let mut est = [0.0; 6];
+            let mut est = [0.0; 7];
             for j in 0..3 {
                 let e = f64_cfg[j].update(&mut st_f[j], cl, cm, tau_m);
                 let x = fx_cfg[j].update(&mut st_x[j], cl, cm, I16F16::from_f64(tau_m * 1e3));
@@ -694,8 +702,9 @@ pub fn torque_estimation(cfg: &TorqueEstimationConfig) -> TorqueEstimationResult
                 est[j] = e.torque;
                 est[3 + j] = x.torque.to_f64();
             }
+            est[6] = f64_cfg[2].update(&mut st_f[3], cl, cm, 0.0).torque;
             if k as f64 * cfg.control_period >= cfg.settle {
-                for j in 0..6 {
+                for j in 0..7 {
                     errs[j].push(est[j] - truth);
                 }
                 fixed_vs_float = fixed_vs_float.max((est[5] - est[2]).abs());
@@ -711,7 +720,7 @@ pub fn torque_estimation(cfg: &TorqueEstimationConfig) -> TorqueEstimationResult
                 r.step();
             }
         }
-        for j in 0..6 {
+        for j in 0..7 {
             all[j].extend_from_slice(&errs[j]);
         }
         levels.push(TorqueLevelResult {
