@@ -199,6 +199,45 @@ impl ModuleParams {
     }
 }
 
+impl ModuleParams {
+    /// The module with a point payload of `mass` (kg) fixed at `point` (m,
+    /// link frame) added to its link: total mass, combined centre of mass,
+    /// and the inertia about the new centre by the parallel-axis theorem
+    /// (`I + m (|r|² 1 − r rᵀ)` for each part's offset `r`).
+    pub fn with_payload(&self, mass: f64, point: V3) -> Self {
+        let m0 = self.link_mass;
+        let total = m0 + mass;
+        let com = scale(
+            add(scale(self.link_com, m0), scale(point, mass)),
+            1.0 / total,
+        );
+        let shift = |m: f64, r: V3| -> M3 {
+            let rr = dot(r, r);
+            let mut out = [[0.0; 3]; 3];
+            for (i, row) in out.iter_mut().enumerate() {
+                for (j, x) in row.iter_mut().enumerate() {
+                    *x = m * (if i == j { rr } else { 0.0 } - r[i] * r[j]);
+                }
+            }
+            out
+        };
+        let a = shift(m0, sub(self.link_com, com));
+        let b = shift(mass, sub(point, com));
+        let mut inertia = self.link_inertia;
+        for i in 0..3 {
+            for j in 0..3 {
+                inertia[i][j] += a[i][j] + b[i][j];
+            }
+        }
+        ModuleParams {
+            link_mass: total,
+            link_com: com,
+            link_inertia: inertia,
+            ..self.clone()
+        }
+    }
+}
+
 /// The sensor readings of one sample.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Sensors {
@@ -932,6 +971,30 @@ mod tests {
             (kinetic - quad).abs() < 1e-12 * quad.abs(),
             "{kinetic} vs {quad}"
         );
+    }
+
+    /// A payload at 0.4 m on a horizontal link adds `m g 0.4` to the
+    /// magnitude of the holding torque (the thesis's payload experiment, Fig. 3.5b), and its
+    /// inertia about the joint axis adds `m 0.4²`.
+    #[test]
+    fn payload_adds_its_gravity_torque_and_inertia() {
+        let mut j = ModuleParams::thesis_joint();
+        j.axis = [0.0, 1.0, 0.0];
+        let r0 = Mrr::try_new(vec![j.clone()], [0.0, 0.0, -9.81], 1e-3, 1, 0).unwrap();
+        let r1 = Mrr::try_new(
+            vec![j.with_payload(0.5, [0.4, 0.0, 0.0])],
+            [0.0, 0.0, -9.81],
+            1e-3,
+            1,
+            0,
+        )
+        .unwrap();
+        let dg = r1.gravity_torques()[0] - r0.gravity_torques()[0];
+        // Gravity's moment about +y is (x,0,0) × (0,0,−mg) = +mgx, so the
+        // holding torque is −mgx.
+        assert!((dg + 0.5 * 9.81 * 0.4).abs() < 1e-12, "{dg}");
+        let di = r1.inertia_matrix()[0] - r0.inertia_matrix()[0];
+        assert!((di - 0.5 * 0.16).abs() < 1e-12, "{di}");
     }
 
     /// The motor angles returned for a torque make the drive carry it.
