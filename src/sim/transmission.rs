@@ -148,7 +148,9 @@ impl DrivePlantParams {
     }
 
     /// Compliance torsion `δ_c = q_m/N − q_l + θ_err` (rad) and its partial
-    /// derivatives `(∂δ_c/∂q_l, ∂δ_c/∂q_m)`.
+    /// derivatives `(∂δ_c/∂q_l, ∂δ_c/∂q_m)`: eq. (3.8) read backwards — the
+    /// encoder torsion of eq. (2.13), `Δθ = q_l − q_m/N`, is the compliance
+    /// torsion `−δ_c` plus the kinematic error of eq. (3.7).
     pub fn compliance_torsion(&self, q_l: f64, q_m: f64) -> (f64, f64, f64) {
         let (e, d_l, d_w) = self.kinematic_error(q_l, q_m);
         (
@@ -159,7 +161,8 @@ impl DrivePlantParams {
     }
 
     /// Transmission torque `τ_t` (N·m, on the link) at compliance torsion
-    /// `δ_c` with slip anchors `z` (one per element).
+    /// `δ_c` with slip anchors `z` (one per element): the inverse of the
+    /// catalogue curve, eq. (2.11), plus the Maxwell-slip elements.
     pub fn torque(&self, delta_c: f64, anchors: &[f64]) -> f64 {
         let mut t = self.backbone.torque(delta_c);
         for (e, z) in self.slip_elements.iter().zip(anchors) {
