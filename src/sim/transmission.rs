@@ -17,10 +17,11 @@
 //!    the torsion that loads the elastic parts is `δ_c = δ + θ_err`.
 //! 2. **Elastic backbone**: the catalogue's piecewise-linear curve, eq. (2.11)
 //!    (library [`CataloguePiecewise`], slopes `K1, K2, K3`, knees `T1, T2`),
-//!    as torque from `δ_c`. `K3` is not in the thesis; the plant uses the
-//!    Harmonic Drive catalogue value for size 17, ratio 100,
-//!    `K3 = 1.3e4 N·m/rad` ([`SHD_17_100_K3`]); the experiments stay below
-//!    `T2 = 12 N·m`, where it plays no part.
+//!    as torque from `δ_c`. `K3` is not in the thesis; the plant assumes
+//!    `K3 = 1.3e4 N·m/rad` ([`SHD_17_100_K3`], our reading of the Harmonic
+//!    Drive catalogue for size 17, ratio 100 — not checked against a
+//!    catalogue copy here); the experiments stay below `T2 = 12 N·m`,
+//!    where it plays no part.
 //! 3. **Maxwell-slip hysteresis** in parallel with the backbone: `M`
 //!    elasto-plastic elements `τ_i = clamp(k_i (δ_c − z_i), ±F_i)`. Their
 //!    total slip torque is set by the catalogue's hysteresis loss: after
@@ -39,8 +40,8 @@ use crate::harmonic_drive::{
     kinematic_error::KinematicErrorModel, CatalogueData, CataloguePiecewise,
 };
 
-/// `K3` of the SHD-17-100 (N·m/rad), from the Harmonic Drive catalogue; the
-/// thesis gives only `K1`, `K2`, `T1`, `T2`.
+/// `K3` of the SHD-17-100 (N·m/rad) assumed by the plant (see the module
+/// docs); the thesis gives only `K1`, `K2`, `T1`, `T2`.
 pub const SHD_17_100_K3: f64 = 1.3e4;
 
 /// One Maxwell-slip element: stiffness (N·m/rad) and slip torque (N·m).
