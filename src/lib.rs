@@ -5,6 +5,8 @@ pub mod error;
 pub mod estimation;
 pub mod harmonic_drive;
 pub mod scalar;
+#[cfg(feature = "sim")]
+pub mod sim;
 
 pub use error::ParamError;
 pub use scalar::{Scalar, I16F16};
