@@ -280,6 +280,17 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     /// (`[0, L)`; larger values are reduced modulo `L` and flagged), the
     /// free-running motor counter, and the motor torque command `τ_w` in
     /// stored motor-torque units.
+    ///
+    /// **Signs** (errata E13). The counts follow eq. (2.13): the motor
+    /// angle `θ_wi` increases in the direction that, through the gear,
+    /// turns the link *backwards* (`θ_w = −N θ_f`, eq. 2.4), so a rigid
+    /// motion leaves `Δθ = θ_fo + θ_wi/N` at zero. `τ_w` is the motor torque
+    /// positive in the direction that drives the link *forward* (opposite
+    /// to increasing `θ_wi`). The estimate has the sign of the torsion: a
+    /// motor driving a locked link forward gives `Δθ < 0` and a negative
+    /// `torque`. For the chapter-4 convention `q_m = N q_l` pass the motor
+    /// counter negated; the transmitted torque `τ_t` of eq. (4.1) is then
+    /// `−torque`.
     pub fn update(
         &self,
         st: &mut TorqueEstimatorState,
