@@ -42,11 +42,13 @@ pub struct UltimateBound {
     pub tracking_rate: f64,
     /// `|e|/N`, the link-side tracking error bound, rad.
     pub link_tracking_error: f64,
-    /// `dt (K_r/ε_r + I_m λ)/I_m`: the forward-Euler factor of the `r`
-    /// dynamics inside the boundary layer at the design's sample period.
-    /// Below 2 the sampled loop can settle inside the layer; above it the
-    /// sampled robust term chatters across the layer (still bounded by its
-    /// gain), and the continuous-time bounds above do not apply as such.
+    /// `T (K_r/ε_r + I_m λ)/I_m`: the forward-Euler factor of the `r`
+    /// dynamics inside the `ε_r` boundary layer at the design's sample
+    /// period `T`. Below 2 the sampled loop can settle inside the layer;
+    /// above it the sampled robust term chatters across the layer (still
+    /// bounded by its gain), and the continuous-time bounds above do not
+    /// apply as such. The parametric layers add more gain at speed, see
+    /// [`UltimateBound::step_ratio_at_speed`].
     pub boundary_layer_step_ratio: f64,
 }
 
@@ -78,6 +80,26 @@ impl UltimateBound {
             boundary_layer_step_ratio: d.sample_period * (d.robust_gain() / d.eps_r + damping)
                 / d.rotor_inertia,
         }
+    }
+
+    /// The forward-Euler factor of the `r` dynamics inside *all* boundary
+    /// layers at motor speed `qd` (rad/s):
+    /// `T/I_m · (I_m λ + K_r/ε_r + Σ_j ρ_Fj Y_j²/ε_Fj)` — the slope of
+    /// `ρ_Fj Y_j sat(r Y_j, ε_Fj)` in `r` is `ρ_Fj Y_j²/ε_Fj` — with the
+    /// regressor bounded over the friction box: `|Y_1| = |q̇|`,
+    /// `|Y_2|, |Y_3| ≤ 1`, `|Y_4| ≤ f_s,max q̇² e^{−f_τ,min q̇²}`. The sampled
+    /// law can only settle inside the layers where this is below 2.
+    pub fn step_ratio_at_speed(d: &RobustAdaptiveDesign, qd: f64) -> f64 {
+        let rho = d.friction_bounds.variable();
+        let hi = d.friction_bounds.max();
+        let lo = d.friction_bounds.min();
+        let q2 = qd * qd;
+        let y = [qd.abs(), 1.0, 1.0, hi[2] * q2 * libm::exp(-lo[3] * q2)];
+        let mut gain = d.rotor_inertia * d.lambda + d.robust_gain() / d.eps_r;
+        for j in 0..4 {
+            gain += rho[j] * y[j] * y[j] / d.eps_f[j];
+        }
+        d.sample_period * gain / d.rotor_inertia
     }
 
     /// The Lyapunov function of eq. (4.20),
