@@ -20,7 +20,8 @@
 //! *Scope.* Eq. (4.28) dissipates only `r`; `V` also holds the integral and
 //! the parameter error, which the proof does not bound. The conclusion needs
 //! them bounded: the library clamps the integral and projects the estimates
-//! (errata E21). The bounds also assume the continuous-time law; see
+//! (errata E21), and then `|r| ≤ √(r_S² + 2W_max/I_m)` follows
+//! ([`UltimateBound::guaranteed_sliding_radius`]). The bounds also assume the continuous-time law; see
 //! [`UltimateBound::boundary_layer_step_ratio`] for the sampled loop.
 
 use super::adaptive::RobustAdaptiveDesign;
@@ -42,6 +43,15 @@ pub struct UltimateBound {
     pub tracking_rate: f64,
     /// `|e|/N`, the link-side tracking error bound, rad.
     pub link_tracking_error: f64,
+    /// `W_max`: the largest value the non-`r` part of `V` (eq. 4.20) can
+    /// take with the library's clamps, `z_max²/(2K_I) + ½ Σ_j w_j²/μ_j`
+    /// (`z = K_I ∫r`, `w_j` the width of the projection box), N·m·rad.
+    pub state_range: f64,
+    /// The bound on `|r|` that follows rigorously once `r` has entered `S`
+    /// (errata E21): `√(r_S² + 2 W_max/I_m)`, rad/s. `V` decreases while
+    /// `|r| > r_S`, so `½I_m r² + W ≤ ½I_m r_S² + W'` with `W, W' ∈
+    /// [0, W_max]`; the thesis's conclusion `|r| → S` needs `W` constant.
+    pub guaranteed_sliding_radius: f64,
     /// `T (K_r/ε_r + I_m λ)/I_m`: the forward-Euler factor of the `r`
     /// dynamics inside the `ε_r` boundary layer at the design's sample
     /// period `T`. Below 2 the sampled loop can settle inside the layer;
@@ -69,6 +79,17 @@ impl UltimateBound {
         let r_star = libm::sqrt(c / damping);
         let r_s = libm::sqrt(2.0 * c / damping);
         let e = r_s / d.lambda;
+        let (lo, hi) = (d.friction_bounds.min(), d.friction_bounds.max());
+        let mut w = if d.integral_gain > 0.0 {
+            d.integral_limit * d.integral_limit / (2.0 * d.integral_gain)
+        } else {
+            0.0
+        };
+        for j in 0..4 {
+            if d.adaptation_gain[j] > 0.0 {
+                w += 0.5 * (hi[j] - lo[j]) * (hi[j] - lo[j]) / d.adaptation_gain[j];
+            }
+        }
         UltimateBound {
             dissipation: c,
             damping,
@@ -77,6 +98,8 @@ impl UltimateBound {
             tracking_error: e,
             tracking_rate: 2.0 * r_s,
             link_tracking_error: e / d.ratio,
+            state_range: w,
+            guaranteed_sliding_radius: libm::sqrt(r_s * r_s + 2.0 * w / d.rotor_inertia),
             boundary_layer_step_ratio: d.sample_period * (d.robust_gain() / d.eps_r + damping)
                 / d.rotor_inertia,
         }
@@ -200,6 +223,12 @@ mod tests {
         // 0.004·(0.170/0.1 + 1.368e-3)/1.14e-5 = 597 ≫ 2: the layer needs
         // T < 2/(K_r/(ε_r I_m) + λ) = 13.4 µs.
         assert!((b.boundary_layer_step_ratio - 0.004 * (1.7 + 1.368e-3) / 1.14e-5).abs() < 1e-9);
+        // With the clamps: W_max = 0.1²/(2·10) + ½(1e-8 + 1.44e-4 + 1.44e-4
+        // + 9.99²)/0.1 = 5e-4 + 499.00194 = 499.00244, and
+        // √(6.53992² + 2·499.00244/1.14e-5) = 9356.51 rad/s: the Stribeck
+        // shape's wide box dominates.
+        assert!((b.state_range - 499.00244).abs() < 1e-5);
+        assert!((b.guaranteed_sliding_radius - 9356.51).abs() < 0.01);
         std::println!("Table 4.1 ultimate bound: {b:?}");
     }
 

@@ -611,3 +611,26 @@ fn table_4_1_gains_chatter_when_sampled() {
     let smooth = mean_step(1e-5, 0.5, false);
     assert!(smooth < 1e-3 * 0.170, "{smooth}");
 }
+
+proptest! {
+    /// The step from eq. (4.19) to eq. (4.22): with the robust gains and
+    /// `K_I` zero, exact friction compensation and an exact torque
+    /// estimate, eq. (4.2) under the law gives `ṙ = −λ r` (the `2λ` of `a`
+    /// in eq. 4.15 leaves exactly one `−λ r`).
+    #[test]
+    fn nominal_closed_loop_gives_r_dot_minus_lambda_r(x in sample(), f in estimate()) {
+        let mut d = RobustAdaptiveDesign::table_4_1();
+        d.torque_limit = 16.0;
+        d.uncertainty = UncertaintyBounds { boundary_layer: 0.0, nonparametric_friction: 0.0, base_acceleration: 0.0, torque_estimate: 0.0 };
+        d.friction_bounds = FrictionBounds::from_checked(d.friction_bounds.min(), d.friction_bounds.max(), [0.0; 4]);
+        let cfg = RobustAdaptiveConfig::<f64>::new(&RobustAdaptiveParams::try_new(d).unwrap());
+        let st = RobustAdaptiveState { friction: f.to_array(), integral: 0.0 };
+        let tau = cfg.law(&st, &x).law;
+        let qdd = (tau - f.nominal(x.motor_velocity, d.eps_velocity) - x.joint_torque / d.ratio) / d.rotor_inertia;
+        let ed = x.motor_velocity - x.desired_velocity;
+        let e = x.motor_position - x.desired_position;
+        let r_dot = qdd - x.desired_acceleration + d.lambda * ed;
+        let r = ed + d.lambda * e;
+        prop_assert!((r_dot + d.lambda * r).abs() <= 1e-6 * (1.0 + x.desired_acceleration.abs() + d.lambda * d.lambda * e.abs()), "{r_dot} vs {}", -d.lambda * r);
+    }
+}
