@@ -98,7 +98,7 @@ pub struct RobustAdaptiveDesign {
     pub integral_limit: f64,
     /// Motor torque limit, N·m, `(0, 16]`.
     pub torque_limit: f64,
-    /// Sampling period `T`, s.
+    /// Sampling period `T`, s, in `[1e-7, 1]`.
     pub sample_period: f64,
 }
 
@@ -207,7 +207,9 @@ impl RobustAdaptiveParams {
     /// every backend, torque and integral limits in `(0, 16]` and `[0, 16]`
     /// N·m (so that sums of two limits stay inside the `I16F16` range of
     /// mN·m, which the bumpless switching of [`super::mode`] relies on),
-    /// and the initial estimate inside the friction box.
+    /// `T ∈ [1e-7, 1]` s, the initial estimate inside the friction box, and
+    /// every prepared coefficient (e.g. `λ² I_m` in mN·m/rad) at most
+    /// `1e11` in fixed-point units (the exact range of a `Coef`).
     pub fn try_new(d: RobustAdaptiveDesign) -> Result<Self, ParamError> {
         let fx = units::FIXED;
         at_most(
@@ -242,7 +244,15 @@ impl RobustAdaptiveParams {
             non_negative("integral_limit", d.integral_limit)?,
             16.0,
         )?;
-        positive("sample_period", d.sample_period)?;
+        let t = positive("sample_period", d.sample_period)?;
+        if !(1e-7..=1.0).contains(&t) {
+            return Err(ParamError::OutOfRange {
+                name: "sample_period",
+                value: t,
+                min: 1e-7,
+                max: 1.0,
+            });
+        }
         let f = d.initial_friction;
         FrictionParams::try_new(f.viscous, f.coulomb, f.stribeck, f.stribeck_shape)?;
         if !d.friction_bounds.contains(&f) {
@@ -258,6 +268,36 @@ impl RobustAdaptiveParams {
                 min: lo[j],
                 max: hi[j],
             });
+        }
+        // Every prepared coefficient (in the largest, fixed-point, unit
+        // scales) within the range a `Coef` represents exactly (≤ 2⁴⁰).
+        let mt = fx.motor_torque;
+        let ps = parameter_scales::<crate::scalar::I16F16>();
+        let mut coefs = [
+            ("lambda", d.lambda * d.lambda * d.rotor_inertia * mt),
+            ("lambda", 2.0 * d.lambda * d.rotor_inertia * mt),
+            ("lambda", d.lambda),
+            ("integral_gain", d.integral_gain * d.sample_period * mt),
+            ("eps_r", d.robust_gain() * mt / d.eps_r),
+            ("adaptation_gain", 0.0),
+            ("variable_bound", 0.0),
+        ];
+        for j in 0..4 {
+            let ry = fx.speed * ys[j];
+            let a = d.adaptation_gain[j] * d.sample_period * ps[j] / ry;
+            let r = d.friction_bounds.variable()[j] * mt / ys[j];
+            coefs[5].1 = f64::max(coefs[5].1, a);
+            coefs[6].1 = f64::max(coefs[6].1, r);
+        }
+        for (name, v) in coefs {
+            if v > 1e11 {
+                return Err(ParamError::OutOfRange {
+                    name,
+                    value: v,
+                    min: 0.0,
+                    max: 1e11,
+                });
+            }
         }
         if d.robust_gain() > 30.0 {
             return Err(ParamError::OutOfRange {

@@ -98,7 +98,8 @@ impl ModeParams {
     /// (interaction torque, link side); `debounce ≥ 1` sample; the passive
     /// torque limit equal to the active one; a rejoin bandwidth `ω > 0`
     /// rad/s with `ω T ≤ 0.5` (`T` the active law's sample period: the
-    /// discrete rejoin filter is then stable and not oscillatory); a bias
+    /// discrete rejoin filter is then stable and not oscillatory) and
+    /// `ω ≤ 1e5` (so `ω²` is an exact coefficient); a bias
     /// time constant `T_b ≥ T` s.
     #[allow(clippy::too_many_arguments)]
     pub fn try_new(
@@ -144,12 +145,13 @@ impl ModeParams {
             });
         }
         positive("rejoin_bandwidth", rejoin_bandwidth)?;
-        if rejoin_bandwidth * t > 0.5 {
+        let max_w = f64::min(0.5 / t, 1e5);
+        if rejoin_bandwidth > max_w {
             return Err(ParamError::OutOfRange {
                 name: "rejoin_bandwidth",
                 value: rejoin_bandwidth,
                 min: 0.0,
-                max: 0.5 / t,
+                max: max_w,
             });
         }
         positive("bias_time_constant", bias_time_constant)?;
@@ -253,7 +255,10 @@ pub struct ModeOutput<S> {
     pub switched: bool,
     /// The law or the biased sum was limited.
     pub saturated: bool,
-    /// An input was NaN or infinite: torque 0, state unchanged.
+    /// An input was NaN or infinite (torque 0, state unchanged), or the
+    /// law overflowed to NaN on absurd finite float inputs (the law counts
+    /// as 0; the torque is the decaying bias; the active state is not
+    /// advanced).
     pub invalid_input: bool,
     /// `τ̂_t − τ_expected`, stored link torque.
     pub interaction: S,
@@ -371,9 +376,9 @@ impl<S: Scalar> ModeConfig<S> {
                 self.active.law(&st.active, &xr).law
             }
         };
-        if law.is_nan() {
-            return S::ZERO;
-        }
+        // A law that overflowed to NaN (floats, absurd finite inputs)
+        // counts as 0, as in `update`.
+        let law = if law.is_nan() { S::ZERO } else { law };
         self.clamp_limit(self.clamp_limit(law).add(st.bias))
     }
 
@@ -489,7 +494,8 @@ impl<S: Scalar> ModeConfig<S> {
                 (t.law, xr.desired_position)
             }
         };
-        let law = if law.is_nan() { S::ZERO } else { law };
+        let overflow = law.is_nan();
+        let law = if overflow { S::ZERO } else { law };
         let limited = self.clamp_limit(law);
         if switched {
             st.bias = before.sub(limited);
@@ -501,8 +507,8 @@ impl<S: Scalar> ModeConfig<S> {
             torque,
             mode: st.mode,
             switched,
-            saturated: limited != law || torque != sum,
-            invalid_input: false,
+            saturated: limited != law || torque != sum || overflow,
+            invalid_input: overflow,
             interaction,
             collision: st.latched,
             reference_position,

@@ -93,6 +93,21 @@ fn try_new_names_the_bad_value() {
         })
     ));
     let mut d = RobustAdaptiveDesign::table_4_1();
+    d.lambda = 1e9;
+    assert!(matches!(
+        RobustAdaptiveParams::try_new(d),
+        Err(ParamError::OutOfRange { name: "lambda", .. })
+    ));
+    let mut d = RobustAdaptiveDesign::table_4_1();
+    d.sample_period = 1e-300;
+    assert!(matches!(
+        RobustAdaptiveParams::try_new(d),
+        Err(ParamError::OutOfRange {
+            name: "sample_period",
+            ..
+        })
+    ));
+    let mut d = RobustAdaptiveDesign::table_4_1();
     d.ratio = 0.5;
     assert!(matches!(
         RobustAdaptiveParams::try_new(d),
