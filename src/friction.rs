@@ -83,6 +83,17 @@ impl FrictionParams {
     /// motor speed `qd` (rad/s),
     /// `f = (f_c + f_s e^{−f_τ q̇²}) sgn(q̇) + b q̇`, with `sgn(0) = 0`
     /// (eq. 2.17).
+    ///
+    /// ```
+    /// use mrr_control::friction::FrictionParams;
+    /// let f = FrictionParams::try_new(1e-4, 0.01, 0.005, 4.0)?;
+    /// // At 0.5 rad/s: 0.01 + 0.005·e^{−1} + 1e-4·0.5 = 0.0118894 N·m.
+    /// assert!((f.torque(0.5) - 0.0118894).abs() < 1e-7);
+    /// // Inside the boundary layer ε = 0.01 the nominal model ramps:
+    /// // (0.01 + 0.005·e^{−1e-4})·0.5 + 1e-4·0.005 = 0.00750025 N·m.
+    /// assert!((f.nominal(0.005, 0.01) - 0.00750025).abs() < 1e-8);
+    /// # Ok::<(), mrr_control::ParamError>(())
+    /// ```
     pub fn torque(&self, qd: f64) -> f64 {
         (self.coulomb + self.stribeck * libm::exp(-self.stribeck_shape * qd * qd)) * qd.sgn()
             + self.viscous * qd

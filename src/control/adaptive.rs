@@ -573,6 +573,24 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
     /// One control step: eq. (4.19) on the sample, then the integral and
     /// adaptation updates. Never panics; an invalid input gives torque 0
     /// with `invalid_input` set and leaves the state untouched.
+    ///
+    /// ```
+    /// use mrr_control::control::{ControlInput, RobustAdaptiveConfig, RobustAdaptiveParams};
+    /// let cfg = RobustAdaptiveConfig::<f32>::new(&RobustAdaptiveParams::table_4_1()?);
+    /// let mut st = cfg.initial_state();
+    /// // On the trajectory, at rest, no load: r = 0 and every term is 0.
+    /// let o = cfg.update(&mut st, &ControlInput::default());
+    /// assert_eq!(o.torque, 0.0);
+    /// // 1 mrad ahead of the reference (motor side), at rest: e = 1e-3,
+    /// // r = λe = 0.12 rad/s beyond ε_r = 0.1, Y = 0 at q̇ = 0, so
+    /// // τ = −λ²I_m e − K_r = −1.6416e-4 − 0.170 = −0.17016 N·m.
+    /// let x = ControlInput { motor_position: 1e-3, ..Default::default() };
+    /// let o = cfg.update(&mut st, &x);
+    /// assert!(!o.saturated && (o.torque + 0.17016).abs() < 1e-5);
+    /// // The integral has moved by K_I T r = 10·0.004·0.12 = 4.8e-3 N·m.
+    /// assert!((st.integral - 4.8e-3).abs() < 1e-7);
+    /// # Ok::<(), mrr_control::ParamError>(())
+    /// ```
     pub fn update(&self, st: &mut RobustAdaptiveState<S>, x: &ControlInput<S>) -> ActiveOutput<S> {
         let t = self.law(st, x);
         self.commit(st, &t);

@@ -64,6 +64,18 @@ pub struct UltimateBound {
 
 impl UltimateBound {
     /// Eq. (4.28)–(4.30) for a design.
+    ///
+    /// ```
+    /// use mrr_control::control::{RobustAdaptiveParams, UltimateBound};
+    /// let p = RobustAdaptiveParams::table_4_1()?;
+    /// let b = UltimateBound::new(p.design());
+    /// // c = 0.025·0.170 + (1e-7 + 1e-5 + 1e-5 + 0.1)/4 = 0.029255 N·m·rad/s,
+    /// // r_S = √(2c/(I_m λ)) = 6.540 rad/s, |e| ≤ r_S/λ = 0.0545 rad.
+    /// assert!((b.dissipation - 0.029255025).abs() < 1e-9);
+    /// assert!((b.sliding_radius - 6.540).abs() < 1e-3);
+    /// assert!((b.link_tracking_error - 5.45e-4).abs() < 1e-6);
+    /// # Ok::<(), mrr_control::ParamError>(())
+    /// ```
     pub fn new(d: &RobustAdaptiveDesign) -> Self {
         let u = &d.uncertainty;
         let rho = d.friction_bounds.variable();

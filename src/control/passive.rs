@@ -172,6 +172,19 @@ impl<S: Scalar> PassiveConfig<S> {
     }
 
     /// Eq. (4.32) with the configured nominal friction.
+    ///
+    /// ```
+    /// use mrr_control::control::{ControlInput, PassiveConfig, PassiveParams};
+    /// use mrr_control::I16F16;
+    /// let p = PassiveParams::table_4_1(2000.0)?;
+    /// let cfg = PassiveConfig::<I16F16>::new(&p);
+    /// // At rest with τ̂_t = 1 N·m: τ_m = 1/100 − 1.14e-5·2000·1/100
+    /// // = 0.01 − 0.000228 = 0.009772 N·m = 9.772 mN·m.
+    /// let x = ControlInput { joint_torque: I16F16::from_num(1), ..Default::default() };
+    /// let tau = cfg.update(&x).torque.to_num::<f64>();
+    /// assert!((tau - 9.772).abs() < 1e-3);
+    /// # Ok::<(), mrr_control::ParamError>(())
+    /// ```
     pub fn update(&self, x: &ControlInput<S>) -> PassiveOutput<S> {
         self.update_with_friction(x, &self.nominal)
     }
