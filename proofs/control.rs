@@ -99,18 +99,20 @@ pub fn step_bounded<S: Scalar>(
     Verdict::logical(ok)
 }
 
-/// One step of the mode manager: bounded, NaN-free output; at a switch the
-/// jump from the outgoing mode's command is within the documented bound.
+/// One step of the mode manager after a previous command `prev`: bounded,
+/// NaN-free output; at a switch the jump from `prev` is within the
+/// documented bound; otherwise the output is the current mode's command.
 pub fn switch_bumpless<S: Scalar>(
     cfg: &ModeConfig<S>,
     st: &mut ModeState<S>,
     x: &ControlInput<S>,
+    prev: S,
 ) -> Verdict {
     let before = cfg.evaluate(st, x);
     let o = cfg.update(st, x);
     let mut ok = !o.torque.is_nan() && o.torque.abs() <= cfg.torque_limit();
     if o.switched {
-        ok &= o.torque.sub(before).abs() <= cfg.switch_jump_bound();
+        ok &= o.torque.sub(prev).abs() <= cfg.switch_jump_bound();
     } else if !o.invalid_input {
         ok &= o.torque == before;
     }
@@ -358,12 +360,14 @@ mod tests {
                 let m = mode::<S>();
                 let mut ms = m.initial_state();
                 let mut ok = true;
+                let mut prev = S::ZERO;
                 for v in seq {
                     let mut w = *v;
                     w[5] /= 6.0; // interaction torques ±5 N·m cross both thresholds
                     let x = input::<S>(w);
                     ok &= step_bounded(&cfg, &mut st, &x).holds;
-                    ok &= switch_bumpless(&m, &mut ms, &x).holds;
+                    ok &= switch_bumpless(&m, &mut ms, &x, prev).holds;
+                    prev = ms.last_torque();
                 }
                 ok
             }

@@ -281,6 +281,27 @@ pub fn sat_with_reciprocal<S: Scalar>(x: S, eps: S, inv_eps: &Coef) -> S {
     }
 }
 
+/// `x · s` for a factor `s ∈ [−1, 1]` that is often exactly `±1` (a
+/// saturated `sat`): those cases skip the multiply (on a Cortex-M0+ an
+/// `I16F16` product is a 64-bit multiply); floats always multiply.
+/// Bit-identical to `x.mul(s)` on
+/// every backend (`x·1 = x` and `x·(−1) = −x` exactly, with the same
+/// saturation of `−MIN`).
+#[inline]
+pub(crate) fn mul_unit<S: Scalar>(x: S, s: S) -> S {
+    if S::RESOLUTION.to_f64() < 1e-6 {
+        // Floats: a multiply is cheaper than the branches (folded at
+        // compile time).
+        x.mul(s)
+    } else if s == S::ONE {
+        x
+    } else if s == S::ONE.neg() {
+        x.neg()
+    } else {
+        x.mul(s)
+    }
+}
+
 /// The nominal friction model of eq. (4.17) and its boundary layer,
 /// quantized for backend `S`; the parameters themselves are passed per
 /// call (they are adapted at run time).
@@ -350,9 +371,13 @@ impl<S: Scalar> FrictionConfig<S> {
         let s = sat_with_reciprocal(qd, self.eps, &self.inv_eps);
         let q2 = qd.mul(qd);
         let e = theta[3].mul(q2).neg().exp();
-        let es = e.mul(s);
-        let y4 = theta[2].mul(q2.mul(e)).mul(s).neg();
-        let torque = theta[0].mul(qd).add(theta[1].mul(s)).add(theta[2].mul(es));
+        // Outside the velocity layer s = ±1 and its products are free.
+        let es = mul_unit(e, s);
+        let y4 = mul_unit(theta[2].mul(q2.mul(e)), s).neg();
+        let torque = theta[0]
+            .mul(qd)
+            .add(mul_unit(theta[1], s))
+            .add(theta[2].mul(es));
         FrictionEval {
             torque,
             regressor: [qd, s, es, y4],

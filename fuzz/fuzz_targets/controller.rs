@@ -40,6 +40,7 @@ fn run<S: Scalar>(
     let m = ModeConfig::<S>::new(mode);
     let mut ms = m.initial_state();
     let bound = m.switch_jump_bound();
+    let mut prev = S::ZERO;
     for (k, v) in seq.iter().enumerate() {
         let x = input::<S>(v);
         let o = a.update(&mut st, &x);
@@ -58,9 +59,10 @@ fn run<S: Scalar>(
         assert!(!mo.torque.is_nan() && mo.torque.abs() <= m.torque_limit());
         if mo.switched {
             assert!(
-                mo.torque.sub(before).abs() <= bound,
-                "{:?} → {:?}",
-                before,
+                mo.torque.sub(prev).abs() <= bound,
+                "{} {:?} → {:?}",
+                S::NAME,
+                prev,
                 mo.torque
             );
         } else if !mo.invalid_input {
@@ -74,6 +76,7 @@ fn run<S: Scalar>(
                 x
             );
         }
+        prev = mo.torque;
     }
 }
 

@@ -43,8 +43,8 @@
 use super::{keep_number, ControlInput};
 use crate::error::{finite, positive, ParamError};
 use crate::friction::{
-    parameter_scales, regressor_scales, sat_with_reciprocal, FrictionBounds, FrictionConfig,
-    FrictionParams,
+    mul_unit, parameter_scales, regressor_scales, sat_with_reciprocal, FrictionBounds,
+    FrictionConfig, FrictionParams,
 };
 use crate::scalar::{units, Coef, Scalar};
 
@@ -339,6 +339,9 @@ pub struct RobustAdaptiveConfig<S> {
     integral_step: Coef,
     /// `K_r` in stored motor torque.
     robust_gain: Coef,
+    /// `±1 · K_r` as the coefficient rounds them (the saturated robust
+    /// term).
+    robust_gain_value: [S; 2],
     eps_r: S,
     inv_eps_r: Coef,
     /// `ρ_Fj` from stored `Y_j` to stored motor torque.
@@ -434,6 +437,10 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
             feedback: Coef::new(mt / (d.ratio * u.link_torque)),
             integral_step: Coef::new(d.integral_gain * d.sample_period * mt / u.speed),
             robust_gain: Coef::new(d.robust_gain() * mt),
+            robust_gain_value: [
+                S::ONE.mul_coef(&Coef::new(d.robust_gain() * mt)),
+                S::ONE.neg().mul_coef(&Coef::new(d.robust_gain() * mt)),
+            ],
             eps_r,
             inv_eps_r: Coef::new(1.0 / eps_r.to_f64()),
             rho_param,
@@ -512,15 +519,25 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
             .sub(ed.mul_coef(&self.edot_gain))
             .sub(e.mul_coef(&self.e_gain));
         let fr = self.friction.evaluate(&st.friction, x.motor_velocity);
-        let robust =
-            sat_with_reciprocal(r, self.eps_r, &self.inv_eps_r).mul_coef(&self.robust_gain);
+        // Saturated sat values (±1, the common case away from the layers)
+        // skip their multiplies; the results are bit-identical.
+        let sr = sat_with_reciprocal(r, self.eps_r, &self.inv_eps_r);
+        let fixed = S::RESOLUTION.to_f64() >= 1e-6;
+        let robust = if fixed && sr == S::ONE {
+            self.robust_gain_value[0]
+        } else if fixed && sr == S::ONE.neg() {
+            self.robust_gain_value[1]
+        } else {
+            sr.mul_coef(&self.robust_gain)
+        };
         let mut param_robust = S::ZERO;
         let mut ry = [S::ZERO; 4];
         for (j, ryj) in ry.iter_mut().enumerate() {
             let y = fr.regressor[j];
-            *ryj = r.mul(y);
+            // Y_2 = sat(q̇, ε_q̇) is usually ±1.
+            *ryj = if j == 1 { mul_unit(r, y) } else { r.mul(y) };
             let s = sat_with_reciprocal(*ryj, self.eps_f[j], &self.inv_eps_f[j]);
-            param_robust = param_robust.add(y.mul_coef(&self.rho_param[j]).mul(s));
+            param_robust = param_robust.add(mul_unit(y.mul_coef(&self.rho_param[j]), s));
         }
         let law = ia
             .add(x.joint_torque.mul_coef(&self.feedback))

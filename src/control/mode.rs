@@ -23,9 +23,8 @@
 //! Active (debounced) and Passive follows the torque rules.
 //!
 //! # Bumpless transfer, and the bound on the torque jump
-//! At a switching sample both laws are evaluated on the same sample:
-//! `τ_before` is what the outgoing mode commands (its law, limited to
-//! `±L`, plus its bias, limited again). The incoming mode is seeded:
+//! `τ_before` is the previous command (what the motor is being driven
+//! with). At a switching sample the incoming mode is seeded:
 //! * entering Active: the rejoin offset is set to `o = q_m − q_m^d`,
 //!   `ȯ = q̇_m − q̇_m^d`, so the reference starts at the measured position
 //!   and speed (`e = ė = 0`, so `r = 0`); afterwards `o` decays to 0 as a
@@ -33,8 +32,9 @@
 //!   rejoins the desired trajectory smoothly;
 //! * entering Hold: the reference is the measured position, at rest;
 //! * entering Active or Hold: the integral is re-seeded to
-//!   `z = clamp(R₀ − τ_before, ±z_max)` (`R₀` the law with `z = 0`), so
-//!   that the law itself starts near `τ_before`;
+//!   `z = clamp(R₀ − τ_before, ±z_max)` (`R₀` the law with `z = 0`; the law
+//!   is affine in `z` with slope −1, so it becomes `R = R₀ − z`), so that
+//!   the law itself starts near `τ_before`;
 //! * in every case a bias `b = τ_before − clamp(R, ±L)` (`R` the incoming
 //!   law) is added to the limited law, and decays by `e^{−T/T_b}`-like
 //!   factor `1 − T/T_b` per sample.
@@ -218,6 +218,7 @@ pub struct ModeState<S> {
     run: u16,
     collision: CollisionState,
     latched: bool,
+    last_torque: S,
 }
 
 impl<S: Scalar> ModeState<S> {
@@ -236,6 +237,11 @@ impl<S: Scalar> ModeState<S> {
     /// `true` while a collision reaction is latched.
     pub fn collision_latched(&self) -> bool {
         self.latched
+    }
+    /// The last motor torque command (the `τ_before` of a switch), stored
+    /// motor torque.
+    pub fn last_torque(&self) -> S {
+        self.last_torque
     }
     /// The rejoin offset `(o, ȯ)` of the Active reference, stored angle and
     /// speed units.
@@ -307,6 +313,7 @@ impl<S: Scalar> ModeConfig<S> {
             run: 0,
             collision: CollisionState::default(),
             latched: false,
+            last_torque: S::ZERO,
         }
     }
 
@@ -367,7 +374,7 @@ impl<S: Scalar> ModeConfig<S> {
     }
 
     /// What the current mode commands on this sample, without advancing
-    /// anything (the `τ_before` of a switch).
+    /// anything (equal to `update`'s torque when no switch happens).
     pub fn evaluate(&self, st: &ModeState<S>, x: &ControlInput<S>) -> S {
         let law = match st.mode {
             JointMode::Passive => self.passive.law(x, &st.active.friction),
@@ -410,28 +417,22 @@ impl<S: Scalar> ModeConfig<S> {
         }
     }
 
-    /// Seed the incoming mode's states (reference and integral) so that
-    /// its law starts near `before`; the bias that makes the first output
-    /// equal `before` is set once the law is evaluated.
-    fn seed(&self, st: &mut ModeState<S>, to: JointMode, x: &ControlInput<S>, before: S) {
+    /// Enter mode `to`: reset the counters and seed the reference
+    /// (Active: the rejoin offset; Hold: the hold point) and the integral
+    /// (to 0, re-seeded in `update` once the law is known).
+    fn seed(&self, st: &mut ModeState<S>, to: JointMode, x: &ControlInput<S>) {
         st.mode = to;
         st.in_mode = 0;
         st.run = 0;
-        if to == JointMode::Passive {
-            return;
-        }
-        if to == JointMode::Active {
-            st.offset = x.motor_position.sub(x.desired_position);
-            st.offset_rate = x.motor_velocity.sub(x.desired_velocity);
-        } else {
-            st.hold = x.motor_position;
+        match to {
+            JointMode::Passive => return,
+            JointMode::Active => {
+                st.offset = x.motor_position.sub(x.desired_position);
+                st.offset_rate = x.motor_velocity.sub(x.desired_velocity);
+            }
+            JointMode::Hold => st.hold = x.motor_position,
         }
         st.active.integral = S::ZERO;
-        let (xr, _) = self.reference(st, x);
-        let r0 = self.active.law(&st.active, &xr).law;
-        let zl = self.active.integral_limit();
-        let z = r0.sub(before).clamp(zl.neg(), zl);
-        st.active.integral = if z.is_nan() { S::ZERO } else { z };
     }
 
     /// One sample: collision detection, mode decision (with seeding at a
@@ -439,6 +440,7 @@ impl<S: Scalar> ModeConfig<S> {
     pub fn update(&self, st: &mut ModeState<S>, x: &ControlInput<S>) -> ModeOutput<S> {
         let interaction = x.joint_torque.sub(x.expected_joint_torque);
         if !x.is_finite() {
+            st.last_torque = S::ZERO;
             return ModeOutput {
                 torque: S::ZERO,
                 mode: st.mode,
@@ -467,23 +469,31 @@ impl<S: Scalar> ModeConfig<S> {
         }
         st.in_mode = st.in_mode.saturating_add(1);
         let mut switched = false;
-        let mut before = S::ZERO;
         if target != st.mode {
             st.run = st.run.saturating_add(1);
             if immediate || (st.run >= self.debounce && st.in_mode > self.dwell) {
-                before = self.evaluate(st, x);
-                self.seed(st, target, x, before);
+                self.seed(st, target, x);
                 switched = true;
             }
         } else {
             st.run = 0;
         }
+        // τ_before: the previous command.
+        let before = st.last_torque;
         // The current mode's law, then its state updates.
         let (law, reference_position) = match st.mode {
             JointMode::Passive => (self.passive.law(x, &st.active.friction), x.motor_position),
             mode => {
                 let (xr, acc) = self.reference(st, x);
-                let t: ActiveTerms<S> = self.active.law(&st.active, &xr);
+                let mut t: ActiveTerms<S> = self.active.law(&st.active, &xr);
+                if switched && t.valid {
+                    // Re-seed the integral so the law starts near τ_before
+                    // (the law is affine in z with slope −1).
+                    let zl = self.active.integral_limit();
+                    let z = t.law.sub(before).clamp(zl.neg(), zl);
+                    st.active.integral = z;
+                    t.law = t.law.sub(z);
+                }
                 self.active.commit(&mut st.active, &t);
                 if mode == JointMode::Active {
                     // Semi-implicit Euler of ö = −2ω ȯ − ω² o.
@@ -503,6 +513,7 @@ impl<S: Scalar> ModeConfig<S> {
         let sum = limited.add(st.bias);
         let torque = self.clamp_limit(sum);
         st.bias = st.bias.mul_coef(&self.bias_decay);
+        st.last_torque = torque;
         ModeOutput {
             torque,
             mode: st.mode,

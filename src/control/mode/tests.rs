@@ -45,9 +45,9 @@ prop_compose! {
 }
 
 /// Runs a sequence through the manager; at every switching sample checks
-/// `|τ_after − τ_before| ≤ switch_jump_bound` with `τ_before` the outgoing
-/// mode's command on the same sample (evaluated on a copy of the state
-/// before the update), that the reference starts at the measured position
+/// `|τ_after − τ_before| ≤ switch_jump_bound` with `τ_before` the previous
+/// command (tracked here, 0 initially), that the reference starts at the
+/// measured position
 /// when entering Active or Hold, and everywhere that the output is
 /// bounded and NaN-free and equals the current mode's command when no
 /// switch happens.
@@ -59,6 +59,7 @@ fn check_sequence<S: Scalar>(
     let mut st = cfg.initial_state();
     let bound = cfg.switch_jump_bound();
     let mut switches = 0;
+    let mut prev = S::ZERO;
     for (k, x) in xs.iter().enumerate() {
         if k == ack_at {
             cfg.acknowledge_collision(&mut st);
@@ -69,14 +70,14 @@ fn check_sequence<S: Scalar>(
         prop_assert!(!o.torque.is_nan() && o.torque.abs() <= cfg.torque_limit());
         if o.switched {
             switches += 1;
-            let jump = o.torque.sub(before).abs();
+            let jump = o.torque.sub(prev).abs();
             prop_assert!(
                 jump <= bound,
                 "{:?}: jump {:?} > {:?} ({:?} → {:?})",
                 o.mode,
                 jump,
                 bound,
-                before,
+                prev,
                 o.torque
             );
             if o.mode != JointMode::Passive {
@@ -89,6 +90,7 @@ fn check_sequence<S: Scalar>(
         } else {
             prop_assert_eq!(o.torque, before);
         }
+        prev = o.torque;
     }
     Ok(switches)
 }
