@@ -649,3 +649,33 @@ proptest! {
         prop_assert!((r_dot + d.lambda * r).abs() <= 1e-6 * (1.0 + x.desired_acceleration.abs() + d.lambda * d.lambda * e.abs()), "{r_dot} vs {}", -d.lambda * r);
     }
 }
+
+/// The fixed-point resolution note on `RobustAdaptiveState`: at
+/// `|r| = 1 rad/s`, `q̇ = 0.7 rad/s` (near the peak of `|Y_4|`) the f64 law
+/// moves `f̂_τ` every step while I16F16 leaves it exactly at its initial
+/// value; `f̂_c` moves on both.
+#[test]
+fn stribeck_shape_adaptation_is_below_fixed_point_resolution() {
+    let p = table();
+    let x64 = ControlInput {
+        motor_velocity: 0.7,
+        desired_velocity: -0.3,
+        ..Default::default()
+    };
+    let c64 = RobustAdaptiveConfig::<f64>::new(&p);
+    let mut s64 = c64.initial_state();
+    let cx = RobustAdaptiveConfig::<I16F16>::new(&p);
+    let mut sx = cx.initial_state();
+    let xx = ControlInput {
+        motor_velocity: I16F16::from_f64(0.7),
+        desired_velocity: I16F16::from_f64(-0.3),
+        ..Default::default()
+    };
+    for _ in 0..100 {
+        c64.update(&mut s64, &x64);
+        cx.update(&mut sx, &xx);
+    }
+    assert!((s64.friction[3] - 1.0).abs() > 1e-6);
+    assert_eq!(sx.friction[3], cx.initial_state().friction[3]);
+    assert!(sx.friction[1] != cx.initial_state().friction[1]);
+}
