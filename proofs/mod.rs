@@ -18,6 +18,7 @@
 #![allow(dead_code)]
 
 pub mod compliance;
+pub mod control;
 pub mod engine;
 pub mod estimator_sizes;
 pub mod kernels_f32;

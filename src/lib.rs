@@ -1,8 +1,10 @@
 #![doc = include_str!("../README.md")]
 #![cfg_attr(not(any(feature = "std", test, kani)), no_std)]
 
+pub mod control;
 pub mod error;
 pub mod estimation;
+pub mod friction;
 pub mod harmonic_drive;
 pub mod scalar;
 #[cfg(feature = "sim")]

@@ -1,0 +1,379 @@
+//! Properties of the ch. 4 control components (friction model eq. 4.17,
+//! robust adaptive law eq. 4.19 with projection, mode manager), for the
+//! Table 4.1 example configuration.
+//!
+//! | property | I16F16 | f32 | f64 |
+//! |---|---|---|---|
+//! | `sat_reciprocal` — the division-free `sat(x, ε)` of the hot path is in `[−1, 1]`, within 1 LSB/ulp of eq. (4.18), odd | Kani; exhaustive (all 2³² `x`, ε = ε_r) | Kani; random | random |
+//! | `friction_sign_and_bound` — `f̂^c(q̇)` never opposes `q̇` and `|f̂^c| ≤ b̂|q̇| + f̂_c + f̂_s` (+ rounding) | Kani; exhaustive (all 2²⁴ speeds in ±128 rad/s) | random | random |
+//! | `law_monotone_in_position` — eq. (4.19) is non-increasing in the measured motor position (every term is: `−λ²I_m e`, `−K_r sat(r)`, `−ρ_j Y_j sat(r Y_j)`) | exhaustive (2²⁴ consecutive positions, chained) | random | random |
+//! | `step_bounded` — output within the limit, never NaN; integral within its limit; estimates within the projection box | Kani; random | Kani; random | random |
+//! | `switch_bumpless` — at a mode switch, `|τ_after − τ_before| ≤` [`ModeConfig::switch_jump_bound`](crate::control::ModeConfig::switch_jump_bound) | random (proptest in `control::mode`), fuzz | same | same |
+
+use super::engine::Verdict;
+use crate::control::{
+    ControlInput, ModeConfig, ModeState, RobustAdaptiveConfig, RobustAdaptiveParams,
+    RobustAdaptiveState,
+};
+use crate::friction::{sat_with_reciprocal, FrictionConfig};
+use crate::scalar::{Coef, Scalar};
+
+/// The Table 4.1 active law for backend `S`.
+pub fn table_4_1<S: Scalar>() -> RobustAdaptiveConfig<S> {
+    // The shipped constants validate (`control::adaptive` tests).
+    RobustAdaptiveConfig::new(
+        &RobustAdaptiveParams::table_4_1().expect("Table 4.1 constants are valid"),
+    )
+}
+
+/// `sat_with_reciprocal(x, ε, 1/ε)` lies in `[−1, 1]`, is not NaN, is odd
+/// (for `x ≠ MIN`), and is within one resolution unit (plus the
+/// coefficient's relative `2⁻³⁰`) of eq. (4.18) evaluated exactly.
+pub fn sat_reciprocal<S: Scalar>(x: S, eps: S, inv_eps: &Coef) -> Verdict {
+    let s = sat_with_reciprocal(x, eps, inv_eps);
+    let in_range = !s.is_nan() && s >= S::ONE.neg() && s <= S::ONE;
+    let odd = x == S::MIN || x.is_nan() || sat_with_reciprocal(x.neg(), eps, inv_eps) == s.neg();
+    let (xf, ef) = (x.to_f64(), eps.to_f64());
+    let exact = if x.is_nan() {
+        0.0
+    } else if xf.abs() > ef {
+        xf.signum()
+    } else {
+        xf / ef
+    };
+    let res = S::RESOLUTION.to_f64();
+    let err = (s.to_f64() - exact).abs() / res;
+    Verdict::logical(in_range && odd).and(Verdict::bounded(err, 1.0 + 2f64.powi(-29) / res))
+}
+
+/// The nominal friction of eq. (4.17) with non-negative estimates never
+/// opposes the speed (`f̂ · q̇ ≥ 0`, exactly, since every product keeps its
+/// sign under rounding) and is bounded by `b̂|q̇| + f̂_c + f̂_s` plus four
+/// roundings; never NaN.
+pub fn friction_sign_and_bound<S: Scalar>(
+    cfg: &FrictionConfig<S>,
+    theta: &[S; 4],
+    qd: S,
+) -> Verdict {
+    let f = cfg.evaluate(theta, qd).torque;
+    if qd.is_nan() {
+        // Precondition: a speed (the laws reject NaN samples before this).
+        return Verdict::logical(true);
+    }
+    let sign_ok = if qd > S::ZERO {
+        f >= S::ZERO
+    } else if qd < S::ZERO {
+        f <= S::ZERO
+    } else {
+        f == S::ZERO
+    };
+    let bound = theta[0].to_f64() * qd.to_f64().abs()
+        + theta[1].to_f64()
+        + theta[2].to_f64()
+        + 4.0 * S::RESOLUTION.to_f64() * (1.0 + theta[0].to_f64() * qd.to_f64().abs());
+    Verdict::logical(!f.is_nan() && sign_ok && f.to_f64().abs() <= bound)
+}
+
+/// Eq. (4.19) does not increase when the measured motor position
+/// increases, all else fixed: `law(x with q_m) ≥ law(x with q_m')` for
+/// `q_m < q_m'`.
+pub fn law_monotone_in_position<S: Scalar>(law_lo: S, law_hi: S) -> Verdict {
+    Verdict::logical(!law_lo.is_nan() && !law_hi.is_nan() && law_lo >= law_hi)
+}
+
+/// One step of the active law: output in `[−L, L]` and not NaN, integral
+/// in `[−z_max, z_max]`, estimates in the projection box.
+pub fn step_bounded<S: Scalar>(
+    cfg: &RobustAdaptiveConfig<S>,
+    st: &mut RobustAdaptiveState<S>,
+    x: &ControlInput<S>,
+) -> Verdict {
+    let o = cfg.update(st, x);
+    let lim = cfg.torque_limit();
+    let mut ok = !o.torque.is_nan() && o.torque.abs() <= lim;
+    ok &= st.integral.abs() <= cfg.integral_limit();
+    let (lo, hi) = (cfg.lower_bounds(), cfg.upper_bounds());
+    for j in 0..4 {
+        ok &= st.friction[j] >= lo[j] && st.friction[j] <= hi[j];
+    }
+    Verdict::logical(ok)
+}
+
+/// One step of the mode manager after a previous command `prev`: bounded,
+/// NaN-free output; at a switch the jump from `prev` is within the
+/// documented bound; otherwise the output is the current mode's command.
+pub fn switch_bumpless<S: Scalar>(
+    cfg: &ModeConfig<S>,
+    st: &mut ModeState<S>,
+    x: &ControlInput<S>,
+    prev: S,
+) -> Verdict {
+    let before = cfg.evaluate(st, x);
+    let o = cfg.update(st, x);
+    let mut ok = !o.torque.is_nan() && o.torque.abs() <= cfg.torque_limit();
+    if o.switched {
+        ok &= o.torque.sub(prev).abs() <= cfg.switch_jump_bound();
+    } else if !o.invalid_input {
+        ok &= o.torque == before;
+    }
+    Verdict::logical(ok)
+}
+
+#[cfg(kani)]
+mod kani_entries {
+    use super::*;
+    use crate::scalar::I16F16;
+
+    fn any_i16f16() -> I16F16 {
+        I16F16::from_bits(kani::any())
+    }
+
+    #[kani::proof]
+    fn kani_sat_reciprocal_i16f16() {
+        // ε_r = 0.1 rad/s of Table 4.1, as the law quantizes it.
+        let eps = I16F16::from_f64(0.1);
+        let inv = Coef::new(1.0 / eps.to_f64());
+        assert!(sat_reciprocal(any_i16f16(), eps, &inv).holds);
+    }
+
+    #[kani::proof]
+    fn kani_sat_reciprocal_f32() {
+        let eps = 0.1f32;
+        let inv = Coef::new(1.0 / eps as f64);
+        assert!(sat_reciprocal::<f32>(kani::any(), eps, &inv).holds);
+    }
+
+    #[kani::proof]
+    fn kani_friction_sign_i16f16() {
+        let cfg = FrictionConfig::<I16F16>::new(0.01);
+        let theta = table_4_1::<I16F16>().initial_state().friction;
+        assert!(friction_sign_and_bound(&cfg, &theta, any_i16f16()).holds);
+    }
+
+    #[kani::proof]
+    fn kani_step_bounded_i16f16() {
+        let cfg = table_4_1::<I16F16>();
+        let mut st = cfg.initial_state();
+        // Any state inside the box and the integral limit (precondition:
+        // the states the law itself produces).
+        for j in 0..4 {
+            let v = any_i16f16();
+            kani::assume(v >= cfg.lower_bounds()[j] && v <= cfg.upper_bounds()[j]);
+            st.friction[j] = v;
+        }
+        let z = any_i16f16();
+        kani::assume(z.abs() <= cfg.integral_limit());
+        st.integral = z;
+        let x = ControlInput {
+            desired_position: any_i16f16(),
+            desired_velocity: any_i16f16(),
+            desired_acceleration: any_i16f16(),
+            motor_position: any_i16f16(),
+            motor_velocity: any_i16f16(),
+            joint_torque: any_i16f16(),
+            desired_joint_torque: I16F16::ZERO,
+            expected_joint_torque: I16F16::ZERO,
+        };
+        assert!(step_bounded(&cfg, &mut st, &x).holds);
+    }
+
+    #[kani::proof]
+    fn kani_step_bounded_f32() {
+        let cfg = table_4_1::<f32>();
+        let mut st = cfg.initial_state();
+        let x = ControlInput {
+            desired_position: kani::any(),
+            desired_velocity: kani::any(),
+            desired_acceleration: kani::any(),
+            motor_position: kani::any(),
+            motor_velocity: kani::any(),
+            joint_torque: kani::any(),
+            desired_joint_torque: 0.0,
+            expected_joint_torque: 0.0,
+        };
+        assert!(step_bounded(&cfg, &mut st, &x).holds);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::super::engine::{exhaustive_u32, exhaustive_u32_chained};
+    use super::*;
+    use crate::control::{ModeParams, PassiveParams};
+    use crate::estimation::{CollisionParams, CollisionReaction};
+    use crate::scalar::I16F16;
+    use proptest::prelude::*;
+    use std::println;
+
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_sat_reciprocal_i16f16() {
+        let eps = I16F16::from_f64(0.1);
+        let inv = Coef::new(1.0 / eps.to_f64());
+        let r = exhaustive_u32(0, u32::MAX, |c| {
+            sat_reciprocal(I16F16::from_bits(c as i32), eps, &inv)
+        });
+        println!(
+            "PROOF kernel=sat_with_reciprocal(eps_r) backend=I16F16 domain=all bound=1 LSB, odd, in [-1,1] max_err={:.3} LSB at={} checked={} engine=exhaustive",
+            r.max_error, r.argmax as i32, r.checked
+        );
+        assert_eq!(
+            r.failures,
+            0,
+            "first failure at bits {:?}",
+            r.first_failure.map(|c| c as i32)
+        );
+    }
+
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_friction_i16f16() {
+        let cfg = FrictionConfig::<I16F16>::new(0.01);
+        let act = table_4_1::<I16F16>();
+        // The initial estimate and the box's upper corner (largest terms).
+        for theta in [act.initial_state().friction, act.upper_bounds()] {
+            // Speeds in ±128 rad/s: bits −2²³ … 2²³ − 1.
+            let r = exhaustive_u32(0, (1 << 24) - 1, |c| {
+                let qd = I16F16::from_bits(c as i32 - (1 << 23));
+                friction_sign_and_bound(&cfg, &theta, qd)
+            });
+            println!(
+                "PROOF kernel=friction-nominal(eq. 4.17) backend=I16F16 domain=|qd|<128 rad/s bound=sign and magnitude checked={} engine=exhaustive",
+                r.checked
+            );
+            assert_eq!(r.failures, 0, "first failure at code {:?}", r.first_failure);
+        }
+    }
+
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_law_monotone_in_position_i16f16() {
+        let cfg = table_4_1::<I16F16>();
+        let st = cfg.initial_state();
+        for (qd, tau) in [(0.0, 0.0), (3.0, 2.0), (-40.0, -10.0)] {
+            let base = ControlInput {
+                desired_position: I16F16::from_f64(1.0),
+                desired_velocity: I16F16::from_f64(qd),
+                motor_velocity: I16F16::from_f64(qd + 0.01),
+                joint_torque: I16F16::from_f64(tau),
+                ..Default::default()
+            };
+            // 2²⁴ consecutive motor positions centred on the reference
+            // (±128 rad): every LSB step of the position.
+            let x_at = |c: u32| ControlInput {
+                motor_position: I16F16::from_bits(
+                    c as i32 - (1 << 23) + base.desired_position.to_bits(),
+                ),
+                ..base
+            };
+            let r = exhaustive_u32_chained(
+                0,
+                (1 << 24) - 1,
+                |c| cfg.law(&st, &x_at(c)).law,
+                |_, cur, prev| match prev {
+                    Some(p) => law_monotone_in_position(*p, *cur),
+                    None => Verdict::logical(true),
+                },
+            );
+            println!(
+                "PROOF kernel=robust-adaptive-law(eq. 4.19) backend=I16F16 domain=2^24 motor positions (qd={qd}) bound=non-increasing checked={} engine=exhaustive",
+                r.checked
+            );
+            assert_eq!(r.failures, 0, "first failure at code {:?}", r.first_failure);
+        }
+    }
+
+    fn input<S: Scalar>(v: [f64; 6]) -> ControlInput<S> {
+        let u = S::UNITS;
+        ControlInput {
+            desired_position: S::from_f64(v[0] * u.angle),
+            desired_velocity: S::from_f64(v[1] * u.speed),
+            desired_acceleration: S::from_f64(v[2] * u.speed),
+            motor_position: S::from_f64(v[3] * u.angle),
+            motor_velocity: S::from_f64(v[4] * u.speed),
+            joint_torque: S::from_f64(v[5] * u.link_torque),
+            ..Default::default()
+        }
+    }
+
+    fn mode<S: Scalar>() -> ModeConfig<S> {
+        let p = ModeParams::try_new(
+            RobustAdaptiveParams::table_4_1().unwrap(),
+            PassiveParams::table_4_1(2000.0).unwrap(),
+            2.0,
+            1.0,
+            1,
+            0,
+            10.0,
+            0.1,
+            Some(CollisionParams::try_new(4.0, 3.0, 2, 1, CollisionReaction::Passive).unwrap()),
+        )
+        .unwrap();
+        ModeConfig::new(&p)
+    }
+
+    proptest! {
+        #[test]
+        fn sat_reciprocal_random(x in -1.0f64..1.0, eps in 1e-4f64..0.5) {
+            let inv = Coef::new(1.0 / eps);
+            prop_assert!(sat_reciprocal(x, eps, &inv).holds);
+            let (xf, ef) = (x as f32, eps as f32);
+            prop_assert!(sat_reciprocal(xf, ef, &Coef::new(1.0 / ef as f64)).holds);
+            let (xi, ei) = (I16F16::from_f64(x), I16F16::from_f64(eps.max(1e-4)));
+            prop_assert!(sat_reciprocal(xi, ei, &Coef::new(1.0 / ei.to_f64())).holds);
+        }
+
+        #[test]
+        fn friction_sign_random(qd in -500.0f64..500.0) {
+            let a = table_4_1::<f64>();
+            let c = FrictionConfig::<f64>::new(0.01);
+            prop_assert!(friction_sign_and_bound(&c, &a.upper_bounds(), qd).holds);
+            let a = table_4_1::<f32>();
+            let c = FrictionConfig::<f32>::new(0.01);
+            prop_assert!(friction_sign_and_bound(&c, &a.upper_bounds(), qd as f32).holds);
+            let a = table_4_1::<I16F16>();
+            let c = FrictionConfig::<I16F16>::new(0.01);
+            prop_assert!(friction_sign_and_bound(&c, &a.upper_bounds(), I16F16::from_f64(qd)).holds);
+        }
+
+        #[test]
+        fn law_monotone_random(v in proptest::array::uniform6(-50.0f64..50.0), dq in 1e-4f64..1.0) {
+            fn check<S: Scalar>(v: [f64; 6], dq: f64) -> bool {
+                let cfg = table_4_1::<S>();
+                let st = cfg.initial_state();
+                let lo = input::<S>(v);
+                let mut w = v;
+                w[3] += dq;
+                let hi = input::<S>(w);
+                law_monotone_in_position(cfg.law(&st, &lo).law, cfg.law(&st, &hi).law).holds
+            }
+            prop_assert!(check::<f64>(v, dq));
+            prop_assert!(check::<I16F16>(v, dq));
+        }
+
+        #[test]
+        fn step_and_switch_random(seq in proptest::collection::vec(proptest::array::uniform6(-30.0f64..30.0), 1..60)) {
+            fn run<S: Scalar>(seq: &[[f64; 6]]) -> bool {
+                let cfg = table_4_1::<S>();
+                let mut st = cfg.initial_state();
+                let m = mode::<S>();
+                let mut ms = m.initial_state();
+                let mut ok = true;
+                let mut prev = S::ZERO;
+                for v in seq {
+                    let mut w = *v;
+                    w[5] /= 6.0; // interaction torques ±5 N·m cross both thresholds
+                    let x = input::<S>(w);
+                    ok &= step_bounded(&cfg, &mut st, &x).holds;
+                    ok &= switch_bumpless(&m, &mut ms, &x, prev).holds;
+                    prev = ms.last_torque();
+                }
+                ok
+            }
+            prop_assert!(run::<f64>(&seq));
+            prop_assert!(run::<f32>(&seq));
+            prop_assert!(run::<I16F16>(&seq));
+        }
+    }
+}

@@ -1,0 +1,652 @@
+//! The robust adaptive law of thesis §4.2 (active mode), eq. (4.15)–(4.19),
+//! with the adaptation law of Theorem 1.
+//!
+//! Per sample, with `e = q_m − q_m^d`, `r = ė + λe` and
+//! `a = q̈_m^d − 2λė − λ²e` (eq. 4.15):
+//!
+//! $$ \tau_m = I_m a + \frac{\hat\tau_t}{N} + \hat f^c(\dot q_m) - z
+//!    - K_r\,\mathrm{sat}(r,\epsilon_r)
+//!    - \sum_{j=1}^{4} \rho_{Fj} Y_j\,\mathrm{sat}(r Y_j, \epsilon_{Fj}) $$
+//!
+//! (eq. 4.19), where `K_r = ρ_f + ρ_fq + I_m ρ_base + ρ_τ/N`, `f̂^c` and `Y`
+//! are the nominal friction and regressor of eq. (4.17)
+//! ([`crate::friction`]), and `z = K_I ∫ r dt` is the integral term. Then
+//! the states advance by one sample `T` (forward Euler):
+//!
+//! * integral: `z ← clamp(z + K_I T r, ±z_max)`, skipped while the output
+//!   is saturated and `r` would push it further (conditional integration);
+//! * adaptation (Theorem 1, with the hat restored — errata E20):
+//!   `F̂^c ← Proj(F̂^c − Γ T Yᵀ r)` with `Γ = diag(μ_j)` and `Proj` the
+//!   projection onto the box of [`FrictionBounds`]. For a box, projecting
+//!   is clamping each component; when the true `F^c` is in the box it never
+//!   increases `F̃ᵀΓ⁻¹F̃`, so the Lyapunov argument of eq. (4.20)–(4.28)
+//!   holds unchanged, and the estimates stay bounded (the pure gradient law
+//!   drifts under the bounded disturbances of Assumptions 3–6).
+//!
+//! The output is saturated at `±torque_limit` and flagged.
+//!
+//! # Derivation check (eq. 4.20–4.23)
+//! Substituting eq. (4.19) into eq. (4.6) written as
+//! `I_m q̈_m + f_m + τ_base + τ_t/N = τ_m` gives
+//! `I_m ṙ = −I_m λ r − z − (f_m − f̂^c) − τ_base − τ̃_t/N − (robust terms)`
+//! (the `2λ` of `a` leaves exactly `−λ r`). With eq. (4.16),
+//! `f_m − f̂^c = Y(F̃^c + F^v) + f_q + f̌`, so `V̇` of eq. (4.21) contains
+//! `−r Y F̃^c + (d F̃^c/dt)ᵀ Γ⁻¹ F̃^c`, which vanishes iff
+//! `d F̂^c/dt = −Γ Yᵀ r` (`F^c` constant). This is the printed law with the
+//! hat on `F^c`; the sign is as printed. Checked numerically by
+//! `adaptation_cancels_the_parametric_term`.
+//!
+//! # Cost
+//! No division and one `exp` per step; every rate and unit factor is a
+//! prepared [`Coef`].
+
+use super::{keep_number, ControlInput};
+use crate::error::{finite, positive, ParamError};
+use crate::friction::{
+    mul_unit, parameter_scales, regressor_scales, sat_with_reciprocal, FrictionBounds,
+    FrictionConfig, FrictionParams,
+};
+use crate::scalar::{units, Coef, Scalar};
+
+/// The uncertainty bounds of Assumptions 3–6, eq. (4.11)–(4.14).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct UncertaintyBounds {
+    /// `ρ_f`, bound of the boundary-layer residual `f̌` (Assumption 6), N·m
+    /// (see [`FrictionBounds::boundary_layer_bound`] for a derived value).
+    pub boundary_layer: f64,
+    /// `ρ_fq`, bound of the nonparametric friction `f_q` (eq. 4.11), N·m.
+    pub nonparametric_friction: f64,
+    /// `ρ_base`, bound of the base-motion acceleration terms (eq. 4.12),
+    /// rad/s²; the torque bound is `I_m ρ_base` (eq. 4.13).
+    pub base_acceleration: f64,
+    /// `ρ_τt`, bound of the joint-torque estimation error (eq. 4.14), N·m
+    /// (link side).
+    pub torque_estimate: f64,
+}
+
+/// The design of the active-mode law in SI units (all fields public; use
+/// [`RobustAdaptiveParams::try_new`] to validate).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RobustAdaptiveDesign {
+    /// Rotor inertia `I_m`, kg·m².
+    pub rotor_inertia: f64,
+    /// Reduction ratio `N ≥ 1`.
+    pub ratio: f64,
+    /// `λ > 0` of eq. (4.15), 1/s.
+    pub lambda: f64,
+    /// Integral gain `K_I ≥ 0`, N·m/rad (motor side).
+    pub integral_gain: f64,
+    /// Adaptation gains `μ_j ≥ 0` (Theorem 1's `μ_Fic`, one per component
+    /// of `F` so that each has consistent units; Table 4.1 uses one value
+    /// for all). Unit of `μ_j`: the unit of `F_j` per unit of `r Y_j` per
+    /// second.
+    pub adaptation_gain: [f64; 4],
+    /// Boundary layer `ε_r > 0` of the robust term, rad/s.
+    pub eps_r: f64,
+    /// Boundary layer `ε_q̇ > 0` of the friction model, rad/s.
+    pub eps_velocity: f64,
+    /// Boundary layers `ε_Fj > 0` of the parametric robust terms, in units
+    /// of `r Y_j`: `[rad²/s², rad/s, rad/s, N·m·rad³/s³]`.
+    pub eps_f: [f64; 4],
+    /// Assumptions 3–6.
+    pub uncertainty: UncertaintyBounds,
+    /// Projection box of `F^c` and the variable-part bounds `ρ_F`.
+    pub friction_bounds: FrictionBounds,
+    /// Initial estimate `F̂^c(0)`, inside the box.
+    pub initial_friction: FrictionParams,
+    /// Limit of the integral torque `|z|`, N·m (motor side), `[0, 16]`.
+    pub integral_limit: f64,
+    /// Motor torque limit, N·m, `(0, 16]`.
+    pub torque_limit: f64,
+    /// Sampling period `T`, s, in `[1e-7, 1]`.
+    pub sample_period: f64,
+}
+
+impl RobustAdaptiveDesign {
+    /// The design and control parameters of thesis Table 4.1 (joint 1,
+    /// SHD-17-100 with the Maxon 218014 motor), completed where the table
+    /// is silent:
+    ///
+    /// * printed: `I_m = 1.14e-5 kg·m²`, `N = 100`, `λ = 120`, `K_I = 10`,
+    ///   `μ = 0.1` (all components), `ε_r = 0.1`, `ε_q̇ = 0.01`,
+    ///   `ε_F = [1e-4, 1e-3, 1e-3, 0.1]`, `ρ_F = [1e-3, 1e-2, 1e-2, 1.0]`,
+    ///   `ρ_base = 1e4 rad/s²`, `ρ_fq = 2e-3 N·m`, `ρ_τt = 1 N·m`;
+    /// * not printed, chosen here: the friction box
+    ///   `b ∈ [0, 1e-4]`, `f_c, f_s ∈ [0, 0.012]` (the drive's 0.012 N·m
+    ///   starting torque, ch. 2), `f_τ ∈ [0.01, 10]`, the initial estimate
+    ///   at the box centre in `b, f_c, f_s` and `f_τ = 1`; `ρ_f` derived
+    ///   from the box ([`FrictionBounds::boundary_layer_bound`],
+    ///   0.044 N·m); the motor torque limit 0.188 N·m (the motor's rated
+    ///   maximum, §2.4); the integral limit 0.1 N·m; `T = 4 ms` (§6.3).
+    pub fn table_4_1() -> Self {
+        let bounds = FrictionBounds::from_checked(
+            [0.0, 0.0, 0.0, 0.01],
+            [1e-4, 0.012, 0.012, 10.0],
+            [1e-3, 1e-2, 1e-2, 1.0],
+        );
+        RobustAdaptiveDesign {
+            rotor_inertia: 1.14e-5,
+            ratio: 100.0,
+            lambda: 120.0,
+            integral_gain: 10.0,
+            adaptation_gain: [0.1; 4],
+            eps_r: 0.1,
+            eps_velocity: 0.01,
+            eps_f: [1e-4, 1e-3, 1e-3, 0.1],
+            uncertainty: UncertaintyBounds {
+                boundary_layer: bounds.boundary_layer_bound(),
+                nonparametric_friction: 2e-3,
+                base_acceleration: 1e4,
+                torque_estimate: 1.0,
+            },
+            friction_bounds: bounds,
+            initial_friction: FrictionParams {
+                viscous: 5e-5,
+                coulomb: 0.006,
+                stribeck: 0.006,
+                stribeck_shape: 1.0,
+            },
+            integral_limit: 0.1,
+            torque_limit: 0.188,
+            sample_period: 0.004,
+        }
+    }
+
+    /// `K_r = ρ_f + ρ_fq + I_m ρ_base + ρ_τ/N`, the gain of
+    /// `sat(r, ε_r)` in eq. (4.19), N·m.
+    pub fn robust_gain(&self) -> f64 {
+        let u = &self.uncertainty;
+        u.boundary_layer
+            + u.nonparametric_friction
+            + self.rotor_inertia * u.base_acceleration
+            + u.torque_estimate / self.ratio
+    }
+}
+
+/// A validated [`RobustAdaptiveDesign`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RobustAdaptiveParams {
+    design: RobustAdaptiveDesign,
+}
+
+fn non_negative(name: &'static str, value: f64) -> Result<f64, ParamError> {
+    let value = finite(name, value)?;
+    if value < 0.0 {
+        Err(ParamError::Negative { name, value })
+    } else {
+        Ok(value)
+    }
+}
+
+fn at_most(name: &'static str, value: f64, max: f64) -> Result<f64, ParamError> {
+    if value > max {
+        Err(ParamError::OutOfRange {
+            name,
+            value,
+            min: 0.0,
+            max,
+        })
+    } else {
+        Ok(value)
+    }
+}
+
+/// A boundary layer must survive quantization on every backend: at least
+/// one `I16F16` LSB in its stored unit.
+fn layer(name: &'static str, value: f64, scale: f64) -> Result<f64, ParamError> {
+    let value = positive(name, value)?;
+    if value * scale < 1.0 / 65536.0 || value * scale > 30_000.0 {
+        return Err(ParamError::NotRepresentable { name, value });
+    }
+    Ok(value)
+}
+
+impl RobustAdaptiveParams {
+    /// Validate a design: `I_m ∈ (0, 30]`, `N ≥ 1`, `λ, T > 0`,
+    /// `K_I, μ_j, ρ ≥ 0`, boundary layers positive and representable on
+    /// every backend, torque and integral limits in `(0, 16]` and `[0, 16]`
+    /// N·m (so that sums of two limits stay inside the `I16F16` range of
+    /// mN·m, which the bumpless switching of [`super::mode`] relies on),
+    /// `T ∈ [1e-7, 1]` s, the initial estimate inside the friction box, and
+    /// every prepared coefficient (e.g. `λ² I_m` in mN·m/rad) at most
+    /// `1e11` in fixed-point units (the exact range of a `Coef`).
+    pub fn try_new(d: RobustAdaptiveDesign) -> Result<Self, ParamError> {
+        let fx = units::FIXED;
+        at_most(
+            "rotor_inertia",
+            positive("rotor_inertia", d.rotor_inertia)?,
+            30.0,
+        )?;
+        crate::error::gear_ratio(d.ratio)?;
+        positive("lambda", d.lambda)?;
+        non_negative("integral_gain", d.integral_gain)?;
+        for m in d.adaptation_gain {
+            non_negative("adaptation_gain", m)?;
+        }
+        layer("eps_r", d.eps_r, fx.speed)?;
+        layer("eps_velocity", d.eps_velocity, fx.speed)?;
+        let ys = regressor_scales::<crate::scalar::I16F16>();
+        for (j, e) in d.eps_f.iter().enumerate() {
+            layer("eps_f", *e, fx.speed * ys[j])?;
+        }
+        let u = d.uncertainty;
+        non_negative("boundary_layer", u.boundary_layer)?;
+        non_negative("nonparametric_friction", u.nonparametric_friction)?;
+        non_negative("base_acceleration", u.base_acceleration)?;
+        non_negative("torque_estimate", u.torque_estimate)?;
+        at_most(
+            "torque_limit",
+            positive("torque_limit", d.torque_limit)?,
+            16.0,
+        )?;
+        at_most(
+            "integral_limit",
+            non_negative("integral_limit", d.integral_limit)?,
+            16.0,
+        )?;
+        let t = positive("sample_period", d.sample_period)?;
+        if !(1e-7..=1.0).contains(&t) {
+            return Err(ParamError::OutOfRange {
+                name: "sample_period",
+                value: t,
+                min: 1e-7,
+                max: 1.0,
+            });
+        }
+        let f = d.initial_friction;
+        FrictionParams::try_new(f.viscous, f.coulomb, f.stribeck, f.stribeck_shape)?;
+        if !d.friction_bounds.contains(&f) {
+            let (lo, hi, a) = (
+                d.friction_bounds.min(),
+                d.friction_bounds.max(),
+                f.to_array(),
+            );
+            let j = (0..4).find(|&j| a[j] < lo[j] || a[j] > hi[j]).unwrap_or(0);
+            return Err(ParamError::OutOfRange {
+                name: crate::friction::PARAMETER_NAMES[j],
+                value: a[j],
+                min: lo[j],
+                max: hi[j],
+            });
+        }
+        // Every prepared coefficient (in the largest, fixed-point, unit
+        // scales) within the range a `Coef` represents exactly (≤ 2⁴⁰).
+        let mt = fx.motor_torque;
+        let ps = parameter_scales::<crate::scalar::I16F16>();
+        let mut coefs = [
+            ("lambda", d.lambda * d.lambda * d.rotor_inertia * mt),
+            ("lambda", 2.0 * d.lambda * d.rotor_inertia * mt),
+            ("lambda", d.lambda),
+            ("integral_gain", d.integral_gain * d.sample_period * mt),
+            ("eps_r", d.robust_gain() * mt / d.eps_r),
+            ("adaptation_gain", 0.0),
+            ("variable_bound", 0.0),
+        ];
+        for j in 0..4 {
+            let ry = fx.speed * ys[j];
+            let a = d.adaptation_gain[j] * d.sample_period * ps[j] / ry;
+            let r = d.friction_bounds.variable()[j] * mt / ys[j];
+            coefs[5].1 = f64::max(coefs[5].1, a);
+            coefs[6].1 = f64::max(coefs[6].1, r);
+        }
+        for (name, v) in coefs {
+            if v > 1e11 {
+                return Err(ParamError::OutOfRange {
+                    name,
+                    value: v,
+                    min: 0.0,
+                    max: 1e11,
+                });
+            }
+        }
+        if d.robust_gain() > 30.0 {
+            return Err(ParamError::OutOfRange {
+                name: "robust_gain",
+                value: d.robust_gain(),
+                min: 0.0,
+                max: 30.0,
+            });
+        }
+        Ok(RobustAdaptiveParams { design: d })
+    }
+
+    /// Table 4.1 ([`RobustAdaptiveDesign::table_4_1`]), validated.
+    pub fn table_4_1() -> Result<Self, ParamError> {
+        Self::try_new(RobustAdaptiveDesign::table_4_1())
+    }
+
+    /// The validated design.
+    pub fn design(&self) -> &RobustAdaptiveDesign {
+        &self.design
+    }
+}
+
+/// The active-mode law quantized for backend `S`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RobustAdaptiveConfig<S> {
+    friction: FrictionConfig<S>,
+    /// `I_m` from stored acceleration to stored motor torque.
+    accel_inertia: Coef,
+    /// `2 λ I_m` from stored speed to stored motor torque.
+    edot_gain: Coef,
+    /// `λ² I_m` from stored angle to stored motor torque.
+    e_gain: Coef,
+    /// `λ` from stored angle to stored speed.
+    lambda: Coef,
+    /// `1/N` from stored link torque to stored motor torque.
+    feedback: Coef,
+    /// `K_I T` from stored speed to stored motor torque.
+    integral_step: Coef,
+    /// `K_r` in stored motor torque.
+    robust_gain: Coef,
+    /// `±1 · K_r` as the coefficient rounds them (the saturated robust
+    /// term).
+    robust_gain_value: [S; 2],
+    eps_r: S,
+    inv_eps_r: Coef,
+    /// `ρ_Fj` from stored `Y_j` to stored motor torque.
+    rho_param: [Coef; 4],
+    eps_f: [S; 4],
+    inv_eps_f: [Coef; 4],
+    /// `μ_j T` from stored `r Y_j` to stored `F_j`.
+    adapt: [Coef; 4],
+    lower: [S; 4],
+    upper: [S; 4],
+    initial: [S; 4],
+    integral_limit: S,
+    torque_limit: S,
+    params: RobustAdaptiveParams,
+}
+
+/// The adapted state: `F̂^c` (stored parameter units, see
+/// [`crate::friction`]) and the integral torque `z = K_I ∫ r dt` (stored
+/// motor-torque units).
+///
+/// *Fixed-point resolution of the adaptation.* One step changes `F̂_j` by
+/// `μ_j T r Y_j` in stored units, and a change below half an LSB (2⁻¹⁷) is
+/// lost. With Table 4.1's `μ = 0.1`, `T = 4 ms` on `I16F16` this is
+/// `|r Y_j| ≥ 1.9e-5` (SI) for `b̂, f̂_c, f̂_s` — always met outside
+/// standstill — but `|r Y_4| ≥ 0.019 N·m·rad³/s³` for the Stribeck shape
+/// `f̂_τ`, while `|Y_4| ≤ f̂_s/(e f̂_τ)` (2.2e-3 N·m·rad²/s² for the example
+/// estimate): `f̂_τ` adapts only for `|r| ≳ 9 rad/s`, i.e. it is
+/// effectively fixed at its initial value on `I16F16`. Float backends adapt
+/// all four.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RobustAdaptiveState<S> {
+    /// `F̂^c = [b̂, f̂_c, f̂_s, f̂_τ]`, stored units; always inside the box.
+    pub friction: [S; 4],
+    /// `z = K_I ∫ r dt`, stored motor torque; `|z| ≤ integral_limit`.
+    pub integral: S,
+}
+
+/// One step of the active law.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ActiveOutput<S> {
+    /// Motor torque command, stored motor-torque units, `|τ| ≤ limit`.
+    pub torque: S,
+    /// The law's value before the output limit (eq. 4.19).
+    pub law_torque: S,
+    /// The output was limited (or the input was invalid).
+    pub saturated: bool,
+    /// An input was NaN or infinite, or the law overflowed to NaN: the
+    /// torque is 0 and the state was not advanced.
+    pub invalid_input: bool,
+    /// Tracking error `e = q_m − q_m^d`, stored angle units.
+    pub tracking_error: S,
+    /// `r = ė + λ e`, stored speed units.
+    pub sliding: S,
+}
+
+/// The law's intermediate values, for the state update and the mode
+/// manager.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct ActiveTerms<S> {
+    pub law: S,
+    pub e: S,
+    pub r: S,
+    pub ry: [S; 4],
+    pub valid: bool,
+}
+
+impl<S: Scalar> RobustAdaptiveConfig<S> {
+    /// Quantize validated parameters once.
+    pub fn new(p: &RobustAdaptiveParams) -> Self {
+        let d = &p.design;
+        let u = S::UNITS;
+        let mt = u.motor_torque;
+        let ps = parameter_scales::<S>();
+        let ys = regressor_scales::<S>();
+        let eps_r = S::from_f64(d.eps_r * u.speed);
+        let mut eps_f = [S::ZERO; 4];
+        let mut inv_eps_f = [Coef::new(0.0); 4];
+        let mut rho_param = [Coef::new(0.0); 4];
+        let mut adapt = [Coef::new(0.0); 4];
+        let rho = d.friction_bounds.variable();
+        for j in 0..4 {
+            let ry_scale = u.speed * ys[j];
+            eps_f[j] = S::from_f64(d.eps_f[j] * ry_scale);
+            inv_eps_f[j] = Coef::new(1.0 / eps_f[j].to_f64());
+            rho_param[j] = Coef::new(rho[j] * mt / ys[j]);
+            adapt[j] = Coef::new(d.adaptation_gain[j] * d.sample_period * ps[j] / ry_scale);
+        }
+        let lo = d.friction_bounds.min();
+        let hi = d.friction_bounds.max();
+        let q = |a: [f64; 4]| {
+            let mut o = [S::ZERO; 4];
+            for j in 0..4 {
+                o[j] = S::from_f64(a[j] * ps[j]);
+            }
+            o
+        };
+        RobustAdaptiveConfig {
+            friction: FrictionConfig::new(d.eps_velocity),
+            accel_inertia: Coef::new(d.rotor_inertia * mt / u.speed),
+            edot_gain: Coef::new(2.0 * d.lambda * d.rotor_inertia * mt / u.speed),
+            e_gain: Coef::new(d.lambda * d.lambda * d.rotor_inertia * mt / u.angle),
+            lambda: Coef::new(d.lambda * u.speed / u.angle),
+            feedback: Coef::new(mt / (d.ratio * u.link_torque)),
+            integral_step: Coef::new(d.integral_gain * d.sample_period * mt / u.speed),
+            robust_gain: Coef::new(d.robust_gain() * mt),
+            robust_gain_value: [
+                S::ONE.mul_coef(&Coef::new(d.robust_gain() * mt)),
+                S::ONE.neg().mul_coef(&Coef::new(d.robust_gain() * mt)),
+            ],
+            eps_r,
+            inv_eps_r: Coef::new(1.0 / eps_r.to_f64()),
+            rho_param,
+            eps_f,
+            inv_eps_f,
+            adapt,
+            lower: q(lo),
+            upper: q(hi),
+            initial: q(d.initial_friction.to_array()),
+            integral_limit: S::from_f64(d.integral_limit * mt),
+            torque_limit: S::from_f64(d.torque_limit * mt),
+            params: *p,
+        }
+    }
+
+    /// The initial state: `F̂^c(0)` of the design, `z = 0`.
+    pub fn initial_state(&self) -> RobustAdaptiveState<S> {
+        RobustAdaptiveState {
+            friction: self.initial,
+            integral: S::ZERO,
+        }
+    }
+
+    /// The validated parameters this configuration was built from.
+    pub fn params(&self) -> &RobustAdaptiveParams {
+        &self.params
+    }
+
+    /// The motor torque limit, stored units.
+    pub fn torque_limit(&self) -> S {
+        self.torque_limit
+    }
+
+    /// The integral limit, stored motor-torque units.
+    pub fn integral_limit(&self) -> S {
+        self.integral_limit
+    }
+
+    /// Lower corner of the projection box, stored units.
+    pub fn lower_bounds(&self) -> [S; 4] {
+        self.lower
+    }
+
+    /// Upper corner of the projection box, stored units.
+    pub fn upper_bounds(&self) -> [S; 4] {
+        self.upper
+    }
+
+    /// The design with the boundary layers as this backend quantized them
+    /// (for the ultimate-bound calculator: a layer quantized wider
+    /// weakens the bound, e.g. Table 4.1's `ε_F1 = 1e-4` becomes
+    /// `7·2⁻¹⁶` on `I16F16`).
+    pub fn quantized_design(&self) -> RobustAdaptiveDesign {
+        let mut d = self.params.design;
+        let u = S::UNITS;
+        let ys = regressor_scales::<S>();
+        d.eps_r = self.eps_r.to_f64() / u.speed;
+        d.eps_velocity = self.friction.eps_velocity().to_f64() / u.speed;
+        for ((out, stored), y) in d.eps_f.iter_mut().zip(self.eps_f.iter()).zip(ys.iter()) {
+            *out = stored.to_f64() / (u.speed * y);
+        }
+        d
+    }
+
+    /// Eq. (4.15)–(4.19) on one sample with the current state, without
+    /// advancing it.
+    #[inline]
+    pub(crate) fn law(&self, st: &RobustAdaptiveState<S>, x: &ControlInput<S>) -> ActiveTerms<S> {
+        let e = x.motor_position.sub(x.desired_position);
+        let ed = x.motor_velocity.sub(x.desired_velocity);
+        let r = ed.add(e.mul_coef(&self.lambda));
+        // I_m a = I_m q̈_d − 2λ I_m ė − λ² I_m e, each term in motor torque.
+        let ia = x
+            .desired_acceleration
+            .mul_coef(&self.accel_inertia)
+            .sub(ed.mul_coef(&self.edot_gain))
+            .sub(e.mul_coef(&self.e_gain));
+        let fr = self.friction.evaluate(&st.friction, x.motor_velocity);
+        // Saturated sat values (±1, the common case away from the layers)
+        // skip their multiplies; the results are bit-identical.
+        let sr = sat_with_reciprocal(r, self.eps_r, &self.inv_eps_r);
+        let fixed = S::RESOLUTION.to_f64() >= 1e-6;
+        let robust = if fixed && sr == S::ONE {
+            self.robust_gain_value[0]
+        } else if fixed && sr == S::ONE.neg() {
+            self.robust_gain_value[1]
+        } else {
+            sr.mul_coef(&self.robust_gain)
+        };
+        let mut param_robust = S::ZERO;
+        let mut ry = [S::ZERO; 4];
+        for (j, ryj) in ry.iter_mut().enumerate() {
+            let y = fr.regressor[j];
+            // Y_2 = sat(q̇, ε_q̇) is usually ±1.
+            *ryj = if j == 1 { mul_unit(r, y) } else { r.mul(y) };
+            let s = sat_with_reciprocal(*ryj, self.eps_f[j], &self.inv_eps_f[j]);
+            param_robust = param_robust.add(mul_unit(y.mul_coef(&self.rho_param[j]), s));
+        }
+        let law = ia
+            .add(x.joint_torque.mul_coef(&self.feedback))
+            .add(fr.torque)
+            .sub(st.integral)
+            .sub(robust)
+            .sub(param_robust);
+        ActiveTerms {
+            law,
+            e,
+            r,
+            ry,
+            valid: x.is_finite() && !law.is_nan() && !r.is_nan(),
+        }
+    }
+
+    /// `law` limited to `±torque_limit`, and whether it was limited.
+    #[inline]
+    pub(crate) fn limit(&self, law: S) -> (S, bool) {
+        let l = self.torque_limit;
+        if law > l {
+            (l, true)
+        } else if law < l.neg() {
+            (l.neg(), true)
+        } else {
+            (law, false)
+        }
+    }
+
+    /// Advance integral and adaptation by one sample after `law`.
+    #[inline]
+    pub(crate) fn commit(&self, st: &mut RobustAdaptiveState<S>, t: &ActiveTerms<S>) {
+        if !t.valid {
+            return;
+        }
+        let l = self.torque_limit;
+        // z enters with a minus sign: r > 0 raises z and lowers τ.
+        let winding = (t.law > l && t.r < S::ZERO) || (t.law < l.neg() && t.r > S::ZERO);
+        if !winding {
+            let z = st.integral.add(t.r.mul_coef(&self.integral_step));
+            st.integral =
+                keep_number(z, st.integral).clamp(self.integral_limit.neg(), self.integral_limit);
+        }
+        for j in 0..4 {
+            let f = st.friction[j].sub(t.ry[j].mul_coef(&self.adapt[j]));
+            st.friction[j] = keep_number(f, st.friction[j]).clamp(self.lower[j], self.upper[j]);
+        }
+    }
+
+    /// One control step: eq. (4.19) on the sample, then the integral and
+    /// adaptation updates. Never panics; an invalid input gives torque 0
+    /// with `invalid_input` set and leaves the state untouched.
+    ///
+    /// ```
+    /// use mrr_control::control::{ControlInput, RobustAdaptiveConfig, RobustAdaptiveParams};
+    /// let cfg = RobustAdaptiveConfig::<f32>::new(&RobustAdaptiveParams::table_4_1()?);
+    /// let mut st = cfg.initial_state();
+    /// // On the trajectory, at rest, no load: r = 0 and every term is 0.
+    /// let o = cfg.update(&mut st, &ControlInput::default());
+    /// assert_eq!(o.torque, 0.0);
+    /// // 1 mrad ahead of the reference (motor side), at rest: e = 1e-3,
+    /// // r = λe = 0.12 rad/s beyond ε_r = 0.1, Y = 0 at q̇ = 0, so
+    /// // τ = −λ²I_m e − K_r = −1.6416e-4 − 0.170 = −0.17016 N·m.
+    /// let x = ControlInput { motor_position: 1e-3, ..Default::default() };
+    /// let o = cfg.update(&mut st, &x);
+    /// assert!(!o.saturated && (o.torque + 0.17016).abs() < 1e-5);
+    /// // The integral has moved by K_I T r = 10·0.004·0.12 = 4.8e-3 N·m.
+    /// assert!((st.integral - 4.8e-3).abs() < 1e-7);
+    /// # Ok::<(), mrr_control::ParamError>(())
+    /// ```
+    pub fn update(&self, st: &mut RobustAdaptiveState<S>, x: &ControlInput<S>) -> ActiveOutput<S> {
+        let t = self.law(st, x);
+        self.commit(st, &t);
+        self.output(&t)
+    }
+
+    #[inline]
+    pub(crate) fn output(&self, t: &ActiveTerms<S>) -> ActiveOutput<S> {
+        if !t.valid {
+            return ActiveOutput {
+                torque: S::ZERO,
+                law_torque: S::ZERO,
+                saturated: true,
+                invalid_input: true,
+                tracking_error: S::ZERO,
+                sliding: S::ZERO,
+            };
+        }
+        let (torque, saturated) = self.limit(t.law);
+        ActiveOutput {
+            torque,
+            law_torque: t.law,
+            saturated,
+            invalid_input: false,
+            tracking_error: t.e,
+            sliding: t.r,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,96 @@
+//! Multiple-mode joint control of thesis ch. 4.
+//!
+//! * [`adaptive`] — the robust adaptive law of eq. (4.15)–(4.19) with the
+//!   adaptation law of Theorem 1 (projected onto known bounds), the
+//!   integral term and joint-torque feedback (active mode).
+//! * [`bound`] — the ultimate-bound calculator of eq. (4.28)–(4.31).
+//! * [`passive`] — friction compensation with torque feedback, eq. (4.32),
+//!   and the free-body behaviour of eq. (4.33) (errata E9).
+//! * [`mode`] — a mode manager switching active ↔ passive on the
+//!   interaction torque, bumplessly, and reacting to collisions detected by
+//!   [`crate::estimation::collision`].
+//!
+//! Every step takes one [`ControlInput`] sample, so a simulator or firmware
+//! fills one plain struct per joint and tick.
+//!
+//! # Sign conventions and units
+//! Motor-side angles `q_m` (rad), speeds (rad/s) and accelerations
+//! (rad/s²) are positive in the same direction as the motor torque `τ_m`.
+//! The joint torque `τ_t` is the torque the transmission applies to the
+//! link, as in eq. (4.1)–(4.2): `I_m q̈_m + f_m + τ_t/N = τ_m`, so a positive
+//! `τ_t` loads the motor negatively. Values are stored in the units of
+//! `S::UNITS` ([`crate::scalar::units`]): on `I16F16` motor torques are in
+//! mN·m, joint torques in N·m, angles in rad, speeds in rad/s and
+//! accelerations in rad/s² (the speed scale per second).
+
+pub mod adaptive;
+pub mod bound;
+pub mod mode;
+pub mod passive;
+
+pub use adaptive::{
+    ActiveOutput, RobustAdaptiveConfig, RobustAdaptiveDesign, RobustAdaptiveParams,
+    RobustAdaptiveState, UncertaintyBounds,
+};
+pub use bound::UltimateBound;
+pub use mode::{JointMode, ModeConfig, ModeOutput, ModeParams, ModeState};
+pub use passive::{PassiveConfig, PassiveOutput, PassiveParams};
+
+/// One control sample of one joint, in stored units of `S::UNITS`.
+///
+/// Desired values are motor-side (eq. 4.15: `q_m^d`, `q̇_m^d`, `q̈_m^d`,
+/// e.g. `N` times a link trajectory). The sampling period is a
+/// configuration constant (each rate constant is folded with it into a
+/// prepared coefficient, so the step needs no division and no `dt`
+/// multiply in fixed point).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ControlInput<S> {
+    /// Desired motor position `q_m^d`, stored angle units.
+    pub desired_position: S,
+    /// Desired motor speed `q̇_m^d`, stored speed units.
+    pub desired_velocity: S,
+    /// Desired motor acceleration `q̈_m^d`, stored speed units per second.
+    pub desired_acceleration: S,
+    /// Measured motor position `q_m`, stored angle units.
+    pub motor_position: S,
+    /// Measured (or observed) motor speed `q̇_m`, stored speed units.
+    pub motor_velocity: S,
+    /// Estimated (ch. 3) or measured joint torque `τ̂_t`, stored link-torque
+    /// units, sign as in eq. (4.1).
+    pub joint_torque: S,
+    /// Desired joint torque `τ_td` of the passive law, eq. (4.32) (0 for a
+    /// free joint), stored link-torque units.
+    pub desired_joint_torque: S,
+    /// Joint torque expected without interaction (gravity, payload,
+    /// model), stored link-torque units; the interaction torque and the
+    /// collision residual are `τ̂_t` minus this.
+    pub expected_joint_torque: S,
+}
+
+impl<S: Scalar> ControlInput<S> {
+    /// `true` when every field is a finite number (always for fixed point).
+    #[inline]
+    pub fn is_finite(&self) -> bool {
+        let m = S::MAX;
+        self.desired_position.abs() <= m
+            && self.desired_velocity.abs() <= m
+            && self.desired_acceleration.abs() <= m
+            && self.motor_position.abs() <= m
+            && self.motor_velocity.abs() <= m
+            && self.joint_torque.abs() <= m
+            && self.desired_joint_torque.abs() <= m
+            && self.expected_joint_torque.abs() <= m
+    }
+}
+
+use crate::scalar::Scalar;
+
+/// `new` if it is a number, else `old` (state updates never store NaN).
+#[inline]
+pub(crate) fn keep_number<S: Scalar>(new: S, old: S) -> S {
+    if new.is_nan() {
+        old
+    } else {
+        new
+    }
+}

@@ -1,0 +1,531 @@
+//! Automatic multiple-mode control: active (eq. 4.19) ↔ passive (eq. 4.32)
+//! on the interaction torque, with hysteresis, debounce and dwell time;
+//! bumpless transfer; and the reaction to a detected collision
+//! ([`crate::estimation::collision`]). The thesis switches modes by hand
+//! (§4.4); this manager is an extension.
+//!
+//! # Modes
+//! * [`JointMode::Active`] — the robust adaptive law tracking the desired
+//!   trajectory plus a *rejoin offset* `o` (see below).
+//! * [`JointMode::Hold`] — the same law holding the position latched at a
+//!   collision (reaction [`CollisionReaction::Stop`]).
+//! * [`JointMode::Passive`] — eq. (4.32) with the adapted friction
+//!   estimates.
+//!
+//! # Switching rules
+//! With the interaction torque `τ_i = τ̂_t − τ_expected` (link side):
+//! Active → Passive when `|τ_i| > enter` and Passive → Active when
+//! `|τ_i| < exit` (`exit < enter`: hysteresis), each only after the
+//! condition held for `debounce` consecutive samples and the current mode
+//! lasted at least `dwell` samples. A collision onset switches at once to
+//! its reaction's mode and latches it until
+//! [`ModeConfig::acknowledge_collision`]; after that, Hold returns to
+//! Active (debounced) and Passive follows the torque rules.
+//!
+//! # Bumpless transfer, and the bound on the torque jump
+//! `τ_before` is the previous command (what the motor is being driven
+//! with). At a switching sample the incoming mode is seeded:
+//! * entering Active: the rejoin offset is set to `o = q_m − q_m^d`,
+//!   `ȯ = q̇_m − q̇_m^d`, so the reference starts at the measured position
+//!   and speed (`e = ė = 0`, so `r = 0`); afterwards `o` decays to 0 as a
+//!   critically damped second-order system of bandwidth `ω` and the joint
+//!   rejoins the desired trajectory smoothly;
+//! * entering Hold: the reference is the measured position, at rest;
+//! * entering Active or Hold: the integral is re-seeded to
+//!   `z = clamp(R₀ − τ_before, ±z_max)` (`R₀` the law with `z = 0`; the law
+//!   is affine in `z` with slope −1, so it becomes `R = R₀ − z`), so that
+//!   the law itself starts near `τ_before`;
+//! * in every case a bias `b = τ_before − clamp(R, ±L)` (`R` the incoming
+//!   law) is added to the limited law, and decays by `e^{−T/T_b}`-like
+//!   factor `1 − T/T_b` per sample.
+//!
+//! The output after the switch is `τ_after = clamp(clamp(R, ±L) + b, ±L)`.
+//! In exact arithmetic `τ_after = τ_before`. **Bound:** with
+//! `|τ_before| ≤ L` and `|clamp(R, ±L)| ≤ L`,
+//! * `I16F16`: every operand and sum stays below `2L ≤ 32 000 mN·m`
+//!   (`L ≤ 16 N·m` is validated), so the fixed-point additions are exact
+//!   and `τ_after = τ_before` **exactly**;
+//! * floats with unit roundoff `u` (`RESOLUTION/2`): `b` carries an error
+//!   `≤ u|τ_before − clamp(R)| ≤ 2uL`, the sum another `≤ u(|τ_before| +
+//!   2uL)`, and the clamp is 1-Lipschitz with `τ_before` inside it, so
+//!   `|τ_after − τ_before| ≤ 3uL + 2u²L ≤ 2·RESOLUTION·L`.
+//!
+//! [`ModeConfig::switch_jump_bound`] returns this bound; the property test
+//! `switching_is_bumpless` checks it over random states.
+//!
+//! The measured position is never overwritten: the manager's position
+//! state (offset or hold point) is defined relative to the measured
+//! position at the switch, so the reference is continuous with the joint.
+
+use super::adaptive::{
+    ActiveTerms, RobustAdaptiveConfig, RobustAdaptiveParams, RobustAdaptiveState,
+};
+use super::passive::{PassiveConfig, PassiveParams};
+use super::ControlInput;
+use crate::error::{positive, ParamError};
+use crate::estimation::collision::{
+    CollisionConfig, CollisionParams, CollisionReaction, CollisionState,
+};
+use crate::scalar::{Coef, Scalar};
+
+/// The operating mode of a joint.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum JointMode {
+    /// Robust adaptive position control, eq. (4.19).
+    Active,
+    /// Position hold after a collision (eq. 4.19 with a frozen reference).
+    Hold,
+    /// Friction compensation with torque feedback, eq. (4.32).
+    Passive,
+}
+
+/// Parameters of the mode manager, SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ModeParams {
+    active: RobustAdaptiveParams,
+    passive: PassiveParams,
+    enter_passive: f64,
+    exit_passive: f64,
+    debounce: u16,
+    dwell: u16,
+    rejoin_bandwidth: f64,
+    bias_time_constant: f64,
+    collision: Option<CollisionParams>,
+}
+
+impl ModeParams {
+    /// Validate: `0 < exit_passive < enter_passive ≤ 30 000` N·m
+    /// (interaction torque, link side); `debounce ≥ 1` sample; the passive
+    /// torque limit equal to the active one; a rejoin bandwidth `ω > 0`
+    /// rad/s with `ω T ≤ 0.5` (`T` the active law's sample period: the
+    /// discrete rejoin filter is then stable and not oscillatory) and
+    /// `ω ≤ 1e5` (so `ω²` is an exact coefficient); a bias
+    /// time constant `T_b ≥ T` s.
+    #[allow(clippy::too_many_arguments)]
+    pub fn try_new(
+        active: RobustAdaptiveParams,
+        passive: PassiveParams,
+        enter_passive: f64,
+        exit_passive: f64,
+        debounce: u16,
+        dwell: u16,
+        rejoin_bandwidth: f64,
+        bias_time_constant: f64,
+        collision: Option<CollisionParams>,
+    ) -> Result<Self, ParamError> {
+        positive("exit_passive", exit_passive)?;
+        positive("enter_passive", enter_passive)?;
+        crate::error::increasing(
+            ("exit_passive", exit_passive),
+            ("enter_passive", enter_passive),
+        )?;
+        if enter_passive > 30_000.0 {
+            return Err(ParamError::OutOfRange {
+                name: "enter_passive",
+                value: enter_passive,
+                min: 0.0,
+                max: 30_000.0,
+            });
+        }
+        if debounce == 0 {
+            return Err(ParamError::NotPositive {
+                name: "debounce",
+                value: 0.0,
+            });
+        }
+        let d = active.design();
+        let t = d.sample_period;
+        let pl = passive_limit(&passive);
+        if pl != d.torque_limit {
+            return Err(ParamError::OutOfRange {
+                name: "passive_torque_limit",
+                value: pl,
+                min: d.torque_limit,
+                max: d.torque_limit,
+            });
+        }
+        positive("rejoin_bandwidth", rejoin_bandwidth)?;
+        let max_w = f64::min(0.5 / t, 1e5);
+        if rejoin_bandwidth > max_w {
+            return Err(ParamError::OutOfRange {
+                name: "rejoin_bandwidth",
+                value: rejoin_bandwidth,
+                min: 0.0,
+                max: max_w,
+            });
+        }
+        positive("bias_time_constant", bias_time_constant)?;
+        if bias_time_constant < t {
+            return Err(ParamError::OutOfRange {
+                name: "bias_time_constant",
+                value: bias_time_constant,
+                min: t,
+                max: f64::INFINITY,
+            });
+        }
+        Ok(ModeParams {
+            active,
+            passive,
+            enter_passive,
+            exit_passive,
+            debounce,
+            dwell,
+            rejoin_bandwidth,
+            bias_time_constant,
+            collision,
+        })
+    }
+}
+
+fn passive_limit(p: &PassiveParams) -> f64 {
+    // PassiveConfig<f64> stores the limit in SI.
+    PassiveConfig::<f64>::new(p).torque_limit()
+}
+
+/// The manager quantized for backend `S`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ModeConfig<S> {
+    active: RobustAdaptiveConfig<S>,
+    passive: PassiveConfig<S>,
+    collision: Option<CollisionConfig<S>>,
+    enter_passive: S,
+    exit_passive: S,
+    debounce: u16,
+    dwell: u16,
+    /// `2ω`, speed → speed/s.
+    two_omega: Coef,
+    /// `ω²`, angle → speed/s.
+    omega_sq: Coef,
+    /// `T`, speed/s → speed.
+    step_rate: Coef,
+    /// `T`, speed → angle.
+    step_position: Coef,
+    /// `1 − T/T_b`.
+    bias_decay: Coef,
+    limit: S,
+}
+
+/// The manager's state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ModeState<S> {
+    mode: JointMode,
+    active: RobustAdaptiveState<S>,
+    offset: S,
+    offset_rate: S,
+    hold: S,
+    bias: S,
+    in_mode: u16,
+    run: u16,
+    collision: CollisionState,
+    latched: bool,
+    last_torque: S,
+}
+
+impl<S: Scalar> ModeState<S> {
+    /// The current mode.
+    pub fn mode(&self) -> JointMode {
+        self.mode
+    }
+    /// The active law's adapted state.
+    pub fn active_state(&self) -> &RobustAdaptiveState<S> {
+        &self.active
+    }
+    /// The bumpless-transfer bias, stored motor torque.
+    pub fn bias(&self) -> S {
+        self.bias
+    }
+    /// `true` while a collision reaction is latched.
+    pub fn collision_latched(&self) -> bool {
+        self.latched
+    }
+    /// The last motor torque command (the `τ_before` of a switch), stored
+    /// motor torque.
+    pub fn last_torque(&self) -> S {
+        self.last_torque
+    }
+    /// The rejoin offset `(o, ȯ)` of the Active reference, stored angle and
+    /// speed units.
+    pub fn rejoin_offset(&self) -> (S, S) {
+        (self.offset, self.offset_rate)
+    }
+}
+
+/// One step of the manager.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ModeOutput<S> {
+    /// Motor torque command, stored motor torque, `|τ| ≤ L`.
+    pub torque: S,
+    /// The mode that produced it.
+    pub mode: JointMode,
+    /// The mode changed at this sample.
+    pub switched: bool,
+    /// The law or the biased sum was limited.
+    pub saturated: bool,
+    /// An input was NaN or infinite (torque 0, state unchanged), or the
+    /// law overflowed to NaN on absurd finite float inputs (the law counts
+    /// as 0; the torque is the decaying bias; the active state is not
+    /// advanced).
+    pub invalid_input: bool,
+    /// `τ̂_t − τ_expected`, stored link torque.
+    pub interaction: S,
+    /// A collision reaction is latched.
+    pub collision: bool,
+    /// The position reference used (Active: desired + offset; Hold: the
+    /// held position; Passive: the measured position), stored angle.
+    pub reference_position: S,
+}
+
+impl<S: Scalar> ModeConfig<S> {
+    /// Quantize validated parameters once.
+    pub fn new(p: &ModeParams) -> Self {
+        let u = S::UNITS;
+        let t = p.active.design().sample_period;
+        let w = p.rejoin_bandwidth;
+        let active = RobustAdaptiveConfig::new(&p.active);
+        ModeConfig {
+            active,
+            passive: PassiveConfig::new(&p.passive),
+            collision: p.collision.as_ref().map(CollisionConfig::new),
+            enter_passive: S::from_f64(p.enter_passive * u.link_torque),
+            exit_passive: S::from_f64(p.exit_passive * u.link_torque),
+            debounce: p.debounce,
+            dwell: p.dwell,
+            two_omega: Coef::new(2.0 * w),
+            omega_sq: Coef::new(w * w * u.speed / u.angle),
+            step_rate: Coef::new(t),
+            step_position: Coef::new(t * u.angle / u.speed),
+            bias_decay: Coef::new(1.0 - t / p.bias_time_constant),
+            limit: active.torque_limit(),
+        }
+    }
+
+    /// The initial state: Active, reference offset 0, the active law's
+    /// initial estimates.
+    pub fn initial_state(&self) -> ModeState<S> {
+        ModeState {
+            mode: JointMode::Active,
+            active: self.active.initial_state(),
+            offset: S::ZERO,
+            offset_rate: S::ZERO,
+            hold: S::ZERO,
+            bias: S::ZERO,
+            in_mode: 0,
+            run: 0,
+            collision: CollisionState::default(),
+            latched: false,
+            last_torque: S::ZERO,
+        }
+    }
+
+    /// The active law's configuration.
+    pub fn active(&self) -> &RobustAdaptiveConfig<S> {
+        &self.active
+    }
+
+    /// The motor torque limit `L`, stored units.
+    pub fn torque_limit(&self) -> S {
+        self.limit
+    }
+
+    /// The bound on `|τ_after − τ_before|` at a switching sample (module
+    /// docs): 0 on `I16F16`, `2·RESOLUTION·L` on floats.
+    pub fn switch_jump_bound(&self) -> S {
+        if S::RESOLUTION.to_f64() >= 1.0 / 65536.0 {
+            S::ZERO
+        } else {
+            S::from_f64(2.0 * S::RESOLUTION.to_f64() * self.limit.to_f64())
+        }
+    }
+
+    /// Clear a latched collision reaction (the operator acknowledged it).
+    pub fn acknowledge_collision(&self, st: &mut ModeState<S>) {
+        st.latched = false;
+    }
+
+    /// The sample as the active law sees it in the current mode: the
+    /// reference replaced by desired + offset (Active) or the hold point.
+    #[inline]
+    fn reference(&self, st: &ModeState<S>, x: &ControlInput<S>) -> (ControlInput<S>, S) {
+        let mut xr = *x;
+        match st.mode {
+            JointMode::Hold => {
+                xr.desired_position = st.hold;
+                xr.desired_velocity = S::ZERO;
+                xr.desired_acceleration = S::ZERO;
+                (xr, S::ZERO)
+            }
+            _ => {
+                let acc = st
+                    .offset_rate
+                    .mul_coef(&self.two_omega)
+                    .add(st.offset.mul_coef(&self.omega_sq))
+                    .neg();
+                xr.desired_position = x.desired_position.add(st.offset);
+                xr.desired_velocity = x.desired_velocity.add(st.offset_rate);
+                xr.desired_acceleration = x.desired_acceleration.add(acc);
+                (xr, acc)
+            }
+        }
+    }
+
+    #[inline]
+    fn clamp_limit(&self, v: S) -> S {
+        v.clamp(self.limit.neg(), self.limit)
+    }
+
+    /// What the current mode commands on this sample, without advancing
+    /// anything (equal to `update`'s torque when no switch happens).
+    pub fn evaluate(&self, st: &ModeState<S>, x: &ControlInput<S>) -> S {
+        let law = match st.mode {
+            JointMode::Passive => self.passive.law(x, &st.active.friction),
+            _ => {
+                let (xr, _) = self.reference(st, x);
+                self.active.law(&st.active, &xr).law
+            }
+        };
+        // A law that overflowed to NaN (floats, absurd finite inputs)
+        // counts as 0, as in `update`.
+        let law = if law.is_nan() { S::ZERO } else { law };
+        self.clamp_limit(self.clamp_limit(law).add(st.bias))
+    }
+
+    /// The mode the rules ask for at this sample (before debounce).
+    fn wanted(&self, st: &ModeState<S>, interaction: S) -> JointMode {
+        let mag = interaction.abs();
+        match st.mode {
+            JointMode::Active => {
+                if mag > self.enter_passive {
+                    JointMode::Passive
+                } else {
+                    JointMode::Active
+                }
+            }
+            JointMode::Passive => {
+                if !st.latched && mag < self.exit_passive {
+                    JointMode::Active
+                } else {
+                    JointMode::Passive
+                }
+            }
+            JointMode::Hold => {
+                if st.latched {
+                    JointMode::Hold
+                } else {
+                    JointMode::Active
+                }
+            }
+        }
+    }
+
+    /// Enter mode `to`: reset the counters and seed the reference
+    /// (Active: the rejoin offset; Hold: the hold point) and the integral
+    /// (to 0, re-seeded in `update` once the law is known).
+    fn seed(&self, st: &mut ModeState<S>, to: JointMode, x: &ControlInput<S>) {
+        st.mode = to;
+        st.in_mode = 0;
+        st.run = 0;
+        match to {
+            JointMode::Passive => return,
+            JointMode::Active => {
+                st.offset = x.motor_position.sub(x.desired_position);
+                st.offset_rate = x.motor_velocity.sub(x.desired_velocity);
+            }
+            JointMode::Hold => st.hold = x.motor_position,
+        }
+        st.active.integral = S::ZERO;
+    }
+
+    /// One sample: collision detection, mode decision (with seeding at a
+    /// switch), the mode's law, and the state updates.
+    pub fn update(&self, st: &mut ModeState<S>, x: &ControlInput<S>) -> ModeOutput<S> {
+        let interaction = x.joint_torque.sub(x.expected_joint_torque);
+        if !x.is_finite() {
+            st.last_torque = S::ZERO;
+            return ModeOutput {
+                torque: S::ZERO,
+                mode: st.mode,
+                switched: false,
+                saturated: true,
+                invalid_input: true,
+                interaction: S::ZERO,
+                collision: st.latched,
+                reference_position: x.motor_position,
+            };
+        }
+        let mut target = self.wanted(st, interaction);
+        let mut immediate = false;
+        if let Some(c) = &self.collision {
+            let o = c.update(&mut st.collision, x.joint_torque, x.expected_joint_torque);
+            if o.onset && st.mode != JointMode::Passive {
+                st.latched = true;
+                immediate = true;
+                target = match c.reaction() {
+                    CollisionReaction::Stop => JointMode::Hold,
+                    CollisionReaction::Passive => JointMode::Passive,
+                };
+            } else if o.onset {
+                st.latched = true;
+            }
+        }
+        st.in_mode = st.in_mode.saturating_add(1);
+        let mut switched = false;
+        if target != st.mode {
+            st.run = st.run.saturating_add(1);
+            if immediate || (st.run >= self.debounce && st.in_mode > self.dwell) {
+                self.seed(st, target, x);
+                switched = true;
+            }
+        } else {
+            st.run = 0;
+        }
+        // τ_before: the previous command.
+        let before = st.last_torque;
+        // The current mode's law, then its state updates.
+        let (law, reference_position) = match st.mode {
+            JointMode::Passive => (self.passive.law(x, &st.active.friction), x.motor_position),
+            mode => {
+                let (xr, acc) = self.reference(st, x);
+                let mut t: ActiveTerms<S> = self.active.law(&st.active, &xr);
+                if switched && t.valid {
+                    // Re-seed the integral so the law starts near τ_before
+                    // (the law is affine in z with slope −1).
+                    let zl = self.active.integral_limit();
+                    let z = t.law.sub(before).clamp(zl.neg(), zl);
+                    st.active.integral = z;
+                    t.law = t.law.sub(z);
+                }
+                self.active.commit(&mut st.active, &t);
+                if mode == JointMode::Active {
+                    // Semi-implicit Euler of ö = −2ω ȯ − ω² o.
+                    let rate = st.offset_rate.add(acc.mul_coef(&self.step_rate));
+                    st.offset_rate = rate;
+                    st.offset = st.offset.add(rate.mul_coef(&self.step_position));
+                }
+                (t.law, xr.desired_position)
+            }
+        };
+        let overflow = law.is_nan();
+        let law = if overflow { S::ZERO } else { law };
+        let limited = self.clamp_limit(law);
+        if switched {
+            st.bias = before.sub(limited);
+        }
+        let sum = limited.add(st.bias);
+        let torque = self.clamp_limit(sum);
+        st.bias = st.bias.mul_coef(&self.bias_decay);
+        st.last_torque = torque;
+        ModeOutput {
+            torque,
+            mode: st.mode,
+            switched,
+            saturated: limited != law || torque != sum || overflow,
+            invalid_input: overflow,
+            interaction,
+            collision: st.latched,
+            reference_position,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;

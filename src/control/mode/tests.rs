@@ -1,0 +1,297 @@
+use super::*;
+use crate::scalar::I16F16;
+use proptest::prelude::*;
+
+fn params(debounce: u16, dwell: u16, collision: Option<CollisionParams>) -> ModeParams {
+    ModeParams::try_new(
+        RobustAdaptiveParams::table_4_1().unwrap(),
+        PassiveParams::table_4_1(2000.0).unwrap(),
+        2.0,
+        1.0,
+        debounce,
+        dwell,
+        10.0,
+        0.1,
+        collision,
+    )
+    .unwrap()
+}
+
+/// A physically bounded sample in SI (motor side: ±30 rad, ±50 rad/s,
+/// ±2000 rad/s², link torques ±5 N·m), quantized for `S`.
+fn quantize<S: Scalar>(x: &ControlInput<f64>) -> ControlInput<S> {
+    let u = S::UNITS;
+    ControlInput {
+        desired_position: S::from_f64(x.desired_position * u.angle),
+        desired_velocity: S::from_f64(x.desired_velocity * u.speed),
+        desired_acceleration: S::from_f64(x.desired_acceleration * u.speed),
+        motor_position: S::from_f64(x.motor_position * u.angle),
+        motor_velocity: S::from_f64(x.motor_velocity * u.speed),
+        joint_torque: S::from_f64(x.joint_torque * u.link_torque),
+        desired_joint_torque: S::from_f64(x.desired_joint_torque * u.link_torque),
+        expected_joint_torque: S::from_f64(x.expected_joint_torque * u.link_torque),
+    }
+}
+
+prop_compose! {
+    fn sample()(qd in -30.0f64..30.0, dq in -0.5f64..0.5, vd in -50.0f64..50.0, dv in -5.0f64..5.0,
+                ad in -2000.0f64..2000.0, tau in -5.0f64..5.0, exp in -1.0f64..1.0) -> ControlInput<f64> {
+        ControlInput {
+            desired_position: qd, desired_velocity: vd, desired_acceleration: ad,
+            motor_position: qd + dq, motor_velocity: vd + dv, joint_torque: tau,
+            desired_joint_torque: 0.0, expected_joint_torque: exp,
+        }
+    }
+}
+
+/// Runs a sequence through the manager; at every switching sample checks
+/// `|τ_after − τ_before| ≤ switch_jump_bound` with `τ_before` the previous
+/// command (tracked here, 0 initially), that the reference starts at the
+/// measured position
+/// when entering Active or Hold, and everywhere that the output is
+/// bounded and NaN-free and equals the current mode's command when no
+/// switch happens.
+fn check_sequence<S: Scalar>(
+    cfg: &ModeConfig<S>,
+    xs: &[ControlInput<f64>],
+    ack_at: usize,
+) -> Result<u32, TestCaseError> {
+    let mut st = cfg.initial_state();
+    let bound = cfg.switch_jump_bound();
+    let mut switches = 0;
+    let mut prev = S::ZERO;
+    for (k, x) in xs.iter().enumerate() {
+        if k == ack_at {
+            cfg.acknowledge_collision(&mut st);
+        }
+        let xq = quantize::<S>(x);
+        let before = cfg.evaluate(&st, &xq);
+        let o = cfg.update(&mut st, &xq);
+        prop_assert!(!o.torque.is_nan() && o.torque.abs() <= cfg.torque_limit());
+        if o.switched {
+            switches += 1;
+            let jump = o.torque.sub(prev).abs();
+            prop_assert!(
+                jump <= bound,
+                "{:?}: jump {:?} > {:?} ({:?} → {:?})",
+                o.mode,
+                jump,
+                bound,
+                prev,
+                o.torque
+            );
+            if o.mode != JointMode::Passive {
+                let d = o.reference_position.sub(xq.motor_position).abs();
+                prop_assert!(
+                    d.to_f64()
+                        <= 4.0 * S::RESOLUTION.to_f64() * (1.0 + xq.motor_position.abs().to_f64())
+                );
+            }
+        } else {
+            prop_assert_eq!(o.torque, before);
+        }
+        prev = o.torque;
+    }
+    Ok(switches)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+    /// The bumpless-transfer bound of the module docs over random states
+    /// and random switching sequences, on every backend.
+    #[test]
+    fn switching_is_bumpless(prefix in proptest::collection::vec(sample(), 0..120), tail in sample()) {
+        let p = params(1, 0, Some(CollisionParams::try_new(4.0, 3.0, 2, 2, CollisionReaction::Stop).unwrap()));
+        // Interaction torques beyond ±2 N·m switch to passive, below ±1
+        // back; the random prefix leaves a random state, and the tail
+        // forces at least two switches from it (Active → Passive →
+        // Active, or Passive → Active → Passive; a latched collision is
+        // acknowledged first).
+        let mut xs = prefix;
+        let ack = xs.len();
+        for tau in [3.0, 0.0, 3.0] {
+            xs.push(ControlInput { joint_torque: tau, expected_joint_torque: 0.0, ..tail });
+        }
+        for n in [
+            check_sequence(&ModeConfig::<f64>::new(&p), &xs, ack)?,
+            check_sequence(&ModeConfig::<f32>::new(&p), &xs, ack)?,
+            check_sequence(&ModeConfig::<I16F16>::new(&p), &xs, ack)?,
+        ] {
+            prop_assert!(n >= 2);
+        }
+    }
+}
+
+fn step<S: Scalar>(cfg: &ModeConfig<S>, st: &mut ModeState<S>, tau: f64) -> ModeOutput<S> {
+    let x = quantize::<S>(&ControlInput {
+        joint_torque: tau,
+        ..Default::default()
+    });
+    cfg.update(st, &x)
+}
+
+#[test]
+fn hysteresis_debounce_and_dwell() {
+    let cfg = ModeConfig::<I16F16>::new(&params(3, 10, None));
+    let mut st = cfg.initial_state();
+    // Inside the hysteresis band nothing happens.
+    for _ in 0..20 {
+        assert_eq!(step(&cfg, &mut st, 1.5).mode, JointMode::Active);
+    }
+    // Over `enter` for 2 samples, then back: debounce prevents a switch.
+    step(&cfg, &mut st, 2.5);
+    step(&cfg, &mut st, 2.5);
+    assert_eq!(step(&cfg, &mut st, 1.5).mode, JointMode::Active);
+    // Three in a row switch.
+    step(&cfg, &mut st, -2.5);
+    step(&cfg, &mut st, -2.5);
+    let o = step(&cfg, &mut st, -2.5);
+    assert!(o.switched && o.mode == JointMode::Passive);
+    // Below `exit` at once: the dwell time (10 samples) holds Passive.
+    let mut k = 0;
+    while step(&cfg, &mut st, 0.0).mode == JointMode::Passive {
+        k += 1;
+        assert!(k < 100);
+    }
+    assert_eq!(k, 10);
+    // Between the thresholds Passive would stay.
+    let o = step(&cfg, &mut st, 0.0);
+    assert_eq!(o.mode, JointMode::Active);
+}
+
+#[test]
+fn collision_stop_holds_the_position_until_acknowledged() {
+    let col = CollisionParams::try_new(3.0, 1.0, 2, 2, CollisionReaction::Stop).unwrap();
+    let cfg = ModeConfig::<f64>::new(&params(1, 0, Some(col)));
+    let mut st = cfg.initial_state();
+    let mut x = ControlInput {
+        motor_position: 0.7,
+        desired_position: 0.7,
+        joint_torque: 3.5,
+        expected_joint_torque: 0.0,
+        ..Default::default()
+    };
+    // First sample over 3 N·m: the interaction rule (2 N·m, debounce 1)
+    // already switches to Passive. Use expected torque to keep the
+    // interaction small while the residual is large? Both use the same
+    // residual, so give the detector its own debounce: on the second
+    // sample the collision onset forces Stop even from Passive? No: the
+    // reaction applies from Active only; here test from Active with a
+    // detector faster than the interaction rule.
+    let cfg = ModeConfig::<f64>::new(&params(5, 0, Some(col)));
+    let mut st2 = cfg.initial_state();
+    let _ = &mut st;
+    assert_eq!(cfg.update(&mut st2, &x).mode, JointMode::Active);
+    let o = cfg.update(&mut st2, &x);
+    assert!(o.switched && o.mode == JointMode::Hold && o.collision);
+    assert_eq!(o.reference_position, 0.7);
+    // The user trajectory moves on; the hold point stays.
+    x.desired_position = 2.0;
+    x.joint_torque = 0.0;
+    for _ in 0..50 {
+        let o = cfg.update(&mut st2, &x);
+        assert_eq!(o.mode, JointMode::Hold);
+        assert_eq!(o.reference_position, 0.7);
+    }
+    cfg.acknowledge_collision(&mut st2);
+    let mut o = cfg.update(&mut st2, &x);
+    let mut k = 0;
+    while o.mode != JointMode::Active {
+        o = cfg.update(&mut st2, &x);
+        k += 1;
+        assert!(k < 10);
+    }
+    // Re-entering Active starts from the measured position.
+    assert!(o.switched && (o.reference_position - 0.7).abs() < 1e-15);
+}
+
+#[test]
+fn collision_passive_reaction_latches_passive() {
+    let col = CollisionParams::try_new(3.0, 1.0, 1, 1, CollisionReaction::Passive).unwrap();
+    let cfg = ModeConfig::<f32>::new(&params(5, 0, Some(col)));
+    let mut st = cfg.initial_state();
+    let o = step(&cfg, &mut st, 3.5);
+    assert!(o.switched && o.mode == JointMode::Passive && o.collision);
+    for _ in 0..20 {
+        assert_eq!(step(&cfg, &mut st, 0.0).mode, JointMode::Passive);
+    }
+    cfg.acknowledge_collision(&mut st);
+    let mut k = 0;
+    while step(&cfg, &mut st, 0.0).mode != JointMode::Active {
+        k += 1;
+        assert!(k < 10);
+    }
+}
+
+/// After entering Active away from the desired trajectory, the rejoin
+/// offset decays like the critically damped continuous system
+/// `o(t) = (o₀ + (ȯ₀ + ω o₀) t) e^{−ωt}` (to the forward-difference error
+/// of the semi-implicit Euler step, ωT = 0.04) and never changes sign.
+#[test]
+fn rejoin_offset_decays_critically_damped() {
+    let cfg = ModeConfig::<f64>::new(&params(1, 0, None));
+    let mut st = cfg.initial_state();
+    let x = ControlInput {
+        joint_torque: 3.0,
+        ..Default::default()
+    };
+    cfg.update(&mut st, &x);
+    assert_eq!(st.mode(), JointMode::Passive);
+    let x = ControlInput {
+        motor_position: 0.5,
+        joint_torque: 0.0,
+        ..Default::default()
+    };
+    let o = cfg.update(&mut st, &x);
+    assert!(o.switched && o.mode == JointMode::Active);
+    let w = 10.0;
+    let t_s = 0.004;
+    for k in 1..1000 {
+        cfg.update(&mut st, &x);
+        let (off, _) = st.rejoin_offset();
+        let t = k as f64 * t_s;
+        let want = 0.5 * (1.0 + w * t) * (-w * t).exp();
+        assert!(off >= 0.0);
+        assert!((off - want).abs() <= 0.03 * 0.5, "k={k}: {off} vs {want}");
+    }
+    assert!(st.rejoin_offset().0 < 1e-6);
+}
+
+#[test]
+fn invalid_input_gives_zero_and_keeps_state() {
+    let cfg = ModeConfig::<f64>::new(&params(1, 0, None));
+    let mut st = cfg.initial_state();
+    let before = st;
+    let o = cfg.update(
+        &mut st,
+        &ControlInput {
+            joint_torque: f64::NAN,
+            ..Default::default()
+        },
+    );
+    assert!(o.invalid_input && o.torque == 0.0 && st == before);
+}
+
+#[test]
+fn rejects_inverted_thresholds_and_fast_rejoin() {
+    let a = RobustAdaptiveParams::table_4_1().unwrap();
+    let p = PassiveParams::table_4_1(2000.0).unwrap();
+    assert!(matches!(
+        ModeParams::try_new(a, p, 1.0, 2.0, 1, 0, 10.0, 0.1, None),
+        Err(ParamError::NotIncreasing { .. })
+    ));
+    assert!(matches!(
+        ModeParams::try_new(a, p, 2.0, 1.0, 1, 0, 200.0, 0.1, None),
+        Err(ParamError::OutOfRange {
+            name: "rejoin_bandwidth",
+            ..
+        })
+    ));
+    assert!(matches!(
+        ModeParams::try_new(a, p, 2.0, 1.0, 1, 0, 10.0, 0.001, None),
+        Err(ParamError::OutOfRange {
+            name: "bias_time_constant",
+            ..
+        })
+    ));
+}

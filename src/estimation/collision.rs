@@ -1,0 +1,265 @@
+//! Collision detection on the joint-torque estimate (the use of ch. 3's
+//! estimate the thesis names in its conclusions, ch. 7).
+//!
+//! The residual is `ρ = τ̂_t − τ_expected`: the estimated (or measured)
+//! joint torque minus the torque expected without contact (gravity,
+//! payload, inverse dynamics; 0 if unknown). A collision is *detected* when
+//! `|ρ| > threshold` for `debounce` consecutive samples, and *released*
+//! when `|ρ| < release_threshold` (≤ threshold: hysteresis) for `release`
+//! consecutive samples. The detector only flags; the reaction
+//! ([`CollisionReaction`]) is carried out by the mode manager
+//! ([`crate::control::mode`]).
+
+use crate::error::{positive, ParamError};
+use crate::scalar::Scalar;
+
+/// What the joint does on a detected collision.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CollisionReaction {
+    /// Hold the position at detection (active law, frozen reference).
+    Stop,
+    /// Switch to the passive mode (eq. 4.32): yield to the contact.
+    Passive,
+}
+
+/// Detector parameters, SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CollisionParams {
+    threshold: f64,
+    release_threshold: f64,
+    debounce: u16,
+    release: u16,
+    reaction: CollisionReaction,
+}
+
+impl CollisionParams {
+    /// Validate: `0 < release_threshold ≤ threshold ≤ 30 000` N·m (link
+    /// torque); `debounce, release ≥ 1` samples.
+    pub fn try_new(
+        threshold: f64,
+        release_threshold: f64,
+        debounce: u16,
+        release: u16,
+        reaction: CollisionReaction,
+    ) -> Result<Self, ParamError> {
+        positive("threshold", threshold)?;
+        positive("release_threshold", release_threshold)?;
+        if release_threshold > threshold {
+            return Err(ParamError::NotIncreasing {
+                lower: "release_threshold",
+                lower_value: release_threshold,
+                upper: "threshold",
+                upper_value: threshold,
+            });
+        }
+        if threshold > 30_000.0 {
+            return Err(ParamError::OutOfRange {
+                name: "threshold",
+                value: threshold,
+                min: 0.0,
+                max: 30_000.0,
+            });
+        }
+        for (name, v) in [("debounce", debounce), ("release", release)] {
+            if v == 0 {
+                return Err(ParamError::NotPositive { name, value: 0.0 });
+            }
+        }
+        Ok(CollisionParams {
+            threshold,
+            release_threshold,
+            debounce,
+            release,
+            reaction,
+        })
+    }
+
+    /// The configured reaction.
+    pub fn reaction(&self) -> CollisionReaction {
+        self.reaction
+    }
+}
+
+/// The detector quantized for backend `S` (thresholds in stored link-torque
+/// units).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CollisionConfig<S> {
+    threshold: S,
+    release_threshold: S,
+    debounce: u16,
+    release: u16,
+    reaction: CollisionReaction,
+}
+
+/// Detector state: the latched flag and the run length of the current
+/// condition.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct CollisionState {
+    detected: bool,
+    count: u16,
+}
+
+impl CollisionState {
+    /// `true` while a collision is latched.
+    pub fn detected(&self) -> bool {
+        self.detected
+    }
+}
+
+/// One detector step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CollisionOutput<S> {
+    /// `τ̂_t − τ_expected`, stored link-torque units (saturating).
+    pub residual: S,
+    /// A collision is latched.
+    pub detected: bool,
+    /// It was detected at this sample (rising edge).
+    pub onset: bool,
+    /// An input was NaN: treated as a collision (fail safe).
+    pub invalid_input: bool,
+}
+
+impl<S: Scalar> CollisionConfig<S> {
+    /// Quantize validated parameters.
+    pub fn new(p: &CollisionParams) -> Self {
+        let lt = S::UNITS.link_torque;
+        CollisionConfig {
+            threshold: S::from_f64(p.threshold * lt),
+            release_threshold: S::from_f64(p.release_threshold * lt),
+            debounce: p.debounce,
+            release: p.release,
+            reaction: p.reaction,
+        }
+    }
+
+    /// The configured reaction.
+    pub fn reaction(&self) -> CollisionReaction {
+        self.reaction
+    }
+
+    /// One sample: the estimated and the expected joint torque (stored
+    /// link-torque units). A NaN input counts as over the threshold.
+    pub fn update(&self, st: &mut CollisionState, estimated: S, expected: S) -> CollisionOutput<S> {
+        let residual = estimated.sub(expected);
+        let invalid = residual.is_nan();
+        let mag = residual.abs();
+        let was = st.detected;
+        if !st.detected {
+            if invalid || mag > self.threshold {
+                st.count = st.count.saturating_add(1);
+                if st.count >= self.debounce {
+                    st.detected = true;
+                    st.count = 0;
+                }
+            } else {
+                st.count = 0;
+            }
+        } else if !invalid && mag < self.release_threshold {
+            st.count = st.count.saturating_add(1);
+            if st.count >= self.release {
+                st.detected = false;
+                st.count = 0;
+            }
+        } else {
+            st.count = 0;
+        }
+        CollisionOutput {
+            residual: if invalid { S::ZERO } else { residual },
+            detected: st.detected,
+            onset: st.detected && !was,
+            invalid_input: invalid,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scalar::I16F16;
+    use proptest::prelude::*;
+
+    fn det(debounce: u16, release: u16) -> CollisionConfig<I16F16> {
+        CollisionConfig::new(
+            &CollisionParams::try_new(2.0, 1.0, debounce, release, CollisionReaction::Stop)
+                .unwrap(),
+        )
+    }
+
+    #[test]
+    fn debounce_and_hysteresis() {
+        let c = det(3, 2);
+        let mut st = CollisionState::default();
+        let f = I16F16::from_f64;
+        // Two samples over the threshold, then one under: no detection.
+        for (tau, want) in [(2.5, false), (2.5, false), (0.0, false)] {
+            assert_eq!(c.update(&mut st, f(tau), f(0.0)).detected, want);
+        }
+        // Three in a row (negative residual counts too): detected on the 3rd.
+        let outs: Vec<_> = [-2.5, -3.0, -2.1]
+            .iter()
+            .map(|&t| c.update(&mut st, f(t), f(0.0)))
+            .collect();
+        assert!(!outs[1].detected && outs[2].detected && outs[2].onset);
+        // Between the thresholds it stays latched; below the release
+        // threshold for two samples it releases.
+        assert!(c.update(&mut st, f(1.5), f(0.0)).detected);
+        assert!(c.update(&mut st, f(0.5), f(0.0)).detected);
+        assert!(!c.update(&mut st, f(0.5), f(0.0)).detected);
+        // The expected torque is subtracted.
+        let mut st = CollisionState::default();
+        for _ in 0..5 {
+            assert!(!c.update(&mut st, f(10.0), f(9.0)).detected);
+        }
+    }
+
+    #[test]
+    fn rejects_inverted_thresholds_and_zero_counts() {
+        assert!(matches!(
+            CollisionParams::try_new(1.0, 2.0, 1, 1, CollisionReaction::Passive),
+            Err(ParamError::NotIncreasing { .. })
+        ));
+        assert!(matches!(
+            CollisionParams::try_new(1.0, 0.5, 0, 1, CollisionReaction::Passive),
+            Err(ParamError::NotPositive {
+                name: "debounce",
+                ..
+            })
+        ));
+    }
+
+    #[test]
+    fn nan_is_a_collision() {
+        let c = CollisionConfig::<f32>::new(
+            &CollisionParams::try_new(2.0, 1.0, 1, 1, CollisionReaction::Stop).unwrap(),
+        );
+        let mut st = CollisionState::default();
+        let o = c.update(&mut st, f32::NAN, 0.0);
+        assert!(o.detected && o.invalid_input && o.residual == 0.0);
+    }
+
+    proptest! {
+        /// Against a direct model of the specification over random
+        /// residual sequences: detection exactly after `debounce`
+        /// consecutive samples over the threshold, release after `release`
+        /// consecutive samples under the release threshold.
+        #[test]
+        fn matches_the_specification(seq in proptest::collection::vec(-4.0f64..4.0, 1..200),
+                                     debounce in 1u16..5, release in 1u16..5) {
+            let c = CollisionConfig::<f64>::new(
+                &CollisionParams::try_new(2.0, 1.0, debounce, release, CollisionReaction::Passive).unwrap());
+            let mut st = CollisionState::default();
+            let (mut latched, mut run_hi, mut run_lo) = (false, 0u16, 0u16);
+            for r in seq {
+                let o = c.update(&mut st, r, 0.0);
+                if latched {
+                    run_lo = if r.abs() < 1.0 { run_lo + 1 } else { 0 };
+                    if run_lo >= release { latched = false; run_lo = 0; }
+                } else {
+                    run_hi = if r.abs() > 2.0 { run_hi + 1 } else { 0 };
+                    if run_hi >= debounce { latched = true; run_hi = 0; }
+                }
+                prop_assert_eq!(o.detected, latched);
+            }
+        }
+    }
+}

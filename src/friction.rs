@@ -1,0 +1,571 @@
+//! Joint friction of thesis §4.1–4.2: the Coulomb + static (Stribeck) +
+//! viscous model of eq. (4.7)/(4.8) (and its ch. 6 form, eq. 6.5), the
+//! split of its parameters into a constant and a variable part, eq.
+//! (4.9)–(4.10), and the boundary-layer nominal model with its regressor,
+//! eq. (4.16)–(4.17), that the robust adaptive law of eq. (4.19) adapts.
+//!
+//! The parameter vector is ordered as in the thesis,
+//! `F = [b, f_c, f_s, f_τ]ᵀ`:
+//!
+//! | index | symbol | meaning | SI unit | stored unit (`S::UNITS`) |
+//! |---|---|---|---|---|
+//! | 0 | `b` | viscous coefficient | N·m·s/rad | motor torque per speed |
+//! | 1 | `f_c` | Coulomb level | N·m | motor torque |
+//! | 2 | `f_s` | static (Stribeck) excess | N·m | motor torque |
+//! | 3 | `f_τ` | Stribeck shape, `> 0` | s²/rad² | 1/speed² |
+//!
+//! Sign convention: the friction torque has the sign of the velocity it
+//! opposes (it enters eq. 4.2 on the left, `I_m q̈_m + f_m + τ_t/N = τ_m`),
+//! so the nominal model is *added* to the motor command to compensate it.
+//!
+//! The nonparametric term `f_q(q, q̇)` of eq. (4.8) is not modelled; it is
+//! covered by its bound `ρ_fq` (Assumption 3) in the robust law.
+
+use crate::error::{finite, positive, ParamError};
+use crate::scalar::{Coef, Scalar};
+
+/// Friction parameters `F = [b, f_c, f_s, f_τ]` of eq. (4.8), SI units
+/// (see the module table).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrictionParams {
+    /// Viscous coefficient `b`, N·m·s/rad (≥ 0).
+    pub viscous: f64,
+    /// Coulomb level `f_c`, N·m (≥ 0).
+    pub coulomb: f64,
+    /// Static excess `f_s`, N·m (≥ 0): the breakaway torque is `f_c + f_s`.
+    pub stribeck: f64,
+    /// Stribeck shape `f_τ`, s²/rad² (> 0): the static excess decays as
+    /// `exp(−f_τ q̇²)`.
+    pub stribeck_shape: f64,
+}
+
+/// Names of the four parameters, in vector order (for errors and reports).
+pub const PARAMETER_NAMES: [&str; 4] = ["viscous", "coulomb", "stribeck", "stribeck_shape"];
+
+impl FrictionParams {
+    /// Validate: `b, f_c, f_s ≥ 0`, `f_τ > 0`, all finite.
+    pub fn try_new(
+        viscous: f64,
+        coulomb: f64,
+        stribeck: f64,
+        stribeck_shape: f64,
+    ) -> Result<Self, ParamError> {
+        let p = FrictionParams {
+            viscous: non_negative("viscous", viscous)?,
+            coulomb: non_negative("coulomb", coulomb)?,
+            stribeck: non_negative("stribeck", stribeck)?,
+            stribeck_shape: positive("stribeck_shape", stribeck_shape)?,
+        };
+        Ok(p)
+    }
+
+    /// The vector `F = [b, f_c, f_s, f_τ]`.
+    pub fn to_array(&self) -> [f64; 4] {
+        [
+            self.viscous,
+            self.coulomb,
+            self.stribeck,
+            self.stribeck_shape,
+        ]
+    }
+
+    /// The parameters of a vector `[b, f_c, f_s, f_τ]` (unvalidated).
+    pub fn from_array(f: [f64; 4]) -> Self {
+        FrictionParams {
+            viscous: f[0],
+            coulomb: f[1],
+            stribeck: f[2],
+            stribeck_shape: f[3],
+        }
+    }
+
+    /// Eq. (4.8) without the nonparametric term: friction torque (N·m) at
+    /// motor speed `qd` (rad/s),
+    /// `f = (f_c + f_s e^{−f_τ q̇²}) sgn(q̇) + b q̇`, with `sgn(0) = 0`
+    /// (eq. 2.17).
+    ///
+    /// ```
+    /// use mrr_control::friction::FrictionParams;
+    /// let f = FrictionParams::try_new(1e-4, 0.01, 0.005, 4.0)?;
+    /// // At 0.5 rad/s: 0.01 + 0.005·e^{−1} + 1e-4·0.5 = 0.0118894 N·m.
+    /// assert!((f.torque(0.5) - 0.0118894).abs() < 1e-7);
+    /// // Inside the boundary layer ε = 0.01 the nominal model ramps:
+    /// // (0.01 + 0.005·e^{−1e-4})·0.5 + 1e-4·0.005 = 0.00750025 N·m.
+    /// assert!((f.nominal(0.005, 0.01) - 0.00750025).abs() < 1e-8);
+    /// # Ok::<(), mrr_control::ParamError>(())
+    /// ```
+    pub fn torque(&self, qd: f64) -> f64 {
+        (self.coulomb + self.stribeck * libm::exp(-self.stribeck_shape * qd * qd)) * qd.sgn()
+            + self.viscous * qd
+    }
+
+    /// Eq. (4.17), first line: the nominal model with the boundary layer
+    /// `ε_q̇` (rad/s),
+    /// `f̂ = (f_c + f_s e^{−f_τ q̇²}) sat(q̇, ε_q̇) + b q̇` (N·m).
+    pub fn nominal(&self, qd: f64, eps: f64) -> f64 {
+        (self.coulomb + self.stribeck * libm::exp(-self.stribeck_shape * qd * qd)) * qd.sat(eps)
+            + self.viscous * qd
+    }
+
+    /// Eq. (4.17), third line: the regressor `Y = ∂f̂/∂F` at these
+    /// parameters,
+    /// `Y = [q̇, s, e^{−f_τ q̇²} s, −f_s q̇² e^{−f_τ q̇²} s]` with
+    /// `s = sat(q̇, ε_q̇)`; units `[rad/s, 1, 1, N·m·rad²/s²]`.
+    pub fn regressor(&self, qd: f64, eps: f64) -> [f64; 4] {
+        let s = qd.sat(eps);
+        let e = libm::exp(-self.stribeck_shape * qd * qd);
+        [qd, s, e * s, -self.stribeck * qd * qd * e * s]
+    }
+
+    /// Eq. (4.17), second line: the boundary-layer residual
+    /// `f̌ = (f_c + f_s e^{−f_τ q̇²}) (sgn(q̇) − sat(q̇, ε_q̇))` (N·m), the part
+    /// of eq. (4.8) the smooth nominal model leaves out. It vanishes for
+    /// `|q̇| > ε_q̇` and is bounded by `f_c + f_s` (Assumption 6).
+    pub fn boundary_layer_residual(&self, qd: f64, eps: f64) -> f64 {
+        (self.coulomb + self.stribeck * libm::exp(-self.stribeck_shape * qd * qd))
+            * (qd.sgn() - qd.sat(eps))
+    }
+}
+
+fn non_negative(name: &'static str, value: f64) -> Result<f64, ParamError> {
+    let value = finite(name, value)?;
+    if value < 0.0 {
+        Err(ParamError::Negative { name, value })
+    } else {
+        Ok(value)
+    }
+}
+
+/// What is known about a joint's friction: the box `[min, max]` that the
+/// constant part `F^c` lies in (the projection bounds of the adaptation
+/// law), and the bound `ρ_F` on the variable part, eq. (4.9)–(4.10):
+/// `F = F^c + F^v`, `|F^v_j| < ρ_Fj`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrictionBounds {
+    min: [f64; 4],
+    max: [f64; 4],
+    variable: [f64; 4],
+}
+
+impl FrictionBounds {
+    /// Validate: `min` and `max` are valid [`FrictionParams`] with
+    /// `min_j ≤ max_j` (a component may be fixed, `min_j = max_j`),
+    /// `ρ_Fj ≥ 0`, and `f_τ,min ≥ 1e-3 s²/rad²` — below it the Stribeck
+    /// term of a fixed-point backend could not be evaluated beyond
+    /// `|q̇| = 181 rad/s`, where `q̇²` leaves the `I16F16` range while
+    /// `e^{−f_τ q̇²}` is still above one LSB (with `f_τ ≥ 1e-3` it is
+    /// below `e^{−32}`).
+    pub fn try_new(
+        min: FrictionParams,
+        max: FrictionParams,
+        variable: [f64; 4],
+    ) -> Result<Self, ParamError> {
+        let min =
+            FrictionParams::try_new(min.viscous, min.coulomb, min.stribeck, min.stribeck_shape)?;
+        let max =
+            FrictionParams::try_new(max.viscous, max.coulomb, max.stribeck, max.stribeck_shape)?;
+        let (lo, hi) = (min.to_array(), max.to_array());
+        for j in 0..4 {
+            if lo[j] > hi[j] {
+                return Err(ParamError::NotIncreasing {
+                    lower: PARAMETER_NAMES[j],
+                    lower_value: lo[j],
+                    upper: PARAMETER_NAMES[j],
+                    upper_value: hi[j],
+                });
+            }
+            let v = non_negative("variable_bound", variable[j])?;
+            let _ = v;
+        }
+        if lo[3] < 1e-3 {
+            return Err(ParamError::OutOfRange {
+                name: "stribeck_shape",
+                value: lo[3],
+                min: 1e-3,
+                max: f64::INFINITY,
+            });
+        }
+        Ok(FrictionBounds {
+            min: lo,
+            max: hi,
+            variable,
+        })
+    }
+
+    /// Bounds from constants already known to be valid (the shipped
+    /// example configurations; their validity is tested).
+    pub(crate) const fn from_checked(min: [f64; 4], max: [f64; 4], variable: [f64; 4]) -> Self {
+        FrictionBounds { min, max, variable }
+    }
+
+    /// Lower corner of the box of `F^c`.
+    pub fn min(&self) -> [f64; 4] {
+        self.min
+    }
+
+    /// Upper corner of the box of `F^c`.
+    pub fn max(&self) -> [f64; 4] {
+        self.max
+    }
+
+    /// Bounds `ρ_F` of the variable part, eq. (4.10), in the units of `F`.
+    pub fn variable(&self) -> [f64; 4] {
+        self.variable
+    }
+
+    /// `true` when `f` lies in the box of `F^c`.
+    pub fn contains(&self, f: &FrictionParams) -> bool {
+        let a = f.to_array();
+        (0..4).all(|j| a[j] >= self.min[j] && a[j] <= self.max[j])
+    }
+
+    /// Eq. (4.9): split an actual parameter vector into its constant part
+    /// `F^c` (the nearest point of the box) and its variable part
+    /// `F^v = F − F^c`, and report whether Property 1, `|F^v_j| < ρ_Fj`
+    /// (eq. 4.10), holds for it.
+    pub fn split(&self, f: &FrictionParams) -> ([f64; 4], [f64; 4], bool) {
+        let a = f.to_array();
+        let mut c = [0.0; 4];
+        let mut v = [0.0; 4];
+        let mut ok = true;
+        for j in 0..4 {
+            c[j] = a[j].clamp(self.min[j], self.max[j]);
+            v[j] = a[j] - c[j];
+            ok &= v[j].abs() < self.variable[j] || v[j] == 0.0;
+        }
+        (c, v, ok)
+    }
+
+    /// A bound `ρ_f` for Assumption 6, derived: `|sgn − sat| ≤ 1` and
+    /// `e^{−f_τ q̇²} ≤ 1`, so `|f̌| ≤ f_c + f_s ≤ (f_c,max + ρ_F2) +
+    /// (f_s,max + ρ_F3)` (N·m) for every actual parameter vector allowed by
+    /// the box and eq. (4.10). The supremum is approached as `q̇ → 0⁺` with
+    /// `f_τ`'s factor → 1, so it cannot be lowered in general.
+    pub fn boundary_layer_bound(&self) -> f64 {
+        self.max[1] + self.variable[1] + self.max[2] + self.variable[2]
+    }
+}
+
+/// Stored units of `F = [b, f_c, f_s, f_τ]` for backend `S`: the factor
+/// from SI to stored value of each component.
+pub(crate) fn parameter_scales<S: Scalar>() -> [f64; 4] {
+    let u = S::UNITS;
+    [
+        u.motor_torque / u.speed,
+        u.motor_torque,
+        u.motor_torque,
+        1.0 / (u.speed * u.speed),
+    ]
+}
+
+/// Stored units of the regressor `Y` of eq. (4.17) for backend `S`.
+pub(crate) fn regressor_scales<S: Scalar>() -> [f64; 4] {
+    let u = S::UNITS;
+    [u.speed, 1.0, 1.0, u.motor_torque * u.speed * u.speed]
+}
+
+/// `sat(x, ε)` of eq. (4.18) for `ε > 0` with a prepared reciprocal
+/// `inv_eps = 1/ε`: no division in the hot path. Equals
+/// [`Scalar::sat`] up to the rounding of the product (result clamped to
+/// `[−1, 1]`, odd, non-decreasing); NaN gives 0.
+#[inline]
+pub fn sat_with_reciprocal<S: Scalar>(x: S, eps: S, inv_eps: &Coef) -> S {
+    if x > eps {
+        S::ONE
+    } else if x < eps.neg() {
+        S::ONE.neg()
+    } else if x.is_nan() {
+        S::ZERO
+    } else {
+        x.mul_coef(inv_eps).clamp(S::ONE.neg(), S::ONE)
+    }
+}
+
+/// `x · s` for a factor `s ∈ [−1, 1]` that is often exactly `±1` (a
+/// saturated `sat`): those cases skip the multiply (on a Cortex-M0+ an
+/// `I16F16` product is a 64-bit multiply); floats always multiply.
+/// Bit-identical to `x.mul(s)` on
+/// every backend (`x·1 = x` and `x·(−1) = −x` exactly, with the same
+/// saturation of `−MIN`).
+#[inline]
+pub(crate) fn mul_unit<S: Scalar>(x: S, s: S) -> S {
+    if S::RESOLUTION.to_f64() < 1e-6 {
+        // Floats: a multiply is cheaper than the branches (folded at
+        // compile time).
+        x.mul(s)
+    } else if s == S::ONE {
+        x
+    } else if s == S::ONE.neg() {
+        x.neg()
+    } else {
+        x.mul(s)
+    }
+}
+
+/// The nominal friction model of eq. (4.17) and its boundary layer,
+/// quantized for backend `S`; the parameters themselves are passed per
+/// call (they are adapted at run time).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrictionConfig<S> {
+    eps: S,
+    inv_eps: Coef,
+}
+
+/// The nominal friction torque and regressor at one speed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrictionEval<S> {
+    /// `f̂^c(q̇)` of eq. (4.17), stored motor-torque units.
+    pub torque: S,
+    /// `Y(q̇)` of eq. (4.17), stored regressor units
+    /// (`[speed, 1, 1, motor torque · speed²]`).
+    pub regressor: [S; 4],
+}
+
+impl<S: Scalar> FrictionConfig<S> {
+    /// Quantize the velocity boundary layer `ε_q̇` (rad/s, > 0; validated by
+    /// the owning component).
+    pub fn new(eps_velocity: f64) -> Self {
+        let eps = S::from_f64(eps_velocity * S::UNITS.speed);
+        FrictionConfig {
+            eps,
+            inv_eps: Coef::new(1.0 / eps.to_f64()),
+        }
+    }
+
+    /// The quantized boundary layer, stored speed units.
+    pub fn eps_velocity(&self) -> S {
+        self.eps
+    }
+
+    /// Parameters `F` (SI) as stored values for this backend.
+    pub fn quantize(f: &FrictionParams) -> [S; 4] {
+        let sc = parameter_scales::<S>();
+        let a = f.to_array();
+        [
+            S::from_f64(a[0] * sc[0]),
+            S::from_f64(a[1] * sc[1]),
+            S::from_f64(a[2] * sc[2]),
+            S::from_f64(a[3] * sc[3]),
+        ]
+    }
+
+    /// Stored parameters back to SI.
+    pub fn dequantize(theta: &[S; 4]) -> FrictionParams {
+        let sc = parameter_scales::<S>();
+        FrictionParams::from_array([
+            theta[0].to_f64() / sc[0],
+            theta[1].to_f64() / sc[1],
+            theta[2].to_f64() / sc[2],
+            theta[3].to_f64() / sc[3],
+        ])
+    }
+
+    /// Eq. (4.17): nominal torque `f̂^c(q̇)` and regressor `Y(q̇)` at motor
+    /// speed `qd` (stored speed units) for stored parameters `theta`.
+    /// One `exp` per call. In fixed point, `q̇²` saturates above
+    /// 181 rad/s; there `e^{−f_τ q̇²}` is 0 for every admissible `f_τ`
+    /// (see [`FrictionBounds::try_new`]), so the Stribeck terms vanish as
+    /// they should.
+    #[inline]
+    pub fn evaluate(&self, theta: &[S; 4], qd: S) -> FrictionEval<S> {
+        let s = sat_with_reciprocal(qd, self.eps, &self.inv_eps);
+        let q2 = qd.mul(qd);
+        let e = theta[3].mul(q2).neg().exp();
+        // Outside the velocity layer s = ±1 and its products are free.
+        let es = mul_unit(e, s);
+        let y4 = mul_unit(theta[2].mul(q2.mul(e)), s).neg();
+        let torque = theta[0]
+            .mul(qd)
+            .add(mul_unit(theta[1], s))
+            .add(theta[2].mul(es));
+        FrictionEval {
+            torque,
+            regressor: [qd, s, es, y4],
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scalar::I16F16;
+    use proptest::prelude::*;
+
+    fn example() -> FrictionParams {
+        FrictionParams::try_new(2e-5, 0.006, 0.006, 1.0).unwrap()
+    }
+
+    #[test]
+    fn try_new_names_the_bad_value() {
+        assert_eq!(
+            FrictionParams::try_new(-1.0, 0.0, 0.0, 1.0),
+            Err(ParamError::Negative {
+                name: "viscous",
+                value: -1.0
+            })
+        );
+        assert!(matches!(
+            FrictionParams::try_new(0.0, 0.0, 0.0, 0.0),
+            Err(ParamError::NotPositive {
+                name: "stribeck_shape",
+                ..
+            })
+        ));
+        assert!(matches!(
+            FrictionParams::try_new(0.0, f64::NAN, 0.0, 1.0),
+            Err(ParamError::NotFinite {
+                name: "coulomb",
+                ..
+            })
+        ));
+        let lo = FrictionParams::try_new(0.0, 0.01, 0.0, 1.0).unwrap();
+        let hi = FrictionParams::try_new(1e-4, 0.005, 0.01, 2.0).unwrap();
+        assert!(matches!(
+            FrictionBounds::try_new(lo, hi, [0.0; 4]),
+            Err(ParamError::NotIncreasing {
+                lower: "coulomb",
+                ..
+            })
+        ));
+        let lo = FrictionParams::try_new(0.0, 0.0, 0.0, 1e-4).unwrap();
+        assert!(matches!(
+            FrictionBounds::try_new(lo, hi, [0.0; 4]),
+            Err(ParamError::OutOfRange {
+                name: "stribeck_shape",
+                ..
+            })
+        ));
+    }
+
+    /// Hand values: at q̇ = 0.5 rad/s with ε = 0.01 the layer is left,
+    /// f = (0.006 + 0.006·e^{−0.25}) + 2e-5·0.5.
+    #[test]
+    fn torque_matches_hand_value_and_nominal_outside_layer() {
+        let f = example();
+        let want = 0.006 + 0.006 * (-0.25f64).exp() + 1e-5;
+        assert!((f.torque(0.5) - want).abs() < 1e-15);
+        assert!((f.nominal(0.5, 0.01) - want).abs() < 1e-15);
+        assert_eq!(f.boundary_layer_residual(0.5, 0.01), 0.0);
+        assert!((f.torque(-0.5) + want).abs() < 1e-15);
+        assert_eq!(f.torque(0.0), 0.0);
+        // Inside the layer the nominal model is the linear ramp.
+        let inside = f.nominal(0.004, 0.01);
+        let ramp = (0.006 + 0.006 * (-1.6e-5f64).exp()) * 0.4 + 2e-5 * 0.004;
+        assert!((inside - ramp).abs() < 1e-15);
+    }
+
+    proptest! {
+        /// Eq. (4.16) without parameter error: f = f̂ + f̌ exactly, and the
+        /// residual obeys the bound of Assumption 6.
+        #[test]
+        fn model_splits_into_nominal_and_residual(
+            qd in -50.0f64..50.0, eps in 1e-4f64..0.5,
+            b in 0.0f64..1e-3, fc in 0.0f64..0.05, fs in 0.0f64..0.05, ft in 1e-3f64..100.0,
+        ) {
+            let f = FrictionParams::try_new(b, fc, fs, ft).unwrap();
+            let sum = f.nominal(qd, eps) + f.boundary_layer_residual(qd, eps);
+            prop_assert!((sum - f.torque(qd)).abs() <= 1e-15 * (1.0 + f.torque(qd).abs()));
+            prop_assert!(f.boundary_layer_residual(qd, eps).abs() <= fc + fs);
+        }
+
+        /// The regressor is the gradient of the nominal model (central
+        /// finite differences in each parameter).
+        #[test]
+        fn regressor_is_the_parameter_gradient(
+            qd in -5.0f64..5.0, eps in 1e-3f64..0.1,
+            b in 0.0f64..1e-3, fc in 0.0f64..0.05, fs in 1e-3f64..0.05, ft in 0.01f64..10.0,
+        ) {
+            let f = FrictionParams::try_new(b, fc, fs, ft).unwrap();
+            let y = f.regressor(qd, eps);
+            let a = f.to_array();
+            for j in 0..4 {
+                let h = 1e-6 * (1.0 + a[j].abs());
+                let (mut p, mut m) = (a, a);
+                p[j] += h;
+                m[j] -= h;
+                let fd = (FrictionParams::from_array(p).nominal(qd, eps)
+                    - FrictionParams::from_array(m).nominal(qd, eps)) / (2.0 * h);
+                prop_assert!((fd - y[j]).abs() <= 1e-6 * (1.0 + y[j].abs()), "j={} fd={} y={}", j, fd, y[j]);
+            }
+        }
+
+        /// The backend evaluation agrees with the f64 reference evaluated
+        /// on the same (quantized) speed and parameters, within a
+        /// derived budget. I16F16, in stored LSB `q` of mN·m: `δs ≤ 0.6q`
+        /// (product with the prepared `1/ε`), `δq̇² ≤ ½q`,
+        /// `δu ≤ ½q + θ₄·½q` (`u = f_τ q̇²`), `δe ≤ q + δu` (exp kernel
+        /// ≤ 1 LSB for `e^x ≤ 1`, slope ≤ 1), `δ(e s) ≤ ½q + δe + δs`, and
+        /// the three products of the sum ½q each, weighted by `θ₂`, `θ₃`;
+        /// plus 1 LSB for the reference. f32: ≤ 10 unit roundoffs of
+        /// the sum of term magnitudes, plus `f_s`·u for the exp argument.
+        #[test]
+        fn backends_agree_with_reference(
+            qd in -200.0f64..200.0,
+            b in 0.0f64..1e-3, fc in 0.0f64..0.05, fs in 0.0f64..0.05, ft in 1e-3f64..10.0,
+        ) {
+            let f = FrictionParams::try_new(b, fc, fs, ft).unwrap();
+            let eps = 0.01;
+            // I16F16
+            let cx = FrictionConfig::<I16F16>::new(eps);
+            let thx = FrictionConfig::<I16F16>::quantize(&f);
+            let qx = I16F16::from_f64(qd);
+            let gx = cx.evaluate(&thx, qx).torque.to_f64();
+            let fq = FrictionConfig::<I16F16>::dequantize(&thx);
+            let want = fq.nominal(qx.to_f64(), cx.eps_velocity().to_f64()) * 1e3;
+            let q = 1.0 / 65536.0;
+            let th: [f64; 4] = [thx[0].to_f64(), thx[1].to_f64(), thx[2].to_f64(), thx[3].to_f64()];
+            let ds = 0.6 * q;
+            let du = 0.5 * q + th[3] * 0.5 * q;
+            let de = q + du;
+            let des = 0.5 * q + de + ds;
+            let tol = 1.5 * q + th[1].abs() * ds + th[2].abs() * des + q;
+            prop_assert!((gx - want).abs() <= tol, "{gx} vs {want} tol {tol}");
+            // f32
+            let c32 = FrictionConfig::<f32>::new(eps);
+            let th32 = FrictionConfig::<f32>::quantize(&f);
+            let g32 = c32.evaluate(&th32, qd as f32).torque as f64;
+            let f32p = FrictionConfig::<f32>::dequantize(&th32);
+            let want32 = f32p.nominal(qd as f32 as f64, c32.eps_velocity() as f64);
+            let u = f32::EPSILON as f64 / 2.0;
+            let mag = (f32p.viscous * qd).abs() + f32p.coulomb + f32p.stribeck;
+            prop_assert!((g32 - want32).abs() <= 10.0 * u * mag + u * f32p.stribeck, "{g32} vs {want32}");
+        }
+
+        /// `sat_with_reciprocal` matches the division form of eq. (4.18)
+        /// to one rounding, stays in [−1, 1] and is odd.
+        #[test]
+        fn reciprocal_sat_matches_eq_4_18(x in -1.0f64..1.0, eps in 1e-4f64..0.5) {
+            let inv = Coef::new(1.0 / eps);
+            let a = sat_with_reciprocal(x, eps, &inv);
+            prop_assert!((a - x.sat(eps)).abs() <= 2.0 * f64::EPSILON);
+            prop_assert!((-1.0..=1.0).contains(&a));
+            prop_assert_eq!(sat_with_reciprocal(-x, eps, &inv), -a);
+            let xf = x as f32;
+            let ef = eps as f32;
+            let invf = Coef::new(1.0 / ef as f64);
+            let af = sat_with_reciprocal(xf, ef, &invf);
+            prop_assert!((af - xf.sat(ef)).abs() <= 2.0 * f32::EPSILON);
+        }
+    }
+
+    #[test]
+    fn split_and_boundary_layer_bound() {
+        let lo = FrictionParams::try_new(0.0, 0.0, 0.0, 0.01).unwrap();
+        let hi = FrictionParams::try_new(1e-4, 0.012, 0.012, 10.0).unwrap();
+        let bx = FrictionBounds::try_new(lo, hi, [1e-3, 1e-2, 1e-2, 1.0]).unwrap();
+        let inside = FrictionParams::try_new(5e-5, 0.006, 0.006, 1.0).unwrap();
+        let (c, v, ok) = bx.split(&inside);
+        assert!(ok && v == [0.0; 4] && c == inside.to_array());
+        let outside = FrictionParams::try_new(5e-5, 0.015, 0.006, 1.0).unwrap();
+        let (c, v, ok) = bx.split(&outside);
+        assert!(ok && (c[1] - 0.012).abs() < 1e-15 && (v[1] - 0.003).abs() < 1e-15);
+        let far = FrictionParams::try_new(5e-5, 0.03, 0.006, 1.0).unwrap();
+        assert!(!bx.split(&far).2);
+        // ρ_f = (0.012 + 0.01) + (0.012 + 0.01), and it bounds f̌ for the
+        // extreme admissible parameters just inside the layer.
+        assert!((bx.boundary_layer_bound() - 0.044).abs() < 1e-15);
+        let extreme = FrictionParams::try_new(1e-4, 0.0219, 0.0219, 0.01).unwrap();
+        let r = extreme.boundary_layer_residual(1e-9, 0.01);
+        assert!(r < bx.boundary_layer_bound() && r > 0.0438 * 0.99);
+    }
+}
