@@ -635,13 +635,21 @@ def qemu_check(fws, target_dir, profile):
             with open(log) as fh:
                 for line in fh:
                     if line.startswith("Trace"):
-                        pcs.append(int(line.split("/")[1], 16))
+                        pcs.append(int(line.split("[")[1].split("/")[1], 16))
         i0 = pcs.index(start)
         i1 = pcs.index(end)
         q = i1 - i0  # instructions from crosscheck_start's first to crosscheck_end's first
-        # The same span in unicorn: run `crosscheck` with counting from its start.
-        n_uni, raw = unicorn_span(fw, start, end)
-        results.append((key, q, n_uni, raw))
+        # The same span in unicorn, on a fresh image (the table's runs have
+        # changed the step states): run `crosscheck` after `init`.
+        n_uni, raw = unicorn_span(Firmware(fw.core, elf), start, end)
+        # And the table's block-mode counter on the whole `crosscheck` call
+        # against the per-instruction counter, each on a fresh image.
+        whole = []
+        for mode in ("insn", "block"):
+            f2 = Firmware(fw.core, elf)
+            f2.set_mode(mode)
+            whole.append(f2.call("crosscheck", [], limit=10**8, count=True)[0])
+        results.append((key, q, n_uni, raw, whole))
     return results
 
 
@@ -669,10 +677,9 @@ def unicorn_span(fw, start, end):
         uc.reg_write(A.UC_ARM_REG_LR, RETURN | 1)
         fw.counting, fw.limit, fw.panicked = False, 10**9, False
         uc.emu_start(fw.syms["crosscheck"] | 1, RETURN)
-        # `end` itself was hooked by the counter before it stopped: exclude it.
-        if fw.prev is not None:
-            fw._retire(fw.prev, end)
-        return fw.n - 1, state["raw"] - 1
+        # The counter missed `start` (counting began in the hook after it)
+        # and included `end`: `fw.n` is the length of [start, end).
+        return fw.n, state["raw"] - 1
     finally:
         uc.hook_del(h)
         fw.counting = False
@@ -693,10 +700,11 @@ def main():
     target_dir = os.environ.get("CARGO_TARGET_DIR", os.path.join(HERE, "target"))
     if args.qemu:
         res = qemu_check(fws, target_dir, args.profile)
-        for key, q, n, raw in res or []:
-            ok = q == n
+        for key, q, n, raw, whole in res or []:
+            ok = q == n and whole[0] == whole[1]
             print(f"QEMU cross-check {key}: QEMU -d exec {q} instructions, unicorn + IT correction {n} "
-                  f"(hooked alone {raw}): {'agree' if ok else 'DISAGREE'}")
+                  f"(hooked alone {raw}); whole sequence per instruction {whole[0]}, per block {whole[1]}: "
+                  f"{'agree' if ok else 'DISAGREE'}")
             if not ok:
                 failures.append(f"QEMU cross-check {key}: {q} vs {n}")
     if args.bitcheck:
