@@ -9,19 +9,26 @@ prints one table (step x core x backend: worst-case instructions, estimated
 cycles, share of the 4 ms budget, ratio to the libm/cordic reference) and
 exits non-zero when a budget of `BUDGETS` is exceeded.
 
-Counting. A code hook sees every executed instruction except the
-condition-failed instructions of a Thumb-2 IT block, which unicorn (like the
-QEMU it is built from) skips without calling the hook. The counter adds them
-back: after each hooked instruction it walks forward over the IT-block
-slots that were skipped before the next hooked address (`--qemu` checks the
-result against QEMU's per-instruction `-d exec` trace).
+Counting. The table counts per translation block: every instruction of an
+executed block counts once, which includes the condition-failed
+instructions of a Thumb-2 IT block (QEMU and unicorn translate them as part
+of the block and skip them at run time). A per-instruction code hook, by
+contrast, is not called for those skipped instructions; that mode (used by
+`--qemu`) adds them back by walking forward over the IT-block slots between
+two hooked addresses. `--qemu` checks the per-instruction count against
+QEMU's own trace (`-d exec,nochain -singlestep`: one line per executed
+instruction, condition-failed ones included) and the per-block count
+against the per-instruction one.
 
 Cycles. Each executed instruction gets the cost of its class from the
 cores' published timings (Cortex-M4 TRM r0p1 section 3.3 and FPU table 7-1;
-Cortex-M0+ TRM r0p1 section 3.3), with zero wait states: an assumption, see
-`M4_TIMING` / `M0P_TIMING`. Where the manual gives a range the upper end is
-taken (taken branch refill P = 3 on the M4, SDIV/UDIV 12 cycles, a
-condition-failed instruction 1 cycle).
+Cortex-M0+ TRM r0p1 section 3.3), with zero wait states, an assumption; see
+`m4_cycles` / `m0p_cycles`. Where the manual gives a range the upper end is
+taken: taken-branch refill P = 3 on the M4, SDIV/UDIV 12 cycles; the block
+counter charges a condition-failed IT instruction its full cost (the
+per-instruction mode charges it 1 cycle). The M0+ is assumed to have the
+single-cycle multiplier (MULS = 1 cycle; the small-multiplier option takes
+32). Shares of the 4 ms tick use cycles x 2 for wait states and model error.
 
 Usage: count.py [--profile release|release-s] [--quick] [--qemu]
                 [--bitcheck N] [--no-build] [--report-only]
@@ -106,7 +113,9 @@ def m4_cycles(mn, op_str, taken):
     """Cortex-M4(F) cycles of one executed instruction (zero wait states)."""
     m = _strip_cond(_base(mn))
     P = 3  # pipeline refill, TRM: 1-3
-    if m in ("b", "bl", "blx", "bx", "cbz", "cbnz", "tbb", "tbh"):
+    if m in ("tbb", "tbh"):
+        return 2 + P
+    if m in ("b", "bl", "blx", "bx", "cbz", "cbnz"):
         if not taken:
             return 1
         return 1 + P

@@ -339,13 +339,21 @@ mod target {
     #[inline(never)]
     pub extern "C" fn crosscheck_start() {
         // SAFETY: single-threaded.
-        unsafe { (&raw mut IO.output).cast::<u32>().write_volatile(0x5354_4152) };
+        unsafe {
+            (&raw mut IO.output)
+                .cast::<u32>()
+                .write_volatile(0x5354_4152)
+        };
     }
     #[no_mangle]
     #[inline(never)]
     pub extern "C" fn crosscheck_end() {
         // SAFETY: single-threaded.
-        unsafe { (&raw mut IO.output).cast::<u32>().write_volatile(0x454e_4421) };
+        unsafe {
+            (&raw mut IO.output)
+                .cast::<u32>()
+                .write_volatile(0x454e_4421)
+        };
     }
 
     type Case = (extern "C" fn(), [u32; 3]);
