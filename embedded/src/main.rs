@@ -126,6 +126,15 @@ entry!(est_libm_f32(l: u32, m: u32, t: f32) => unsafe { steps::REF_F32.assume_in
 entry!(est_cordic_i16f16(l: u32, m: u32, t: I16F16) => unsafe { steps::REF_X.assume_init_ref().update::<Cordic>(steps::REF_ST.assume_init_mut(), l, m, t) });
 entry!(prepare_est(pos_lo: u32, pos_hi: u32, counter: u32) => unsafe { steps::prepare_est(pos_lo, pos_hi, counter) });
 
+// The per-joint control step (estimate + robust adaptive law + adaptation +
+// mode manager), once it exists: its configuration and state join `steps`
+// (built in `init`, set in a `prepare_joint` entry), then one line per
+// variant, e.g.
+//   entry!(joint_f32(l: u32, m: u32, t: f32, q_ref: f32) => unsafe { steps::JOINT_F32.assume_init_ref().update(steps::JOINT_ST.assume_init_mut(), l, m, t, q_ref) });
+//   entry!(joint_i16f16(l: u32, m: u32, t: I16F16, q_ref: I16F16) => ...);
+// and the libm/cordic variants in `reference.rs`; `count.py` has the two
+// matching `Step(...)` rows with their budgets, commented.
+
 /// Configurations and states of the stateful steps. They are built once by
 /// [`init`] (not counted), as a firmware builds them at start-up.
 mod steps {
