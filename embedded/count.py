@@ -417,13 +417,30 @@ EST_LINK = [0, 10, 40, 80, 87, 100, 2000, L - 10, L - 87, L - 1, L, 0xFFFFFFFF]
 EST_COUNTER = [(0, 0), (0, 5), (1999, 3), (0, 0xFFFFFFFF), (199_999, 1), (0, 0x7FFFFFFF), (5, 0x80000000), (123_456, 4000)]
 
 
+def f32_of(w):
+    return struct.unpack("<f", struct.pack("<I", w))[0]
+
+
+def x_of(w):
+    return struct.unpack("<i", struct.pack("<I", w))[0] / 65536.0
+
+
 def est_vectors(torque_words, random_torque):
     out = []
     for (pos, c1) in EST_COUNTER:
         for lc in EST_LINK:
             for t in torque_words:
                 out.append(([pos & 0xFFFFFFFF, (pos >> 32) & 0xFFFFFFFF, 0], [lc, c1, t]))
-    # Random readings near the torsion range and random jumps.
+    # Random readings inside the torsion range (|D| below the branch edge
+    # of about 1.7e7 counts of 2π/(LMN)), small motor moves.
+    mn = 2000 * 100
+    for _ in range(200):
+        p = RNG.randrange(mn)
+        d = RNG.randrange(-17_000_000, 17_000_000)
+        c0 = RNG.getrandbits(32)
+        lc = ((d - p * L) // mn) % L
+        out.append(([p, 0, c0], [lc, (c0 + RNG.randrange(-50, 50)) & 0xFFFFFFFF, random_torque()]))
+    # Random readings and random jumps anywhere.
     for _ in range(300):
         pos = RNG.randrange(-(10**9), 10**9)
         c0 = RNG.getrandbits(32)
@@ -452,6 +469,7 @@ class Step:
     vectors: list
     prepare: str = None
     min_ratio: float = None  # required reference/own instruction ratio
+    decode: object = None  # result words -> number, to compare own and reference results
     max_insns: int = None  # required worst case
     max_arm_share: float = None  # required ARM_JOINTS x cycles x 2 / tick
     per_joint: bool = False  # a step that runs once per joint (6-joint column)
@@ -495,8 +513,8 @@ def kernel_steps():
 def all_steps(quick=False):
     steps = kernel_steps()
     steps += [
-        Step("torque estimation", "M4F", "f32", "est_f32", "est_libm_f32", est_vectors(EST_T_F32, lambda: f32w(RNG.uniform(-2, 2))), prepare="prepare_est", per_joint=True),
-        Step("torque estimation", "M0+", "I16F16", "est_i16f16", "est_cordic_i16f16", est_vectors(EST_T_X, lambda: xw(RNG.uniform(-2000, 2000))), prepare="prepare_est", per_joint=True),
+        Step("torque estimation", "M4F", "f32", "est_f32", "est_libm_f32", est_vectors(EST_T_F32, lambda: f32w(RNG.uniform(-2, 2))), prepare="prepare_est", per_joint=True, decode=lambda o: f32_of(o[0])),
+        Step("torque estimation", "M0+", "I16F16", "est_i16f16", "est_cordic_i16f16", est_vectors(EST_T_X, lambda: xw(RNG.uniform(-2000, 2000))), prepare="prepare_est", per_joint=True, decode=lambda o: x_of(o[0])),
         # The control step adds, once merged (one line each):
         # Step("joint step", "M4F", "f32", "joint_f32", "joint_libm_f32", JOINT_F32, prepare="prepare_joint", per_joint=True, max_insns=800),
         # Step("joint step", "M0+", "I16F16", "joint_i16f16", "joint_cordic_i16f16", JOINT_X, prepare="prepare_joint", per_joint=True, max_insns=4000, max_arm_share=0.12),
@@ -529,12 +547,14 @@ class Result:
 
 def measure(fw, entry, vectors, prepare):
     r = Result()
+    r.outputs = []
     counts = []
     for v in vectors:
         pre, args = v if isinstance(v, tuple) else (None, v)
         if pre is not None:
             fw.call(prepare, pre, limit=2_000_000)
-        n, cyc, _, status = fw.call(entry, args, count=True)
+        n, cyc, out, status = fw.call(entry, args, count=True)
+        r.outputs.append(out)
         if status != "ok":
             r.bad.append((args, status))
             continue
@@ -622,6 +642,10 @@ def print_table(rows, base, profile):
         if ref:
             rw = " ".join(f"{a:08x}" for a in ref.worst_args or [])
             line += f"; reference worst at [{rw}], median {ref.median:,}"
+            if s.decode:
+                diffs = [abs(s.decode(a) - s.decode(b)) for a, b in zip(own.outputs, ref.outputs) if a and b]
+                flags = sum(1 for a, b in zip(own.outputs, ref.outputs) if a and b and a[2] != b[2])
+                line += f"; max |own - reference| result {max(diffs):.4g}, flags differ at {flags} of {len(diffs)}"
             if ref.bad:
                 line += f"; reference did not return within {MAX_INSNS:,} instructions at {len(ref.bad)} vectors, e.g. [{ref.bad[0][0][0]:08x}] ({ref.bad[0][1]})"
         print(line)
