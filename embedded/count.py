@@ -30,7 +30,7 @@ per-instruction mode charges it 1 cycle). The M0+ is assumed to have the
 single-cycle multiplier (MULS = 1 cycle; the small-multiplier option takes
 32). Shares of the 4 ms tick use cycles x 2 for wait states and model error.
 
-Usage: count.py [--profile release|release-s] [--quick] [--qemu]
+Usage: count.py [--profile release|release-s] [--quick] [--qemu] [--selftest]
                 [--bitcheck N] [--no-build] [--report-only]
 """
 
@@ -165,6 +165,39 @@ def m0p_cycles(mn, op_str, taken):
     if m in ("dmb", "dsb", "isb"):
         return 3
     return 1
+
+
+# Hand-checked costs from the manuals' tables (mnemonic, operands, taken,
+# cycles), run by `--selftest` against the two functions above.
+M4_CASES = [
+    ("adds", "r1, #4", False, 1), ("mul", "r1, r6, fp", False, 1), ("umull", "ip, r6, r3, r0", False, 1),
+    ("udiv", "r1, r2, lr", False, 12), ("ldr", "r1, [r0, #0x18]", False, 2), ("ldrd", "r2, r1, [sp]", False, 3),
+    ("push", "{r4, r5, r6, r7, lr}", False, 6), ("pop", "{r7, pc}", True, 6), ("pop", "{r8, sb, fp}", False, 4),
+    ("bne", "#0x100", False, 1), ("bne.w", "#0x100", True, 4), ("bl", "#0x100", True, 4), ("bx", "lr", True, 4),
+    ("cbz", "r1, #0x10", False, 1), ("tbb", "[pc, r6]", True, 5), ("it", "lo", False, 1), ("moveq", "r0, r1", False, 1),
+    ("vadd.f32", "s4, s4, s6", False, 1), ("vdiv.f32", "s0, s2, s0", False, 14), ("vsqrt.f32", "s0, s0", False, 14),
+    ("vmla.f32", "s0, s1, s2", False, 3), ("vldr", "s2, [pc, #0x184]", False, 2), ("vmov", "d0, r0, r1", False, 2),
+    ("vmov", "s0, r2", False, 1), ("vpush", "{d8, d9}", False, 5), ("vcvt.f32.s32", "s0, s0", False, 1),
+]
+M0P_CASES = [
+    ("adds", "r4, r2, #1", False, 1), ("muls", "r4, r2, r4", False, 1), ("ldr", "r4, [pc, #8]", False, 2),
+    ("str", "r4, [sp, #0x10]", False, 2), ("push", "{r4, r6, r7, lr}", False, 5), ("pop", "{r4, r5, r6, r7, pc}", True, 8),
+    ("pop", "{r4, r5}", False, 3), ("b", "#0x10", True, 2), ("bne", "#0x10", False, 1), ("bne", "#0x10", True, 2),
+    ("bl", "#0x100", True, 3), ("bx", "lr", True, 2), ("mov", "pc, r0", True, 2), ("stm", "r6!, {r2, r3}", False, 3),
+]
+
+
+def selftest():
+    bad = []
+    for fn, cases in ((m4_cycles, M4_CASES), (m0p_cycles, M0P_CASES)):
+        for mn, op, taken, want in cases:
+            got = fn(mn, op, taken)
+            if got != want:
+                bad.append(f"{fn.__name__}({mn} {op}, taken={taken}) = {got}, manual: {want}")
+    print(f"cycle table self-test: {len(M4_CASES) + len(M0P_CASES) - len(bad)} passed, {len(bad)} failed")
+    for b in bad:
+        print("  " + b)
+    return not bad
 
 
 @dataclass
@@ -779,7 +812,10 @@ def main():
     p.add_argument("--qemu", action="store_true", help="cross-check the IT-block accounting against QEMU")
     p.add_argument("--bitcheck", type=int, default=0, metavar="N",
                    help="compare N random inputs per I16F16 kernel: thumbv6m build vs host build")
+    p.add_argument("--selftest", action="store_true", help="check the cycle tables against hand-checked cases and exit")
     args = p.parse_args()
+    if args.selftest:
+        sys.exit(0 if selftest() else 1)
     t0 = time.time()
     failures, fws = run(args)
     target_dir = os.environ.get("CARGO_TARGET_DIR", os.path.join(HERE, "target"))
