@@ -3,11 +3,13 @@
 
 Builds the firmware crate of this directory for `thumbv7em-none-eabihf`
 (Cortex-M4F, f32) and `thumbv6m-none-eabi` (Cortex-M0+, I16F16), loads each
-ELF into the unicorn CPU emulator, calls every entry of `STEPS` over its list
-of worst-case argument vectors, and counts the executed instructions. It
-prints one table (step x core x backend: worst-case instructions, estimated
-cycles, share of the 4 ms budget, ratio to the libm/cordic reference) and
-exits non-zero when a budget of `BUDGETS` is exceeded.
+ELF into the unicorn CPU emulator, calls every entry of `all_steps()` over
+its list of worst-case argument vectors, and counts the executed
+instructions. It prints one table (step x core x backend: worst-case
+instructions, estimated cycles, share of the 4 ms budget, ratio to the
+libm/cordic reference) and exits non-zero when a budget of a `Step` row is
+exceeded. Adding a step is one `Step(...)` line in `all_steps()` (and one
+`entry!` line in `src/main.rs`).
 
 Counting. The table counts per translation block: every instruction of an
 executed block counts once, which includes the condition-failed

@@ -10,7 +10,7 @@
 //!
 //! Adding a step: one `entry!` line below (plus, for a stateful step, a
 //! `prepare` entry that sets its state outside the counted call), and one
-//! row in `count.py`'s `STEPS`.
+//! row in `count.py`'s `all_steps()`.
 //!
 //! On the host (`cargo run`), the same file builds a small program that
 //! evaluates the batch entry for the bit-identity check of `count.py`.
