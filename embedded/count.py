@@ -1,0 +1,855 @@
+#!/usr/bin/env python3
+"""Instruction counts of mrr-control's steps on Cortex-M4F and Cortex-M0+.
+
+Builds the firmware crate of this directory for `thumbv7em-none-eabihf`
+(Cortex-M4F, f32) and `thumbv6m-none-eabi` (Cortex-M0+, I16F16), loads each
+ELF into the unicorn CPU emulator, calls every entry of `all_steps()` over
+its list of worst-case argument vectors, and counts the executed
+instructions. It prints one table (step x core x backend: worst-case
+instructions, estimated cycles, share of the 4 ms budget, ratio to the
+libm/cordic reference) and exits non-zero when a budget of a `Step` row is
+exceeded. Adding a step is one `Step(...)` line in `all_steps()` (and one
+`entry!` line in `src/main.rs`).
+
+Counting. The table counts per translation block: every instruction of an
+executed block counts once, which includes the condition-failed
+instructions of a Thumb-2 IT block (QEMU and unicorn translate them as part
+of the block and skip them at run time). A per-instruction code hook, by
+contrast, is not called for those skipped instructions; that mode (used by
+`--qemu`) adds them back by walking forward over the IT-block slots between
+two hooked addresses. `--qemu` checks the per-instruction count against
+QEMU's own trace (`-d exec,nochain -singlestep`: one line per executed
+instruction, condition-failed ones included) and the per-block count
+against the per-instruction one.
+
+Cycles. Each executed instruction gets the cost of its class from the
+cores' published timings (Cortex-M4 TRM r0p1 section 3.3 and FPU table 7-1;
+Cortex-M0+ TRM r0p1 section 3.3), with zero wait states, an assumption; see
+`m4_cycles` / `m0p_cycles`. Where the manual gives a range the upper end is
+taken: taken-branch refill P = 3 on the M4, SDIV/UDIV 12 cycles; the block
+counter charges a condition-failed IT instruction its full cost (the
+per-instruction mode charges it 1 cycle). The M0+ is assumed to have the
+single-cycle multiplier (MULS = 1 cycle; the small-multiplier option takes
+32). Shares of the 4 ms tick use cycles x 2 for wait states and model error.
+
+Usage: count.py [--profile release|release-s] [--quick] [--qemu] [--selftest]
+                [--bitcheck N] [--no-build] [--report-only]
+"""
+
+import argparse
+import os
+import random
+import struct
+import subprocess
+import sys
+import time
+from dataclasses import dataclass, field
+
+from capstone import CS_ARCH_ARM, CS_MODE_MCLASS, CS_MODE_THUMB, Cs
+from elftools.elf.elffile import ELFFile
+from unicorn import UC_ARCH_ARM, UC_HOOK_BLOCK, UC_HOOK_CODE, UC_MODE_MCLASS, UC_MODE_THUMB, Uc, UcError
+from unicorn import arm_const as A
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+# The 4 ms servo tick of the thesis's controller (TMS320F2812 at 150 MHz).
+TICK_CYCLES = 600_000
+# Wait states and model error: every share is computed from cycles x 2.
+SAFETY_FACTOR = 2
+# A 6-joint arm runs one per-joint step per joint in each tick.
+ARM_JOINTS = 6
+
+FLASH, FLASH_SIZE = 0x0000_0000, 1 << 20
+RAM, RAM_SIZE = 0x2000_0000, 256 << 10
+STACK_TOP = RAM + RAM_SIZE
+RETURN = FLASH + FLASH_SIZE - 0x100  # LR of every call: emulation stops here
+# Per call. A call still running after this many instructions is stopped and
+# reported as "> MAX_INSNS" (a third of the tick's cycles on its own): the
+# `cordic` crate's `exp` loops once per unit of |x| and its `sqrt` never
+# returns for negative arguments or arguments >= 16384.
+MAX_INSNS = 200_000
+
+
+# ------------------------------------------------------------------- timing
+def _regs(op_str):
+    """Number of registers in a `{...}` list (d-registers count 2 words)."""
+    if "{" not in op_str:
+        return 1
+    inner = op_str[op_str.index("{") + 1 : op_str.index("}")]
+    n = 0
+    for part in inner.split(","):
+        part = part.strip()
+        w = 2 if part.startswith("d") else 1
+        if "-" in part:
+            a, b = part.split("-")
+            n += (int(b.strip()[1:]) - int(a.strip()[1:]) + 1) * w
+        else:
+            n += w
+    return n
+
+
+def _base(mn):
+    """Mnemonic without width suffix and condition code (`bne.w` -> `b`)."""
+    mn = mn.split(".")[0]
+    return mn
+
+
+CONDS = ("eq", "ne", "cs", "hs", "cc", "lo", "mi", "pl", "vs", "vc", "hi", "ls", "ge", "lt", "gt", "le", "al")
+
+
+def _strip_cond(mn):
+    for c in CONDS:
+        if mn.endswith(c) and len(mn) > len(c):
+            stem = mn[: -len(c)]
+            # keep real mnemonics ending in a condition-like suffix
+            if stem in ("b", "bx", "bl", "blx", "it", "ite", "itt", "mov", "movs", "add", "adds", "sub", "subs",
+                        "ldr", "str", "cmp", "mvn", "mvns", "orr", "orrs", "and", "ands", "eor", "eors", "lsl",
+                        "lsls", "lsr", "lsrs", "asr", "asrs", "rsb", "rsbs", "vmov", "vneg", "vabs", "vadd",
+                        "vsub", "vmul", "vdiv", "vcvt", "pop", "push", "ldrb", "strb", "ldrh", "strh", "umull",
+                        "mul", "muls", "mla", "vmrs", "bic", "bics", "sbc", "sbcs", "adc", "adcs", "clz"):
+                return stem
+    return mn
+
+
+def m4_cycles(mn, op_str, taken):
+    """Cortex-M4(F) cycles of one executed instruction (zero wait states)."""
+    m = _strip_cond(_base(mn))
+    P = 3  # pipeline refill, TRM: 1-3
+    if m in ("tbb", "tbh"):
+        return 2 + P
+    if m in ("b", "bl", "blx", "bx", "cbz", "cbnz"):
+        if not taken:
+            return 1
+        return 1 + P
+    if m == "pop":
+        n = _regs(op_str)
+        return 1 + n + (P if "pc" in op_str else 0)
+    if m in ("push", "ldm", "ldmia", "ldmdb", "stm", "stmia", "stmdb", "vpush", "vpop", "vldmia", "vstmia", "vldmdb", "vstmdb"):
+        return 1 + _regs(op_str)
+    if m in ("ldrd", "strd"):
+        return 3
+    if m.startswith("ldr") or m.startswith("str") or m in ("vldr", "vstr"):
+        if m.startswith("ldr") and op_str.startswith("pc"):
+            return 2 + P
+        return 2
+    if m in ("sdiv", "udiv"):
+        return 12
+    if m in ("vdiv", "vsqrt"):
+        return 14
+    if m in ("vmla", "vmls", "vnmla", "vnmls", "vfma", "vfms", "vfnma", "vfnms"):
+        return 3
+    if m == "vmov" and op_str.count(",") == 2:
+        return 2  # two core registers <-> one double / two singles
+    if m in ("mov", "add") and op_str.startswith("pc"):
+        return 1 + P
+    return 1
+
+
+def m0p_cycles(mn, op_str, taken):
+    """Cortex-M0+ cycles of one executed instruction (zero wait states,
+    single-cycle multiplier)."""
+    m = _strip_cond(_base(mn))
+    if m == "b":
+        return 2 if taken else 1
+    if m == "bl":
+        return 3
+    if m in ("bx", "blx"):
+        return 2
+    if m == "pop":
+        n = _regs(op_str)
+        return 3 + n if "pc" in op_str else 1 + n
+    if m in ("push", "ldm", "ldmia", "stm", "stmia"):
+        return 1 + _regs(op_str)
+    if m.startswith("ldr") or m.startswith("str"):
+        return 2
+    if m in ("mov", "add") and op_str.startswith("pc"):
+        return 2
+    if m in ("dmb", "dsb", "isb"):
+        return 3
+    return 1
+
+
+# Hand-checked costs from the manuals' tables (mnemonic, operands, taken,
+# cycles), run by `--selftest` against the two functions above.
+M4_CASES = [
+    ("adds", "r1, #4", False, 1), ("mul", "r1, r6, fp", False, 1), ("umull", "ip, r6, r3, r0", False, 1),
+    ("udiv", "r1, r2, lr", False, 12), ("ldr", "r1, [r0, #0x18]", False, 2), ("ldrd", "r2, r1, [sp]", False, 3),
+    ("push", "{r4, r5, r6, r7, lr}", False, 6), ("pop", "{r7, pc}", True, 6), ("pop", "{r8, sb, fp}", False, 4),
+    ("bne", "#0x100", False, 1), ("bne.w", "#0x100", True, 4), ("bl", "#0x100", True, 4), ("bx", "lr", True, 4),
+    ("cbz", "r1, #0x10", False, 1), ("tbb", "[pc, r6]", True, 5), ("it", "lo", False, 1), ("moveq", "r0, r1", False, 1),
+    ("vadd.f32", "s4, s4, s6", False, 1), ("vdiv.f32", "s0, s2, s0", False, 14), ("vsqrt.f32", "s0, s0", False, 14),
+    ("vmla.f32", "s0, s1, s2", False, 3), ("vldr", "s2, [pc, #0x184]", False, 2), ("vmov", "d0, r0, r1", False, 2),
+    ("vmov", "s0, r2", False, 1), ("vpush", "{d8, d9}", False, 5), ("vcvt.f32.s32", "s0, s0", False, 1),
+]
+M0P_CASES = [
+    ("adds", "r4, r2, #1", False, 1), ("muls", "r4, r2, r4", False, 1), ("ldr", "r4, [pc, #8]", False, 2),
+    ("str", "r4, [sp, #0x10]", False, 2), ("push", "{r4, r6, r7, lr}", False, 5), ("pop", "{r4, r5, r6, r7, pc}", True, 8),
+    ("pop", "{r4, r5}", False, 3), ("b", "#0x10", True, 2), ("bne", "#0x10", False, 1), ("bne", "#0x10", True, 2),
+    ("bl", "#0x100", True, 3), ("bx", "lr", True, 2), ("mov", "pc, r0", True, 2), ("stm", "r6!, {r2, r3}", False, 3),
+]
+
+
+def selftest():
+    bad = []
+    for fn, cases in ((m4_cycles, M4_CASES), (m0p_cycles, M0P_CASES)):
+        for mn, op, taken, want in cases:
+            got = fn(mn, op, taken)
+            if got != want:
+                bad.append(f"{fn.__name__}({mn} {op}, taken={taken}) = {got}, manual: {want}")
+    print(f"cycle table self-test: {len(M4_CASES) + len(M0P_CASES) - len(bad)} passed, {len(bad)} failed")
+    for b in bad:
+        print("  " + b)
+    return not bad
+
+
+@dataclass
+class Core:
+    key: str
+    name: str
+    triple: str
+    cpu: int
+    cycles: object
+    it_blocks: bool
+
+
+CORES = {
+    "M4F": Core("M4F", "Cortex-M4F", "thumbv7em-none-eabihf", A.UC_CPU_ARM_CORTEX_M4, m4_cycles, True),
+    "M0+": Core("M0+", "Cortex-M0+", "thumbv6m-none-eabi", A.UC_CPU_ARM_CORTEX_M0, m0p_cycles, False),
+}
+
+
+# ----------------------------------------------------------------- emulator
+class Firmware:
+    """One ELF in one unicorn instance, with an instruction counter."""
+
+    def __init__(self, core, path):
+        self.core = core
+        with open(path, "rb") as fh:
+            elf = ELFFile(fh)
+            self.syms = {}
+            for s in elf.get_section_by_name(".symtab").iter_symbols():
+                if s.name:
+                    self.syms[s.name] = s["st_value"]
+            segs = [(p["p_paddr"], p.data()) for p in elf.iter_segments() if p["p_type"] == "PT_LOAD"]
+        uc = Uc(UC_ARCH_ARM, UC_MODE_THUMB | UC_MODE_MCLASS)
+        uc.ctl_set_cpu_model(core.cpu)
+        uc.mem_map(FLASH, FLASH_SIZE)
+        uc.mem_map(RAM, RAM_SIZE)
+        for addr, data in segs:
+            uc.mem_write(addr, data)
+        self.image = {addr: data for addr, data in segs}
+        self.uc = uc
+        self.cs = Cs(CS_ARCH_ARM, CS_MODE_THUMB | CS_MODE_MCLASS)
+        self.decoded = {}
+        self.io = self.syms["IO"]
+        self.panic = self.syms["firmware_panic"] & ~1
+        self.blocks = {}
+        self.mode = "block"
+        uc.hook_add(UC_HOOK_CODE, self._panic_hook, begin=self.panic, end=self.panic)
+        uc.hook_add(UC_HOOK_BLOCK, self._block_hook)
+        self.code_hook = None
+        self.counting = False
+        if core.key == "M4F":
+            # CPACR: enable CP10/CP11 (the FPU), as the reset handler does.
+            uc.reg_write(A.UC_ARM_REG_C1_C0_2, 0xF << 20)
+        self.call("init", [], limit=50_000_000)
+
+    def decode(self, addr):
+        d = self.decoded.get(addr)
+        if d is None:
+            code = bytes(self.uc.mem_read(addr, 4))
+            ins = next(self.cs.disasm(code, addr, 1), None)
+            if ins is None:
+                d = (2, "?", "", 0)
+            else:
+                mn = ins.mnemonic
+                it = len(mn) - 1 if mn.startswith("it") and set(mn[1:]) <= {"t", "e"} else 0
+                d = (ins.size, mn, ins.op_str, it)
+            self.decoded[addr] = d
+        return d
+
+    def set_mode(self, mode):
+        """`block`: count per translation block (fast; every instruction of
+        the block counts, condition-failed IT slots included, and each is
+        charged its full class cost). `insn`: one hook per instruction with
+        the explicit IT-block correction and 1 cycle per failed slot."""
+        if mode == self.mode:
+            return
+        if mode == "insn":
+            self.code_hook = self.uc.hook_add(UC_HOOK_CODE, self._hook)
+        else:
+            self.uc.hook_del(self.code_hook)
+            self.code_hook = None
+        self.uc.ctl_flush_tb()  # cached blocks were translated without/with the hook
+        self.mode = mode
+
+    def _panic_hook(self, uc, addr, size, _):
+        self.panicked = True
+        uc.emu_stop()
+
+    def block_info(self, addr, size):
+        key = (addr, size)
+        b = self.blocks.get(key)
+        if b is None:
+            a, n, cyc, last = addr, 0, 0, None
+            while a < addr + size:
+                sz, mn, op, _ = self.decode(a)
+                n += 1
+                cyc += self.core.cycles(mn, op, False)
+                last = (mn, op)
+                a += sz
+            extra = self.core.cycles(*last, True) - self.core.cycles(*last, False)
+            b = (n, cyc, addr + size, extra)
+            self.blocks[key] = b
+        return b
+
+    def _block_hook(self, uc, addr, size, _):
+        if not self.counting or self.mode != "block":
+            return
+        if self.prev_block is not None:
+            _, _, end, extra = self.prev_block
+            if addr != end:
+                self.cycles += extra  # the block's last instruction branched
+        b = self.block_info(addr, size)
+        self.n += b[0]
+        self.cycles += b[1]
+        self.prev_block = b
+        if self.n > self.limit:
+            uc.emu_stop()
+
+    def _hook(self, uc, addr, size, _):
+        if not self.counting:
+            return
+        prev = self.prev
+        if prev is not None:
+            self._retire(prev, addr)
+        self.prev = addr
+        self.n += 1
+        if self.n > self.limit:
+            uc.emu_stop()
+
+    def _retire(self, prev, nxt):
+        """Account the cycles of `prev` now that the next hooked address is
+        known, and add the skipped (condition-failed) IT-block slots."""
+        size, mn, op, it = self.decode(prev)
+        fall = prev + size
+        if it:
+            self.it_left = it  # the next `it` instructions form the block
+        elif self.it_left:
+            self.it_left -= 1
+        taken = False
+        if nxt != fall:
+            # Walk over condition-failed slots of the current IT block.
+            a, left, skipped = fall, self.it_left, 0
+            while left and a != nxt:
+                s2 = self.decode(a)[0]
+                a += s2
+                left -= 1
+                skipped += 1
+            if a == nxt and skipped:
+                self.n += skipped
+                self.failed += skipped
+                self.cycles += skipped  # 1 cycle each
+                self.it_left = left
+            else:
+                taken = True
+                self.it_left = 0
+        self.cycles += self.core.cycles(mn, op, taken)
+
+    def call(self, name, args, limit=MAX_INSNS, count=False):
+        """Run entry `name` with argument words `args`; returns
+        (instructions, cycles, result words, status)."""
+        uc = self.uc
+        for i, w in enumerate(args):
+            uc.mem_write(self.io + 4 * i, struct.pack("<I", w & 0xFFFFFFFF))
+        uc.reg_write(A.UC_ARM_REG_SP, STACK_TOP)
+        uc.reg_write(A.UC_ARM_REG_LR, RETURN | 1)
+        self.counting, self.limit = count, limit
+        self.n = self.cycles = self.failed = 0
+        self.prev, self.it_left, self.panicked, self.prev_block = None, 0, False, None
+        entry = self.syms[name]
+        try:
+            uc.emu_start(entry | 1, RETURN, count=0 if count else limit)
+        except UcError as e:
+            return None, None, None, f"fault {e}"
+        if self.panicked:
+            return self.n, self.cycles, None, "panic"
+        if uc.reg_read(A.UC_ARM_REG_PC) & ~1 != RETURN:
+            return self.n, self.cycles, None, "no return"
+        if count and self.mode == "insn" and self.prev is not None:
+            self._retire(self.prev, RETURN)  # the final return is a taken branch
+        if count and self.mode == "block" and self.prev_block is not None:
+            self.cycles += self.prev_block[3]
+        out = struct.unpack("<8I", bytes(uc.mem_read(self.io + 32, 32)))
+        return self.n, self.cycles, out, "ok"
+
+
+# ------------------------------------------------------------------- inputs
+def f32w(x):
+    return struct.unpack("<I", struct.pack("<f", x))[0]
+
+
+def xw(x):
+    """I16F16 bits of a real (saturating, rounded)."""
+    v = int(round(x * 65536))
+    return max(-(1 << 31), min((1 << 31) - 1, v)) & 0xFFFFFFFF
+
+
+def spread(lo, hi, n, f):
+    """`n` log-spaced magnitudes in [lo, hi], both signs, as words by `f`."""
+    out = []
+    for i in range(n):
+        m = lo * (hi / lo) ** (i / max(1, n - 1))
+        out += [f(m), f(-m)]
+    return out
+
+
+NAN, INF = float("nan"), float("inf")
+F32_MAX = 3.4028234663852886e38
+TAN_EDGE = struct.unpack("<f", struct.pack("<I", 0x3FC90FDA))[0]
+
+
+RNG = random.Random(5)
+# Seeded random arguments added to every kernel's list: RANDOM_WIDE over the
+# whole encoding, RANDOM_NEAR with |x| < 64 (where the kernels branch).
+RANDOM_WIDE, RANDOM_NEAR = 100, 300
+
+
+def f32_unary(specials, lo, hi, n=40):
+    ws = [f32w(x) for x in specials] + spread(lo, hi, n, f32w)
+    ws += [1, 0x80000001, 0x7FC00000, 0xFFC00000]  # subnormal, NaN
+    ws += [RNG.getrandbits(32) for _ in range(RANDOM_WIDE)]
+    ws += [f32w(RNG.uniform(-64, 64)) for _ in range(RANDOM_NEAR)]
+    return [[w] for w in ws]
+
+
+def x_unary(specials, lo, hi, n=40):
+    ws = [xw(x) for x in specials] + spread(lo, hi, n, xw) + [0x7FFFFFFF, 0x80000000, 1, 0xFFFFFFFF]
+    ws += [RNG.getrandbits(32) for _ in range(RANDOM_WIDE)]
+    ws += [RNG.getrandbits(23) - (1 << 22) & 0xFFFFFFFF for _ in range(RANDOM_NEAR)]
+    return [[w] for w in ws]
+
+
+def pairs(vals, f):
+    out = [[f(y), f(x)] for y in vals for x in vals]
+    out += [[RNG.getrandbits(32), RNG.getrandbits(32)] for _ in range(RANDOM_WIDE)]
+    out += [[f(RNG.uniform(-64, 64)), f(RNG.uniform(-64, 64))] for _ in range(RANDOM_NEAR)]
+    return out
+
+
+TRIG_F32 = [0.0, 0.5, 0.7853981, 0.7853982, 1.0, 1.5707963, 2.0, 3.14159, 100.0, 1e4, 1e5, 1e6, 3e7, 1e9, 1e20, F32_MAX, INF]
+TRIG_X = [0.0, 0.5, 0.7853981, 1.0, 1.5707963, 2.0, 3.14159, 6.3, 100.0, 1000.0, 32767.0]
+A2 = [0.0, 1e-30, 1e-3, 0.5, 1.0, 2.0, 1e3, 1e30, INF]
+A2 = sorted(set(A2 + [-v for v in A2]))
+A2X = [0.0, 2**-16, 1e-3, 0.5, 1.0, 2.0, 1e3, 32767.0]
+A2X = sorted(set(A2X + [-v for v in A2X]))
+
+# Torque estimation: (prepare: motor position, counter) + (link count, motor
+# counter, motor torque). Link counts of 2^17 per rev; SHD-17-100 torsion
+# range about ±4.2 mrad, i.e. ±88 link counts at zero motor position.
+L = 1 << 17
+EST_LINK = [0, 10, 40, 80, 87, 100, 2000, L - 10, L - 87, L - 1, L, 0xFFFFFFFF]
+EST_COUNTER = [(0, 0), (0, 5), (1999, 3), (0, 0xFFFFFFFF), (199_999, 1), (0, 0x7FFFFFFF), (5, 0x80000000), (123_456, 4000)]
+
+
+def f32_of(w):
+    return struct.unpack("<f", struct.pack("<I", w))[0]
+
+
+def x_of(w):
+    return struct.unpack("<i", struct.pack("<I", w))[0] / 65536.0
+
+
+def est_vectors(torque_words, random_torque):
+    out = []
+    for (pos, c1) in EST_COUNTER:
+        for lc in EST_LINK:
+            for t in torque_words:
+                out.append(([pos & 0xFFFFFFFF, (pos >> 32) & 0xFFFFFFFF, 0], [lc, c1, t]))
+    # Random readings inside the torsion range (|D| below the branch edge
+    # of about 1.7e7 counts of 2π/(LMN)), small motor moves.
+    mn = 2000 * 100
+    for _ in range(200):
+        p = RNG.randrange(mn)
+        d = RNG.randrange(-17_000_000, 17_000_000)
+        c0 = RNG.getrandbits(32)
+        lc = ((d - p * L) // mn) % L
+        out.append(([p, 0, c0], [lc, (c0 + RNG.randrange(-50, 50)) & 0xFFFFFFFF, random_torque()]))
+    # Random readings and random jumps anywhere.
+    for _ in range(300):
+        pos = RNG.randrange(-(10**9), 10**9)
+        c0 = RNG.getrandbits(32)
+        step = RNG.choice([RNG.randrange(-50, 50), RNG.randrange(-5000, 5000), RNG.getrandbits(32)])
+        lc = RNG.choice([RNG.randrange(0, 200), RNG.randrange(L - 200, L), RNG.getrandbits(17), RNG.getrandbits(32)])
+        out.append(([pos & 0xFFFFFFFF, (pos >> 32) & 0xFFFFFFFF, c0], [lc, (c0 + step) & 0xFFFFFFFF, random_torque()]))
+    return out
+
+
+EST_T_F32 = [f32w(v) for v in (0.0, 0.05, -0.188, 2.0, -2.0)]  # N·m
+EST_T_X = [xw(v) for v in (0.0, 50.0, -188.0, 2000.0, -2000.0)]  # mN·m
+
+
+@dataclass
+class Step:
+    """One table row: an entry measured on one core, its reference entry,
+    its argument vectors (each either `args` or `(prepare_args, args)`), the
+    `prepare` entry called before each vector (not counted), and the budget
+    checks that apply."""
+
+    label: str
+    core: str
+    backend: str
+    entry: str
+    reference: str
+    vectors: list
+    prepare: str = None
+    min_ratio: float = None  # required reference/own instruction ratio
+    decode: object = None  # result words -> number, to compare own and reference results
+    max_insns: int = None  # required worst case
+    max_arm_share: float = None  # required ARM_JOINTS x cycles x 2 / tick
+    per_joint: bool = False  # a step that runs once per joint (6-joint column)
+
+
+def kernel_steps():
+    f = {
+        "atan": f32_unary([0, 0.3, 0.6, 0.61, 1.0, 1.66, 1.67, 1e3, 1e30, F32_MAX, INF], 1e-30, 1e30),
+        "tan": f32_unary([0, 0.5, 0.78539, 0.7854, 1.5, TAN_EDGE, 1.5707964, 2.0, 1e5, 1e30, INF], 1e-30, 1e30),
+        "sin": f32_unary(TRIG_F32, 1e-30, 1e30),
+        "cos": f32_unary(TRIG_F32, 1e-30, 1e30),
+        "sin_cos": f32_unary(TRIG_F32, 1e-30, 1e30),
+        "atan2": pairs(A2, f32w) + [[0x7FC00000, f32w(1.0)], [f32w(1.0), 0x7FC00000]],
+        "exp": f32_unary([0, 1e-8, 0.34, 0.35, 1.0, 10.0, 88.7, 88.8, -87.0, -100.0, -103.9, -104.0, 1e30, -1e30, INF, -INF], 1e-30, 100.0),
+        "sqrt": f32_unary([0, 1e-45, 1e-40, 1e-38, 0.25, 1.0, 2.0, 3.0, 1e30, F32_MAX, INF, -1.0], 1e-38, 1e38),
+        "acos": f32_unary([0, 0.5, 0.9, 0.99, 0.999999, 1.0, 1.0000001, 2.0, 1e30, INF], 1e-30, 1.0),
+    }
+    x = {
+        "atan": x_unary([0, 1.0 / 16, 0.5, 1.0, 2.0, 16.0, 1000.0], 2**-16, 32767.0),
+        "tan": x_unary([0, 0.5, 0.7853, 0.7854, 1.0, 1.5, 1.5707, 1.5708, 2.0, 1000.0], 2**-16, 32767.0),
+        "sin": x_unary(TRIG_X, 2**-16, 32767.0),
+        "cos": x_unary(TRIG_X, 2**-16, 32767.0),
+        "sin_cos": x_unary(TRIG_X, 2**-16, 32767.0),
+        "atan2": pairs(A2X, xw),
+        "exp": x_unary([0, 0.5, 1.0, 5.0, 10.0, 10.39, 10.4, -1.0, -11.0, -11.9, -12.0, -100.0], 2**-16, 32767.0),
+        "sqrt": x_unary([0, 2**-16, 0.25, 1.0, 2.0, 100.0, 16383.0, 16384.0, 32767.0], 2**-16, 32767.0),
+        "acos": x_unary([0, 0.5, 0.9, 0.99, 0.99999, 1.0, 1.00002, 2.0], 2**-16, 1.0),
+    }
+    steps = []
+    # The 5x requirement applies where a kernel replaces libm's tanf, sinf
+    # or cosf (thesis eq. 3.10 and 3.7 and every trig of the later steps).
+    replaces = {"tan", "sin", "cos", "sin_cos"}
+    for k, v in f.items():
+        steps.append(Step(f"kernel {k}", "M4F", "f32", f"k_{k}_f32", f"libm_{k}_f32", v,
+                          min_ratio=5.0 if k in replaces else None))
+    for k, v in x.items():
+        steps.append(Step(f"kernel {k}", "M0+", "I16F16", f"k_{k}_i16f16", f"cordic_{k}_i16f16", v))
+    return steps
+
+
+def all_steps(quick=False):
+    steps = kernel_steps()
+    steps += [
+        Step("torque estimation", "M4F", "f32", "est_f32", "est_libm_f32", est_vectors(EST_T_F32, lambda: f32w(RNG.uniform(-2, 2))), prepare="prepare_est", per_joint=True, decode=lambda o: f32_of(o[0])),
+        Step("torque estimation", "M0+", "I16F16", "est_i16f16", "est_cordic_i16f16", est_vectors(EST_T_X, lambda: xw(RNG.uniform(-2000, 2000))), prepare="prepare_est", per_joint=True, decode=lambda o: x_of(o[0])),
+        # The control step adds, once merged (one line each):
+        # Step("joint step", "M4F", "f32", "joint_f32", "joint_libm_f32", JOINT_F32, prepare="prepare_joint", per_joint=True, max_insns=800),
+        # Step("joint step", "M0+", "I16F16", "joint_i16f16", "joint_cordic_i16f16", JOINT_X, prepare="prepare_joint", per_joint=True, max_insns=4000, max_arm_share=0.12),
+        Step("mulhi (split, black_box)", "M0+", "u32", "mulhi_split_u32", "mulhi_u64_u32",
+             [[0, 0], [0xFFFFFFFF, 0xFFFFFFFF], [0x12345678, 0x9ABCDEF0]]),
+    ]
+    if quick:
+        for s in steps:
+            s.vectors = s.vectors[:: max(1, len(s.vectors) // 12)]
+    return steps
+
+
+# ------------------------------------------------------------------- driver
+def build(core, profile, target_dir):
+    cmd = ["cargo", "build", "--quiet", "--profile", profile, "--target", core.triple]
+    env = dict(os.environ, CARGO_TARGET_DIR=target_dir)
+    subprocess.run(cmd, cwd=HERE, env=env, check=True)
+    return os.path.join(target_dir, core.triple, profile, "mrr-control-embedded")
+
+
+@dataclass
+class Result:
+    insns: int = 0
+    cycles: int = 0
+    worst_args: list = None
+    failed_it: int = 0
+    median: int = 0
+    bad: list = field(default_factory=list)  # (args, status)
+
+
+def measure(fw, entry, vectors, prepare):
+    r = Result()
+    r.outputs = []
+    counts = []
+    for v in vectors:
+        pre, args = v if isinstance(v, tuple) else (None, v)
+        if pre is not None:
+            fw.call(prepare, pre, limit=2_000_000)
+        n, cyc, out, status = fw.call(entry, args, count=True)
+        r.outputs.append(out)
+        if status != "ok":
+            r.bad.append((args, status))
+            continue
+        counts.append(n)
+        if n > r.insns:
+            r.insns, r.worst_args, r.failed_it = n, args, fw.failed
+        r.cycles = max(r.cycles, cyc)
+    counts.sort()
+    r.median = counts[len(counts) // 2] if counts else 0
+    return r
+
+
+def run(args):
+    target_dir = os.environ.get("CARGO_TARGET_DIR", os.path.join(HERE, "target"))
+    fws = {}
+    for key, core in CORES.items():
+        path = build(core, args.profile, target_dir) if not args.no_build else os.path.join(
+            target_dir, core.triple, args.profile, "mrr-control-embedded")
+        fws[key] = Firmware(core, path)
+    steps = all_steps(args.quick)
+    base = {k: fws[k].call("io_overhead", [0], count=True)[0] for k in fws}
+    rows, failures = [], []
+    for s in steps:
+        fw = fws[s.core]
+        own = measure(fw, s.entry, s.vectors, s.prepare)
+        ref = measure(fw, s.reference, s.vectors, s.prepare) if s.reference else None
+        rows.append((s, own, ref))
+        if own.bad:
+            failures.append(f"{s.label} {s.core}: {len(own.bad)} vectors failed, e.g. {own.bad[0]}")
+        ratio = ref.insns / own.insns if ref and own.insns else None
+        if s.min_ratio and (ratio is None or ratio < s.min_ratio):
+            failures.append(f"{s.label} {s.core} {s.backend}: reference/own = {ratio:.2f} < {s.min_ratio}")
+        if s.max_insns and own.insns > s.max_insns:
+            failures.append(f"{s.label} {s.core} {s.backend}: {own.insns} > {s.max_insns} instructions")
+        arm = ARM_JOINTS * own.cycles * SAFETY_FACTOR / TICK_CYCLES
+        if s.max_arm_share and arm > s.max_arm_share:
+            failures.append(f"{s.label} {s.core} {s.backend}: {ARM_JOINTS} joints use {arm:.1%} > {s.max_arm_share:.0%} of the tick")
+    print_table(rows, base, args.profile)
+    return failures, fws
+
+
+def print_table(rows, base, profile):
+    print(f"\nWorst-case instructions per call, profile `{profile}` (emulated cores, zero wait states;")
+    print(f"share = cycles x {SAFETY_FACTOR} / {TICK_CYCLES:,} cycles of the 4 ms tick; ratio = reference / own worst-case "
+          "instructions)\n")
+    hdr = ("step", "core", "backend", "instr", "cycles", "share 4 ms", f"{ARM_JOINTS} joints", "reference",
+           "ref instr", "ref cycles", "ref share", "ratio", "budget")
+    print("| " + " | ".join(hdr) + " |")
+    print("|" + "|".join(["---"] * 3 + ["---:"] * 4 + ["---"] + ["---:"] * 4 + ["---"]) + "|")
+    for s, own, ref in rows:
+        share = own.cycles * SAFETY_FACTOR / TICK_CYCLES * 100
+        arm = f"{ARM_JOINTS * share:.2f} %" if s.per_joint else "-"
+        if ref is None:
+            rname, ri, rc, ratio, rs = "-", "-", "-", "-", "-"
+        else:
+            rname = s.reference.split("_")[0] if s.reference.startswith(("libm", "cordic")) else s.reference
+            if s.reference.startswith("est_"):
+                rname = "libm" if "libm" in s.reference else "cordic"
+            if s.reference.startswith("mulhi"):
+                rname = "u64 product"
+            ri = f"{ref.insns:,}"
+            rc = f"{ref.cycles:,}"
+            rs = f"{ref.cycles * SAFETY_FACTOR / TICK_CYCLES * 100:.3f} %"
+            if s.per_joint:
+                rs += f" ({ARM_JOINTS * ref.cycles * SAFETY_FACTOR / TICK_CYCLES * 100:.1f} % x{ARM_JOINTS})"
+            ratio = f"{ref.insns / own.insns:.1f}x" if own.insns else "-"
+            if ref.bad:
+                ri = f"> {MAX_INSNS:,} at {len(ref.bad)} of {len(s.vectors)}"
+                rc = rs = "-"
+                ratio = f"> {MAX_INSNS / own.insns:.0f}x"
+        budget = []
+        if s.min_ratio:
+            budget.append(f"ratio >= {s.min_ratio:g}")
+        if s.max_insns:
+            budget.append(f"<= {s.max_insns:,} instr")
+        if s.max_arm_share:
+            budget.append(f"{ARM_JOINTS} joints <= {s.max_arm_share:.0%}")
+        print(f"| {s.label} | {s.core} | {s.backend} | {own.insns:,} | {own.cycles:,} | {share:.3f} % | {arm} | {rname} "
+              f"| {ri} | {rc} | {rs} | {ratio} | {', '.join(budget) or '-'} |")
+    print("\nWorst-case argument words (hex), and the median over the argument vectors (which are weighted"
+          " towards domain edges, where some references return early):")
+    for s, own, ref in rows:
+        w = " ".join(f"{a:08x}" for a in own.worst_args or [])
+        line = f"  {s.label} {s.core}: own worst at [{w}], median {own.median:,}"
+        if ref:
+            rw = " ".join(f"{a:08x}" for a in ref.worst_args or [])
+            line += f"; reference worst at [{rw}], median {ref.median:,}"
+            if s.decode:
+                diffs = [abs(s.decode(a) - s.decode(b)) for a, b in zip(own.outputs, ref.outputs) if a and b]
+                flags = sum(1 for a, b in zip(own.outputs, ref.outputs) if a and b and a[2] != b[2])
+                line += f"; max |own - reference| result {max(diffs):.4g}, flags differ at {flags} of {len(diffs)}"
+            if ref.bad:
+                line += f"; reference did not return within {MAX_INSNS:,} instructions at {len(ref.bad)} vectors, e.g. [{ref.bad[0][0][0]:08x}] ({ref.bad[0][1]})"
+        print(line)
+    print(f"\nCall overhead included in every row (load one argument, store one result, return): "
+          + ", ".join(f"{k} {v} instr" for k, v in base.items()))
+
+
+# -------------------------------------------------------------- bit check
+BATCH_KERNELS = ["atan", "tan", "sin", "cos", "sin_cos", "atan2", "exp", "sqrt", "acos"]
+
+
+def bitcheck(fw, n, target_dir):
+    """The thumbv6m build of every I16F16 kernel against the host build of
+    the same source, over `n` random inputs per kernel (plus edges)."""
+    host = subprocess.run(["cargo", "build", "--quiet", "--release"], cwd=HERE,
+                          env=dict(os.environ, CARGO_TARGET_DIR=target_dir), check=True)
+    exe = os.path.join(target_dir, "release", "mrr-control-embedded")
+    rng = random.Random(20261122)
+    batch = fw.syms["BATCH"]
+    total, mism = 0, []
+    for kid, name in enumerate(BATCH_KERNELS):
+        cases = [(w, rng.getrandbits(32)) for w in (0, 1, 0xFFFFFFFF, 0x7FFFFFFF, 0x80000000)]
+        cases += [(rng.getrandbits(32), rng.getrandbits(32)) for _ in range(n)]
+        # half the cases in the kernels' interesting range |x| < 8
+        cases = [(a if i % 2 else (a & 0x7FFFF) - 0x40000 & 0xFFFFFFFF, b) for i, (a, b) in enumerate(cases)]
+        for lo in range(0, len(cases), 4096):
+            chunk = cases[lo : lo + 4096]
+            fw.uc.mem_write(batch, b"".join(struct.pack("<II", a, b) for a, b in chunk))
+            _, _, _, st = fw.call("batch_i16f16", [kid, len(chunk)], limit=500_000_000)
+            assert st == "ok", st
+            got = struct.unpack(f"<{2 * len(chunk)}I", bytes(fw.uc.mem_read(batch, 8 * len(chunk))))
+            text = f"{kid} {len(chunk)}\n" + "".join(f"{a:08x} {b:08x}\n" for a, b in chunk)
+            out = subprocess.run([exe], input=text, capture_output=True, text=True, check=True).stdout.split()
+            want = [int(w, 16) for w in out]
+            for i, (a, b) in enumerate(chunk):
+                total += 1
+                if got[2 * i : 2 * i + 2] != tuple(want[2 * i : 2 * i + 2]):
+                    mism.append((name, hex(a), hex(b), got[2 * i : 2 * i + 2], want[2 * i : 2 * i + 2]))
+    return total, mism
+
+
+# ------------------------------------------------------------ QEMU check
+def whole_sequence(core, elf):
+    """The firmware's whole `crosscheck` call counted per instruction and
+    per block, each on a fresh image (they must agree)."""
+    whole = []
+    for mode in ("insn", "block"):
+        f2 = Firmware(core, elf)
+        f2.set_mode(mode)
+        whole.append(f2.call("crosscheck", [], limit=10**8, count=True)[0])
+    return whole
+
+
+def qemu_check(fws, target_dir, profile):
+    """Runs the firmware's `crosscheck` sequence in QEMU (one instruction
+    per translation block, every block logged) and in unicorn with the
+    IT-block correction; the two counts must agree. QEMU 7.2 has no board
+    with a Cortex-M0+ and this memory map, and Armv6-M has no IT blocks:
+    there the per-block and per-instruction counts are compared only."""
+    import shutil
+    import tempfile
+    exe = shutil.which("qemu-system-arm")
+    results = []
+    for key, fw in fws.items():
+        elf = os.path.join(target_dir, fw.core.triple, profile, "mrr-control-embedded")
+        whole = whole_sequence(fw.core, elf)
+        if key != "M4F" or exe is None:
+            results.append((key, None, None, None, whole))
+            continue
+        start, end = fw.syms["crosscheck_start"] & ~1, fw.syms["crosscheck_end"] & ~1
+        with tempfile.TemporaryDirectory() as d:
+            log = os.path.join(d, "trace.log")
+            subprocess.run([exe, "-M", "mps2-an386", "-nographic", "-kernel", elf, "-semihosting-config",
+                            "enable=on,target=native", "-singlestep", "-d", "exec,nochain", "-D", log],
+                           check=True, timeout=120, stdin=subprocess.DEVNULL)
+            pcs = []
+            with open(log) as fh:
+                for line in fh:
+                    if line.startswith("Trace"):
+                        pcs.append(int(line.split("[")[1].split("/")[1], 16))
+        # Instructions from crosscheck_start's first to crosscheck_end's first.
+        q = pcs.index(end) - pcs.index(start)
+        # The same span in unicorn, on a fresh image (the table's runs have
+        # changed the step states): run `crosscheck` after `init`.
+        n_uni, raw = unicorn_span(Firmware(fw.core, elf), start, end)
+        results.append((key, q, n_uni, raw, whole))
+    if exe is None:
+        print("qemu-system-arm not found: QEMU cross-check skipped")
+    return results
+
+
+def unicorn_span(fw, start, end):
+    """Instructions from the first execution of `start` to `end` while
+    running the firmware's `crosscheck` (after `init`)."""
+    uc = fw.uc
+    state = {"on": False, "raw": 0}
+
+    def hook(uc_, addr, size, _):
+        if addr == start and not state["on"]:
+            state["on"] = True
+            fw.counting = True
+            fw.n = fw.cycles = fw.failed = 0
+            fw.prev, fw.it_left = None, 0
+        if state["on"]:
+            state["raw"] += 1
+        if addr == end and state["on"]:
+            uc_.emu_stop()
+
+    fw.set_mode("insn")
+    h = uc.hook_add(UC_HOOK_CODE, hook)
+    try:
+        uc.reg_write(A.UC_ARM_REG_SP, STACK_TOP)
+        uc.reg_write(A.UC_ARM_REG_LR, RETURN | 1)
+        fw.counting, fw.limit, fw.panicked = False, 10**9, False
+        uc.emu_start(fw.syms["crosscheck"] | 1, RETURN)
+        # The counter missed `start` (counting began in the hook after it)
+        # and included `end`: `fw.n` is the length of [start, end).
+        return fw.n, state["raw"] - 1
+    finally:
+        uc.hook_del(h)
+        fw.counting = False
+        fw.set_mode("block")
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--profile", default="release")
+    p.add_argument("--quick", action="store_true", help="a twelfth of the argument vectors")
+    p.add_argument("--no-build", action="store_true")
+    p.add_argument("--report-only", action="store_true", help="print the table; do not fail on a budget")
+    p.add_argument("--qemu", action="store_true", help="cross-check the IT-block accounting against QEMU")
+    p.add_argument("--bitcheck", type=int, default=0, metavar="N",
+                   help="compare N random inputs per I16F16 kernel: thumbv6m build vs host build")
+    p.add_argument("--selftest", action="store_true", help="check the cycle tables against hand-checked cases and exit")
+    args = p.parse_args()
+    if args.selftest:
+        sys.exit(0 if selftest() else 1)
+    t0 = time.time()
+    failures, fws = run(args)
+    target_dir = os.environ.get("CARGO_TARGET_DIR", os.path.join(HERE, "target"))
+    if args.qemu:
+        res = qemu_check(fws, target_dir, args.profile)
+        for key, q, n, raw, whole in res:
+            ok = q == n and whole[0] == whole[1]
+            line = f"Counter cross-check {key}: "
+            if q is not None:
+                line += f"QEMU -d exec {q} instructions, unicorn + IT correction {n} (hooked alone {raw}); "
+            line += f"whole sequence per instruction {whole[0]}, per block {whole[1]}: {'agree' if ok else 'DISAGREE'}"
+            print(line)
+            if not ok:
+                failures.append(f"counter cross-check {key}: {q} vs {n}, {whole}")
+    if args.bitcheck:
+        total, mism = bitcheck(fws["M0+"], args.bitcheck, target_dir)
+        print(f"I16F16 bit identity, thumbv6m (emulated) vs host build: {total} cases, {len(mism)} differ")
+        for m in mism[:10]:
+            print("  ", m)
+        if mism:
+            failures.append(f"{len(mism)} I16F16 results differ between thumbv6m and host")
+    print(f"\ncount.py done in {time.time() - t0:.0f} s")
+    if failures and args.report_only:
+        print("\nbudgets not met (report only): " + "; ".join(failures))
+        return
+    if failures:
+        print("\nBUDGET FAILURES:")
+        for f in failures:
+            print("  " + f)
+        sys.exit(1)
+    print("all budgets met")
+
+
+if __name__ == "__main__":
+    main()
