@@ -560,6 +560,10 @@ pub struct TorqueEstimationResult {
     pub fitted_kinematic_error: KinematicErrorModel,
     /// Error statistics over all levels per entry of [`ESTIMATORS`].
     pub overall: Vec<ErrorStats>,
+    /// What the wave-generator term of eq. (3.9) adds to the estimate:
+    /// statistics over all levels of `"f64, KE fitted"` minus
+    /// `"f64, KE fitted, tau_w = 0"`, N·m.
+    pub wave_generator_shift: ErrorStats,
 }
 
 /// The thesis joint with its drive built on a backbone of `shape`.
@@ -676,6 +680,7 @@ pub fn torque_estimation(cfg: &TorqueEstimationConfig) -> TorqueEstimationResult
         .collect();
     let mut levels = Vec::new();
     let mut all: Vec<Vec<f64>> = vec![Vec::new(); ESTIMATORS.len()];
+    let mut shift = Vec::new();
     for (li, &tau_m) in cfg.motor_torques.iter().enumerate() {
         let mut r = Mrr::try_new(
             vec![module.clone()],
@@ -729,6 +734,7 @@ pub fn torque_estimation(cfg: &TorqueEstimationConfig) -> TorqueEstimationResult
                     errs[j].push(est[j] - truth);
                 }
                 fixed_vs_float = fixed_vs_float.max((est[5] - est[2]).abs());
+                shift.push(est[2] - est[6]);
                 let v = r.link_speeds()[0];
                 if v.abs() > max_speed.abs() {
                     max_speed = v;
@@ -756,6 +762,7 @@ pub fn torque_estimation(cfg: &TorqueEstimationConfig) -> TorqueEstimationResult
         levels,
         fitted_kinematic_error: fitted,
         overall: all.into_iter().map(ErrorStats::of).collect(),
+        wave_generator_shift: ErrorStats::of(shift),
     }
 }
 
