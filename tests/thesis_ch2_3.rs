@@ -278,7 +278,7 @@ fn rms(v: impl Iterator<Item = f64>) -> f64 {
 /// inverted by bisection). For the backbone curve on a loop centred on it
 /// with every element slipped, the error is `±Ψ/2` (loading / unloading)
 /// minus the constant kinematic error `c = θ_err(0, 0)` the encoders see
-/// (the motor turns < 0.2 rad here, where θ_err changes by < 1e-6 rad);
+/// (the motor turns < 0.11 rad here, where θ_err changes by < 2e-6 rad);
 /// adding the wave-generator term's `Ψ/2` in the load direction makes it
 /// `Ψ` or 0. Symmetric loading gives RMS `√(Ψ²/4 + c²)` and `√(Ψ²/2 + c²)`:
 /// a gap `D = √(Ψ²/2 + c²) − √(Ψ²/4 + c²)` (5.4e-5 rad). So
