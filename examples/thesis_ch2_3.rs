@@ -66,6 +66,15 @@ fn main() -> std::io::Result<()> {
     row("catalogue piecewise eq. (2.11), tau_f", &a.piecewise);
     row("cubic eq. (2.10), tau_f", &a.cubic);
     row("piecewise eq. (2.11), -N tau_w", &a.piecewise_input);
+    // Diagnostic, not a model of the thesis: eq. (2.30) with the
+    // wave-generator torque's sign reversed (errata E12, E13).
+    let m = Models::shd_17_100();
+    let flipped = ErrorStats::of(a.samples.iter().map(|s| {
+        m.proposed
+            .torsion(s.flexspline_torque, -s.wave_generator_torque)
+            - s.measured_torsion
+    }));
+    row("diagnostic: eq. (2.30), -tau_w", &flipped);
     let w_plant = width_at_zero(
         &a.samples,
         |s| -s.wave_generator_torque,

@@ -282,16 +282,22 @@ fn rms(v: impl Iterator<Item = f64>) -> f64 {
 /// adding the wave-generator term's `Ψ/2` in the load direction makes it
 /// `Ψ` or 0. Symmetric loading gives RMS `√(Ψ²/4 + c²)` and `√(Ψ²/2 + c²)`:
 /// a gap `D = √(Ψ²/2 + c²) − √(Ψ²/4 + c²)` (5.4e-5 rad). So
-/// `rms(2.30) − rms(X) ≥ D − G_2.26 − G_X`. Loops that do not fully slip
-/// (the amplitude decreases to 0) shrink the classic models' error while
-/// the wave-generator offset stays, so they only widen the gap.
+/// `rms(2.30) − rms(X) ≥ D − G_2.26 − G_X`. Loops that do not fully
+/// reverse only widen the gap: a reversal completes after a torque swing
+/// of `K_b Ψ + 2ΣF` ≈ 4.9 N·m, so while the amplitude decays the unloading
+/// branch stays near the backbone while the loading branch is fully
+/// slipped, the classic curves' errors lean towards the load direction,
+/// and the wave-generator offset, which adds torsion in that direction,
+/// adds to them.
 ///
-/// Second, the wave-generator offset `o` (eq. 2.30 minus eq. 2.26, per
-/// sample) is not anti-correlated with the error of eq. (2.26) alone:
+/// Second, that offset `o` (eq. 2.30 minus eq. 2.26, per sample) is not
+/// anti-correlated with the error of eq. (2.26) alone:
 /// `rms(2.30)² ≥ rms(2.26)² + rms(o)²`. On the ideal centred loop the
-/// correlation is zero (loading and unloading cancel); were the plant's
-/// hysteresis the wave-generator compliance eq. (2.30) assumes, `o` would
-/// cancel part of that error and the inequality would fail.
+/// correlation is zero (loading and unloading cancel) and the partial
+/// reversals above make it positive; were the plant's loop offset the way
+/// eq. (2.30) assumes, `o` would cancel part of that error and the
+/// inequality would fail (as it does with the sign of `τ_w` reversed, the
+/// diagnostic row of the example).
 #[test]
 fn proposed_model_predicts_worst_on_every_backbone() {
     let psi = SHD.hysteresis_loss;
