@@ -1,7 +1,9 @@
 //! Thesis ch. 2–3 experiments reproduced on the simulated SHD-17-100 joint:
 //! the locked-output compliance experiment (Fig. 2.17–2.20), the
 //! back-driven experiment (Fig. 2.21–2.22) and the torque-estimation
-//! accuracy table (Table 3.3). Writes the figure data as CSV under
+//! accuracy table (Table 3.3), and the locked-output and Table 3.3
+//! comparisons repeated on plants built on different elastic backbones
+//! (errata E12). Writes the figure data as CSV under
 //! `target/figures/` and prints a summary.
 //!
 //! ```sh
@@ -11,19 +13,21 @@
 use mrr_control::harmonic_drive::CatalogueData;
 use mrr_control::sim::experiments::{
     back_driven, locked_output, torque_estimation, width_at_zero, BackDrivenConfig,
-    ComplianceResult, ErrorStats, LockedOutputConfig, TorqueEstimationConfig, ESTIMATORS,
+    ComplianceResult, ErrorStats, LockedOutputConfig, Models, TorqueEstimationConfig, ESTIMATORS,
 };
+use mrr_control::sim::transmission::{Backbone, SHD_17_100_K3};
+use mrr_control::sim::BackboneShape;
 use std::fmt::Write as _;
 use std::time::Instant;
 
 fn write_compliance_csv(path: &str, r: &ComplianceResult) -> std::io::Result<()> {
     let mut s = String::from(
-        "time_s,tau_w_Nm,tau_f_measured_Nm,tau_f_true_Nm,motor_angle_rad,torsion_measured_rad,torsion_true_rad,proposed_rad,piecewise_rad,cubic_rad,piecewise_input_rad\n",
+        "time_s,tau_w_Nm,tau_f_measured_Nm,tau_f_true_Nm,motor_angle_rad,torsion_measured_rad,torsion_true_rad,proposed_rad,flexspline_only_rad,piecewise_rad,cubic_rad,piecewise_input_rad\n",
     );
     for x in &r.samples {
         let _ = writeln!(
             s,
-            "{:.4},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}",
+            "{:.4},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}",
             x.time,
             x.wave_generator_torque,
             x.flexspline_torque,
@@ -32,6 +36,7 @@ fn write_compliance_csv(path: &str, r: &ComplianceResult) -> std::io::Result<()>
             x.measured_torsion,
             x.true_torsion,
             x.proposed,
+            x.flexspline,
             x.piecewise,
             x.cubic,
             x.piecewise_input
@@ -57,9 +62,19 @@ fn main() -> std::io::Result<()> {
     println!("Locked output, sinusoidal motor torque of decreasing amplitude (Fig. 2.17-2.20)");
     println!("  torsion error against the encoder torsion, rad:");
     row("proposed eq. (2.30), tau_f + tau_w", &a.proposed);
+    row("flexspline eq. (2.26) alone, tau_f", &a.flexspline);
     row("catalogue piecewise eq. (2.11), tau_f", &a.piecewise);
     row("cubic eq. (2.10), tau_f", &a.cubic);
     row("piecewise eq. (2.11), -N tau_w", &a.piecewise_input);
+    // Diagnostic, not a model of the thesis: eq. (2.30) with the
+    // wave-generator torque's sign reversed (errata E12, E13).
+    let m = Models::shd_17_100();
+    let flipped = ErrorStats::of(a.samples.iter().map(|s| {
+        m.proposed
+            .torsion(s.flexspline_torque, -s.wave_generator_torque)
+            - s.measured_torsion
+    }));
+    row("diagnostic: eq. (2.30), -tau_w", &flipped);
     let w_plant = width_at_zero(
         &a.samples,
         |s| -s.wave_generator_torque,
@@ -192,6 +207,107 @@ fn main() -> std::io::Result<()> {
     let sat = c.levels.iter().any(|l| l.saturated);
     println!("  largest |I16F16 - f64| (fitted KE): {fx:.2e} N·m; any saturation: {sat}");
     println!("  ({:.1} s)", t0.elapsed().as_secs_f64());
+    backbone_table()?;
     println!("\nCSV written to target/figures/");
+    Ok(())
+}
+
+/// Torsion (rad) of a backbone at a torque (N·m), by bisection on its
+/// increasing torque curve.
+fn backbone_torsion(b: &Backbone, torque: f64) -> f64 {
+    let (mut lo, mut hi) = (-1e-2, 1e-2);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if b.torque(mid) < torque {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// The locked-output and Table 3.3 comparisons on every backbone (the
+/// configurations of `tests/thesis_ch2_3.rs`).
+fn backbone_table() -> std::io::Result<()> {
+    let t0 = Instant::now();
+    let shd = CatalogueData::SHD_17_100;
+    let m = Models::shd_17_100();
+    println!("\nModel comparison per plant backbone (errata E12)");
+    println!(
+        "  curve gap: largest |model curve - backbone| over |tau_f| <= T2 (rad), no hysteresis"
+    );
+    println!("  locked output: RMS torsion error (rad); Table 3.3 (4 s/level): RMS estimate error (N·m), f64, KE fitted");
+    println!(
+        "  {:<24}{:>10}{:>10}{:>10} |{:>10}{:>10}{:>10}{:>10} |{:>9}{:>9}",
+        "backbone",
+        "gap 2.26",
+        "gap 2.11",
+        "gap 2.10",
+        "proposed",
+        "2.26 only",
+        "piecewise",
+        "cubic",
+        "with tw",
+        "tw = 0"
+    );
+    let mut csv = String::from("backbone,gap_flexspline_rad,gap_piecewise_rad,gap_cubic_rad,rms_proposed_rad,rms_flexspline_only_rad,rms_piecewise_rad,rms_cubic_rad,est_rms_with_tau_w_Nm,est_rms_tau_w_0_Nm\n");
+    for shape in BackboneShape::ALL {
+        let b = Backbone::from_catalogue(shape, &shd, SHD_17_100_K3).expect("valid catalogue");
+        let mut gap = [0.0f64; 3];
+        for i in 0..=1200 {
+            let tau = i as f64 * shd.t2 / 1200.0;
+            let truth = backbone_torsion(&b, tau);
+            let models = [
+                m.proposed.flexspline.torsion(tau),
+                m.piecewise.torsion(tau),
+                m.cubic.torsion(tau),
+            ];
+            for (g, x) in gap.iter_mut().zip(models) {
+                *g = g.max((x - truth).abs());
+            }
+        }
+        let a = locked_output(&LockedOutputConfig {
+            backbone: shape,
+            ..LockedOutputConfig::default()
+        });
+        let c = torque_estimation(&TorqueEstimationConfig {
+            duration: 4.0,
+            backbone: shape,
+            ..TorqueEstimationConfig::default()
+        });
+        let idx = |name: &str| ESTIMATORS.iter().position(|e| *e == name).unwrap();
+        let with = c.overall[idx("f64, KE fitted")].rms;
+        let without = c.overall[idx("f64, KE fitted, tau_w = 0")].rms;
+        println!(
+            "  {:<24}{:>10.2e}{:>10.2e}{:>10.2e} |{:>10.3e}{:>10.3e}{:>10.3e}{:>10.3e} |{:>9.3}{:>9.3}",
+            shape.name(),
+            gap[0],
+            gap[1],
+            gap[2],
+            a.proposed.rms,
+            a.flexspline.rms,
+            a.piecewise.rms,
+            a.cubic.rms,
+            with,
+            without
+        );
+        let _ = writeln!(
+            csv,
+            "{},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e},{:.4e},{:.4},{:.4}",
+            shape.name(),
+            gap[0],
+            gap[1],
+            gap[2],
+            a.proposed.rms,
+            a.flexspline.rms,
+            a.piecewise.rms,
+            a.cubic.rms,
+            with,
+            without
+        );
+    }
+    std::fs::write("target/figures/e12_backbones.csv", csv)?;
+    println!("  ({:.1} s)", t0.elapsed().as_secs_f64());
     Ok(())
 }

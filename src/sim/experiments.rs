@@ -11,7 +11,7 @@
 //! (eq. 2.40) and the estimator [`TorqueEstimatorConfig`] (eq. 3.8–3.10).
 
 use super::mrr::{ModuleParams, Mrr, Sensors};
-use super::transmission::{DrivePlantParams, SHD_17_100_K3};
+use super::transmission::{BackboneShape, DrivePlantParams, SHD_17_100_K3};
 use crate::estimation::torque::{
     TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorState,
 };
@@ -113,6 +113,9 @@ pub struct ComplianceSample {
     pub true_torsion: f64,
     /// Eq. (2.30) at the measured `τ_f` and `τ_w`, rad.
     pub proposed: f64,
+    /// Eq. (2.26) alone (the flexspline term of eq. 2.30, the
+    /// wave-generator term left out) at the measured `τ_f`, rad.
+    pub flexspline: f64,
     /// Eq. (2.11) at the measured `τ_f`, rad.
     pub piecewise: f64,
     /// Eq. (2.10) at the measured `τ_f`, rad.
@@ -128,6 +131,8 @@ pub struct ComplianceResult {
     pub samples: Vec<ComplianceSample>,
     /// Error of eq. (2.30) against the measured torsion, rad.
     pub proposed: ErrorStats,
+    /// Error of eq. (2.26) alone (measured `τ_f`), rad.
+    pub flexspline: ErrorStats,
     /// Error of eq. (2.11) (measured `τ_f`), rad.
     pub piecewise: ErrorStats,
     /// Error of eq. (2.10) (measured `τ_f`), rad.
@@ -172,6 +177,7 @@ fn record(
         measured_torsion: measured_torsion(m, s, 0),
         true_torsion,
         proposed: models.proposed.torsion(tau_f, tau_w),
+        flexspline: models.proposed.flexspline.torsion(tau_f),
         piecewise: models.piecewise.torsion(tau_f),
         cubic: models.cubic.torsion(tau_f),
         piecewise_input: models.piecewise.torsion(-n * tau_w),
@@ -184,6 +190,7 @@ fn finish(samples: Vec<ComplianceSample>, dissipation: (f64, f64)) -> Compliance
     };
     ComplianceResult {
         proposed: stat(&|s| s.proposed),
+        flexspline: stat(&|s| s.flexspline),
         piecewise: stat(&|s| s.piecewise),
         cubic: stat(&|s| s.cubic),
         piecewise_input: stat(&|s| s.piecewise_input),
@@ -303,6 +310,8 @@ pub struct LockedOutputConfig {
     /// Maxwell-slip elements of the plant's drive (0: the drive's own
     /// hysteresis removed, leaving the motor friction's loop only).
     pub slip_elements: usize,
+    /// Shape of the plant's elastic backbone.
+    pub backbone: BackboneShape,
     /// Noise seed.
     pub seed: u64,
 }
@@ -317,6 +326,7 @@ impl Default for LockedOutputConfig {
             steps_per_period: 10,
             record_every: 4,
             slip_elements: 8,
+            backbone: BackboneShape::CataloguePiecewise,
             seed: 1,
         }
     }
@@ -332,6 +342,7 @@ pub fn locked_output(cfg: &LockedOutputConfig) -> ComplianceResult {
     module.drive = DrivePlantParams::from_catalogue(
         &CatalogueData::SHD_17_100,
         SHD_17_100_K3,
+        cfg.backbone,
         cfg.slip_elements,
         Some(KinematicErrorModel::table_3_2()),
     )
@@ -519,6 +530,8 @@ pub struct TorqueEstimationConfig {
     pub steps_per_period: usize,
     /// Link speed of the kinematic-error calibration runs, rad/s.
     pub calibration_speed: f64,
+    /// Shape of the plant's elastic backbone (calibration and runs).
+    pub backbone: BackboneShape,
     /// Noise seed.
     pub seed: u64,
 }
@@ -532,6 +545,7 @@ impl Default for TorqueEstimationConfig {
             control_period: 4e-3,
             steps_per_period: 40,
             calibration_speed: 0.5,
+            backbone: BackboneShape::CataloguePiecewise,
             seed: 3,
         }
     }
@@ -546,6 +560,17 @@ pub struct TorqueEstimationResult {
     pub fitted_kinematic_error: KinematicErrorModel,
     /// Error statistics over all levels per entry of [`ESTIMATORS`].
     pub overall: Vec<ErrorStats>,
+    /// What the wave-generator term of eq. (3.9) adds to the estimate:
+    /// statistics over all levels of `"f64, KE fitted"` minus
+    /// `"f64, KE fitted, tau_w = 0"`, N·m.
+    pub wave_generator_shift: ErrorStats,
+}
+
+/// The thesis joint with its drive built on a backbone of `shape`.
+fn joint_on(shape: BackboneShape) -> ModuleParams {
+    let mut module = ModuleParams::thesis_joint();
+    module.drive = DrivePlantParams::shd_17_100_on(shape);
+    module
 }
 
 /// Estimator readings from the sensors (chapter-2 convention): link count
@@ -566,7 +591,7 @@ pub fn estimator_counts(m: &ModuleParams, s: &Sensors, i: usize) -> (u32, u32) {
 /// offset of each direction, as eq. (2.38) does for the encoder offset.
 pub fn calibrate_kinematic_error(cfg: &TorqueEstimationConfig) -> KinematicErrorModel {
     let models = Models::shd_17_100();
-    let module = ModuleParams::thesis_joint();
+    let module = joint_on(cfg.backbone);
     let (qm, n) = (module.motor_encoder.rad_per_count(), module.drive.ratio);
     let mut r = Mrr::try_new(
         vec![module],
@@ -636,7 +661,7 @@ pub fn hand_torque(t: f64, link_speed: f64) -> f64 {
 pub fn torque_estimation(cfg: &TorqueEstimationConfig) -> TorqueEstimationResult {
     let models = Models::shd_17_100();
     let fitted = calibrate_kinematic_error(cfg);
-    let module = ModuleParams::thesis_joint();
+    let module = joint_on(cfg.backbone);
     let (l, m) = (
         module.link_encoder.counts_per_rev,
         module.motor_encoder.counts_per_rev,
@@ -655,6 +680,7 @@ pub fn torque_estimation(cfg: &TorqueEstimationConfig) -> TorqueEstimationResult
         .collect();
     let mut levels = Vec::new();
     let mut all: Vec<Vec<f64>> = vec![Vec::new(); ESTIMATORS.len()];
+    let mut shift = Vec::new();
     for (li, &tau_m) in cfg.motor_torques.iter().enumerate() {
         let mut r = Mrr::try_new(
             vec![module.clone()],
@@ -708,6 +734,7 @@ pub fn torque_estimation(cfg: &TorqueEstimationConfig) -> TorqueEstimationResult
                     errs[j].push(est[j] - truth);
                 }
                 fixed_vs_float = fixed_vs_float.max((est[5] - est[2]).abs());
+                shift.push(est[2] - est[6]);
                 let v = r.link_speeds()[0];
                 if v.abs() > max_speed.abs() {
                     max_speed = v;
@@ -735,6 +762,7 @@ pub fn torque_estimation(cfg: &TorqueEstimationConfig) -> TorqueEstimationResult
         levels,
         fitted_kinematic_error: fitted,
         overall: all.into_iter().map(ErrorStats::of).collect(),
+        wave_generator_shift: ErrorStats::of(shift),
     }
 }
 

@@ -33,4 +33,4 @@ pub use friction::FrictionParams;
 pub use integrator::Rk4;
 pub use mrr::{Controller, ModuleParams, Mrr, Sensors};
 pub use sensors::{Encoder, SplitMix64, TorqueSensor};
-pub use transmission::DrivePlantParams;
+pub use transmission::{Backbone, BackboneShape, DrivePlantParams};

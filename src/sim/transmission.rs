@@ -15,18 +15,24 @@
 //! 1. **Kinematic error** `θ_err(θ_fo, θ_wi)` of eq. (3.7) (Table 3.2): the
 //!    measured torsion is the compliance torsion plus `θ_err` (eq. 3.8), so
 //!    the torsion that loads the elastic parts is `δ_c = δ + θ_err`.
-//! 2. **Elastic backbone**: the catalogue's piecewise-linear curve, eq. (2.11)
-//!    (library [`CataloguePiecewise`], slopes `K1, K2, K3`, knees `T1, T2`),
-//!    as torque from `δ_c`. `K3` is not in the thesis; the plant assumes
-//!    `K3 = 1.3e4 N·m/rad` ([`SHD_17_100_K3`], our reading of the Harmonic
-//!    Drive catalogue for size 17, ratio 100 — not checked against a
-//!    catalogue copy here); the experiments stay below `T2 = 12 N·m`,
-//!    where it plays no part.
+//! 2. **Elastic backbone** ([`Backbone`], chosen by [`BackboneShape`]),
+//!    torque as a function of `δ_c`. The default is the catalogue's
+//!    piecewise-linear curve, eq. (2.11) (library [`CataloguePiecewise`],
+//!    slopes `K1, K2, K3`, knees `T1, T2`). `K3` is not in the thesis; the
+//!    plant assumes `K3 = 1.3e4 N·m/rad` ([`SHD_17_100_K3`], our reading
+//!    of the Harmonic Drive catalogue for size 17, ratio 100 — not checked
+//!    against a catalogue copy here); the experiments stay below
+//!    `T2 = 12 N·m`, where it plays no part. The other shapes (the cubic
+//!    of eq. 2.10, a tanh curve fitted to the catalogue, the flexspline
+//!    curve of eq. 2.26) test whether a comparison of the compliance
+//!    models depends on which of them the plant happens to be built on.
 //! 3. **Maxwell-slip hysteresis** in parallel with the backbone: `M`
 //!    elasto-plastic elements `τ_i = clamp(k_i (δ_c − z_i), ±F_i)`. Their
 //!    total slip torque is set by the catalogue's hysteresis loss: after
-//!    loading to either side, the loop's width at zero torque is
-//!    `2 ΣF / K1 = Ψ`, so `ΣF = K1 Ψ / 2` (1.218 N·m). The elements share
+//!    loading to either side, the slipped elements hold `∓ΣF` and the
+//!    backbone `±ΣF`, so the loop's width at zero torque is
+//!    `2 τ_b⁻¹(ΣF) = Ψ` for backbone torque `τ_b`, i.e. `ΣF = τ_b(Ψ/2)`
+//!    (on the catalogue curve `K1 Ψ/2` = 1.218 N·m). The elements share
 //!    it equally and their presliding displacements `F_i/k_i` are spread
 //!    uniformly over `(0, Ψ/2]` — the thesis's bound on the wave generator's
 //!    one-sided deformation (eq. 2.36).
@@ -35,14 +41,280 @@
 //! functions of `δ_c(q_l, q_m)`, including the kinematic error's gradient,
 //! so the plant is conservative when the hysteresis is switched off.
 
-use crate::error::ParamError;
+use crate::error::{increasing, positive, ParamError};
 use crate::harmonic_drive::{
-    kinematic_error::KinematicErrorModel, CatalogueData, CataloguePiecewise,
+    kinematic_error::KinematicErrorModel, CatalogueData, CataloguePiecewise, CubicStiffness,
+    FlexsplineParams,
 };
 
 /// `K3` of the SHD-17-100 (N·m/rad) assumed by the plant (see the module
 /// docs); the thesis gives only `K1`, `K2`, `T1`, `T2`.
 pub const SHD_17_100_K3: f64 = 1.3e4;
+
+/// Which elastic backbone the simulated drive is built on (see
+/// [`Backbone::from_catalogue`] for how each is fitted to the catalogue).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BackboneShape {
+    /// The catalogue's piecewise-linear curve, eq. (2.11).
+    CataloguePiecewise,
+    /// The cubic of eq. (2.10) through the catalogue's two knees.
+    CubicThroughKnees,
+    /// A smooth curve that is none of the compared models: slope `K1` at
+    /// zero, `K2` asymptotically, through the catalogue's `T2` knee.
+    TanhThroughT2,
+    /// The proposed model's flexspline curve, eq. (2.26), with `K_f0`,
+    /// `c_f` identified by eq. (2.33)–(2.34).
+    IdentifiedFlexspline,
+}
+
+impl BackboneShape {
+    /// Every shape, the catalogue curve first.
+    pub const ALL: [BackboneShape; 4] = [
+        BackboneShape::CataloguePiecewise,
+        BackboneShape::CubicThroughKnees,
+        BackboneShape::TanhThroughT2,
+        BackboneShape::IdentifiedFlexspline,
+    ];
+
+    /// A short label for tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            BackboneShape::CataloguePiecewise => "piecewise (2.11)",
+            BackboneShape::CubicThroughKnees => "cubic (2.10)",
+            BackboneShape::TanhThroughT2 => "tanh, fitted",
+            BackboneShape::IdentifiedFlexspline => "flexspline atan (2.26)",
+        }
+    }
+}
+
+/// A smooth stiffening curve, torque (N·m) from torsion `δ` (rad):
+///
+/// $$ \tau(\delta) = K_\infty \delta - (K_\infty - K_0)\, w \tanh(\delta/w) $$
+///
+/// local stiffness `K_∞ − (K_∞ − K_0) sech²(δ/w)`, from `K_0` at zero to
+/// `K_∞` for `|δ| ≫ w`. Not a model of the thesis: a plant shape that
+/// favours none of the compared models.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TanhStiffness {
+    /// Stiffness at zero torsion `K_0`, N·m/rad.
+    pub k0: f64,
+    /// Asymptotic stiffness `K_∞`, N·m/rad (`> K_0`).
+    pub k_inf: f64,
+    /// Transition width `w`, rad.
+    pub width: f64,
+}
+
+impl TanhStiffness {
+    /// The tanh curve fitted to a catalogue curve: `K_0 = K1`,
+    /// `K_∞ = K2`, and `w` such that the curve passes through the `T2`
+    /// knee `(δ2, T2)`, i.e. `w tanh(δ2/w) = (K2 δ2 − T2)/(K2 − K1)`,
+    /// which on the catalogue curve equals `δ1 = T1/K1` (the asymptote is
+    /// then that of the catalogue's second piece, shifted by `w − δ1`).
+    /// `w tanh(δ2/w)` increases from 0 to `δ2` with `w`, and
+    /// `0 < δ1 < δ2`, so bisection finds the unique `w`. Fails with
+    /// [`ParamError::NotIncreasing`] unless `K1 < K2`.
+    pub fn through_t2_knee(c: &CataloguePiecewise) -> Result<Self, ParamError> {
+        let (d1, d2) = (c.torsion_at_t1(), c.torsion_at_t2());
+        let (k0, t1) = (c.local_stiffness(0.0), c.torque(d1));
+        let k_inf = c.local_stiffness(0.5 * (t1 + c.torque(d2)));
+        increasing(("k1", k0), ("k2", k_inf))?;
+        let target = d1;
+        let g = |w: f64| w * libm::tanh(d2 / w);
+        let (mut lo, mut hi) = (0.0, d2);
+        while g(hi) <= target {
+            hi *= 2.0;
+        }
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if g(mid) < target {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        let width = positive("width", 0.5 * (lo + hi))?;
+        Ok(TanhStiffness { k0, k_inf, width })
+    }
+
+    /// Torque (N·m) at torsion `δ` (rad).
+    pub fn torque(&self, torsion: f64) -> f64 {
+        self.k_inf * torsion
+            - (self.k_inf - self.k0) * self.width * libm::tanh(torsion / self.width)
+    }
+
+    /// Local stiffness `dτ/dδ` (N·m/rad).
+    pub fn local_stiffness(&self, torsion: f64) -> f64 {
+        let c = libm::cosh(torsion / self.width);
+        self.k_inf - (self.k_inf - self.k0) / (c * c)
+    }
+
+    /// Stored energy `∫₀^δ τ dx = K_∞ δ²/2 − (K_∞ − K_0) w² ln cosh(δ/w)`
+    /// (J), with `ln cosh x = |x| + ln((1 + e^{−2|x|})/2)` so that large
+    /// arguments do not overflow.
+    pub fn energy(&self, torsion: f64) -> f64 {
+        let x = (torsion / self.width).abs();
+        let ln_cosh = x + libm::log1p(libm::exp(-2.0 * x)) - core::f64::consts::LN_2;
+        0.5 * self.k_inf * torsion * torsion
+            - (self.k_inf - self.k0) * self.width * self.width * ln_cosh
+    }
+}
+
+/// The flexspline curve of eq. (2.26) used as a plant backbone: the
+/// torque of eq. (3.10), `τ = tan(c_f K_f0 δ)/c_f`, up to the torsion
+/// `δ_L = 0.8 π/(2 c_f K_f0)` (68 N·m on the SHD-17-100, far beyond the
+/// experiments), continued linearly with the slope there so that the
+/// plant never meets the pole of `tan`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FlexsplineBackbone {
+    /// The flexspline parameters, eq. (2.24).
+    pub flexspline: FlexsplineParams,
+}
+
+impl FlexsplineBackbone {
+    /// Share of the largest flexspline torsion where the linear
+    /// continuation starts.
+    const LIMIT_SHARE: f64 = 0.8;
+
+    fn limit(&self) -> f64 {
+        Self::LIMIT_SHARE * self.flexspline.max_torsion()
+    }
+
+    fn ck(&self) -> f64 {
+        self.flexspline.c_f * self.flexspline.k_f0
+    }
+
+    /// Torque (N·m) at torsion `δ` (rad).
+    pub fn torque(&self, torsion: f64) -> f64 {
+        let (d, l) = (torsion.abs(), self.limit());
+        let t = if d <= l {
+            self.flexspline.torque(d).torque
+        } else {
+            self.flexspline.torque(l).torque + self.stiffness_abs(l) * (d - l)
+        };
+        t.copysign(torsion)
+    }
+
+    fn stiffness_abs(&self, d: f64) -> f64 {
+        let tan = libm::tan(self.ck() * d.min(self.limit()));
+        self.flexspline.k_f0 * (1.0 + tan * tan)
+    }
+
+    /// Local stiffness `K_f0 (1 + tan²(c_f K_f0 δ))` (N·m/rad), eq. (2.24)
+    /// written in the torsion; constant beyond `δ_L`.
+    pub fn local_stiffness(&self, torsion: f64) -> f64 {
+        self.stiffness_abs(torsion.abs())
+    }
+
+    /// Stored energy (J): `∫₀^δ tan(c K x)/c dx = −ln cos(c K δ)/(c² K)`
+    /// up to `δ_L`, plus `τ_L x + K_L x²/2` for the linear part
+    /// (`x = |δ| − δ_L`).
+    pub fn energy(&self, torsion: f64) -> f64 {
+        let (d, l) = (torsion.abs(), self.limit());
+        let c = self.flexspline.c_f;
+        let v = |x: f64| -libm::log(libm::cos(self.ck() * x)) / (c * c * self.flexspline.k_f0);
+        if d <= l {
+            v(d)
+        } else {
+            let x = d - l;
+            v(l) + self.flexspline.torque(l).torque * x + 0.5 * self.stiffness_abs(l) * x * x
+        }
+    }
+}
+
+/// The elastic backbone of the simulated drive: an odd, increasing torque
+/// (N·m, on the link) of the compliance torsion `δ_c` (rad).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Backbone {
+    /// Eq. (2.11), inverted exactly.
+    CataloguePiecewise(CataloguePiecewise),
+    /// Eq. (2.10).
+    Cubic(CubicStiffness),
+    /// [`TanhStiffness`].
+    Tanh(TanhStiffness),
+    /// Eq. (2.26) inverted, eq. (3.10) ([`FlexsplineBackbone`]).
+    Flexspline(FlexsplineBackbone),
+}
+
+impl Backbone {
+    /// The backbone of `shape` fitted to catalogue data (`k3` completes
+    /// the piecewise curve): the catalogue curve itself; the cubic through
+    /// its knees ([`CubicStiffness::through_catalogue_knees`]); the tanh
+    /// curve through its `T2` knee ([`TanhStiffness::through_t2_knee`]);
+    /// the flexspline curve identified by eq. (2.33)–(2.34)
+    /// ([`CatalogueData::identify`]). Errors are those of the fits.
+    pub fn from_catalogue(
+        shape: BackboneShape,
+        data: &CatalogueData,
+        k3: f64,
+    ) -> Result<Self, ParamError> {
+        let piecewise = CataloguePiecewise::try_new(data.k1, data.k2, k3, data.t1, data.t2)?;
+        Ok(match shape {
+            BackboneShape::CataloguePiecewise => Backbone::CataloguePiecewise(piecewise),
+            BackboneShape::CubicThroughKnees => {
+                Backbone::Cubic(CubicStiffness::through_catalogue_knees(&piecewise)?)
+            }
+            BackboneShape::TanhThroughT2 => {
+                Backbone::Tanh(TanhStiffness::through_t2_knee(&piecewise)?)
+            }
+            BackboneShape::IdentifiedFlexspline => Backbone::Flexspline(FlexsplineBackbone {
+                flexspline: data.identify()?.flexspline,
+            }),
+        })
+    }
+
+    /// Torque (N·m) at compliance torsion `δ_c` (rad).
+    pub fn torque(&self, torsion: f64) -> f64 {
+        match self {
+            Backbone::CataloguePiecewise(b) => b.torque(torsion),
+            Backbone::Cubic(b) => b.torque(torsion),
+            Backbone::Tanh(b) => b.torque(torsion),
+            Backbone::Flexspline(b) => b.torque(torsion),
+        }
+    }
+
+    /// Local stiffness `dτ/dδ_c` (N·m/rad) at torsion `δ_c` (rad).
+    pub fn local_stiffness(&self, torsion: f64) -> f64 {
+        match self {
+            Backbone::CataloguePiecewise(b) => b.local_stiffness(b.torque(torsion)),
+            Backbone::Cubic(b) => b.local_stiffness(torsion),
+            Backbone::Tanh(b) => b.local_stiffness(torsion),
+            Backbone::Flexspline(b) => b.local_stiffness(torsion),
+        }
+    }
+
+    /// Stored energy `∫₀^δ τ(x) dx` (J) at torsion `δ_c` (rad), in closed
+    /// form per shape: piecewise `K1 δ²/2`, then `T1 x + K2 x²/2` past
+    /// `δ1` and `T2 x + K3 x²/2` past `δ2`; cubic `a1 δ²/2 + a3 δ⁴/4`;
+    /// [`TanhStiffness::energy`]; [`FlexsplineBackbone::energy`].
+    pub fn energy(&self, torsion: f64) -> f64 {
+        match self {
+            Backbone::CataloguePiecewise(b) => {
+                let d = torsion.abs();
+                let (d1, d2) = (b.torsion_at_t1(), b.torsion_at_t2());
+                let (t1, t2) = (b.torque(d1), b.torque(d2));
+                let k1 = b.local_stiffness(0.0);
+                let k2 = b.local_stiffness(0.5 * (t1 + t2));
+                let k3 = b.local_stiffness(2.0 * t2);
+                let mut v = 0.5 * k1 * d.min(d1).powi(2);
+                if d > d1 {
+                    let x = d.min(d2) - d1;
+                    v += t1 * x + 0.5 * k2 * x * x;
+                }
+                if d > d2 {
+                    let x = d - d2;
+                    v += t2 * x + 0.5 * k3 * x * x;
+                }
+                v
+            }
+            Backbone::Cubic(b) => {
+                let d2 = torsion * torsion;
+                0.5 * b.a1() * d2 + 0.25 * b.a3() * d2 * d2
+            }
+            Backbone::Tanh(b) => b.energy(torsion),
+            Backbone::Flexspline(b) => b.energy(torsion),
+        }
+    }
+}
 
 /// One Maxwell-slip element: stiffness (N·m/rad) and slip torque (N·m).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -58,8 +330,8 @@ pub struct SlipElement {
 pub struct DrivePlantParams {
     /// Gear ratio `N`.
     pub ratio: f64,
-    /// Elastic backbone, eq. (2.11).
-    pub backbone: CataloguePiecewise,
+    /// Elastic backbone.
+    pub backbone: Backbone,
     /// Maxwell-slip elements (empty: purely elastic).
     pub slip_elements: Vec<SlipElement>,
     /// True kinematic error, eq. (3.7), or `None`.
@@ -67,16 +339,18 @@ pub struct DrivePlantParams {
 }
 
 impl DrivePlantParams {
-    /// The plant derived from catalogue data (see the module docs) with
-    /// `elements` Maxwell-slip elements and an optional kinematic error.
+    /// The plant derived from catalogue data (see the module docs) on a
+    /// backbone of `shape` with `elements` Maxwell-slip elements of total
+    /// slip torque `τ_b(Ψ/2)` and an optional kinematic error.
     pub fn from_catalogue(
         data: &CatalogueData,
         k3: f64,
+        shape: BackboneShape,
         elements: usize,
         kinematic_error: Option<KinematicErrorModel>,
     ) -> Result<Self, ParamError> {
-        let backbone = CataloguePiecewise::try_new(data.k1, data.k2, k3, data.t1, data.t2)?;
-        let total = data.k1 * data.hysteresis_loss / 2.0;
+        let backbone = Backbone::from_catalogue(shape, data, k3)?;
+        let total = backbone.torque(data.hysteresis_loss / 2.0);
         let slip_elements = (1..=elements)
             .map(|i| {
                 let f = total / elements as f64;
@@ -95,12 +369,18 @@ impl DrivePlantParams {
         })
     }
 
-    /// The SHD-17-100 of thesis §2.4 with 8 slip elements and the Table 3.2
-    /// kinematic error.
+    /// The SHD-17-100 of thesis §2.4 on the catalogue backbone, with 8
+    /// slip elements and the Table 3.2 kinematic error.
     pub fn shd_17_100() -> Self {
+        Self::shd_17_100_on(BackboneShape::CataloguePiecewise)
+    }
+
+    /// The same on a backbone of another shape.
+    pub fn shd_17_100_on(shape: BackboneShape) -> Self {
         Self::from_catalogue(
             &CatalogueData::SHD_17_100,
             SHD_17_100_K3,
+            shape,
             8,
             Some(KinematicErrorModel::table_3_2()),
         )
@@ -122,8 +402,9 @@ impl DrivePlantParams {
         self.slip_elements.iter().map(|e| e.slip_torque).sum()
     }
 
-    /// Small-amplitude stiffness at zero torque (backbone `K1` plus every
-    /// element's `k_i`), N·m/rad.
+    /// Small-amplitude stiffness at zero torque (the backbone's slope at
+    /// zero, `K1` on the catalogue curve, plus every element's `k_i`),
+    /// N·m/rad.
     pub fn micro_stiffness(&self) -> f64 {
         self.backbone.local_stiffness(0.0)
             + self.slip_elements.iter().map(|e| e.stiffness).sum::<f64>()
@@ -163,7 +444,7 @@ impl DrivePlantParams {
 
     /// Transmission torque `τ_t` (N·m, on the link) at compliance torsion
     /// `δ_c` with slip anchors `z` (one per element): the inverse of the
-    /// catalogue curve, eq. (2.11), plus the Maxwell-slip elements.
+    /// backbone plus the Maxwell-slip elements.
     pub fn torque(&self, delta_c: f64, anchors: &[f64]) -> f64 {
         let mut t = self.backbone.torque(delta_c);
         for (e, z) in self.slip_elements.iter().zip(anchors) {
@@ -184,25 +465,11 @@ impl DrivePlantParams {
         }
     }
 
-    /// Elastic energy (J) of the backbone at torsion `δ_c` plus that stored
-    /// in the slip elements: `∫₀^δ K(x) x dx` piecewise, and `τ_i²/(2k_i)`.
+    /// Elastic energy (J) of the backbone at torsion `δ_c`
+    /// ([`Backbone::energy`]) plus that stored in the slip elements,
+    /// `τ_i²/(2k_i)`.
     pub fn elastic_energy(&self, delta_c: f64, anchors: &[f64]) -> f64 {
-        let b = &self.backbone;
-        let d = delta_c.abs();
-        let (d1, d2) = (b.torsion_at_t1(), b.torsion_at_t2());
-        let (t1, t2) = (b.torque(d1), b.torque(d2));
-        let k1 = b.local_stiffness(0.0);
-        let k2 = b.local_stiffness(0.5 * (t1 + t2));
-        let k3 = b.local_stiffness(2.0 * t2);
-        let mut v = 0.5 * k1 * d.min(d1).powi(2);
-        if d > d1 {
-            let x = d.min(d2) - d1;
-            v += t1 * x + 0.5 * k2 * x * x;
-        }
-        if d > d2 {
-            let x = d - d2;
-            v += t2 * x + 0.5 * k3 * x * x;
-        }
+        let mut v = self.backbone.energy(delta_c);
         for (e, z) in self.slip_elements.iter().zip(anchors) {
             let t = (e.stiffness * (delta_c - z)).clamp(-e.slip_torque, e.slip_torque);
             v += t * t / (2.0 * e.stiffness);
@@ -216,11 +483,18 @@ mod tests {
     use super::*;
 
     /// The loop of the plant's compliance, driven quasi-statically by the
-    /// torsion, has width Ψ at zero torque (independent: the backbone slope
-    /// K1 and ΣF = K1 Ψ/2 give 2ΣF/K1 = Ψ).
+    /// torsion, has width Ψ at zero torque on every backbone: once every
+    /// element has slipped, the elements hold `∓ΣF` at zero torque and the
+    /// backbone `±ΣF = ±τ_b(Ψ/2)`, so the torsion there is `±Ψ/2`.
     #[test]
     fn loop_width_at_zero_torque_is_psi() {
-        let p = DrivePlantParams::shd_17_100();
+        for shape in BackboneShape::ALL {
+            loop_width_on(shape);
+        }
+    }
+
+    fn loop_width_on(shape: BackboneShape) {
+        let p = DrivePlantParams::shd_17_100_on(shape);
         let psi = CatalogueData::SHD_17_100.hysteresis_loss;
         let mut z = vec![0.0; p.slip_elements.len()];
         // Load to +8 N·m worth of torsion, then sweep down and find where
@@ -251,7 +525,7 @@ mod tests {
             prev = (d, t);
         }
         let width = crossing_down - crossing_up;
-        assert!((width - psi).abs() < 1e-3 * psi, "width {width}");
+        assert!((width - psi).abs() < 1e-3 * psi, "{shape:?}: width {width}");
     }
 
     /// While every slip element sticks, the torque is the derivative of
@@ -259,8 +533,14 @@ mod tests {
     /// derived from it are conservative.
     #[test]
     fn torque_is_energy_gradient() {
-        let p = DrivePlantParams::shd_17_100();
-        for d in [-2e-3, -1e-4, 3e-5, 4e-4, 1.2e-3, 2.5e-3] {
+        for shape in BackboneShape::ALL {
+            torque_is_energy_gradient_on(shape);
+        }
+    }
+
+    fn torque_is_energy_gradient_on(shape: BackboneShape) {
+        let p = DrivePlantParams::shd_17_100_on(shape);
+        for d in [-2e-3, -1e-4, 3e-5, 4e-4, 1.2e-3, 2.5e-3, -3.6e-3, 5e-3] {
             // Each element half-way to its slip torque.
             let z: Vec<f64> = p
                 .slip_elements
@@ -270,7 +550,85 @@ mod tests {
             let h = 1e-9;
             let fd = (p.elastic_energy(d + h, &z) - p.elastic_energy(d - h, &z)) / (2.0 * h);
             let t = p.torque(d, &z);
-            assert!((fd - t).abs() < 1e-5 * (1.0 + t.abs()), "{d}: {fd} vs {t}");
+            assert!(
+                (fd - t).abs() < 1e-5 * (1.0 + t.abs()),
+                "{shape:?} {d}: {fd} vs {t}"
+            );
+        }
+    }
+
+    /// Composite Simpson rule of `f` over `[0, x]` with `n` (even)
+    /// intervals.
+    fn simpson(f: impl Fn(f64) -> f64, x: f64, n: usize) -> f64 {
+        let h = x / n as f64;
+        let mut s = f(0.0) + f(x);
+        for i in 1..n {
+            s += f(i as f64 * h) * if i % 2 == 1 { 4.0 } else { 2.0 };
+        }
+        s * h / 3.0
+    }
+
+    /// The closed-form energy of each backbone equals the quadrature of its
+    /// torque, across the catalogue knees (δ1 = 4.64e-4, δ2 = 1.33e-3 rad)
+    /// and the flexspline curve's linear continuation (from 3.35e-3 rad),
+    /// and is even. Simpson's error at a slope kink is of order
+    /// `ΔK h²` ≈ 4e3 · (6e-3/2e5)² ≈ 4e-12 J, and 1e-9 of the energy
+    /// (≥ 2e-9 J at the smallest torsion here) covers it and the rounding.
+    #[test]
+    fn backbone_energy_is_the_integral_of_its_torque() {
+        for shape in BackboneShape::ALL {
+            let b =
+                Backbone::from_catalogue(shape, &CatalogueData::SHD_17_100, SHD_17_100_K3).unwrap();
+            for d in [2e-5, 3e-4, 4.64e-4, 9e-4, 1.6e-3, 3.0e-3, 3.5e-3, 6e-3] {
+                let q = simpson(|x| b.torque(x), d, 200_000);
+                let v = b.energy(d);
+                assert!(
+                    (v - q).abs() <= 1e-9 * q + 1e-15,
+                    "{shape:?} at {d}: {v} vs {q}"
+                );
+                assert_eq!(b.energy(-d), v);
+                assert_eq!(b.torque(-d), -b.torque(d));
+            }
+        }
+    }
+
+    /// Each backbone's local stiffness is the slope of its torque (central
+    /// differences, step 1e-8 rad; the curvature error `τ‴ h²/6` is below
+    /// 1e-6 of the stiffness) away from the piecewise curve's kinks.
+    #[test]
+    fn backbone_stiffness_is_the_slope_of_its_torque() {
+        for shape in BackboneShape::ALL {
+            let b =
+                Backbone::from_catalogue(shape, &CatalogueData::SHD_17_100, SHD_17_100_K3).unwrap();
+            for d in [0.0, 2e-4, -7e-4, 1.1e-3, 2.0e-3, -3.0e-3, 4.5e-3] {
+                let h = 1e-8;
+                let fd = (b.torque(d + h) - b.torque(d - h)) / (2.0 * h);
+                let k = b.local_stiffness(d);
+                assert!((fd - k).abs() < 1e-6 * k, "{shape:?} at {d}: {fd} vs {k}");
+            }
+        }
+    }
+
+    /// The fitted shapes reproduce what they were fitted to: the tanh curve
+    /// has slope `K1` at zero and passes through the `T2` knee; the cubic
+    /// passes through both knees; the flexspline backbone is the inverse
+    /// of eq. (2.26).
+    #[test]
+    fn fitted_backbones_meet_their_catalogue_conditions() {
+        let c = CatalogueData::SHD_17_100;
+        let pw = CataloguePiecewise::try_new(c.k1, c.k2, SHD_17_100_K3, c.t1, c.t2).unwrap();
+        let (d1, d2) = (pw.torsion_at_t1(), pw.torsion_at_t2());
+        let get = |s| Backbone::from_catalogue(s, &c, SHD_17_100_K3).unwrap();
+        let tanh = get(BackboneShape::TanhThroughT2);
+        assert!((tanh.local_stiffness(0.0) - c.k1).abs() < 1e-9 * c.k1);
+        assert!((tanh.torque(d2) - c.t2).abs() < 1e-9 * c.t2);
+        let cubic = get(BackboneShape::CubicThroughKnees);
+        assert!((cubic.torque(d1) - c.t1).abs() < 1e-9 * c.t2);
+        assert!((cubic.torque(d2) - c.t2).abs() < 1e-9 * c.t2);
+        let flex = get(BackboneShape::IdentifiedFlexspline);
+        let fs = c.identify().unwrap().flexspline;
+        for t in [-12.0, 0.5, 7.0] {
+            assert!((flex.torque(fs.torsion(t)) - t).abs() < 1e-9 * 12.0);
         }
     }
 
