@@ -231,13 +231,15 @@ impl Coef {
                 shift: 0,
             };
         }
-        // |value| · 2^shift ∈ [2^30, 2^31).
+        // |value| · 2^shift ∈ [2^30, 2^31). Beyond 2^40 the fixed-point
+        // mantissa stays at 2^31 (|x · mult| ≤ 2^62 in `scale_int`): every
+        // non-zero product of such a coefficient saturates anyway.
         let e = libm::floor(libm::log2(value.abs())) as i32;
         let shift = (30 - e).clamp(-10, 90);
-        let mult = libm::round(value.abs() * libm::exp2(shift as f64)) as i64;
+        let mult = libm::round(value.abs() * libm::exp2(shift as f64)).min(2_147_483_648.0) as i64;
         Coef {
             value,
-            value_f32: value as f32,
+            value_f32: (value as f32).clamp(f32::MIN, f32::MAX),
             mult: if value < 0.0 { -mult } else { mult },
             shift,
         }
@@ -292,6 +294,31 @@ mod sealed {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Coefficients beyond 2^40 saturate every non-zero product instead of
+    /// overflowing the 64-bit intermediate (found by fuzzing the control
+    /// configurations), and their `f32` value stays finite.
+    #[test]
+    fn huge_coefficients_saturate() {
+        for v in [2f64.powi(41), 1e15, 1e300, f64::MAX] {
+            for sign in [1.0, -1.0] {
+                let c = Coef::new(sign * v);
+                for x in [1i64, -1, 1 << 31, -(1 << 31), 12345] {
+                    let want = if (x > 0) == (sign > 0.0) {
+                        i32::MAX
+                    } else {
+                        i32::MIN
+                    };
+                    assert_eq!(c.scale_int(x, 16), want, "{v} {x}");
+                    assert_eq!(c.scale_int(x, 0), want, "{v} {x}");
+                }
+                assert_eq!(c.scale_int(0, 16), 0);
+                assert!(c.f32_value().is_finite());
+                let y = I16F16::from_bits(3).mul_coef(&c);
+                assert_eq!(y, if sign > 0.0 { I16F16::MAX } else { I16F16::MIN });
+            }
+        }
+    }
 
     fn sat_examples<S: Scalar>() {
         let f = S::from_f64;
