@@ -22,6 +22,7 @@
 // one index; iterator chains over four zipped slices would read worse.
 #![allow(clippy::needless_range_loop)]
 
+pub mod closed_loop;
 pub mod experiments;
 pub mod friction;
 pub mod integrator;
