@@ -175,6 +175,8 @@ pub struct TrackingConfig {
     pub settle: f64,
     /// Speed window, s (module docs).
     pub speed_window: f64,
+    /// Motor encoder counts per revolution (the thesis joint: 2000).
+    pub motor_counts_per_rev: u32,
     /// RK4 steps per control period.
     pub steps_per_period: usize,
     /// Noise seed.
@@ -198,8 +200,24 @@ impl TrackingConfig {
             duration: 12.0,
             settle: 2.0,
             speed_window: 4e-3,
+            motor_counts_per_rev: 2000,
             steps_per_period: ((t / 1e-4).round() as usize).max(1),
             seed: 11,
+        }
+    }
+
+    /// The smooth regime: [`bound_design`]'s law (Table 4.1 structure,
+    /// layers the sampled law holds) at 0.1 ms with the
+    /// [`fine_motor_encoder`] and its [`FINE_SPEED_WINDOW`], otherwise as
+    /// [`TrackingConfig::table_4_1`].
+    pub fn smooth(feedback: JointTorqueFeedback) -> Self {
+        let mut design = bound_design(1.0);
+        design.sample_period = 1e-4;
+        TrackingConfig {
+            design,
+            speed_window: FINE_SPEED_WINDOW,
+            motor_counts_per_rev: 1 << 16,
+            ..Self::table_4_1(feedback, 1e-4)
         }
     }
 }
@@ -241,7 +259,8 @@ fn raised_cosine(a: f64, period: f64, t: f64) -> (f64, f64, f64) {
 /// The active-mode experiment of §4.4.1: eq. (4.19) with Table 4.1's
 /// design tracks [`TrackingConfig`]'s trajectory with the chosen feedback.
 pub fn active_tracking(cfg: &TrackingConfig) -> TrackingResult {
-    let module = payload_joint(cfg.tilt);
+    let mut module = payload_joint(cfg.tilt);
+    module.motor_encoder.counts_per_rev = cfg.motor_counts_per_rev;
     let t = cfg.design.sample_period;
     let n = module.drive.ratio;
     let params = RobustAdaptiveParams::try_new(cfg.design).expect("valid design");
@@ -582,4 +601,690 @@ pub fn bound_run(case: &BoundCase, duration: f64) -> BoundRun {
 /// `r = ė + λ e` with `e = q_m − q_m^d`.
 fn sliding(d: &RobustAdaptiveDesign, qm: f64, vm: f64, qd: f64, vd: f64) -> f64 {
     (vm - vd) + d.lambda * (qm - qd)
+}
+
+/// Speed window with [`fine_motor_encoder`], s: 0.4 ms, a lag of 0.2 ms
+/// (0.56 rad of phase at the 2800 rad/s velocity bandwidth
+/// `(K_r/ε_r + 2λI_m)/I_m` of [`bound_design`]) and a speed quantum of
+/// `2π/2¹⁶/0.4 ms = 0.24 rad/s`.
+pub const FINE_SPEED_WINDOW: f64 = 4e-4;
+
+/// The module with a motor encoder of 2¹⁶ counts per revolution: the
+/// scenarios that run [`bound_design`]'s law (velocity bandwidth about
+/// 2800 rad/s) need a speed with a lag well below 1/2800 s, which the
+/// thesis's 2000-count encoder cannot give (its 4 ms window lags 2 ms and
+/// the loop oscillates).
+pub fn fine_motor_encoder(mut m: ModuleParams) -> ModuleParams {
+    m.motor_encoder.counts_per_rev = 1 << 16;
+    m
+}
+
+/// The plant's motor friction as the nominal model of eq. (4.17) would
+/// have it identified offline (sliding levels of the thesis joint:
+/// `b = 1e-5`, `f_c = 0.010`, `f_s = 0.002`, `f_τ = 1`).
+pub fn identified_motor_friction() -> crate::friction::FrictionParams {
+    let m = ModuleParams::thesis_joint().motor_friction;
+    crate::friction::FrictionParams {
+        viscous: m.viscous,
+        coulomb: m.coulomb,
+        stribeck: m.static_excess,
+        stribeck_shape: m.stribeck,
+    }
+}
+
+/// What drives the motor while a hand back-drives the joint (the areas of
+/// Fig. 4.11).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BackDriveMode {
+    /// (A): no compensation, motor torque 0.
+    Uncompensated,
+    /// Eq. (4.32) with the estimated joint torque.
+    Estimated,
+    /// Eq. (4.32) with the F/T sensor's joint torque.
+    Sensor,
+}
+
+impl BackDriveMode {
+    /// Label for tables.
+    pub fn label(self) -> &'static str {
+        match self {
+            BackDriveMode::Uncompensated => "A: no compensation",
+            BackDriveMode::Estimated => "B: eq. 4.32, estimate",
+            BackDriveMode::Sensor => "C: eq. 4.32, F/T sensor",
+        }
+    }
+}
+
+/// Configuration of the passive-mode experiment (Fig. 4.11–4.12): a hand
+/// (an impedance `K_h (q_h − q_l) + B_h (q̇_h − q̇_l)` following
+/// `q_h = A sin(2π t/P)`) back-drives the thesis joint (vertical axis, its
+/// link only).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BackDriveConfig {
+    /// What drives the motor.
+    pub mode: BackDriveMode,
+    /// Control period, s.
+    pub sample_period: f64,
+    /// `K_p` of eq. (4.32), 1/(kg·m²).
+    pub gain: f64,
+    /// Hand amplitude `A`, rad.
+    pub amplitude: f64,
+    /// Hand period `P`, s.
+    pub period: f64,
+    /// Hand stiffness `K_h`, N·m/rad.
+    pub hand_stiffness: f64,
+    /// Hand damping `B_h`, N·m·s/rad.
+    pub hand_damping: f64,
+    /// Duration, s.
+    pub duration: f64,
+    /// Ignored start, s.
+    pub settle: f64,
+    /// Noise seed.
+    pub seed: u64,
+}
+
+impl BackDriveConfig {
+    /// 4 ms tick, `K_p = 0.2/I_m` (see [`back_drive`]), the hand moving
+    /// ±0.5 rad with a 4 s period through a 200 N·m/rad, 5 N·m·s/rad
+    /// impedance, 12 s with 2 s ignored.
+    pub fn new(mode: BackDriveMode) -> Self {
+        BackDriveConfig {
+            mode,
+            sample_period: 4e-3,
+            gain: 0.2 / 1.14e-5,
+            amplitude: 0.5,
+            period: 4.0,
+            hand_stiffness: 200.0,
+            hand_damping: 5.0,
+            duration: 12.0,
+            settle: 2.0,
+            seed: 5,
+        }
+    }
+}
+
+/// What the hand felt.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BackDriveResult {
+    /// The mode.
+    pub mode: BackDriveMode,
+    /// Hand torque (the interaction torque needed), N·m.
+    pub hand_torque: ErrorStats,
+    /// Link lag behind the hand `q_l − q_h`, rad.
+    pub lag: ErrorStats,
+    /// Transmission torque `τ_t` (what the drive resists with), N·m.
+    pub joint_torque: ErrorStats,
+}
+
+/// The passive-mode experiment of §4.4.2 (Fig. 4.11–4.12).
+///
+/// `K_p`: eq. (4.32) gives the motor `q̈_m = −K_p τ̂_t/N` (errata E9),
+/// against `q̈_m = −τ_t/(N I_m)` for a bare rotor, so the torque feedback
+/// makes the joint lighter than its own rotor only for `Î_m K_p > 1`.
+/// Sampled at `T`, the motor–drive loop `q̈_m = −K_p K_d q_m/N²` (drive
+/// stiffness `K_d ≈ 8.4e3 N·m/rad`) needs `√(K_p K_d)/N · T` well below 1:
+/// at 4 ms, `K_p ≤ 2e4`, i.e. `Î_m K_p ≤ 0.22`. The default takes
+/// `Î_m K_p = 0.2`: at the 4 ms tick the benefit of eq. (4.32) is the
+/// friction compensation and the feed-forward `τ̂_t/N`, not a lighter
+/// inertia.
+pub fn back_drive(cfg: &BackDriveConfig) -> BackDriveResult {
+    use crate::control::{PassiveConfig, PassiveParams};
+    let module = ModuleParams::thesis_joint();
+    let t = cfg.sample_period;
+    let p = PassiveParams::try_new(
+        module.rotor_inertia,
+        cfg.gain,
+        module.drive.ratio,
+        0.01,
+        identified_motor_friction(),
+        module.max_motor_torque,
+    )
+    .expect("valid passive parameters");
+    let law = PassiveConfig::<f64>::new(&p);
+    let steps = ((t / 1e-4).round() as usize).max(1);
+    let mut robot =
+        Mrr::try_new(vec![module.clone()], [0.0, 0.0, -9.81], t, steps, cfg.seed).expect("plant");
+    let rad = module.motor_encoder.rad_per_count();
+    let mut speed = CountSpeed::new(4e-3, t, rad);
+    let s0 = robot.read_sensors();
+    let mut est = JointTorqueEstimator::new(&module, &s0, 0);
+    let mut last = 0.0;
+    let (mut hand, mut lag, mut jt) = (Vec::new(), Vec::new(), Vec::new());
+    let total = (cfg.duration / t).round() as usize;
+    let w = TAU / cfg.period;
+    let hand_at = |time: f64, ql: f64, vl: f64| {
+        let (s, c) = libm::sincos(w * time);
+        cfg.hand_stiffness * (cfg.amplitude * s - ql)
+            + cfg.hand_damping * (cfg.amplitude * w * c - vl)
+    };
+    for k in 0..total {
+        let time = k as f64 * t;
+        let s = robot.read_sensors();
+        let vm = speed.update(s.motor_counts[0]);
+        let tau_est = est.joint_torque(&s, 0, last);
+        let fb = match cfg.mode {
+            BackDriveMode::Uncompensated => 0.0,
+            BackDriveMode::Estimated => tau_est,
+            BackDriveMode::Sensor => s.link_torque[0],
+        };
+        let torque = if cfg.mode == BackDriveMode::Uncompensated {
+            0.0
+        } else {
+            law.update(&ControlInput {
+                motor_position: s.motor_counts[0] as f64 * rad,
+                motor_velocity: vm,
+                joint_torque: fb,
+                ..Default::default()
+            })
+            .torque
+        };
+        last = torque;
+        robot.set_motor_torque(&[torque]);
+        for _ in 0..robot.steps_per_period {
+            let tt = robot.time();
+            let (ql, vl) = (robot.link_angles()[0], robot.link_speeds()[0]);
+            let h = hand_at(tt, ql, vl);
+            robot.external_torque[0] = h;
+            if time >= cfg.settle {
+                hand.push(h);
+                lag.push(ql - cfg.amplitude * libm::sin(w * tt));
+                jt.push(robot.transmission_torques()[0]);
+            }
+            robot.step();
+        }
+    }
+    BackDriveResult {
+        mode: cfg.mode,
+        hand_torque: ErrorStats::of(hand),
+        lag: ErrorStats::of(lag),
+        joint_torque: ErrorStats::of(jt),
+    }
+}
+
+/// Configuration of the payload-drop experiment (§3.2, Fig. 3.8): the
+/// joint's axis horizontal, a payload hanging by a wire at `distance` from
+/// the axis (its weight acts on the link; the wire carries no moment and
+/// adds no inertia about the axis beyond the point mass, which is left out
+/// as the wire is slack for inertia), cut at `drop_time`; the joint holds
+/// its position with the active law of [`bound_design`] at
+/// `sample_period` and the F/T sensor's torque; the estimator runs on every
+/// sample.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PayloadDropConfig {
+    /// Payload mass, kg.
+    pub mass: f64,
+    /// Horizontal distance from the axis, m (thesis: 0.4 m).
+    pub distance: f64,
+    /// Time of the cut, s.
+    pub drop_time: f64,
+    /// Duration, s.
+    pub duration: f64,
+    /// Control and estimation period, s.
+    pub sample_period: f64,
+    /// Band of the settling time, fraction of the true torque step (the
+    /// same absolute band for the truth and the estimate).
+    pub band: f64,
+    /// Noise seed.
+    pub seed: u64,
+}
+
+impl Default for PayloadDropConfig {
+    /// 1 kg at 0.4 m (a 3.9 N·m step), cut at 1 s, 3 s in all, 0.1 ms
+    /// period, 25 % band (the held joint rings at its drive resonance with
+    /// about ±0.6 N·m, 16 % of the step).
+    fn default() -> Self {
+        PayloadDropConfig {
+            mass: 1.0,
+            distance: 0.4,
+            drop_time: 1.0,
+            duration: 3.0,
+            sample_period: 1e-4,
+            band: 0.25,
+            seed: 9,
+        }
+    }
+}
+
+/// Step response of one signal.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepResponse {
+    /// Mean before the cut (last 0.5 s), N·m.
+    pub before: f64,
+    /// Mean over the last 0.5 s, N·m.
+    pub after: f64,
+    /// Time after the cut until the signal stays within the band
+    /// ([`PayloadDropConfig::band`] times the *true* step) of `after`, s.
+    pub settling_time: f64,
+    /// Largest excursion beyond `after` in the direction of the step, as a
+    /// fraction of `|step|`.
+    pub overshoot: f64,
+    /// Time after the cut of the first crossing of `(before + after)/2`, s.
+    pub half_time: f64,
+}
+
+impl StepResponse {
+    fn of(trace: &[(f64, f64)], cut: f64, end: f64, tol: f64) -> Self {
+        let mean = |a: f64, b: f64| {
+            let v: Vec<f64> = trace
+                .iter()
+                .filter(|(t, _)| *t >= a && *t < b)
+                .map(|(_, x)| *x)
+                .collect();
+            v.iter().sum::<f64>() / v.len().max(1) as f64
+        };
+        let before = mean(cut - 0.5, cut);
+        let after = mean(end - 0.5, end);
+        let step = after - before;
+        let mut settle = 0.0;
+        let mut over = 0.0f64;
+        let mid = 0.5 * (before + after);
+        let half_time = trace
+            .iter()
+            .find(|(t, x)| *t >= cut && (x - mid) * step.signum() >= 0.0)
+            .map_or(f64::NAN, |(t, _)| t - cut);
+        for (t, x) in trace.iter().filter(|(t, _)| *t >= cut) {
+            if (x - after).abs() > tol {
+                settle = t - cut;
+            }
+            over = over.max((x - after) * step.signum() / step.abs());
+        }
+        StepResponse {
+            before,
+            after,
+            settling_time: settle,
+            overshoot: over,
+            half_time,
+        }
+    }
+}
+
+/// Results of the payload drop.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PayloadDropResult {
+    /// The true joint torque `τ_t`.
+    pub truth: StepResponse,
+    /// The estimate `τ̂_t`.
+    pub estimate: StepResponse,
+    /// `τ̂_t − τ_t` before the cut (last 0.5 s), N·m.
+    pub error_before: ErrorStats,
+    /// `τ̂_t − τ_t` after settling (last 0.5 s), N·m.
+    pub error_after: ErrorStats,
+    /// `(t, τ_t, τ̂_t)` per sample, for plots.
+    pub trace: Vec<(f64, f64, f64)>,
+}
+
+/// The payload-drop experiment (Fig. 3.8).
+pub fn payload_drop(cfg: &PayloadDropConfig) -> PayloadDropResult {
+    let mut module = fine_motor_encoder(ModuleParams::thesis_joint());
+    // Axis horizontal (base y): the link (along x) is loaded by gravity.
+    module.axis = [0.0, 1.0, 0.0];
+    let mut design = bound_design(1.0);
+    design.sample_period = cfg.sample_period;
+    let law = RobustAdaptiveConfig::<f64>::new(&RobustAdaptiveParams::try_new(design).expect("ok"));
+    let mut st = law.initial_state();
+    let t = cfg.sample_period;
+    let steps = ((t / 1e-4).round() as usize).max(1);
+    let mut robot =
+        Mrr::try_new(vec![module.clone()], [0.0, 0.0, -9.81], t, steps, cfg.seed).expect("plant");
+    // Start loaded: the drive carries gravity plus the payload.
+    let load = |q: f64| -cfg.mass * 9.81 * cfg.distance * libm::cos(q);
+    let g0 = robot.gravity_torques()[0] - load(0.0);
+    let qm0 = robot.motor_angles_for_torque(&[0.0], &[g0])[0];
+    robot.set_state(&[0.0], &[qm0], &[0.0], &[0.0]);
+    let rad = module.motor_encoder.rad_per_count();
+    let s0 = robot.read_sensors();
+    let mut est = JointTorqueEstimator::new(&module, &s0, 0);
+    let hold = s0.motor_counts[0] as f64 * rad;
+    let mut speed = CountSpeed::new(FINE_SPEED_WINDOW, t, rad);
+    let mut last = 0.0;
+    let mut trace = Vec::new();
+    let total = (cfg.duration / t).round() as usize;
+    for k in 0..total {
+        let time = k as f64 * t;
+        let s = robot.read_sensors();
+        let vm = speed.update(s.motor_counts[0]);
+        let tau_est = est.joint_torque(&s, 0, last);
+        trace.push((time, robot.transmission_torques()[0], tau_est));
+        let o = law.update(
+            &mut st,
+            &ControlInput {
+                desired_position: hold,
+                motor_position: s.motor_counts[0] as f64 * rad,
+                motor_velocity: vm,
+                joint_torque: s.link_torque[0],
+                ..Default::default()
+            },
+        );
+        last = o.torque;
+        robot.set_motor_torque(&[o.torque]);
+        for _ in 0..robot.steps_per_period {
+            let q = robot.link_angles()[0];
+            robot.external_torque[0] = if robot.time() < cfg.drop_time {
+                load(q)
+            } else {
+                0.0
+            };
+            robot.step();
+        }
+    }
+    let split = |i: usize| -> Vec<(f64, f64)> {
+        trace
+            .iter()
+            .map(|x| (x.0, if i == 1 { x.1 } else { x.2 }))
+            .collect()
+    };
+    let errs = |a: f64, b: f64| {
+        ErrorStats::of(
+            trace
+                .iter()
+                .filter(|x| x.0 >= a && x.0 < b)
+                .map(|x| x.2 - x.1),
+        )
+    };
+    let truth = StepResponse::of(&split(1), cfg.drop_time, cfg.duration, 0.0);
+    let tol = cfg.band * (truth.after - truth.before).abs();
+    PayloadDropResult {
+        truth: StepResponse::of(&split(1), cfg.drop_time, cfg.duration, tol),
+        estimate: StepResponse::of(&split(2), cfg.drop_time, cfg.duration, tol),
+        error_before: errs(cfg.drop_time - 0.5, cfg.drop_time),
+        error_after: errs(cfg.duration - 0.5, cfg.duration),
+        trace,
+    }
+}
+
+/// One mode switch seen in closed loop.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SwitchEvent {
+    /// Sample time, s.
+    pub time: f64,
+    /// Mode before.
+    pub from: crate::control::JointMode,
+    /// Mode after.
+    pub to: crate::control::JointMode,
+    /// `|τ_after − τ_before|` at the switching sample, N·m.
+    pub torque_jump: f64,
+    /// `|reference − measured position|` at the switching sample (motor
+    /// side, rad; Active and Hold are seeded at the measured position).
+    pub reference_offset: f64,
+}
+
+/// Configuration of the mode-manager scenarios.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModeScenarioConfig {
+    /// Control period, s.
+    pub sample_period: f64,
+    /// Active → Passive above this interaction torque, N·m.
+    pub enter_passive: f64,
+    /// Passive → Active below this, N·m.
+    pub exit_passive: f64,
+    /// Rejoin bandwidth `ω`, rad/s.
+    pub rejoin_bandwidth: f64,
+    /// Collision detection `(threshold, release)`, N·m, and the reaction;
+    /// `None` for no detector.
+    pub collision: Option<(f64, f64, crate::estimation::collision::CollisionReaction)>,
+    /// `Î_m K_p` of the passive law.
+    pub passive_gain: f64,
+    /// Noise seed.
+    pub seed: u64,
+}
+
+impl ModeScenarioConfig {
+    /// 0.1 ms tick ([`bound_design`]'s law, which the sampled loop holds
+    /// smoothly), enter 4 N·m / exit 2 N·m (above the estimator's error of
+    /// about 1 N·m, Table 3.3 and errata E12), `ω = 10 rad/s`, no detector,
+    /// `Î_m K_p = 2`.
+    pub fn interaction() -> Self {
+        ModeScenarioConfig {
+            sample_period: 1e-4,
+            enter_passive: 4.0,
+            exit_passive: 1.0,
+            rejoin_bandwidth: 10.0,
+            collision: None,
+            passive_gain: 2.0,
+            seed: 21,
+        }
+    }
+}
+
+/// Results of a mode-manager scenario.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModeScenarioResult {
+    /// Every switch.
+    pub switches: Vec<SwitchEvent>,
+    /// The manager's bound on the jump (`switch_jump_bound`), N·m.
+    pub jump_bound: f64,
+    /// Link angle at the end, rad.
+    pub final_link_angle: f64,
+    /// Desired link angle at the end, rad.
+    pub final_desired: f64,
+    /// Largest `|q_m − reference|` (motor side, rad) while Active after the
+    /// last return from Passive (the law tracking the rejoin reference).
+    pub rejoin_tracking_error: f64,
+    /// Largest link speed after the last return to Active, rad/s.
+    pub rejoin_peak_speed: f64,
+    /// Link angle when the last return to Active happened, rad.
+    pub release_link_angle: f64,
+    /// Time the obstacle was first touched, s (`NaN` without contact).
+    pub contact_time: f64,
+    /// Time the collision was first flagged, s (`NaN` if never).
+    pub detection_time: f64,
+    /// Largest obstacle penetration, rad.
+    pub max_penetration: f64,
+    /// Obstacle torque at the end, N·m.
+    pub final_contact_torque: f64,
+    /// Per sample `(t, q_l, mode, τ̂_t, τ_t, τ_m)` for plots.
+    pub trace: Vec<ModeSample>,
+}
+
+/// One sample of a mode scenario.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ModeSample {
+    /// Time, s.
+    pub time: f64,
+    /// Link angle, rad.
+    pub link_angle: f64,
+    /// Mode.
+    pub mode: crate::control::JointMode,
+    /// Estimated joint torque, N·m.
+    pub estimate: f64,
+    /// True joint torque, N·m.
+    pub joint_torque: f64,
+    /// Motor torque command, N·m.
+    pub motor_torque: f64,
+}
+
+/// A hand or an obstacle acting on the link: returns the external torque
+/// at `(t, q_l, q̇_l)`.
+pub type Environment = dyn Fn(f64, f64, f64) -> f64;
+
+/// Run the mode manager ([`crate::control::ModeConfig`], `f64`) on the
+/// thesis joint (vertical axis, link only) with the estimated joint torque
+/// for `duration` s: desired link trajectory `desired(t) → (q, q̇, q̈)`,
+/// external torque `env`.
+pub fn mode_scenario(
+    cfg: &ModeScenarioConfig,
+    duration: f64,
+    desired: &dyn Fn(f64) -> (f64, f64, f64),
+    env: &Environment,
+    obstacle: Option<f64>,
+) -> ModeScenarioResult {
+    use crate::control::{JointMode, ModeConfig, ModeParams, PassiveParams};
+    use crate::estimation::collision::CollisionParams;
+    let module = fine_motor_encoder(ModuleParams::thesis_joint());
+    let mut design = bound_design(1.0);
+    design.sample_period = cfg.sample_period;
+    let t = cfg.sample_period;
+    let n = design.ratio;
+    let active = RobustAdaptiveParams::try_new(design).expect("valid design");
+    let passive = PassiveParams::try_new(
+        design.rotor_inertia,
+        cfg.passive_gain / design.rotor_inertia,
+        n,
+        design.eps_velocity,
+        identified_motor_friction(),
+        design.torque_limit,
+    )
+    .expect("valid passive");
+    let collision = cfg.collision.map(|(th, rel, reaction)| {
+        CollisionParams::try_new(th, rel, 3, 50, reaction).expect("valid detector")
+    });
+    let params = ModeParams::try_new(
+        active,
+        passive,
+        cfg.enter_passive,
+        cfg.exit_passive,
+        20,
+        100,
+        cfg.rejoin_bandwidth,
+        0.05,
+        collision,
+    )
+    .expect("valid mode parameters");
+    let mc = ModeConfig::<f64>::new(&params);
+    let mut st = mc.initial_state();
+    let steps = ((t / 1e-4).round() as usize).max(1);
+    let mut robot =
+        Mrr::try_new(vec![module.clone()], [0.0, 0.0, -9.81], t, steps, cfg.seed).expect("plant");
+    let rad = module.motor_encoder.rad_per_count();
+    let mut speed = CountSpeed::new(FINE_SPEED_WINDOW, t, rad);
+    let s0 = robot.read_sensors();
+    let mut est = JointTorqueEstimator::new(&module, &s0, 0);
+    let mut res = ModeScenarioResult {
+        switches: Vec::new(),
+        jump_bound: mc.switch_jump_bound(),
+        final_link_angle: 0.0,
+        final_desired: 0.0,
+        rejoin_tracking_error: 0.0,
+        rejoin_peak_speed: 0.0,
+        release_link_angle: f64::NAN,
+        contact_time: f64::NAN,
+        detection_time: f64::NAN,
+        max_penetration: 0.0,
+        final_contact_torque: 0.0,
+        trace: Vec::new(),
+    };
+    let total = (duration / t).round() as usize;
+    let mut returned = false;
+    for k in 0..total {
+        let time = k as f64 * t;
+        let s = robot.read_sensors();
+        let qm = s.motor_counts[0] as f64 * rad;
+        let vm = speed.update(s.motor_counts[0]);
+        let before = st.last_torque();
+        let tau_est = est.joint_torque(&s, 0, before);
+        let (qd, vd, ad) = desired(time);
+        let x = ControlInput {
+            desired_position: n * qd,
+            desired_velocity: n * vd,
+            desired_acceleration: n * ad,
+            motor_position: qm,
+            motor_velocity: vm,
+            joint_torque: tau_est,
+            ..Default::default()
+        };
+        let from = st.mode();
+        let o = mc.update(&mut st, &x);
+        if o.switched {
+            res.switches.push(SwitchEvent {
+                time,
+                from,
+                to: o.mode,
+                torque_jump: (o.torque - before).abs(),
+                reference_offset: if o.mode == JointMode::Passive {
+                    0.0
+                } else {
+                    (o.reference_position - qm).abs()
+                },
+            });
+            if from == JointMode::Passive && o.mode == JointMode::Active {
+                returned = true;
+                res.rejoin_tracking_error = 0.0;
+                res.rejoin_peak_speed = 0.0;
+                res.release_link_angle = robot.link_angles()[0];
+            }
+        }
+        if o.collision && res.detection_time.is_nan() {
+            res.detection_time = time;
+        }
+        if returned && o.mode == JointMode::Active {
+            res.rejoin_tracking_error = res
+                .rejoin_tracking_error
+                .max((robot.motor_angles()[0] - o.reference_position).abs());
+        }
+        res.trace.push(ModeSample {
+            time,
+            link_angle: robot.link_angles()[0],
+            mode: o.mode,
+            estimate: tau_est,
+            joint_torque: robot.transmission_torques()[0],
+            motor_torque: o.torque,
+        });
+        robot.set_motor_torque(&[o.torque]);
+        for _ in 0..robot.steps_per_period {
+            let (ql, vl) = (robot.link_angles()[0], robot.link_speeds()[0]);
+            robot.external_torque[0] = env(robot.time(), ql, vl);
+            if let Some(wall) = obstacle {
+                if ql > wall && res.contact_time.is_nan() {
+                    res.contact_time = robot.time();
+                }
+                res.max_penetration = res.max_penetration.max(ql - wall);
+            }
+            if returned {
+                res.rejoin_peak_speed = res.rejoin_peak_speed.max(vl.abs());
+            }
+            robot.step();
+        }
+    }
+    let ql = robot.link_angles()[0];
+    res.final_link_angle = ql;
+    res.final_desired = desired(duration).0;
+    res.final_contact_torque = env(duration, ql, 0.0);
+    res
+}
+
+/// The interaction scenario: the joint holds `q_l = 0` (Active); from
+/// 0.5 s a hand (200 N·m/rad, 5 N·m·s/rad) leads it to 0.4 rad along a
+/// raised cosine over 2 s and lets go at 3 s; 6 s in all. The manager
+/// should go Passive while the hand pushes and return to Active after it
+/// lets go, rejoining the desired hold.
+pub fn interaction_scenario(cfg: &ModeScenarioConfig) -> ModeScenarioResult {
+    let hand = |t: f64, ql: f64, vl: f64| {
+        if !(0.5..3.0).contains(&t) {
+            return 0.0;
+        }
+        let u = ((t - 0.5) / 2.0).min(1.0);
+        let (qh, vh) = if u < 1.0 {
+            let (s, c) = libm::sincos(core::f64::consts::PI * u);
+            (0.2 * (1.0 - c), 0.2 * core::f64::consts::PI * s / 2.0)
+        } else {
+            (0.4, 0.0)
+        };
+        200.0 * (qh - ql) + 5.0 * (vh - vl)
+    };
+    mode_scenario(cfg, 6.0, &|_| (0.0, 0.0, 0.0), &hand, None)
+}
+
+/// The collision scenario: the joint moves along `0.2 (1 − cos(π t/4))`
+/// rad (to 0.4 rad in 4 s) towards an obstacle at 0.15 rad (a spring of
+/// 300 N·m/rad with 2 N·m·s/rad damping, pushing back only); the detector
+/// (threshold and release from `cfg.collision`) reacts.
+pub fn collision_scenario(cfg: &ModeScenarioConfig) -> ModeScenarioResult {
+    const WALL: f64 = 0.15;
+    let wall = |_t: f64, ql: f64, vl: f64| {
+        if ql > WALL {
+            -(300.0 * (ql - WALL) + 2.0 * vl.max(0.0))
+        } else {
+            0.0
+        }
+    };
+    let desired = |t: f64| {
+        let w = core::f64::consts::PI / 4.0;
+        if t >= 4.0 {
+            (0.4, 0.0, 0.0)
+        } else {
+            let (s, c) = libm::sincos(w * t);
+            (0.2 * (1.0 - c), 0.2 * w * s, 0.2 * w * w * c)
+        }
+    };
+    mode_scenario(cfg, 5.0, &desired, &wall, Some(WALL))
 }
