@@ -246,6 +246,18 @@ fn passive_mode_reduces_the_interaction_torque() {
         let b = run(m, 2.5e-4, 3.0);
         assert!(a.hand_torque.rms - b.hand_torque.rms >= 0.5, "{a:?} {b:?}");
     }
+    // Î_m K_p = 1: the τ̂_t terms of eq. (4.32) cancel (errata E24), so the
+    // estimate and the sensor give the same loop.
+    let e1 = run(BackDriveMode::Estimated, 2.5e-4, 1.0);
+    let s1 = run(BackDriveMode::Sensor, 2.5e-4, 1.0);
+    assert!(
+        (e1.hand_torque.rms - s1.hand_torque.rms).abs() < 1e-6,
+        "{e1:?} {s1:?}"
+    );
+    assert!(
+        a.hand_torque.rms - e1.hand_torque.rms >= 0.5,
+        "{a:?} {e1:?}"
+    );
     let a4 = run(BackDriveMode::Uncompensated, 4e-3, 0.2);
     let b4 = run(BackDriveMode::Estimated, 4e-3, 0.2);
     assert!(b4.hand_torque.rms < a4.hand_torque.rms, "{a4:?} {b4:?}");
