@@ -11,8 +11,8 @@ use mrr_control::control::JointMode;
 use mrr_control::estimation::collision::CollisionReaction;
 use mrr_control::sim::closed_loop::{
     active_tracking, back_drive, bound_run, collision_scenario, interaction_scenario, payload_drop,
-    sampled_sliding_radius, BackDriveConfig, BackDriveMode, BoundCase, JointTorqueFeedback,
-    ModeScenarioConfig, PayloadDropConfig, TrackingConfig, TrackingResult,
+    sampled_sliding_radius, BackDriveConfig, BackDriveMode, BoundCase, CountSpeed,
+    JointTorqueFeedback, ModeScenarioConfig, PayloadDropConfig, TrackingConfig, TrackingResult,
 };
 use proptest::prelude::*;
 use std::sync::OnceLock;
@@ -109,6 +109,15 @@ proptest! {
     ///
     /// The bound is the thesis's set `S` (errata E21: the rigorous
     /// invariant is `guaranteed_sliding_radius`, which is also checked).
+    /// The margin `r̄(δ) − r_S` is not a tuned constant: `δ` is measured
+    /// per run by evaluating the library's law on the plant's true state
+    /// after every integration step, and `r̄(δ)` follows from eq. (4.28)
+    /// with the extra term (derivation on `sampled_sliding_radius`). At
+    /// `T = 50 µs` with a 2²⁰-count encoder it stays below 0.02 N·m
+    /// (`r̄ ≤ 20 rad/s` against `r_S = 11.76 rad/s`).
+    ///
+    /// 128 cases, 0.3 s of closed loop each (RK4 at 25 µs): about 15 s
+    /// under the test profile (opt-level 1).
     #[test]
     fn sliding_variable_stays_within_the_ultimate_bound(case in bound_case()) {
         let run = bound_run(&case, BOUND_DURATION);
@@ -377,6 +386,25 @@ fn collision_is_detected_on_the_estimate_and_stops_or_yields() {
             CollisionReaction::Passive => {
                 assert_eq!(r.switches[0].to, JointMode::Passive);
                 assert_eq!(r.final_contact_torque, 0.0);
+            }
+        }
+    }
+}
+
+/// The windowed speed meter: counts of a constant speed `v` read exactly
+/// as `round(v t/Δ)` give, once the window of `w` samples is full, a speed
+/// within `Δ/(w T)` of `v` (each of the two counts is off by at most Δ/2).
+#[test]
+fn count_speed_is_within_one_count_per_window() {
+    let (t, delta) = (1e-4, TAU / 2000.0);
+    for (v, window) in [(3.7, 4e-3), (-52.0, 4e-3), (0.8, 4e-4)] {
+        let mut m = CountSpeed::new(window, t, delta);
+        let w = (window / t).round();
+        for k in 0..200 {
+            let c = (v * k as f64 * t / delta).round() as i64;
+            let s = m.update(c);
+            if k as f64 >= w {
+                assert!((s - v).abs() <= delta / (w * t) + 1e-12, "{v} {k} {s}");
             }
         }
     }

@@ -18,6 +18,22 @@
 //! E13 prescribes ([`estimator_counts`]: motor counter negated) and returns
 //! `−τ_t`, so the feedback is `τ̂_t = −estimate`.
 //!
+//! # Scenarios
+//! * [`active_tracking`] ([`TrackingConfig`]) — §4.4.1, Fig. 4.2–4.3:
+//!   eq. (4.19) with no, sensed or estimated joint torque
+//!   ([`JointTorqueFeedback`]), with Table 4.1's gains or, in the regime
+//!   where the sampled law keeps its boundary layers (errata E22), with
+//!   [`bound_design`]'s.
+//! * [`bound_run`] ([`BoundCase`]) — one case of Theorem 1's ultimate bound
+//!   on the sampled loop, with the sampling disturbance measured and the
+//!   radius widened by [`sampled_sliding_radius`].
+//! * [`back_drive`] ([`BackDriveConfig`]) — §4.4.2, Fig. 4.11–4.12: a hand
+//!   back-drives the joint, unpowered or under eq. (4.32).
+//! * [`payload_drop`] ([`PayloadDropConfig`]) — §3.2, Fig. 3.8.
+//! * [`interaction_scenario`], [`collision_scenario`] ([`mode_scenario`]) —
+//!   the mode manager switching on the interaction torque and reacting to
+//!   a collision, on the estimated torque.
+//!
 //! # Motor speed
 //! The laws need `q̇_m`. It is measured as the count difference over a
 //! fixed window `w` (at least one sample): `q̇_m ≈ (c_k − c_{k−w})·Δ/(w T)`
@@ -803,12 +819,11 @@ pub fn back_drive(cfg: &BackDriveConfig) -> BackDriveResult {
 
 /// Configuration of the payload-drop experiment (§3.2, Fig. 3.8): the
 /// joint's axis horizontal, a payload hanging by a wire at `distance` from
-/// the axis (its weight acts on the link; the wire carries no moment and
-/// adds no inertia about the axis beyond the point mass, which is left out
-/// as the wire is slack for inertia), cut at `drop_time`; the joint holds
-/// its position with the active law of [`bound_design`] at
-/// `sample_period` and the F/T sensor's torque; the estimator runs on every
-/// sample.
+/// the axis, cut at `drop_time`. The payload is modelled by its weight
+/// only, an external link torque `−m g d cos q_l` (its inertia about the
+/// axis is left out); the joint holds its position with the active law of
+/// [`bound_design`] at `sample_period` with the F/T sensor's torque, on the
+/// [`fine_motor_encoder`]; the estimator runs on every sample.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PayloadDropConfig {
     /// Payload mass, kg.
