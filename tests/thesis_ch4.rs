@@ -122,6 +122,8 @@ proptest! {
     fn sliding_variable_stays_within_the_ultimate_bound(case in bound_case()) {
         let run = bound_run(&case, BOUND_DURATION);
         prop_assert!(run.step_ratio < 1.0, "{run:?}");
+        // The check covers most of the run (eq. 4.31 from V(0)).
+        prop_assert!(run.reaching_time < 0.5 * BOUND_DURATION, "{run:?}");
         prop_assert_eq!(run.saturated_samples, 0, "{:?}", run);
         prop_assert!(run.max_feedback_error <= 1.0, "{run:?}");
         prop_assert!(run.max_sliding <= run.radius, "{case:?} {run:?}");
@@ -153,6 +155,7 @@ fn violated_torque_error_bound_exceeds_the_ultimate_bound() {
         seed: 1,
     };
     let ok = bound_run(&case, BOUND_DURATION);
+    assert!(ok.reaching_time < 0.5 * BOUND_DURATION, "{ok:?}");
     assert!(ok.max_sliding <= ok.radius, "{ok:?}");
     case.error_fraction = 60.0;
     let bad = bound_run(&case, BOUND_DURATION);
