@@ -15,6 +15,9 @@
 //! * [`transmission`] — the simulated SHD-17-100.
 //! * [`mrr`] — `n`-module robot dynamics (eq. 4.1–4.6) with a sampled
 //!   controller hook.
+//! * [`closed_loop`] — the chapter-4 experiments in closed loop (tracking
+//!   with and without joint-torque feedback, Theorem 1's bound on random
+//!   cases, the passive mode, the payload drop, the mode manager).
 //! * [`experiments`] — the locked-output (Fig. 2.17–2.20), back-driven
 //!   (Fig. 2.21–2.22) and torque-estimation (Table 3.3) experiments.
 
@@ -22,6 +25,7 @@
 // one index; iterator chains over four zipped slices would read worse.
 #![allow(clippy::needless_range_loop)]
 
+pub mod closed_loop;
 pub mod experiments;
 pub mod friction;
 pub mod integrator;
