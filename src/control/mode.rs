@@ -22,6 +22,16 @@
 //! [`ModeConfig::acknowledge_collision`]; after that, Hold returns to
 //! Active (debounced) and Passive follows the torque rules.
 //!
+//! **Limitation.** The Passive → Active rule looks at the interaction torque
+//! only, and a joint being guided by hand in passive mode has a small
+//! interaction torque by design (that is what eq. 4.32 is for). In the
+//! simulated guidance scenario (`sim::closed_loop::interaction_scenario`) an
+//! `exit` of 2 N·m gave 38 switches in 2 s and 1 N·m still 4 near the end of
+//! the guidance. Choose `exit` well below the torque a guiding hand applies
+//! and a `dwell` longer than a pause in the guidance; a rule that also
+//! requires the joint to be at rest would tell a released joint from a
+//! guided one.
+//!
 //! # Bumpless transfer, and the bound on the torque jump
 //! `τ_before` is the previous command (what the motor is being driven
 //! with). At a switching sample the incoming mode is seeded:
