@@ -143,6 +143,16 @@ pub(crate) fn increasing(
     }
 }
 
+/// `value` if it is finite and not negative; otherwise the error naming it.
+pub(crate) fn non_negative(name: &'static str, value: f64) -> Result<f64, ParamError> {
+    let value = finite(name, value)?;
+    if value < 0.0 {
+        Err(ParamError::Negative { name, value })
+    } else {
+        Ok(value)
+    }
+}
+
 /// Check a gear ratio: finite and at least 1.
 pub(crate) fn gear_ratio(value: f64) -> Result<f64, ParamError> {
     let value = finite("ratio", value)?;

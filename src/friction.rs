@@ -21,7 +21,7 @@
 //! The nonparametric term `f_q(q, q̇)` of eq. (4.8) is not modelled; it is
 //! covered by its bound `ρ_fq` (Assumption 3) in the robust law.
 
-use crate::error::{finite, positive, ParamError};
+use crate::error::{non_negative, positive, ParamError};
 use crate::scalar::{Coef, Scalar};
 
 /// Friction parameters `F = [b, f_c, f_s, f_τ]` of eq. (4.8), SI units
@@ -124,15 +124,6 @@ impl FrictionParams {
     pub fn boundary_layer_residual(&self, qd: f64, eps: f64) -> f64 {
         (self.coulomb + self.stribeck * libm::exp(-self.stribeck_shape * qd * qd))
             * (qd.sgn() - qd.sat(eps))
-    }
-}
-
-fn non_negative(name: &'static str, value: f64) -> Result<f64, ParamError> {
-    let value = finite(name, value)?;
-    if value < 0.0 {
-        Err(ParamError::Negative { name, value })
-    } else {
-        Ok(value)
     }
 }
 

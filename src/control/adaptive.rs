@@ -41,7 +41,7 @@
 //! prepared [`Coef`].
 
 use super::{keep_number, ControlInput};
-use crate::error::{finite, positive, ParamError};
+use crate::error::{non_negative, positive, ParamError};
 use crate::friction::{
     mul_unit, parameter_scales, regressor_scales, sat_with_reciprocal, FrictionBounds,
     FrictionConfig, FrictionParams,
@@ -167,15 +167,6 @@ impl RobustAdaptiveDesign {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RobustAdaptiveParams {
     design: RobustAdaptiveDesign,
-}
-
-fn non_negative(name: &'static str, value: f64) -> Result<f64, ParamError> {
-    let value = finite(name, value)?;
-    if value < 0.0 {
-        Err(ParamError::Negative { name, value })
-    } else {
-        Ok(value)
-    }
 }
 
 fn at_most(name: &'static str, value: f64, max: f64) -> Result<f64, ParamError> {

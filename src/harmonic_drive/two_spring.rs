@@ -16,7 +16,7 @@
 //! spring (b) against the force for `F < F_fr` (errata E11). The play form
 //! needs no rate, only the previous `F_b`.
 
-use crate::error::{finite, positive, ParamError};
+use crate::error::{non_negative, positive, ParamError};
 
 /// Parameters of the two-spring system.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -35,13 +35,7 @@ impl TwoSpringParams {
     pub fn try_new(k_a: f64, k_b: f64, friction: f64) -> Result<Self, ParamError> {
         let k_a = positive("k_a", k_a)?;
         let k_b = positive("k_b", k_b)?;
-        let friction = finite("friction", friction)?;
-        if friction < 0.0 {
-            return Err(ParamError::Negative {
-                name: "friction",
-                value: friction,
-            });
-        }
+        let friction = non_negative("friction", friction)?;
         Ok(TwoSpringParams { k_a, k_b, friction })
     }
 
