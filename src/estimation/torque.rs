@@ -205,31 +205,70 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     /// Advance the motor position by the counter change since the last call
     /// (wrapping 32-bit difference: valid while the motor moves fewer than
     /// 2³¹ counts per sample).
+    ///
+    /// 32-bit arithmetic only: the new position is `p + δ mod MN` in the
+    /// canonical form `(turn, in_turn) ∈ [0, N) × [0, M)`; a move of less
+    /// than one motor revolution needs no division, a longer one one
+    /// `u32` division by `M` and at most one by `N` (no 64-bit division on
+    /// any path). Equal to the 64-bit formula [`advance_reference`] for
+    /// every state and counter (tests below).
     #[inline]
     fn advance(&self, st: &mut TorqueEstimatorState, counter: u32) {
+        let delta = counter.wrapping_sub(st.last_counter) as i32;
+        st.last_counter = counter;
+        let (m, n) = (self.m, self.n);
+        let (mut in_turn, turn) = (st.motor_in_turn, st.motor_turn);
+        let mag = delta.unsigned_abs();
+        let (q, r) = if mag < m {
+            (0, mag)
+        } else {
+            (mag / m, mag % m)
+        };
+        let turn = if delta >= 0 {
+            // in_turn + r < 2M, compared without overflow.
+            let mut carry = q;
+            if r >= m - in_turn {
+                in_turn = r - (m - in_turn);
+                carry += 1;
+            } else {
+                in_turn += r;
+            }
+            let c = if carry < n { carry } else { carry % n };
+            if c >= n - turn {
+                c - (n - turn)
+            } else {
+                turn + c
+            }
+        } else {
+            let mut borrow = q;
+            if r > in_turn {
+                in_turn += m - r;
+                borrow += 1;
+            } else {
+                in_turn -= r;
+            }
+            let b = if borrow < n { borrow } else { borrow % n };
+            if b > turn {
+                turn + (n - b)
+            } else {
+                turn - b
+            }
+        };
+        st.motor_turn = turn;
+        st.motor_in_turn = in_turn;
+    }
+
+    /// The 64-bit form of [`advance`](Self::advance), the reference of its
+    /// tests.
+    #[cfg(test)]
+    fn advance_reference(&self, st: &mut TorqueEstimatorState, counter: u32) {
         let delta = counter.wrapping_sub(st.last_counter) as i32 as i64;
         st.last_counter = counter;
-        let m = self.m as i64;
-        let mut in_turn = st.motor_in_turn as i64 + delta;
-        let mut turn = st.motor_turn as i64;
-        if (0..m).contains(&in_turn) {
-            // common case: no carry
-        } else if in_turn >= m && in_turn < 2 * m {
-            in_turn -= m;
-            turn += 1;
-        } else if in_turn < 0 && in_turn >= -m {
-            in_turn += m;
-            turn -= 1;
-        } else {
-            turn += in_turn.div_euclid(m);
-            in_turn = in_turn.rem_euclid(m);
-        }
-        let n = self.n as i64;
-        if !(0..n).contains(&turn) {
-            turn = turn.rem_euclid(n);
-        }
-        st.motor_turn = turn as u32;
-        st.motor_in_turn = in_turn as u32;
+        let mn = self.m as i64 * self.n as i64;
+        let p = st.motor_turn as i64 * self.m as i64 + st.motor_in_turn as i64;
+        let p = (p + delta).rem_euclid(mn);
+        st.motor_turn = (p / self.m as i64) as u32;
+        st.motor_in_turn = (p % self.m as i64) as u32;
     }
 
     /// Eq. (3.7) at link and motor angles (rad) given as `(sin, cos)` pairs.
@@ -463,6 +502,30 @@ mod tests {
             let a = cf.update(&mut cf.state(p_m, 0), c_l, 0, tau_w).torque;
             let b = cx.update(&mut cx.state(p_m, 0), c_l, 0, I16F16::from_f64(tau_w * 1e3)).torque.to_f64();
             prop_assert!((a - b).abs() <= 0.005 * 16.0, "{a} vs {b}");
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(20_000))]
+        /// The 32-bit `advance` equals the 64-bit formula from any state
+        /// for any counter (moves up to ±2³¹ counts), on the Table 3.2
+        /// drive and on encoder/ratio sizes with M, N near the edges.
+        #[test]
+        fn advance_equals_the_64_bit_formula(
+            pos in 0i64..1 << 40, last in any::<u32>(), counter in any::<u32>(), small: bool,
+            size in 0usize..4,
+        ) {
+            let (m, n) = [(M, 100u32), (1, 1), (3, 65535), (1 << 20, 160)][size];
+            let mut p = params(None);
+            p.motor_counts_per_rev = m;
+            p.drive.ratio = n as f64;
+            let cfg = TorqueEstimatorConfig::<f64>::new(&p);
+            let counter = if small { last.wrapping_add(counter % 8001).wrapping_sub(4000) } else { counter };
+            let mut a = cfg.state(pos, last);
+            let mut b = a;
+            cfg.advance(&mut a, counter);
+            cfg.advance_reference(&mut b, counter);
+            prop_assert_eq!(a, b);
         }
     }
 
