@@ -35,6 +35,19 @@ use crate::harmonic_drive::{
 use crate::scalar::{Coef, Scalar};
 use core::f64::consts::TAU;
 
+/// `a·b` exactly, for `b` below 2⁴⁸ (callers: products below 2⁶⁴). When
+/// `b` fits 32 bits, one 32×32 → 64 product ([`crate::scalar::fixed`]'s
+/// split form on Armv6-M, no `__aeabi_lmul`).
+#[inline(always)]
+fn mul_wide(a: u32, b: u64) -> u64 {
+    if b >> 32 == 0 {
+        let (hi, lo) = crate::scalar::fixed::wide_mul(a, b as u32);
+        (hi as u64) << 32 | lo as u64
+    } else {
+        a as u64 * b
+    }
+}
+
 /// Physical parameters of the estimator.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TorqueEstimatorParams {
@@ -134,6 +147,9 @@ pub struct TorqueEstimatorConfig<S> {
     l: u32,
     m: u32,
     n: u32,
+    /// `M·N` and `L·M·N` (counts per output revolution), prepared once.
+    mn: u64,
+    lmn: u64,
 }
 
 /// The estimator's state: the motor position within one output revolution,
@@ -186,6 +202,8 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             l,
             m,
             n,
+            mn: m as u64 * n as u64,
+            lmn: l as u64 * m as u64 * n as u64,
         }
     }
 
@@ -344,15 +362,17 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         } else {
             link_count
         };
-        let mn = self.m as i64 * self.n as i64;
-        let lmn = mn * self.l as i64;
-        let p = st.motor_turn as i64 * self.m as i64 + st.motor_in_turn as i64;
+        let (mn, lmn) = (self.mn, self.lmn);
+        // p < MN and every product below are exact in u64 (LMN ≤ 2⁴⁶ is
+        // validated); `mul_wide` keeps them off `__aeabi_lmul` on Armv6-M.
+        let p = mul_wide(st.motor_turn, self.m as u64) + st.motor_in_turn as u64;
         // D ∈ [0, 2·LMN); reduce to [−LMN/2, LMN/2).
-        let mut d = c_l as i64 * mn + p * self.l as i64;
-        if d >= lmn / 2 {
+        let mut d = (mul_wide(c_l, mn) + mul_wide(self.l, p)) as i64;
+        let (lmn, half) = (lmn as i64, (lmn / 2) as i64);
+        if d >= half {
             d -= lmn;
         }
-        if d >= lmn / 2 {
+        if d >= half {
             d -= lmn;
         }
         let kin_err = if self.kinematic_error.is_some() {
@@ -526,6 +546,34 @@ mod tests {
             cfg.advance(&mut a, counter);
             cfg.advance_reference(&mut b, counter);
             prop_assert_eq!(a, b);
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(20_000))]
+        /// `update` forms the torsion count `D` of eq. (2.13) exactly: equal
+        /// to the i128 formula `c_l·MN + p·L` reduced to `[−LMN/2, LMN/2)`.
+        #[test]
+        fn update_uses_the_exact_torsion_count(
+            c_l in 0u32..L, pos in -(1i64 << 40)..(1i64 << 40), tw in -200i32..200,
+        ) {
+            let cfg = TorqueEstimatorConfig::<I16F16>::new(&params(None));
+            let tw = I16F16::from_num(tw);
+            let mut st = cfg.state(pos, 7);
+            let got = cfg.update(&mut st, c_l, 7, tw);
+            let (l, mn) = (L as i128, (M * 100) as i128);
+            let p = (pos as i128).rem_euclid(mn);
+            let d = (c_l as i128 * mn + p * l + l * mn / 2).rem_euclid(l * mn) - l * mn / 2;
+            let want = cfg.estimate_from_torsion_counts(d as i64, I16F16::ZERO, tw, false);
+            prop_assert_eq!(got, want);
+        }
+
+        /// `mul_wide` is the exact product on both of its paths.
+        #[test]
+        fn mul_wide_is_exact(a in any::<u32>(), b in 0u64..1 << 48, narrow: bool) {
+            // Products below 2⁶⁴, as at the call sites.
+            let (a, b) = if narrow { (a, b & 0xFFFF_FFFF) } else { (a >> 16, b) };
+            prop_assert_eq!(mul_wide(a, b) as u128, a as u128 * b as u128);
         }
     }
 
