@@ -35,17 +35,18 @@ use crate::harmonic_drive::{
 use crate::scalar::{Coef, Scalar};
 use core::f64::consts::TAU;
 
-/// `a·b` exactly, for `b` below 2⁴⁸ (callers: products below 2⁶⁴). When
-/// `b` fits 32 bits, one 32×32 → 64 product ([`crate::scalar::fixed`]'s
-/// split form on Armv6-M, no `__aeabi_lmul`).
+/// `a·b` exactly, for `0 ≤ b < 2⁴⁸` (callers: products below 2⁶³). When
+/// `b` fits 32 bits on Armv6-M, one 32×32 → 64 product
+/// ([`crate::scalar::fixed`]'s split form, no `__aeabi_lmul`); elsewhere
+/// the plain product.
 #[inline(always)]
-fn mul_wide(a: u32, b: u64) -> u64 {
-    if b >> 32 == 0 {
-        let (hi, lo) = crate::scalar::fixed::wide_mul(a, b as u32);
-        (hi as u64) << 32 | lo as u64
-    } else {
-        a as u64 * b
+fn mul_wide(a: u32, b: i64) -> i64 {
+    // Cores with a long multiply (`umull`, x86) take the plain product.
+    if cfg!(not(all(target_arch = "arm", not(target_has_atomic = "32")))) || b >> 32 != 0 {
+        return a as i64 * b;
     }
+    let (hi, lo) = crate::scalar::fixed::wide_mul(a, b as u32);
+    ((hi as u64) << 32 | lo as u64) as i64
 }
 
 /// Physical parameters of the estimator.
@@ -148,8 +149,9 @@ pub struct TorqueEstimatorConfig<S> {
     m: u32,
     n: u32,
     /// `M·N` and `L·M·N` (counts per output revolution), prepared once.
-    mn: u64,
-    lmn: u64,
+    mn: i64,
+    lmn: i64,
+    half_lmn: i64,
 }
 
 /// The estimator's state: the motor position within one output revolution,
@@ -202,8 +204,9 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             l,
             m,
             n,
-            mn: m as u64 * n as u64,
-            lmn: l as u64 * m as u64 * n as u64,
+            mn: m as i64 * n as i64,
+            lmn: l as i64 * m as i64 * n as i64,
+            half_lmn: l as i64 * m as i64 * n as i64 / 2,
         }
     }
 
@@ -362,13 +365,13 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         } else {
             link_count
         };
-        let (mn, lmn) = (self.mn, self.lmn);
-        // p < MN and every product below are exact in u64 (LMN ≤ 2⁴⁶ is
-        // validated); `mul_wide` keeps them off `__aeabi_lmul` on Armv6-M.
-        let p = mul_wide(st.motor_turn, self.m as u64) + st.motor_in_turn as u64;
+        let (mn, lmn, half) = (self.mn, self.lmn, self.half_lmn);
+        // p < MN and every product below are exact in 64 bits (LMN ≤ 2⁴⁶
+        // is validated); `mul_wide` keeps them off `__aeabi_lmul` on
+        // Armv6-M.
+        let p = mul_wide(st.motor_turn, self.m as i64) + st.motor_in_turn as i64;
         // D ∈ [0, 2·LMN); reduce to [−LMN/2, LMN/2).
-        let mut d = (mul_wide(c_l, mn) + mul_wide(self.l, p)) as i64;
-        let (lmn, half) = (lmn as i64, (lmn / 2) as i64);
+        let mut d = mul_wide(c_l, mn) + mul_wide(self.l, p);
         if d >= half {
             d -= lmn;
         }
@@ -570,9 +573,9 @@ mod tests {
 
         /// `mul_wide` is the exact product on both of its paths.
         #[test]
-        fn mul_wide_is_exact(a in any::<u32>(), b in 0u64..1 << 48, narrow: bool) {
+        fn mul_wide_is_exact(a in any::<u32>(), b in 0i64..1 << 48, narrow: bool) {
             // Products below 2⁶⁴, as at the call sites.
-            let (a, b) = if narrow { (a, b & 0xFFFF_FFFF) } else { (a >> 16, b) };
+            let (a, b) = if narrow { (a >> 1, b & 0xFFFF_FFFF) } else { (a >> 16, b) };
             prop_assert_eq!(mul_wide(a, b) as u128, a as u128 * b as u128);
         }
     }

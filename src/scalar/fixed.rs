@@ -43,17 +43,19 @@ pub(crate) const fn mul_bits_reference(a: i32, b: i32) -> i32 {
 
 /// The 64-bit product `a·b` as `(high, low)` words.
 ///
-/// On Armv6-M (no `umull`) it is formed from four 16×16 partial products
+/// On Armv6-M (no `umull`; recognised by its missing 32-bit atomics, since
+/// stable Rust exposes no Thumb-2 feature flag) it is formed from four
+/// 16×16 partial products
 /// (the construction of the kernels' `mulhi`, with the same `black_box`
 /// barrier so LLVM does not fold it back into `__aeabi_lmul`); elsewhere the
 /// native widening multiply. Both are exact.
 #[inline(always)]
 pub(crate) fn wide_mul(a: u32, b: u32) -> (u32, u32) {
-    #[cfg(all(target_arch = "arm", not(target_feature = "thumb2")))]
+    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
     {
         wide_mul_split(a, b)
     }
-    #[cfg(not(all(target_arch = "arm", not(target_feature = "thumb2"))))]
+    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
     {
         let p = a as u64 * b as u64;
         ((p >> 32) as u32, p as u32)
@@ -64,7 +66,7 @@ pub(crate) fn wide_mul(a: u32, b: u32) -> (u32, u32) {
 /// on every target so the host tests check it).
 #[inline(always)]
 #[cfg_attr(
-    not(any(test, all(target_arch = "arm", not(target_feature = "thumb2")))),
+    not(any(test, all(target_arch = "arm", not(target_has_atomic = "32")))),
     allow(dead_code)
 )]
 pub(crate) fn wide_mul_split(a: u32, b: u32) -> (u32, u32) {
