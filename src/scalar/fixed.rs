@@ -201,11 +201,11 @@ impl Scalar for I16F16 {
     fn from_i32(x: i32) -> Self {
         I16F16::from_bits(sat_i64((x as i64) << 16))
     }
-    #[inline]
+    #[inline(always)]
     fn from_counts(counts: i64, scale: &super::Coef) -> Self {
         I16F16::from_bits(scale.scale_int(counts, 16))
     }
-    #[inline]
+    #[inline(always)]
     fn mul_coef(self, c: &super::Coef) -> Self {
         I16F16::from_bits(c.scale_int(self.to_bits() as i64, 0))
     }
