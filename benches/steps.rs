@@ -13,6 +13,10 @@
 use core::f64::consts::FRAC_PI_2;
 use core::hint::black_box;
 use criterion::{BenchmarkId, Criterion, Throughput};
+use mrr_control::control::{
+    ControlInput, ModeConfig, ModeParams, PassiveParams, RobustAdaptiveParams,
+};
+use mrr_control::estimation::collision::{CollisionParams, CollisionReaction};
 use mrr_control::estimation::torque::{TorqueEstimatorConfig, TorqueEstimatorParams};
 use mrr_control::harmonic_drive::kinematic_error::KinematicErrorModel;
 use mrr_control::harmonic_drive::CatalogueData;
@@ -120,6 +124,75 @@ fn estimator_bench<S: Scalar>(g: &mut Group<'_>) {
     });
 }
 
+/// The firmware crate's mode manager: Table 4.1 laws, passive above 2 N·m
+/// interaction and back below 1 N·m (debounce 3, dwell 5), collision stop
+/// above 4 N·m.
+fn mode_params() -> ModeParams {
+    ModeParams::try_new(
+        RobustAdaptiveParams::table_4_1().expect("Table 4.1"),
+        PassiveParams::table_4_1(2000.0).expect("Table 4.1"),
+        2.0,
+        1.0,
+        3,
+        5,
+        10.0,
+        0.1,
+        Some(
+            CollisionParams::try_new(4.0, 3.0, 2, 2, CollisionReaction::Stop)
+                .expect("valid detector"),
+        ),
+    )
+    .expect("valid mode parameters")
+}
+
+/// The per-joint step: estimate (counter negated, E13) → `τ̂_t = −torque` →
+/// mode manager, along the estimator's readings with a tracking error
+/// sweeping through the boundary layers and expected torques that switch
+/// modes, so every branch runs inside one iteration.
+fn joint_bench<S: Scalar>(g: &mut Group<'_>) {
+    let est = TorqueEstimatorConfig::<S>::new(&estimator_params());
+    let mode = ModeConfig::<S>::new(&mode_params());
+    let u = S::UNITS;
+    let inputs: Vec<(u32, u32, ControlInput<S>)> = estimator_inputs()
+        .into_iter()
+        .enumerate()
+        .map(|(i, (l, m, _))| {
+            let k = i as f64;
+            let qd = 0.3 * k - 9.0;
+            let vd = 4.0 - 0.1 * k;
+            let x = ControlInput {
+                desired_position: S::from_f64(qd * u.angle),
+                desired_velocity: S::from_f64(vd * u.speed),
+                desired_acceleration: S::from_f64((k - 32.0) * 30.0 * u.speed),
+                motor_position: S::from_f64((qd + (k - 32.0) * 1e-4) * u.angle),
+                motor_velocity: S::from_f64((vd + (k - 32.0) * 2e-3) * u.speed),
+                joint_torque: S::ZERO,
+                desired_joint_torque: S::ZERO,
+                expected_joint_torque: S::from_f64((i % 16) as f64 * 0.4 * u.link_torque),
+            };
+            (l, m, x)
+        })
+        .collect();
+    g.throughput(Throughput::Elements(inputs.len() as u64));
+    g.bench_function(BenchmarkId::from_parameter(S::NAME), |b| {
+        let mut est_st = est.state(0, inputs[0].1.wrapping_neg());
+        let mut st = mode.initial_state();
+        b.iter(|| {
+            for (l, m, x) in &inputs {
+                let e = est.update(
+                    &mut est_st,
+                    black_box(*l),
+                    black_box(m.wrapping_neg()),
+                    st.last_torque(),
+                );
+                let mut x = *black_box(x);
+                x.joint_torque = e.torque.neg();
+                black_box(mode.update(&mut st, &x));
+            }
+        })
+    });
+}
+
 /// One group `x86-host step/<name>` with a benchmark per backend.
 fn step_group(c: &mut Criterion, name: &str, benches: &[fn(&mut Group<'_>)]) {
     let mut g = c.benchmark_group(format!("x86-host step/{name}"));
@@ -151,6 +224,15 @@ fn main() {
             estimator_bench::<f32>,
             estimator_bench::<f64>,
             estimator_bench::<I16F16>,
+        ],
+    );
+    step_group(
+        c,
+        "joint step",
+        &[
+            joint_bench::<f32>,
+            joint_bench::<f64>,
+            joint_bench::<I16F16>,
         ],
     );
     c.final_summary();

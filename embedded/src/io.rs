@@ -128,3 +128,16 @@ impl<S: Put> Put for TorqueEstimate<S> {
 pub fn put<T: Put>(v: T) {
     v.put(&mut Out(0))
 }
+impl<S: Put + Copy> Put for mrr_control::control::ModeOutput<S> {
+    #[inline(always)]
+    fn put(self, out: &mut Out) {
+        self.torque.put(out);
+        self.interaction.put(out);
+        (self.mode as u32
+            | (self.switched as u32) << 2
+            | (self.saturated as u32) << 3
+            | (self.invalid_input as u32) << 4
+            | (self.collision as u32) << 5)
+            .put(out);
+    }
+}

@@ -126,14 +126,23 @@ entry!(est_libm_f32(l: u32, m: u32, t: f32) => unsafe { steps::REF_F32.assume_in
 entry!(est_cordic_i16f16(l: u32, m: u32, t: I16F16) => unsafe { steps::REF_X.assume_init_ref().update::<Cordic>(steps::REF_ST.assume_init_mut(), l, m, t) });
 entry!(prepare_est(pos_lo: u32, pos_hi: u32, counter: u32) => unsafe { steps::prepare_est(pos_lo, pos_hi, counter) });
 
-// The per-joint control step (estimate + robust adaptive law + adaptation +
-// mode manager), once it exists: its configuration and state join `steps`
-// (built in `init`, set in a `prepare_joint` entry), then one line per
-// variant, e.g.
-//   entry!(joint_f32(l: u32, m: u32, t: f32, q_ref: f32) => unsafe { steps::JOINT_F32.assume_init_ref().update(steps::JOINT_ST.assume_init_mut(), l, m, t, q_ref) });
-//   entry!(joint_i16f16(l: u32, m: u32, t: I16F16, q_ref: I16F16) => ...);
-// and the libm/cordic variants in `reference.rs`; `count.py` has the two
-// matching `Step(...)` rows with their budgets, commented.
+// The per-joint control step: torque estimate (eq. 3.8–3.10) → joint
+// torque `τ̂_t = −torque` (errata E13) → mode manager (robust adaptive law
+// eq. 4.19 with adaptation, passive law eq. 4.32, switching, collision
+// reaction). Arguments: link count, motor counter (ch. 4 sense, `q_m =
+// N q_l`; negated for the estimator), desired position, speed and
+// acceleration, measured position and speed, expected joint torque (stored
+// units). The motor torque `τ_w` of eq. (3.9) is the previous command;
+// `prepare_joint` sets the estimator state and drives the mode state into
+// one of the scenarios of `joint::warm_up`. The reference variants replace
+// the estimator's `sin_cos`, `exp`, `tan` by libm / cordic.
+entry!(joint_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, q: f32, v: f32, te: f32) => unsafe { joint::step_f32(l, m, [qd, vd, ad, q, v, te]) });
+entry!(joint_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, te: I16F16) => unsafe { joint::step_x(l, m, [qd, vd, ad, q, v, te]) });
+entry!(joint_libm_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, q: f32, v: f32, te: f32) => unsafe { joint::step_libm_f32(l, m, [qd, vd, ad, q, v, te]) });
+entry!(joint_cordic_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, te: I16F16) => unsafe { joint::step_cordic_x(l, m, [qd, vd, ad, q, v, te]) });
+entry!(prepare_joint(pos_lo: u32, pos_hi: u32, counter: u32, scenario: u32, seed: u32) => unsafe { joint::prepare(pos_lo, pos_hi, counter, scenario, seed) });
+
+mod joint;
 
 /// Configurations and states of the stateful steps. They are built once by
 /// [`init`] (not counted), as a firmware builds them at start-up.
@@ -143,7 +152,7 @@ mod steps {
 
     /// SHD-17-100 with the Table 3.2 kinematic error, a 17-bit link encoder
     /// and a 2000-count motor encoder, ±60 N·m output limit.
-    fn params() -> TorqueEstimatorParams {
+    pub fn params() -> TorqueEstimatorParams {
         let drive = match CatalogueData::SHD_17_100.identify() {
             Ok(d) => d,
             Err(_) => crate::firmware_panic(),
@@ -175,6 +184,7 @@ mod steps {
         EST_X.write(TorqueEstimatorConfig::new(&p));
         REF_F32.write(RefEstimator::new(&p));
         REF_X.write(RefEstimator::new(&p));
+        crate::joint::init(&p);
     }
 
     /// Motor position (i64 from two words) and counter for every estimator

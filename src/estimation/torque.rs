@@ -35,6 +35,20 @@ use crate::harmonic_drive::{
 use crate::scalar::{Coef, Scalar};
 use core::f64::consts::TAU;
 
+/// `a·b` exactly, for `0 ≤ b < 2⁴⁸` (callers: products below 2⁶³). When
+/// `b` fits 32 bits on Armv6-M, one 32×32 → 64 product
+/// ([`crate::scalar::fixed`]'s split form, no `__aeabi_lmul`); elsewhere
+/// the plain product.
+#[inline(always)]
+fn mul_wide(a: u32, b: i64) -> i64 {
+    // Cores with a long multiply (`umull`, x86) take the plain product.
+    if cfg!(not(all(target_arch = "arm", not(target_has_atomic = "32")))) || b >> 32 != 0 {
+        return a as i64 * b;
+    }
+    let (hi, lo) = crate::scalar::fixed::wide_mul(a, b as u32);
+    ((hi as u64) << 32 | lo as u64) as i64
+}
+
 /// Physical parameters of the estimator.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TorqueEstimatorParams {
@@ -134,6 +148,10 @@ pub struct TorqueEstimatorConfig<S> {
     l: u32,
     m: u32,
     n: u32,
+    /// `M·N` and `L·M·N` (counts per output revolution), prepared once.
+    mn: i64,
+    lmn: i64,
+    half_lmn: i64,
 }
 
 /// The estimator's state: the motor position within one output revolution,
@@ -186,6 +204,9 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             l,
             m,
             n,
+            mn: m as i64 * n as i64,
+            lmn: l as i64 * m as i64 * n as i64,
+            half_lmn: l as i64 * m as i64 * n as i64 / 2,
         }
     }
 
@@ -205,31 +226,70 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     /// Advance the motor position by the counter change since the last call
     /// (wrapping 32-bit difference: valid while the motor moves fewer than
     /// 2³¹ counts per sample).
+    ///
+    /// 32-bit arithmetic only: the new position is `p + δ mod MN` in the
+    /// canonical form `(turn, in_turn) ∈ [0, N) × [0, M)`; a move of less
+    /// than one motor revolution needs no division, a longer one one
+    /// `u32` division by `M` and at most one by `N` (no 64-bit division on
+    /// any path). Equal to the 64-bit formula [`advance_reference`] for
+    /// every state and counter (tests below).
     #[inline]
     fn advance(&self, st: &mut TorqueEstimatorState, counter: u32) {
+        let delta = counter.wrapping_sub(st.last_counter) as i32;
+        st.last_counter = counter;
+        let (m, n) = (self.m, self.n);
+        let (mut in_turn, turn) = (st.motor_in_turn, st.motor_turn);
+        let mag = delta.unsigned_abs();
+        let (q, r) = if mag < m {
+            (0, mag)
+        } else {
+            (mag / m, mag % m)
+        };
+        let turn = if delta >= 0 {
+            // in_turn + r < 2M, compared without overflow.
+            let mut carry = q;
+            if r >= m - in_turn {
+                in_turn = r - (m - in_turn);
+                carry += 1;
+            } else {
+                in_turn += r;
+            }
+            let c = if carry < n { carry } else { carry % n };
+            if c >= n - turn {
+                c - (n - turn)
+            } else {
+                turn + c
+            }
+        } else {
+            let mut borrow = q;
+            if r > in_turn {
+                in_turn += m - r;
+                borrow += 1;
+            } else {
+                in_turn -= r;
+            }
+            let b = if borrow < n { borrow } else { borrow % n };
+            if b > turn {
+                turn + (n - b)
+            } else {
+                turn - b
+            }
+        };
+        st.motor_turn = turn;
+        st.motor_in_turn = in_turn;
+    }
+
+    /// The 64-bit form of [`advance`](Self::advance), the reference of its
+    /// tests.
+    #[cfg(test)]
+    fn advance_reference(&self, st: &mut TorqueEstimatorState, counter: u32) {
         let delta = counter.wrapping_sub(st.last_counter) as i32 as i64;
         st.last_counter = counter;
-        let m = self.m as i64;
-        let mut in_turn = st.motor_in_turn as i64 + delta;
-        let mut turn = st.motor_turn as i64;
-        if (0..m).contains(&in_turn) {
-            // common case: no carry
-        } else if in_turn >= m && in_turn < 2 * m {
-            in_turn -= m;
-            turn += 1;
-        } else if in_turn < 0 && in_turn >= -m {
-            in_turn += m;
-            turn -= 1;
-        } else {
-            turn += in_turn.div_euclid(m);
-            in_turn = in_turn.rem_euclid(m);
-        }
-        let n = self.n as i64;
-        if !(0..n).contains(&turn) {
-            turn = turn.rem_euclid(n);
-        }
-        st.motor_turn = turn as u32;
-        st.motor_in_turn = in_turn as u32;
+        let mn = self.m as i64 * self.n as i64;
+        let p = st.motor_turn as i64 * self.m as i64 + st.motor_in_turn as i64;
+        let p = (p + delta).rem_euclid(mn);
+        st.motor_turn = (p / self.m as i64) as u32;
+        st.motor_in_turn = (p % self.m as i64) as u32;
     }
 
     /// Eq. (3.7) at link and motor angles (rad) given as `(sin, cos)` pairs.
@@ -305,15 +365,17 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         } else {
             link_count
         };
-        let mn = self.m as i64 * self.n as i64;
-        let lmn = mn * self.l as i64;
-        let p = st.motor_turn as i64 * self.m as i64 + st.motor_in_turn as i64;
+        let (mn, lmn, half) = (self.mn, self.lmn, self.half_lmn);
+        // p < MN and every product below are exact in 64 bits (LMN ≤ 2⁴⁶
+        // is validated); `mul_wide` keeps them off `__aeabi_lmul` on
+        // Armv6-M.
+        let p = mul_wide(st.motor_turn, self.m as i64) + st.motor_in_turn as i64;
         // D ∈ [0, 2·LMN); reduce to [−LMN/2, LMN/2).
-        let mut d = c_l as i64 * mn + p * self.l as i64;
-        if d >= lmn / 2 {
+        let mut d = mul_wide(c_l, mn) + mul_wide(self.l, p);
+        if d >= half {
             d -= lmn;
         }
-        if d >= lmn / 2 {
+        if d >= half {
             d -= lmn;
         }
         let kin_err = if self.kinematic_error.is_some() {
@@ -463,6 +525,58 @@ mod tests {
             let a = cf.update(&mut cf.state(p_m, 0), c_l, 0, tau_w).torque;
             let b = cx.update(&mut cx.state(p_m, 0), c_l, 0, I16F16::from_f64(tau_w * 1e3)).torque.to_f64();
             prop_assert!((a - b).abs() <= 0.005 * 16.0, "{a} vs {b}");
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(20_000))]
+        /// The 32-bit `advance` equals the 64-bit formula from any state
+        /// for any counter (moves up to ±2³¹ counts), on the Table 3.2
+        /// drive and on encoder/ratio sizes with M, N near the edges.
+        #[test]
+        fn advance_equals_the_64_bit_formula(
+            pos in 0i64..1 << 40, last in any::<u32>(), counter in any::<u32>(), small: bool,
+            size in 0usize..4,
+        ) {
+            let (m, n) = [(M, 100u32), (1, 1), (3, 65535), (1 << 20, 160)][size];
+            let mut p = params(None);
+            p.motor_counts_per_rev = m;
+            p.drive.ratio = n as f64;
+            let cfg = TorqueEstimatorConfig::<f64>::new(&p);
+            let counter = if small { last.wrapping_add(counter % 8001).wrapping_sub(4000) } else { counter };
+            let mut a = cfg.state(pos, last);
+            let mut b = a;
+            cfg.advance(&mut a, counter);
+            cfg.advance_reference(&mut b, counter);
+            prop_assert_eq!(a, b);
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(20_000))]
+        /// `update` forms the torsion count `D` of eq. (2.13) exactly: equal
+        /// to the i128 formula `c_l·MN + p·L` reduced to `[−LMN/2, LMN/2)`.
+        #[test]
+        fn update_uses_the_exact_torsion_count(
+            c_l in 0u32..L, pos in -(1i64 << 40)..(1i64 << 40), tw in -200i32..200,
+        ) {
+            let cfg = TorqueEstimatorConfig::<I16F16>::new(&params(None));
+            let tw = I16F16::from_num(tw);
+            let mut st = cfg.state(pos, 7);
+            let got = cfg.update(&mut st, c_l, 7, tw);
+            let (l, mn) = (L as i128, (M * 100) as i128);
+            let p = (pos as i128).rem_euclid(mn);
+            let d = (c_l as i128 * mn + p * l + l * mn / 2).rem_euclid(l * mn) - l * mn / 2;
+            let want = cfg.estimate_from_torsion_counts(d as i64, I16F16::ZERO, tw, false);
+            prop_assert_eq!(got, want);
+        }
+
+        /// `mul_wide` is the exact product on both of its paths.
+        #[test]
+        fn mul_wide_is_exact(a in any::<u32>(), b in 0i64..1 << 48, narrow: bool) {
+            // Products below 2⁶⁴, as at the call sites.
+            let (a, b) = if narrow { (a >> 1, b & 0xFFFF_FFFF) } else { (a >> 17, b) };
+            prop_assert_eq!(mul_wide(a, b) as u128, a as u128 * b as u128);
         }
     }
 

@@ -21,10 +21,133 @@ pub(crate) const fn sat_i64(v: i64) -> i32 {
     }
 }
 
-/// Rounded, saturating Q16.16 product of two raw bit patterns.
+/// Rounded, saturating Q16.16 product of two raw bit patterns:
+/// `sat(⌊(a·b + 2¹⁵) / 2¹⁶⌋)`.
+///
+/// Computed by [`scaled_product`] without a 64-bit multiply or shift (so
+/// Armv6-M calls neither `__aeabi_lmul` nor a 64-bit shift); equal to the
+/// 64-bit formula [`mul_bits_reference`] for every pair of operands
+/// (checked at random on the host and exhaustively over edge classes in
+/// the tests below).
 #[inline]
-pub(crate) const fn mul_bits(a: i32, b: i32) -> i32 {
+pub(crate) fn mul_bits(a: i32, b: i32) -> i32 {
+    scaled_product((a < 0) != (b < 0), a.unsigned_abs(), b.unsigned_abs(), 16)
+}
+
+/// The straightforward 64-bit form of [`mul_bits`], the reference of its
+/// tests.
+#[cfg(test)]
+pub(crate) const fn mul_bits_reference(a: i32, b: i32) -> i32 {
     sat_i64(((a as i64) * (b as i64) + (1 << 15)) >> 16)
+}
+
+/// The 64-bit product `a·b` as `(high, low)` words.
+///
+/// On Armv6-M (no `umull`; recognised by its missing 32-bit atomics, since
+/// stable Rust exposes no Thumb-2 feature flag) it is formed from four
+/// 16×16 partial products
+/// (the construction of the kernels' `mulhi`, with the same `black_box`
+/// barrier so LLVM does not fold it back into `__aeabi_lmul`); elsewhere the
+/// native widening multiply. Both are exact.
+#[inline(always)]
+pub(crate) fn wide_mul(a: u32, b: u32) -> (u32, u32) {
+    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    {
+        wide_mul_split(a, b)
+    }
+    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    {
+        let p = a as u64 * b as u64;
+        ((p >> 32) as u32, p as u32)
+    }
+}
+
+/// [`wide_mul`] from four 16×16 partial products (the Armv6-M path; built
+/// on every target so the host tests check it).
+#[inline(always)]
+#[cfg_attr(
+    not(any(test, all(target_arch = "arm", not(target_has_atomic = "32")))),
+    allow(dead_code)
+)]
+pub(crate) fn wide_mul_split(a: u32, b: u32) -> (u32, u32) {
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    #[cfg(target_arch = "arm")]
+    let ah = core::hint::black_box(ah);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    let ll = al * bl;
+    let lh = al * bh;
+    let hl = ah * bl;
+    let hh = ah * bh;
+    // < 3·2¹⁶: no overflow.
+    let mid = (ll >> 16) + (lh & 0xFFFF) + (hl & 0xFFFF);
+    let hi = hh + (lh >> 16) + (hl >> 16) + (mid >> 16);
+    let lo = (mid << 16) | (ll & 0xFFFF);
+    (hi, lo)
+}
+
+/// `sat(⌊(s·a·b + 2^(sh−1)) / 2^sh⌋)` for `sh > 0` (rounded to nearest,
+/// ties up) and `sat(s·a·b · 2^−sh)` for `sh ≤ 0`, with `s = −1` when `neg`,
+/// for magnitudes `a, b ≤ 2³¹` (so `a·b ≤ 2⁶²`). Saturates to the `i32`
+/// range. Uses only 32-bit operations and shifts by amounts below 32.
+///
+/// For the sign-magnitude form: with `P = a·b` and `h = 2^(sh−1)`,
+/// `⌊(−P + h)/2^sh⌋ = −⌈(P − h)/2^sh⌉ = −⌊(P + h − 1)/2^sh⌋` (because
+/// `2^sh − h = h`), so a negative product rounds its magnitude with
+/// `h − 1` instead of `h`. `P + h < 2⁶³` for every `sh < 63`.
+#[inline(always)]
+pub(crate) fn scaled_product(neg: bool, a: u32, b: u32, sh: i32) -> i32 {
+    let (hi, lo) = wide_mul(a, b);
+    let mag: u32; // the magnitude, or > 2³¹ when it saturates
+    if sh > 0 {
+        if sh >= 63 {
+            return 0;
+        }
+        // (hi, lo) += h or h − 1.
+        let (hi, lo) = if sh <= 32 {
+            let h = 1u32 << (sh - 1);
+            let add = if neg { h - 1 } else { h };
+            let (l, c) = lo.overflowing_add(add);
+            (hi + c as u32, l)
+        } else {
+            let h = 1u32 << (sh - 33);
+            if neg {
+                // h − 1 = (h − 1)·2³² + (2³² − 1): add h to the high
+                // word after adding 2³² − 1 = −1 (mod 2³²) to the low one.
+                let (l, c) = lo.overflowing_add(u32::MAX);
+                (hi + (h - 1) + c as u32, l)
+            } else {
+                (hi + h, lo)
+            }
+        };
+        if sh >= 32 {
+            mag = hi >> (sh - 32);
+        } else if hi >> sh != 0 {
+            mag = u32::MAX;
+        } else {
+            mag = (lo >> sh) | (hi << (32 - sh));
+        }
+    } else {
+        let s = -sh;
+        if hi == 0 && lo == 0 {
+            return 0;
+        }
+        if hi != 0 || s >= 32 || (s > 0 && lo >> (32 - s) != 0) {
+            mag = u32::MAX;
+        } else {
+            mag = lo << s;
+        }
+    }
+    if neg {
+        if mag >= 1 << 31 {
+            i32::MIN
+        } else {
+            (mag as i32).wrapping_neg()
+        }
+    } else if mag > i32::MAX as u32 {
+        i32::MAX
+    } else {
+        mag as i32
+    }
 }
 
 /// Rounded (to nearest, ties away from zero), saturating Q16.16 quotient of
@@ -78,11 +201,11 @@ impl Scalar for I16F16 {
     fn from_i32(x: i32) -> Self {
         I16F16::from_bits(sat_i64((x as i64) << 16))
     }
-    #[inline]
+    #[inline(always)]
     fn from_counts(counts: i64, scale: &super::Coef) -> Self {
         I16F16::from_bits(scale.scale_int(counts, 16))
     }
-    #[inline]
+    #[inline(always)]
     fn mul_coef(self, c: &super::Coef) -> Self {
         I16F16::from_bits(c.scale_int(self.to_bits() as i64, 0))
     }
@@ -160,6 +283,75 @@ mod tests {
         assert_eq!(mul_bits(1, 1 << 15), 1);
         assert_eq!(mul_bits(i32::MAX, i32::MAX), i32::MAX);
         assert_eq!(mul_bits(i32::MIN, i32::MAX), i32::MIN);
+    }
+
+    /// Edge classes of operands: 0, ±1, powers of two and their
+    /// neighbours, the extremes.
+    fn edge_words() -> Vec<i32> {
+        let mut v = vec![0, 1, -1, i32::MAX, i32::MIN, i32::MIN + 1];
+        for k in 0..31 {
+            let p = 1i32 << k;
+            v.extend([p, p - 1, p + 1, -p, -p + 1, -p - 1]);
+        }
+        v
+    }
+
+    #[test]
+    fn mul_bits_equals_the_64_bit_formula_on_edge_classes() {
+        let w = edge_words();
+        for &a in &w {
+            for &b in &w {
+                assert_eq!(mul_bits(a, b), mul_bits_reference(a, b), "{a} {b}");
+            }
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(20_000))]
+        /// The split product equals the 64-bit formula for random operands.
+        #[test]
+        fn mul_bits_equals_the_64_bit_formula(a in proptest::prelude::any::<i32>(), b in proptest::prelude::any::<i32>()) {
+            proptest::prop_assert_eq!(mul_bits(a, b), mul_bits_reference(a, b));
+        }
+
+        /// `scaled_product` equals the i128 formula for every shift.
+        #[test]
+        fn scaled_product_equals_i128_formula(
+            a in 0u32..=(1 << 31), b in 0u32..=(1 << 31), neg: bool, sh in -40i32..70,
+            small in 0u32..4,
+        ) {
+            // Mix in small magnitudes (the rounding edges matter there).
+            let a = if small == 0 { a >> 20 } else { a };
+            let p = a as i128 * b as i128 * if neg { -1 } else { 1 };
+            let want = if sh > 0 {
+                if sh >= 63 { 0 } else { (p + (1i128 << (sh - 1))) >> sh }
+            } else {
+                p << (-sh).min(100)
+            };
+            let want = want.clamp(i32::MIN as i128, i32::MAX as i128) as i32;
+            proptest::prop_assert_eq!(scaled_product(neg, a, b, sh), want);
+        }
+    }
+
+    #[test]
+    fn wide_mul_is_exact_on_edges() {
+        for a in [0u32, 1, 0xFFFF, 0x10000, 0x8000_0000, u32::MAX, 0x1234_5678] {
+            for b in [0u32, 1, 0xFFFF, 0x10000, 0x8000_0000, u32::MAX, 0x9ABC_DEF0] {
+                for (hi, lo) in [wide_mul(a, b), wide_mul_split(a, b)] {
+                    assert_eq!((hi as u64) << 32 | lo as u64, a as u64 * b as u64);
+                }
+            }
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(50_000))]
+        /// The four-partial-product form (the Armv6-M path) is exact.
+        #[test]
+        fn wide_mul_split_is_exact(a in proptest::prelude::any::<u32>(), b in proptest::prelude::any::<u32>()) {
+            let (hi, lo) = wide_mul_split(a, b);
+            proptest::prop_assert_eq!((hi as u64) << 32 | lo as u64, a as u64 * b as u64);
+        }
     }
 
     #[test]

@@ -252,8 +252,25 @@ impl Coef {
 
     /// `round(x · c · 2^extra)` saturated to `i32`, for an integer `x`
     /// clamped to `±2^31` (`extra` = 16 turns counts into `I16F16` bits).
-    #[inline]
+    ///
+    /// Sign and magnitude are handled apart, and the magnitude product and
+    /// its rounding shift use 32-bit words only
+    /// ([`fixed::scaled_product`]): on Armv6-M no `__aeabi_lmul` and no
+    /// 64-bit shift. Equal to [`scale_int_reference`](Self::scale_int_reference)
+    /// (the 64-bit formula) for every input (tests below).
+    #[inline(always)]
     pub(crate) fn scale_int(&self, x: i64, extra: i32) -> i32 {
+        let x = x.clamp(-(1i64 << 31), 1i64 << 31);
+        // |x|, |mult| ≤ 2^31 fit u32.
+        let a = x.unsigned_abs() as u32;
+        let b = self.mult.unsigned_abs() as u32;
+        fixed::scaled_product((x < 0) != (self.mult < 0), a, b, self.shift - extra)
+    }
+
+    /// The straightforward 64-bit form of [`scale_int`](Self::scale_int),
+    /// the reference of its tests.
+    #[cfg(test)]
+    pub(crate) fn scale_int_reference(&self, x: i64, extra: i32) -> i32 {
         let x = x.clamp(-(1i64 << 31), 1i64 << 31);
         let p = x * self.mult; // |p| ≤ 2^62
         let sh = self.shift - extra;
@@ -316,6 +333,56 @@ mod tests {
                 assert!(c.f32_value().is_finite());
                 let y = I16F16::from_bits(3).mul_coef(&c);
                 assert_eq!(y, if sign > 0.0 { I16F16::MAX } else { I16F16::MIN });
+            }
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(20_000))]
+        /// The 32-bit `scale_int` equals the 64-bit formula for coefficients
+        /// over the whole prepared range (2^-60 … beyond 2^40), both signs,
+        /// both `extra` values, any count up to and beyond ±2^31.
+        #[test]
+        fn scale_int_equals_the_64_bit_formula(
+            mant in 1.0f64..2.0, exp in -62i32..45, neg: bool,
+            x in proptest::prelude::any::<i64>(), narrow in 0u32..3, extra16: bool,
+        ) {
+            let c = Coef::new(if neg { -mant } else { mant } * 2f64.powi(exp));
+            let x = match narrow { 0 => x >> 33, 1 => x >> 50, _ => x };
+            let extra = if extra16 { 16 } else { 0 };
+            proptest::prop_assert_eq!(c.scale_int(x, extra), c.scale_int_reference(x, extra));
+        }
+    }
+
+    #[test]
+    fn scale_int_equals_the_64_bit_formula_on_edges() {
+        let mut xs = vec![
+            0i64,
+            1,
+            -1,
+            1 << 31,
+            -(1 << 31),
+            (1 << 31) - 1,
+            i64::MAX,
+            i64::MIN,
+        ];
+        for k in 0..31 {
+            xs.extend([1i64 << k, -(1i64 << k), (1i64 << k) + 1, -(1i64 << k) - 1]);
+        }
+        for e in -62..=45 {
+            for m in [1.0, 1.5, 2.0 - 1e-12] {
+                for sign in [1.0, -1.0] {
+                    let c = Coef::new(sign * m * 2f64.powi(e));
+                    for &x in &xs {
+                        for extra in [0, 16] {
+                            assert_eq!(
+                                c.scale_int(x, extra),
+                                c.scale_int_reference(x, extra),
+                                "{e} {m} {x} {extra}"
+                            );
+                        }
+                    }
+                }
             }
         }
     }
