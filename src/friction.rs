@@ -95,16 +95,21 @@ impl FrictionParams {
     /// # Ok::<(), mrr_control::ParamError>(())
     /// ```
     pub fn torque(&self, qd: f64) -> f64 {
-        (self.coulomb + self.stribeck * libm::exp(-self.stribeck_shape * qd * qd)) * qd.sgn()
-            + self.viscous * qd
+        self.sliding_level(qd) * qd.sgn() + self.viscous * qd
+    }
+
+    /// The Coulomb + Stribeck level of eq. (4.8), `f_c + f_s e^{−f_τ q̇²}`
+    /// (N·m, ≥ 0): the friction magnitude while sliding at speed `q̇`
+    /// (rad/s), before the viscous term.
+    pub fn sliding_level(&self, qd: f64) -> f64 {
+        self.coulomb + self.stribeck * libm::exp(-self.stribeck_shape * qd * qd)
     }
 
     /// Eq. (4.17), first line: the nominal model with the boundary layer
     /// `ε_q̇` (rad/s),
     /// `f̂ = (f_c + f_s e^{−f_τ q̇²}) sat(q̇, ε_q̇) + b q̇` (N·m).
     pub fn nominal(&self, qd: f64, eps: f64) -> f64 {
-        (self.coulomb + self.stribeck * libm::exp(-self.stribeck_shape * qd * qd)) * qd.sat(eps)
-            + self.viscous * qd
+        self.sliding_level(qd) * qd.sat(eps) + self.viscous * qd
     }
 
     /// Eq. (4.17), third line: the regressor `Y = ∂f̂/∂F` at these

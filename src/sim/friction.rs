@@ -59,7 +59,13 @@ impl FrictionParams {
 
     /// Sliding level `F(q̇) = f_c + f_s e^{−f_τ q̇²}` (eq. 4.7/4.8).
     pub fn sliding_level(&self, speed: f64) -> f64 {
-        self.coulomb + self.static_excess * libm::exp(-self.stribeck * speed * speed)
+        crate::friction::FrictionParams {
+            viscous: self.viscous,
+            coulomb: self.coulomb,
+            stribeck: self.static_excess,
+            stribeck_shape: self.stribeck,
+        }
+        .sliding_level(speed)
     }
 
     /// Presliding stiffness `σ0`, N·m/rad.
