@@ -212,21 +212,6 @@ fn main() -> std::io::Result<()> {
     Ok(())
 }
 
-/// Torsion (rad) of a backbone at a torque (N·m), by bisection on its
-/// increasing torque curve.
-fn backbone_torsion(b: &Backbone, torque: f64) -> f64 {
-    let (mut lo, mut hi) = (-1e-2, 1e-2);
-    for _ in 0..100 {
-        let mid = 0.5 * (lo + hi);
-        if b.torque(mid) < torque {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
-}
-
 /// The locked-output and Table 3.3 comparisons on every backbone (the
 /// configurations of `tests/thesis_ch2_3.rs`).
 fn backbone_table() -> std::io::Result<()> {
@@ -257,7 +242,7 @@ fn backbone_table() -> std::io::Result<()> {
         let mut gap = [0.0f64; 3];
         for i in 0..=1200 {
             let tau = i as f64 * shd.t2 / 1200.0;
-            let truth = backbone_torsion(&b, tau);
+            let truth = b.torsion_by_bisection(tau);
             let models = [
                 m.proposed.flexspline.torsion(tau),
                 m.piecewise.torsion(tau),

@@ -241,21 +241,6 @@ fn per_backbone() -> &'static [(BackboneShape, ComplianceResult, TorqueEstimatio
     })
 }
 
-/// Torsion (rad) of a backbone at a torque (N·m): bisection on its
-/// increasing torque curve, independent of the models' own inverses.
-fn backbone_torsion(b: &Backbone, torque: f64) -> f64 {
-    let (mut lo, mut hi) = (-1e-2, 1e-2);
-    for _ in 0..100 {
-        let mid = 0.5 * (lo + hi);
-        if b.torque(mid) < torque {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
-}
-
 fn rms(v: impl Iterator<Item = f64>) -> f64 {
     let (mut n, mut s) = (0.0, 0.0);
     for x in v {
@@ -310,7 +295,7 @@ fn proposed_model_predicts_worst_on_every_backbone() {
             rms(r
                 .samples
                 .iter()
-                .map(|s| f(s.flexspline_torque) - backbone_torsion(&b, s.flexspline_torque)))
+                .map(|s| f(s.flexspline_torque) - b.torsion_by_bisection(s.flexspline_torque)))
         };
         let g_flex = gap(&|t| m.proposed.flexspline.torsion(t));
         let g_pw = gap(&|t| m.piecewise.torsion(t));

@@ -236,6 +236,23 @@ pub enum Backbone {
 }
 
 impl Backbone {
+    /// Torsion (rad) at `torque` (N·m) by bisection on the increasing
+    /// torque curve over ±10 mrad (100 halvings: exact to the last bit of
+    /// the bracket), independent of every model's own closed-form inverse;
+    /// the experiments and their tests use it as the ground-truth curve.
+    pub fn torsion_by_bisection(&self, torque: f64) -> f64 {
+        let (mut lo, mut hi) = (-1e-2, 1e-2);
+        for _ in 0..100 {
+            let mid = 0.5 * (lo + hi);
+            if self.torque(mid) < torque {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    }
+
     /// The backbone of `shape` fitted to catalogue data (`k3` completes
     /// the piecewise curve): the catalogue curve itself; the cubic through
     /// its knees ([`CubicStiffness::through_catalogue_knees`]); the tanh
