@@ -71,15 +71,22 @@ impl<S: Scalar> ControlInput<S> {
     /// `true` when every field is a finite number (always for fixed point).
     #[inline]
     pub fn is_finite(&self) -> bool {
-        let m = S::MAX;
-        self.desired_position.abs() <= m
-            && self.desired_velocity.abs() <= m
-            && self.desired_acceleration.abs() <= m
-            && self.motor_position.abs() <= m
-            && self.motor_velocity.abs() <= m
-            && self.joint_torque.abs() <= m
-            && self.desired_joint_torque.abs() <= m
-            && self.expected_joint_torque.abs() <= m
+        if S::RESOLUTION.to_f64() >= 1e-6 {
+            // Fixed point has no NaN or infinity (folded at compile time).
+            return true;
+        }
+        // `v − v` is 0 for a finite float and NaN for NaN and ±∞, and a NaN
+        // survives every sum: one comparison instead of eight.
+        let d = |v: S| v.sub(v);
+        let sum = d(self.desired_position)
+            .add(d(self.desired_velocity))
+            .add(d(self.desired_acceleration))
+            .add(d(self.motor_position))
+            .add(d(self.motor_velocity))
+            .add(d(self.joint_torque))
+            .add(d(self.desired_joint_torque))
+            .add(d(self.expected_joint_torque));
+        sum == S::ZERO
     }
 }
 

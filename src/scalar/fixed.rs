@@ -41,12 +41,25 @@ pub(crate) const fn mul_bits_reference(a: i32, b: i32) -> i32 {
     sat_i64(((a as i64) * (b as i64) + (1 << 15)) >> 16)
 }
 
+/// `x` unchanged, hidden from the optimizer on Arm
+/// (`core::hint::black_box`). LLVM recognizes the four-partial-product
+/// idiom of [`wide_mul_split`] and folds it back into one 64-bit multiply —
+/// on Armv6-M an `__aeabi_lmul` call — unless one operand passes through
+/// this barrier. The value is not changed, so host-proven results carry
+/// over bit for bit.
+#[inline(always)]
+pub(crate) fn opaque(x: u32) -> u32 {
+    #[cfg(target_arch = "arm")]
+    let x = core::hint::black_box(x);
+    x
+}
+
 /// The 64-bit product `a·b` as `(high, low)` words.
 ///
 /// On Armv6-M (no `umull`; recognised by its missing 32-bit atomics, since
 /// stable Rust exposes no Thumb-2 feature flag) it is formed from four
 /// 16×16 partial products
-/// (the construction of the kernels' `mulhi`, with the same `black_box`
+/// (the construction of the kernels' `mulhi`, with the same [`opaque`]
 /// barrier so LLVM does not fold it back into `__aeabi_lmul`); elsewhere the
 /// native widening multiply. Both are exact.
 #[inline(always)]
@@ -71,8 +84,7 @@ pub(crate) fn wide_mul(a: u32, b: u32) -> (u32, u32) {
 )]
 pub(crate) fn wide_mul_split(a: u32, b: u32) -> (u32, u32) {
     let (ah, al) = (a >> 16, a & 0xFFFF);
-    #[cfg(target_arch = "arm")]
-    let ah = core::hint::black_box(ah);
+    let ah = opaque(ah);
     let (bh, bl) = (b >> 16, b & 0xFFFF);
     let ll = al * bl;
     let lh = al * bh;
@@ -207,7 +219,7 @@ impl Scalar for I16F16 {
     }
     #[inline(always)]
     fn mul_coef(self, c: &super::Coef) -> Self {
-        I16F16::from_bits(c.scale_int(self.to_bits() as i64, 0))
+        I16F16::from_bits(c.scale_i32(self.to_bits()))
     }
     #[inline]
     fn add(self, rhs: Self) -> Self {

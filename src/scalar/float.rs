@@ -7,8 +7,31 @@
 
 use super::{kernels, Scalar};
 
+/// `c as f32`, the same correctly rounded value, without the
+/// `__aeabi_l2f` library call on 32-bit cores: for `|c| < 2⁴⁸` (every
+/// estimator torsion count, `|D| < 2⁴⁶`) the high part `⌊c/2²⁴⌋` and the
+/// low part `c mod 2²⁴` are exact in `f32`, and so is `hi·2²⁴`, so the one
+/// rounding of their sum is the rounding of `c` itself.
+#[inline]
+fn count_to_f32(c: i64) -> f32 {
+    if ((c >> 47) + 1) as u64 <= 1 {
+        // −2⁴⁷ ≤ c < 2⁴⁷.
+        let hi = (c >> 24) as i32 as f32;
+        let lo = (c & 0xFF_FFFF) as i32 as f32;
+        hi * 16_777_216.0 + lo
+    } else {
+        c as f32
+    }
+}
+
+/// `c as f64` (correctly rounded; not on a hot path of any target).
+#[inline]
+fn count_to_f64(c: i64) -> f64 {
+    c as f64
+}
+
 macro_rules! float_scalar {
-    ($t:ident, $name:literal, $k:ident, $countfn:ident) => {
+    ($t:ident, $name:literal, $k:ident, $countfn:ident, $conv:ident) => {
         impl Scalar for $t {
             const NAME: &'static str = $name;
             const ZERO: Self = 0.0;
@@ -48,7 +71,7 @@ macro_rules! float_scalar {
             }
             #[inline]
             fn from_counts(counts: i64, scale: &super::Coef) -> Self {
-                counts as $t * scale.$countfn()
+                $conv(counts) * scale.$countfn()
             }
             #[inline]
             fn mul_coef(self, c: &super::Coef) -> Self {
@@ -131,12 +154,36 @@ macro_rules! float_scalar {
     };
 }
 
-float_scalar!(f32, "f32", f32, f32_value);
-float_scalar!(f64, "f64", f64, value);
+float_scalar!(f32, "f32", f32, f32_value, count_to_f32);
+float_scalar!(f64, "f64", f64, value, count_to_f64);
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn count_to_f32_is_the_correctly_rounded_conversion() {
+        let mut xs = vec![0i64, 1, -1, i64::MAX, i64::MIN, 1 << 47, -(1 << 47)];
+        for k in 0..63 {
+            for d in [-3i64, -1, 0, 1, 3] {
+                xs.extend([(1i64 << k) + d, -(1i64 << k) + d]);
+            }
+            // Halfway cases of the 24-bit mantissa (round to even).
+            if k > 25 {
+                xs.extend([(1i64 << k) + (1 << (k - 24)), (1i64 << k) + 3 * (1 << (k - 25))]);
+            }
+        }
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            xs.push((x as i64) >> (x % 40));
+        }
+        for c in xs {
+            assert_eq!(count_to_f32(c).to_bits(), (c as f32).to_bits(), "{c}");
+        }
+    }
 
     #[test]
     fn abs_clears_only_the_sign_bit() {

@@ -121,7 +121,9 @@ pub trait Scalar:
     /// `self` limited to `[lo, hi]` (`lo <= hi` assumed); NaN maps to `lo`.
     #[inline]
     fn clamp(self, lo: Self, hi: Self) -> Self {
-        if self.is_nan() || self < lo {
+        // One comparison is false for NaN and for values below `lo`.
+        #[allow(clippy::neg_cmp_op_on_partial_ord)]
+        if !(self >= lo) {
             lo
         } else if self > hi {
             hi
@@ -216,6 +218,10 @@ pub struct Coef {
     value_f32: f32,
     mult: i64,
     shift: i32,
+    /// `|mult|` (at most 2³¹) and its sign, prepared for the 32-bit
+    /// product of [`scale_i32`](Self::scale_i32).
+    mag: u32,
+    negative: bool,
 }
 
 impl Coef {
@@ -229,6 +235,8 @@ impl Coef {
                 value_f32: 0.0,
                 mult: 0,
                 shift: 0,
+                mag: 0,
+                negative: false,
             };
         }
         // |value| · 2^shift ∈ [2^30, 2^31). Beyond 2^40 the fixed-point
@@ -242,6 +250,8 @@ impl Coef {
             value_f32: (value as f32).clamp(f32::MIN, f32::MAX),
             mult: if value < 0.0 { -mult } else { mult },
             shift,
+            mag: mult as u32,
+            negative: value < 0.0,
         }
     }
 
@@ -263,8 +273,16 @@ impl Coef {
         let x = x.clamp(-(1i64 << 31), 1i64 << 31);
         // |x|, |mult| ≤ 2^31 fit u32.
         let a = x.unsigned_abs() as u32;
-        let b = self.mult.unsigned_abs() as u32;
-        fixed::scaled_product((x < 0) != (self.mult < 0), a, b, self.shift - extra)
+        fixed::scaled_product((x < 0) != self.negative, a, self.mag, self.shift - extra)
+    }
+
+    /// [`scale_int`](Self::scale_int)`(x, 0)` for an `i32` (the product of
+    /// [`Scalar::mul_coef`] on `I16F16` bits): the same result for every
+    /// `x` without the 64-bit clamp and absolute value, which on Armv6-M
+    /// are multi-instruction sequences.
+    #[inline(always)]
+    pub(crate) fn scale_i32(&self, x: i32) -> i32 {
+        fixed::scaled_product((x < 0) != self.negative, x.unsigned_abs(), self.mag, self.shift)
     }
 
     /// The straightforward 64-bit form of [`scale_int`](Self::scale_int),
@@ -351,6 +369,8 @@ mod tests {
             let x = match narrow { 0 => x >> 33, 1 => x >> 50, _ => x };
             let extra = if extra16 { 16 } else { 0 };
             proptest::prop_assert_eq!(c.scale_int(x, extra), c.scale_int_reference(x, extra));
+            let x32 = x as i32;
+            proptest::prop_assert_eq!(c.scale_i32(x32), c.scale_int_reference(x32 as i64, 0));
         }
     }
 
@@ -381,6 +401,12 @@ mod tests {
                                 "{e} {m} {x} {extra}"
                             );
                         }
+                        let x32 = x as i32;
+                        assert_eq!(
+                            c.scale_i32(x32),
+                            c.scale_int_reference(x32 as i64, 0),
+                            "{e} {m} {x32}"
+                        );
                     }
                 }
             }
