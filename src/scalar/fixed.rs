@@ -87,13 +87,14 @@ pub(crate) fn wide_mul_split(a: u32, b: u32) -> (u32, u32) {
     let ah = opaque(ah);
     let (bh, bl) = (b >> 16, b & 0xFFFF);
     let ll = al * bl;
-    let lh = al * bh;
-    let hl = ah * bl;
     let hh = ah * bh;
-    // < 3·2¹⁶: no overflow.
-    let mid = (ll >> 16) + (lh & 0xFFFF) + (hl & 0xFFFF);
-    let hi = hh + (lh >> 16) + (hl >> 16) + (mid >> 16);
-    let lo = (mid << 16) | (ll & 0xFFFF);
+    // a·b = hh·2³² + (lh + hl)·2¹⁶ + ll. The middle sum may carry out of
+    // 32 bits (a carry worth 2⁴⁸ = 2¹⁶ in the high word), and its low half
+    // shifted up may carry out of the low word: two add-with-carry steps
+    // instead of masking each partial product.
+    let (mid, c1) = (al * bh).overflowing_add(ah * bl);
+    let (lo, c2) = ll.overflowing_add(mid << 16);
+    let hi = hh + (mid >> 16) + ((c1 as u32) << 16) + c2 as u32;
     (hi, lo)
 }
 
