@@ -43,8 +43,7 @@
 use super::{keep_number, ControlInput};
 use crate::error::{non_negative, positive, ParamError};
 use crate::friction::{
-    mul_unit, parameter_scales, regressor_scales, sat_with_reciprocal, FrictionBounds,
-    FrictionConfig, FrictionParams,
+    mul_unit, parameter_scales, regressor_scales, FrictionBounds, FrictionConfig, FrictionParams,
 };
 use crate::scalar::{units, Coef, Scalar};
 
@@ -318,27 +317,28 @@ pub struct RobustAdaptiveConfig<S> {
     friction: FrictionConfig<S>,
     /// `I_m` from stored acceleration to stored motor torque.
     accel_inertia: Coef,
-    /// `2 λ I_m` from stored speed to stored motor torque.
-    edot_gain: Coef,
-    /// `λ² I_m` from stored angle to stored motor torque.
-    e_gain: Coef,
+    /// `λ I_m` from stored speed to stored motor torque (`I_m a` is
+    /// formed as `I_m q̈_d − λ I_m (ė + r)`, see [`law`](Self::law)).
+    lambda_inertia: Coef,
     /// `λ` from stored angle to stored speed.
     lambda: Coef,
     /// `1/N` from stored link torque to stored motor torque.
     feedback: Coef,
     /// `K_I T` from stored speed to stored motor torque.
     integral_step: Coef,
-    /// `K_r` in stored motor torque.
-    robust_gain: Coef,
-    /// `±1 · K_r` as the coefficient rounds them (the saturated robust
-    /// term).
+    /// `±1 · K_r` as the coefficient `K_r` (stored motor torque) rounds
+    /// them: the robust term outside the layer `|r| > ε_r`.
     robust_gain_value: [S; 2],
     eps_r: S,
-    inv_eps_r: Coef,
+    /// `K_r / ε_r` from stored speed to stored motor torque: the robust
+    /// term inside the layer.
+    robust_slope: Coef,
     /// `ρ_Fj` from stored `Y_j` to stored motor torque.
     rho_param: [Coef; 4],
     eps_f: [S; 4],
-    inv_eps_f: [Coef; 4],
+    /// `ρ_Fj / ε_Fj` from stored `Y_j` to stored motor torque per stored
+    /// `r Y_j`: the parametric robust term inside its layer.
+    rho_slope: [Coef; 4],
     /// `μ_j T` from stored `r Y_j` to stored `F_j`.
     adapt: [Coef; 4],
     lower: [S; 4],
@@ -409,15 +409,15 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
         let ys = regressor_scales::<S>();
         let eps_r = S::from_f64(d.eps_r * u.speed);
         let mut eps_f = [S::ZERO; 4];
-        let mut inv_eps_f = [Coef::new(0.0); 4];
+        let mut rho_slope = [Coef::new(0.0); 4];
         let mut rho_param = [Coef::new(0.0); 4];
         let mut adapt = [Coef::new(0.0); 4];
         let rho = d.friction_bounds.variable();
         for j in 0..4 {
             let ry_scale = u.speed * ys[j];
             eps_f[j] = S::from_f64(d.eps_f[j] * ry_scale);
-            inv_eps_f[j] = Coef::new(1.0 / eps_f[j].to_f64());
             rho_param[j] = Coef::new(rho[j] * mt / ys[j]);
+            rho_slope[j] = Coef::new(rho[j] * mt / ys[j] / eps_f[j].to_f64());
             adapt[j] = Coef::new(d.adaptation_gain[j] * d.sample_period * ps[j] / ry_scale);
         }
         let lo = d.friction_bounds.min();
@@ -432,21 +432,19 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
         RobustAdaptiveConfig {
             friction: FrictionConfig::new(d.eps_velocity),
             accel_inertia: Coef::new(d.rotor_inertia * mt / u.speed),
-            edot_gain: Coef::new(2.0 * d.lambda * d.rotor_inertia * mt / u.speed),
-            e_gain: Coef::new(d.lambda * d.lambda * d.rotor_inertia * mt / u.angle),
+            lambda_inertia: Coef::new(d.lambda * d.rotor_inertia * mt / u.speed),
             lambda: Coef::new(d.lambda * u.speed / u.angle),
             feedback: Coef::new(mt / (d.ratio * u.link_torque)),
             integral_step: Coef::new(d.integral_gain * d.sample_period * mt / u.speed),
-            robust_gain: Coef::new(d.robust_gain() * mt),
             robust_gain_value: [
                 S::ONE.mul_coef(&Coef::new(d.robust_gain() * mt)),
                 S::ONE.neg().mul_coef(&Coef::new(d.robust_gain() * mt)),
             ],
             eps_r,
-            inv_eps_r: Coef::new(1.0 / eps_r.to_f64()),
+            robust_slope: Coef::new(d.robust_gain() * mt / eps_r.to_f64()),
             rho_param,
             eps_f,
-            inv_eps_f,
+            rho_slope,
             adapt,
             lower: q(lo),
             upper: q(hi),
@@ -513,23 +511,23 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
         let e = x.motor_position.sub(x.desired_position);
         let ed = x.motor_velocity.sub(x.desired_velocity);
         let r = ed.add(e.mul_coef(&self.lambda));
-        // I_m a = I_m q̈_d − 2λ I_m ė − λ² I_m e, each term in motor torque.
+        // I_m a = I_m q̈_d − 2λ I_m ė − λ² I_m e = I_m q̈_d − λ I_m (ė + r)
+        // (r = ė + λe): two products instead of three.
         let ia = x
             .desired_acceleration
             .mul_coef(&self.accel_inertia)
-            .sub(ed.mul_coef(&self.edot_gain))
-            .sub(e.mul_coef(&self.e_gain));
+            .sub(ed.add(r).mul_coef(&self.lambda_inertia));
         let fr = self.friction.evaluate(&st.friction, x.motor_velocity);
-        // Saturated sat values (±1, the common case away from the layers)
-        // skip their multiplies; the results are bit-identical.
-        let sr = sat_with_reciprocal(r, self.eps_r, &self.inv_eps_r);
-        let fixed = S::RESOLUTION.to_f64() >= 1e-6;
-        let robust = if fixed && sr == S::ONE {
+        // K_r sat(r/ε_r): ±K_r outside the layer, (K_r/ε_r)·r inside it
+        // (one product; the same value up to its rounding).
+        let robust = if r > self.eps_r {
             self.robust_gain_value[0]
-        } else if fixed && sr == S::ONE.neg() {
+        } else if r < self.eps_r.neg() {
             self.robust_gain_value[1]
         } else {
-            sr.mul_coef(&self.robust_gain)
+            // Never beyond ±K_r, whatever the product's rounding.
+            r.mul_coef(&self.robust_slope)
+                .clamp(self.robust_gain_value[1], self.robust_gain_value[0])
         };
         let mut param_robust = S::ZERO;
         let mut ry = [S::ZERO; 4];
@@ -537,8 +535,17 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
             let y = fr.regressor[j];
             // Y_2 = sat(q̇, ε_q̇) is usually ±1.
             *ryj = if j == 1 { mul_unit(r, y) } else { r.mul(y) };
-            let s = sat_with_reciprocal(*ryj, self.eps_f[j], &self.inv_eps_f[j]);
-            param_robust = param_robust.add(mul_unit(y.mul_coef(&self.rho_param[j]), s));
+            // ρ_j Y_j sat(r Y_j / ε_j): ±ρ_j Y_j outside the layer,
+            // (ρ_j/ε_j) Y_j · r Y_j inside it.
+            let eps = self.eps_f[j];
+            let term = if *ryj > eps {
+                y.mul_coef(&self.rho_param[j])
+            } else if *ryj < eps.neg() {
+                y.mul_coef(&self.rho_param[j]).neg()
+            } else {
+                y.mul_coef(&self.rho_slope[j]).mul(*ryj)
+            };
+            param_robust = param_robust.add(term);
         }
         let law = ia
             .add(x.joint_torque.mul_coef(&self.feedback))

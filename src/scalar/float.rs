@@ -170,7 +170,10 @@ mod tests {
             }
             // Halfway cases of the 24-bit mantissa (round to even).
             if k > 25 {
-                xs.extend([(1i64 << k) + (1 << (k - 24)), (1i64 << k) + 3 * (1 << (k - 25))]);
+                xs.extend([
+                    (1i64 << k) + (1 << (k - 24)),
+                    (1i64 << k) + 3 * (1 << (k - 25)),
+                ]);
             }
         }
         let mut x = 0x9E37_79B9_7F4A_7C15u64;

@@ -282,7 +282,12 @@ impl Coef {
     /// are multi-instruction sequences.
     #[inline(always)]
     pub(crate) fn scale_i32(&self, x: i32) -> i32 {
-        fixed::scaled_product((x < 0) != self.negative, x.unsigned_abs(), self.mag, self.shift)
+        fixed::scaled_product(
+            (x < 0) != self.negative,
+            x.unsigned_abs(),
+            self.mag,
+            self.shift,
+        )
     }
 
     /// The straightforward 64-bit form of [`scale_int`](Self::scale_int),
