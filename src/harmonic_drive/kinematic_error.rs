@@ -153,7 +153,9 @@ impl KinematicErrorModel {
     /// The regressor of eq. (3.7) from `(sin, cos)` of the link and motor
     /// angles, on any backend (the second motor harmonic by the
     /// double-angle identities). The one definition of the model's basis:
-    /// the fit, [`evaluate`](Self::evaluate) and the torque estimator use it.
+    /// the fit, [`evaluate`](Self::evaluate) and the torque estimator's
+    /// radian path use it (its count path uses the equivalent
+    /// [`phase_form`](Self::phase_form)).
     #[inline]
     pub fn regressor_from_trig<S: Scalar>(link: (S, S), motor: (S, S)) -> [S; 7] {
         let (sl, cl) = link;

@@ -405,8 +405,8 @@ const RAD_PER_TURN_UNIT: f32 = 1.462_918_1e-9;
 ///   `|r| ≤ π/4`). No floating-point range reduction, no division.
 /// * Proven bound: **≤ 2⁻²² absolute** (2 ulp of 1), exactly even and
 ///   `|result| ≤ 1`: `exhaustive_cos_turn_f32` in `proofs/kernels_turn.rs`
-///   (every `turn` of the half turn `[0, 2³¹]` plus evenness at every
-///   code).
+///   (every one of the 2³² inputs); measured max 0.905 ulp of 1
+///   (1.08e-7) at `turn = 0x60e4f3d0`.
 #[inline]
 pub fn cos_turn(turn: u32) -> f32 {
     let u = (turn as i32).unsigned_abs(); // [0, 2³¹]

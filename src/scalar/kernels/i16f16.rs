@@ -429,7 +429,8 @@ pub(crate) const COS_TURN_Q23: [u32; 257] = [
 ///   floor of the interpolation product `< 2⁻²³`; final rounding `2⁻¹⁷`.
 ///   Sum `< 0.83 LSB` (1 LSB = 2⁻¹⁶ = 1.53e-5). Proven bound: **≤ 1 LSB**
 ///   at every one of the 2³² inputs, with evenness and `|result| ≤ 1`
-///   (`exhaustive_cos_turn_i16f16` in `proofs/kernels_turn.rs`).
+///   (`exhaustive_cos_turn_i16f16` in `proofs/kernels_turn.rs`); measured
+///   max 0.801 LSB at `turn = 0xfea08d80`.
 /// * Cost: no multiply beyond one 32 × 32 → 32 `MULS`, no 64-bit operation,
 ///   about 30 Thumb-1 instructions; 1,028 bytes of table.
 #[inline]
