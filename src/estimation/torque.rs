@@ -33,21 +33,23 @@
 //! [`Scalar::mul`], three additions.
 //!
 //! *Error bound* against `f64` eq. (3.7) at the count angles
-//! `2π c_l/L`, `2π p/M` (stored torsion units; `q` = the backend's
-//! resolution at the stored value, `A = |a_0| + ΣR` the amplitude bound):
+//! `2π c_l/L`, `2π p/M`, in stored torsion units (`R_j` and `a_0` in
+//! stored units, `A = |a_0| + ΣR_j` the amplitude bound):
 //!
 //! * angles: count conversion `< 1.5` units of `2⁻³²` turn, phase rounding
 //!   `≤ 0.5` units, doubled motor angle `< 3` units: `e_θ ≤ 3.5 · 2π/2³²
-//!   = 5.2e-9` rad per argument, hence `≤ R_j·e_θ` per term;
+//!   = 5.1e-9` rad per argument, hence `≤ R_j·e_θ` per term;
 //! * `I16F16` (`q = 2⁻¹⁶` stored units): `a_0` and each `R_j` rounded to
 //!   `q/2`, `cos_turn` `≤ 2⁻¹⁶` (proven), each product rounded to `q/2`,
 //!   additions exact: `|e| ≤ q/2 + Σ_j [q/2·(1 + 2⁻¹⁶) + R_j·(2⁻¹⁶ + e_θ)
-//!   + q/2]`, below `3.6 q` for amplitudes below 1 stored unit;
+//!   + q/2]` (the bound holds while no sum saturates, i.e. `A` far below
+//!   the range): about `3.5 q + q·ΣR_j`, below `6.5 q` when every
+//!   amplitude is below 1 stored unit (1 mrad);
 //! * `f32` (relative rounding `u = 2⁻²⁴`): `a_0`, `R_j`, the three
 //!   products and the three sums each add `≤ u` of a value below `A`,
 //!   `cos_turn` `≤ 2⁻²²` (proven): `|e| ≤ |a_0|u + Σ_j R_j(2u + 2⁻²² +
-//!   e_θ) + 3uA`, to first order in `u` (the second-order terms are below
-//!   `10 u² A`).
+//!   e_θ) + 3uA` to first order in `u`, plus second-order terms below
+//!   `30 u² A` (bounded by `40 u² A` in the test).
 //!
 //! `kinematic_error_from_counts_within_bound` (tests below) checks these
 //! bounds for both backends over many counts.
