@@ -548,9 +548,9 @@ def joint_vectors(f):
 
 
 # Reason printed while the joint-step budgets are not met (None: asserted).
-JOINT_NOT_MET = ("budget not met: worst case at a Hold -> Active switch; M0+ about 3,000 in the estimate "
-                 "(two sin_cos, eq. 3.7 series, tan, exp) and 4,300 in the mode step (Coef products, sat, "
-                 "friction, exp); M4F about 570 in the estimate (two sin_cos) and 610 in the mode step")
+JOINT_NOT_MET = ("budget not met: worst case at a Hold -> Active switch; M0+ about 1,900 in the estimate "
+                 "(tan, exp, eq. 3.7 with three cos_turn) and 4,300 in the mode step (Coef products, sat, "
+                 "friction, exp); M4F about 420 in the estimate and 610 in the mode step")
 
 JOINT_F32 = joint_vectors(f32w)
 JOINT_X = joint_vectors(xw)
