@@ -41,10 +41,11 @@
 //!   = 5.1e-9` rad per argument, hence `≤ R_j·e_θ` per term;
 //! * `I16F16` (`q = 2⁻¹⁶` stored units): `a_0` and each `R_j` rounded to
 //!   `q/2`, `cos_turn` `≤ 2⁻¹⁶` (proven), each product rounded to `q/2`,
-//!   additions exact: `|e| ≤ q/2 + Σ_j [q/2·(1 + 2⁻¹⁶) + R_j·(2⁻¹⁶ + e_θ)
-//!   + q/2]` (the bound holds while no sum saturates, i.e. `A` far below
-//!   the range): about `3.5 q + q·ΣR_j`, below `6.5 q` when every
-//!   amplitude is below 1 stored unit (1 mrad);
+//!   additions exact:
+//!   `|e| ≤ q/2 + Σ_j [q/2·(1 + 2⁻¹⁶) + R_j·(2⁻¹⁶ + e_θ) + q/2]`
+//!   (while no sum saturates, i.e. for `A` far below the range): about
+//!   `3.5 q + q·ΣR_j`, below `6.5 q` when every amplitude is below 1
+//!   stored unit (1 mrad);
 //! * `f32` (relative rounding `u = 2⁻²⁴`): `a_0`, `R_j`, the three
 //!   products and the three sums each add `≤ u` of a value below `A`,
 //!   `cos_turn` `≤ 2⁻²²` (proven): `|e| ≤ |a_0|u + Σ_j R_j(2u + 2⁻²² +
