@@ -25,4 +25,5 @@ pub mod kernels_f32;
 pub mod kernels_f64;
 pub mod kernels_i16f16;
 pub mod kernels_q15;
+pub mod kernels_turn;
 pub mod sat_sgn;

@@ -110,6 +110,13 @@ entry!(cordic_exp_i16f16(x: I16F16) => cordic::exp(x));
 entry!(cordic_sqrt_i16f16(x: I16F16) => cordic::sqrt(x));
 entry!(cordic_acos_i16f16(x: I16F16) => cordic::acos(x));
 
+// The binary-angle cosine of the kinematic error (eq. 3.7), against the
+// radian cosine of the same angle (the conversion to radians included).
+entry!(k_cos_turn_f32(t: u32) => kf::cos_turn(t));
+entry!(libm_cos_turn_f32(t: u32) => libm::cosf(t as i32 as f32 * 1.462_918_1e-9));
+entry!(k_cos_turn_i16f16(t: u32) => kx::cos_turn(t));
+entry!(cordic_cos_turn_i16f16(t: u32) => cordic::cos(I16F16::from_bits(((t as i32 as i64 * 411_775) >> 32) as i32)));
+
 // The `⌊a·b/2³²⌋` building block of the I16F16 kernels, as written in
 // `src/scalar/kernels/i16f16.rs` (four 16×16 products, `black_box` barrier
 // on Arm), against the plain 64-bit product (`__aeabi_lmul` on Armv6-M).

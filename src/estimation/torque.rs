@@ -6,7 +6,9 @@
 //! 1. torsion from the encoders, eq. (2.13): `Δθ = θ_fo + θ_wi / N`, computed
 //!    exactly in integer counts (see below);
 //! 2. kinematic error `θ_err` of eq. (3.7) at the link and motor angles
-//!    (optional);
+//!    (optional), in the amplitude–phase form
+//!    [`KinematicErrorPhaseForm`](crate::harmonic_drive::kinematic_error::KinematicErrorPhaseForm)
+//!    from binary angles (see below);
 //! 3. flexspline torsion, eq. (3.9):
 //!    `Δθ_f = Δθ + sgn(τ_w)(1 − e^{−c_w|τ_w|})/(c_w N K_w0) − θ_err`, with the
 //!    wave-generator torque `τ_w` approximated by the motor torque command;
@@ -21,6 +23,38 @@
 //! [`Scalar::from_counts`], so a fixed-point estimate keeps the encoders'
 //! full resolution.
 //!
+//! **Kinematic error from counts.** The link count `c_l` and the motor
+//! count within the motor revolution become binary angles (`u32`, units of
+//! `2⁻³²` turn) by [`CountToTurn`] (no division at run time); the phases
+//! `φ` are prepared as binary angles too, so `θ − φ` and `2θ_wi − φ_2` are
+//! exact wrapping integer operations, and eq. (3.7) is
+//! `a_0 + R_l·cos_turn(θ_fo − φ_l) + R_1·cos_turn(θ_wi − φ_1) +
+//! R_2·cos_turn(2θ_wi − φ_2)`: three [`Scalar::cos_turn`], three
+//! [`Scalar::mul`], three additions.
+//!
+//! *Error bound* against `f64` eq. (3.7) at the count angles
+//! `2π c_l/L`, `2π p/M`, in stored torsion units (`R_j` and `a_0` in
+//! stored units, `A = |a_0| + ΣR_j` the amplitude bound):
+//!
+//! * angles: count conversion `< 1.5` units of `2⁻³²` turn, phase rounding
+//!   `≤ 0.5` units, doubled motor angle `< 3` units: `e_θ ≤ 3.5 · 2π/2³²
+//!   = 5.1e-9` rad per argument, hence `≤ R_j·e_θ` per term;
+//! * `I16F16` (`q = 2⁻¹⁶` stored units): `a_0` and each `R_j` rounded to
+//!   `q/2`, `cos_turn` `≤ 2⁻¹⁶` (proven), each product rounded to `q/2`,
+//!   additions exact:
+//!   `|e| ≤ q/2 + Σ_j [q/2·(1 + 2⁻¹⁶) + R_j·(2⁻¹⁶ + e_θ) + q/2]`
+//!   (while no sum saturates, i.e. for `A` far below the range): about
+//!   `3.5 q + q·ΣR_j`, below `6.5 q` when every amplitude is below 1
+//!   stored unit (1 mrad);
+//! * `f32` (relative rounding `u = 2⁻²⁴`): `a_0`, `R_j`, the three
+//!   products and the three sums each add `≤ u` of a value below `A`,
+//!   `cos_turn` `≤ 2⁻²²` (proven): `|e| ≤ |a_0|u + Σ_j R_j(2u + 2⁻²² +
+//!   e_θ) + 3uA` to first order in `u`, plus second-order terms below
+//!   `30 u² A` (bounded by `40 u² A` in the test).
+//!
+//! `kinematic_error_from_counts_within_bound` (tests below) checks these
+//! bounds for both backends over many counts.
+//!
 //! **Saturation.** `tan` is valid only for `|Δθ_f c_f K_f0| < π/2`. At or
 //! beyond it, and whenever the estimate would exceed the configured
 //! `max_torque`, the output is `±max_torque` (sign of the torsion) and
@@ -32,7 +66,7 @@ use crate::harmonic_drive::{
     kinematic_error::KinematicErrorModel, FlexsplineConfig, HarmonicDriveParams,
     WaveGeneratorConfig,
 };
-use crate::scalar::{Coef, Scalar};
+use crate::scalar::{turn_from_radians, Coef, CountToTurn, Scalar};
 use core::f64::consts::TAU;
 
 /// `a·b` exactly, for `0 ≤ b < 2⁴⁸` (callers: products below 2⁶³). When
@@ -129,19 +163,33 @@ impl TorqueEstimatorParams {
     }
 }
 
+/// Eq. (3.7) in amplitude–phase form, quantized for backend `S`: offset
+/// and amplitudes in stored torsion units, phases as binary angles.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct KinematicErrorPhase<S> {
+    /// `a_0`.
+    offset: S,
+    /// `[R_l, R_1, R_2]`.
+    amplitudes: [S; 3],
+    /// `[φ_l, φ_1, φ_2]`, units of `2⁻³²` turn.
+    phases: [u32; 3],
+}
+
 /// The estimator quantized for backend `S`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TorqueEstimatorConfig<S> {
     flexspline: FlexsplineConfig<S>,
     wave_generator: WaveGeneratorConfig<S>,
+    /// Eq. (3.7) coefficients for the radian path.
     kinematic_error: Option<[S; 7]>,
+    /// Eq. (3.7) in phase form for the count path.
+    kinematic_error_phase: Option<KinematicErrorPhase<S>>,
+    /// Binary angle per link count (`2³²/L`) and per motor count (`2³²/M`).
+    link_turn: CountToTurn,
+    motor_turn: CountToTurn,
     max_torque: S,
     /// Stored torsion per count of `D` (`2π/(LMN)` scaled).
     torsion_per_count: Coef,
-    /// Radians per link count, `2π/L`.
-    link_rad_per_count: Coef,
-    /// Radians per motor count, `2π/M`.
-    motor_rad_per_count: Coef,
     /// Stored torsion per stored angle, for the radian path.
     torsion_per_angle: Coef,
     inv_ratio: Coef,
@@ -195,10 +243,18 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             kinematic_error: p
                 .kinematic_error
                 .map(|k| k.coefficients.map(|c| S::from_f64(c * u.torsion))),
+            kinematic_error_phase: p.kinematic_error.map(|k| {
+                let f = k.phase_form();
+                KinematicErrorPhase {
+                    offset: S::from_f64(f.offset * u.torsion),
+                    amplitudes: f.amplitudes.map(|r| S::from_f64(r * u.torsion)),
+                    phases: f.phases.map(turn_from_radians),
+                }
+            }),
+            link_turn: CountToTurn::new(l),
+            motor_turn: CountToTurn::new(m),
             max_torque: S::from_f64(p.max_torque * u.link_torque),
             torsion_per_count: Coef::new(TAU / lmn * u.torsion),
-            link_rad_per_count: Coef::new(TAU / l as f64),
-            motor_rad_per_count: Coef::new(TAU / m as f64),
             torsion_per_angle: Coef::new(u.torsion / u.angle),
             inv_ratio: Coef::new(1.0 / p.drive.ratio),
             l,
@@ -301,6 +357,25 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         }
     }
 
+    /// Eq. (3.7) in phase form from the link count `c_l < L` and the motor
+    /// count within the motor revolution `p < M` (stored torsion units; the
+    /// error bound is in the module docs).
+    #[inline]
+    pub(crate) fn kinematic_error_from_counts(&self, c_l: u32, p: u32) -> S {
+        match &self.kinematic_error_phase {
+            Some(k) => {
+                let link = self.link_turn.turn(c_l);
+                let motor = self.motor_turn.turn(p);
+                let (r, phi) = (&k.amplitudes, &k.phases);
+                k.offset
+                    .add(r[0].mul(S::cos_turn(link.wrapping_sub(phi[0]))))
+                    .add(r[1].mul(S::cos_turn(motor.wrapping_sub(phi[1]))))
+                    .add(r[2].mul(S::cos_turn((motor << 1).wrapping_sub(phi[2]))))
+            }
+            None => S::ZERO,
+        }
+    }
+
     /// Eq. (3.9)–(3.10) from a torsion, the kinematic error and the motor
     /// torque, with the output saturation.
     #[inline]
@@ -378,14 +453,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         if d >= half {
             d -= lmn;
         }
-        let kin_err = if self.kinematic_error.is_some() {
-            let link = S::from_counts(c_l as i64, &self.link_rad_per_count).sin_cos();
-            let motor =
-                S::from_counts(st.motor_in_turn as i64, &self.motor_rad_per_count).sin_cos();
-            self.kinematic_error(link, motor)
-        } else {
-            S::ZERO
-        };
+        let kin_err = self.kinematic_error_from_counts(c_l, st.motor_in_turn);
         self.estimate_from_torsion_counts(d, kin_err, motor_torque, invalid)
     }
 
@@ -577,6 +645,127 @@ mod tests {
             // Products below 2⁶⁴, as at the call sites.
             let (a, b) = if narrow { (a >> 1, b & 0xFFFF_FFFF) } else { (a >> 17, b) };
             prop_assert_eq!(mul_wide(a, b) as u128, a as u128 * b as u128);
+        }
+    }
+
+    /// The error bound of the module docs ("Kinematic error from counts")
+    /// for backend `S`, in stored torsion units, plus the `f64`
+    /// reference's own rounding (`8 ε A`).
+    fn ke_count_bound<S: Scalar>(k: &KinematicErrorModel) -> f64 {
+        let f = k.phase_form();
+        let t = S::UNITS.torsion;
+        let (a0, r) = (f.offset.abs() * t, f.amplitudes.map(|r| r * t));
+        let a = a0 + r.iter().sum::<f64>();
+        let e_theta = 3.5 * TAU / 4_294_967_296.0;
+        let reference = 8.0 * f64::EPSILON * a;
+        let bound = if S::NAME == "I16F16" {
+            let q = 1.0 / 65536.0;
+            q / 2.0
+                + r.iter()
+                    .map(|&rj| q / 2.0 * (1.0 + q) + rj * (q + e_theta) + q / 2.0)
+                    .sum::<f64>()
+        } else {
+            assert_eq!(S::NAME, "f32");
+            let u = f32::EPSILON as f64 / 2.0; // 2⁻²⁴
+            let c = 4.0 * u; // cos_turn: 2⁻²²
+            a0 * u
+                + r.iter()
+                    .map(|&rj| rj * (2.0 * u + c + e_theta))
+                    .sum::<f64>()
+                + 3.0 * u * a
+                + 40.0 * u * u * a
+        };
+        bound + reference
+    }
+
+    /// Counts to test for an encoder of `n` counts: 0, `n − 1`, the
+    /// quadrant boundaries and their neighbours, and a stride.
+    fn test_counts(n: u32) -> Vec<u32> {
+        let mut v = vec![0, 1, n - 1];
+        for q in 1..4u32 {
+            let b = (n as u64 * q as u64 / 4) as u32;
+            v.extend([b.saturating_sub(1), b, b + 1]);
+        }
+        let step = (n / 157).max(1);
+        v.extend((0..n).step_by(step as usize));
+        v.retain(|&c| c < n);
+        v
+    }
+
+    /// The largest error of the count-based eq. (3.7) of backend `S`
+    /// against `f64` [`KinematicErrorModel::evaluate`] at the count angles
+    /// `2π c_l/L`, `2π p/M` (stored units), over the test counts; panics
+    /// beyond [`ke_count_bound`].
+    fn ke_count_worst<S: Scalar>(k: KinematicErrorModel, l: u32, m: u32) -> f64 {
+        let mut p = params(Some(k));
+        p.link_counts_per_rev = l;
+        p.motor_counts_per_rev = m;
+        let cfg = TorqueEstimatorConfig::<S>::new(&p);
+        let bound = ke_count_bound::<S>(&k);
+        let mut worst = 0.0f64;
+        for c in test_counts(l) {
+            for q in test_counts(m) {
+                let want = k.evaluate(TAU * c as f64 / l as f64, TAU * q as f64 / m as f64)
+                    * S::UNITS.torsion;
+                let got = cfg.kinematic_error_from_counts(c, q).to_f64();
+                let e = (got - want).abs();
+                assert!(
+                    e <= bound,
+                    "{} L = {l}, M = {m}, c_l = {c}, p = {q}: {got} vs {want} (bound {bound})",
+                    S::NAME
+                );
+                worst = worst.max(e / bound);
+            }
+        }
+        worst
+    }
+
+    /// The count-based kinematic error (phase form, binary angles,
+    /// `cos_turn`) agrees with `f64` eq. (3.7) within the derived bound on
+    /// I16F16 and f32, for Table 3.2 and a larger model with an offset,
+    /// with power-of-two and other encoder resolutions.
+    #[test]
+    fn kinematic_error_from_counts_within_bound() {
+        let larger = KinematicErrorModel {
+            coefficients: [2e-4, 3e-4, -1e-4, -2e-4, 1.5e-4, 1e-4, -3e-4],
+        };
+        let mut worst = [0.0f64; 2];
+        for k in [KinematicErrorModel::table_3_2(), larger] {
+            for (l, m) in [(L, M), (100_000, 4096), (36_000, 1000), (1 << 20, 3)] {
+                worst[0] = worst[0].max(ke_count_worst::<I16F16>(k, l, m));
+                worst[1] = worst[1].max(ke_count_worst::<f32>(k, l, m));
+            }
+        }
+        std::eprintln!(
+            "kinematic error from counts, worst error / bound: I16F16 {:.3}, f32 {:.3}",
+            worst[0],
+            worst[1]
+        );
+        // The bound is not vacuous: the errors reach a visible part of it.
+        assert!(worst.iter().all(|&w| w > 0.05), "worst / bound: {worst:?}");
+    }
+
+    /// `update` subtracts exactly the count-based kinematic error.
+    #[test]
+    fn update_subtracts_the_count_based_kinematic_error() {
+        let p = params(Some(KinematicErrorModel::table_3_2()));
+        let cfg = TorqueEstimatorConfig::<I16F16>::new(&p);
+        let tw = I16F16::from_num(3);
+        for (c_l, pos) in [
+            (0u32, 0i64),
+            (L / 4, 12_345),
+            (L - 1, 199_999),
+            (77_777, 3_333),
+        ] {
+            let with = cfg.update(&mut cfg.state(pos, 0), c_l, 0, tw);
+            let ke = cfg.kinematic_error_from_counts(c_l, (pos % M as i64) as u32);
+            assert_ne!(ke, I16F16::ZERO);
+            assert_eq!(with.flexspline_torsion, {
+                let none = TorqueEstimatorConfig::<I16F16>::new(&params(None));
+                none.update(&mut none.state(pos, 0), c_l, 0, tw)
+                    .flexspline_torsion
+                    - ke
+            });
         }
     }
 

@@ -153,7 +153,9 @@ impl KinematicErrorModel {
     /// The regressor of eq. (3.7) from `(sin, cos)` of the link and motor
     /// angles, on any backend (the second motor harmonic by the
     /// double-angle identities). The one definition of the model's basis:
-    /// the fit, [`evaluate`](Self::evaluate) and the torque estimator use it.
+    /// the fit, [`evaluate`](Self::evaluate) and the torque estimator's
+    /// radian path use it (its count path uses the equivalent
+    /// [`phase_form`](Self::phase_form)).
     #[inline]
     pub fn regressor_from_trig<S: Scalar>(link: (S, S), motor: (S, S)) -> [S; 7] {
         let (sl, cl) = link;
@@ -181,10 +183,62 @@ impl KinematicErrorModel {
         r.iter().zip(&self.coefficients).map(|(a, b)| a * b).sum()
     }
 
+    /// Eq. (3.7) in amplitude–phase form (see [`KinematicErrorPhaseForm`]):
+    /// each pair `a cos x + b sin x` of the regressor
+    /// [`regressor_from_trig`](Self::regressor_from_trig) becomes
+    /// `R cos(x − φ)` with `R = √(a² + b²)` and `φ = atan2(b, a)`, since
+    /// `R cos(x − φ) = R cos φ cos x + R sin φ sin x`.
+    pub fn phase_form(&self) -> KinematicErrorPhaseForm {
+        let c = &self.coefficients;
+        let pair = |a: f64, b: f64| (libm::hypot(a, b), libm::atan2(b, a));
+        let (rl, pl) = pair(c[1], c[2]);
+        let (r1, p1) = pair(c[3], c[4]);
+        let (r2, p2) = pair(c[5], c[6]);
+        KinematicErrorPhaseForm {
+            offset: c[0],
+            amplitudes: [rl, r1, r2],
+            phases: [pl, p1, p2],
+        }
+    }
+
     /// Largest |θ_err| bound from the coefficients: `|a0| + Σ √(a² + b²)`.
     pub fn amplitude_bound(&self) -> f64 {
         let c = &self.coefficients;
         c[0].abs() + libm::hypot(c[1], c[2]) + libm::hypot(c[3], c[4]) + libm::hypot(c[5], c[6])
+    }
+}
+
+/// Eq. (3.7) in amplitude–phase form:
+///
+/// $$ \theta_{err} = a_0 + R_l\cos(\theta_{fo} - \varphi_l)
+///   + R_1\cos(\theta_{wi} - \varphi_1) + R_2\cos(2\theta_{wi} - \varphi_2) $$
+///
+/// with `R_l = √(a_l1² + b_l1²)`, `φ_l = atan2(b_l1, a_l1)` and likewise
+/// for the first and second motor harmonics (`a_w1, b_w1`, `a_w2, b_w2`).
+/// The same function as [`KinematicErrorModel::evaluate`] (a trigonometric
+/// identity), evaluated with three cosines and three products and no
+/// double-angle terms: the form the torque estimator computes per sample
+/// from binary angles ([`Scalar::cos_turn`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct KinematicErrorPhaseForm {
+    /// Constant term `a_0`, rad.
+    pub offset: f64,
+    /// Amplitudes `[R_l, R_1, R_2]`, rad, `≥ 0`.
+    pub amplitudes: [f64; 3],
+    /// Phases `[φ_l, φ_1, φ_2]`, rad, in `[−π, π]` (`φ_2` is a phase of
+    /// the doubled motor angle `2θ_wi`).
+    pub phases: [f64; 3],
+}
+
+impl KinematicErrorPhaseForm {
+    /// Eq. (3.7) in this form at a link angle `θ_fo` and a motor angle
+    /// `θ_wi` (rad); the kinematic error in rad.
+    pub fn evaluate(&self, link_angle: f64, motor_angle: f64) -> f64 {
+        let (r, p) = (&self.amplitudes, &self.phases);
+        self.offset
+            + r[0] * libm::cos(link_angle - p[0])
+            + r[1] * libm::cos(motor_angle - p[1])
+            + r[2] * libm::cos(2.0 * motor_angle - p[2])
     }
 }
 
@@ -356,6 +410,41 @@ mod tests {
                 prop_assert!((g - t).abs() <= 2e-7 + 1e-9, "{g} vs {t}");
             }
         }
+    }
+
+    proptest! {
+        /// The phase form is the same function as the regressor form (a
+        /// trigonometric identity): equal to rounding at any angles, for
+        /// coefficients of either sign, including Table 3.2.
+        #[test]
+        fn phase_form_equals_evaluate(
+            c in proptest::array::uniform7(-1e-3f64..1e-3),
+            link in -10.0f64..10.0, motor in -1e3f64..1e3, table: bool,
+        ) {
+            let m = if table { KinematicErrorModel::table_3_2() } else { KinematicErrorModel { coefficients: c } };
+            let p = m.phase_form();
+            let (a, b) = (m.evaluate(link, motor), p.evaluate(link, motor));
+            // |θ_err| ≤ 3.2e-3 rad; both sides round a few f64 operations
+            // on angles up to 2e3 rad (argument error ≈ 2e3 · 2⁻⁵³).
+            prop_assert!((a - b).abs() <= 1e-15, "{a} vs {b}");
+            prop_assert!(p.amplitudes.iter().all(|&r| r >= 0.0));
+        }
+    }
+
+    /// Hand-derived phase form of one pair: `−1·cos x + 1·sin x =
+    /// √2 cos(x − 3π/4)`.
+    #[test]
+    fn phase_form_of_a_known_pair() {
+        let m = KinematicErrorModel {
+            coefficients: [0.5, -1.0, 1.0, 0.0, 2.0, 3.0, 0.0],
+        };
+        let p = m.phase_form();
+        assert_eq!(p.offset, 0.5);
+        assert!((p.amplitudes[0] - 2f64.sqrt()).abs() < 1e-15);
+        assert!((p.phases[0] - 3.0 * PI / 4.0).abs() < 1e-15);
+        // 2 sin w = 2 cos(w − π/2); 3 cos 2w: R = 3, φ = 0.
+        assert_eq!((p.amplitudes[1], p.phases[1]), (2.0, PI / 2.0));
+        assert_eq!((p.amplitudes[2], p.phases[2]), (3.0, 0.0));
     }
 
     #[test]

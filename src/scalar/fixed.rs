@@ -271,6 +271,10 @@ impl Scalar for I16F16 {
         kernels::i16f16::sin_cos(self)
     }
     #[inline]
+    fn cos_turn(turn: u32) -> Self {
+        kernels::i16f16::cos_turn(turn)
+    }
+    #[inline]
     fn atan2(self, x: Self) -> Self {
         kernels::i16f16::atan2(self, x)
     }

@@ -139,6 +139,10 @@ macro_rules! float_scalar {
                 kernels::$k::sin_cos(self)
             }
             #[inline]
+            fn cos_turn(turn: u32) -> Self {
+                kernels::$k::cos_turn(turn)
+            }
+            #[inline]
             fn atan2(self, x: Self) -> Self {
                 kernels::$k::atan2(self, x)
             }

@@ -146,6 +146,17 @@ pub trait Scalar:
     fn cos(self) -> Self;
     /// `(sin, cos)` of one angle, sharing the argument reduction.
     fn sin_cos(self) -> (Self, Self);
+    /// Cosine of a binary angle, `cos(2π · turn / 2³²)`: `turn` is an
+    /// angle in units of `2⁻³²` turn, so angle sums, differences and
+    /// multiples are exact wrapping `u32` operations and the kernel's range
+    /// reduction is exact integer work. Exactly even
+    /// (`cos_turn(t) = cos_turn(t.wrapping_neg())`) and `|result| ≤ 1` on
+    /// every backend. Bounds (`proofs/kernels_turn.rs`): `f32` ≤ 2⁻²²
+    /// absolute and `I16F16` ≤ 1 LSB (2⁻¹⁶), both proven at all 2³²
+    /// angles; `f64` < 1e-15 (tested at the edges, a stride and random
+    /// angles).
+    /// Used by the kinematic error of eq. (3.7) in the torque estimator.
+    fn cos_turn(turn: u32) -> Self;
     /// Four-quadrant arctangent of `self / x` (`self` is `y`), in `[-π, π]`;
     /// `atan2(0, 0) = 0`.
     fn atan2(self, x: Self) -> Self;
@@ -203,6 +214,69 @@ pub trait Scalar:
             }
         }
     }
+}
+
+/// Conversion of an encoder count to a binary angle (a `u32` in units of
+/// `2⁻³²` turn, the argument of [`Scalar::cos_turn`]) for an encoder of `L`
+/// counts per revolution, prepared once with no run-time division.
+///
+/// `turn(c) = c·k_hi + ⌊c·k_lo / 2³²⌋ (mod 2³²)` with
+/// `k_hi = ⌊2³²/L⌋ mod 2³²` and `k_lo = round(frac(2³²/L)·2³²)`. For
+/// `c < L` the result differs from the exact `c·2³²/L` by less than
+/// `1 + c·2⁻³³ < 1.5` units of `2⁻³²` turn (`1.5 · 2π/2³² = 2.2e-9` rad):
+/// `k_lo` is within ½ of `frac(2³²/L)·2³²` (at most `c/2³³` after the
+/// product) and the floor loses less than 1. A power-of-two `L` is exact
+/// (`k_lo = 0`). On Armv6-M the high word comes from
+/// `fixed::wide_mul` (four 16-bit products, no `__aeabi_lmul`).
+///
+/// ```
+/// use mrr_control::scalar::CountToTurn;
+/// // 90° of a 1000-count encoder: a quarter turn, 2³⁰, within 1.5 units.
+/// let t = CountToTurn::new(1000).turn(250);
+/// assert!((t as i64 - (1i64 << 30)).abs() <= 1);
+/// // A power-of-two resolution is exact.
+/// assert_eq!(CountToTurn::new(1 << 17).turn(3), 3 << 15);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CountToTurn {
+    hi: u32,
+    lo: u32,
+}
+
+impl CountToTurn {
+    /// Prepare the conversion for `counts_per_rev = L ≥ 1` counts per
+    /// revolution (`L = 0` is treated as 1: every angle is 0).
+    pub fn new(counts_per_rev: u32) -> Self {
+        let l = counts_per_rev.max(1) as u64;
+        let whole = (1u64 << 32) / l; // 2³² for L = 1: wraps to 0 below
+        let rem = (1u64 << 32) % l;
+        // round(rem·2³²/L) < 2³² because rem ≤ L − 1 < 2³².
+        let lo = ((rem << 32) + l / 2) / l;
+        CountToTurn {
+            hi: whole as u32,
+            lo: lo as u32,
+        }
+    }
+
+    /// The binary angle (units of `2⁻³²` turn) of count `c`, for `c < L`
+    /// within 1.5 units of `c·2³²/L` (see the type docs).
+    #[inline]
+    pub fn turn(&self, c: u32) -> u32 {
+        let (frac, _) = fixed::wide_mul(c, self.lo);
+        c.wrapping_mul(self.hi).wrapping_add(frac)
+    }
+}
+
+/// A phase in radians as a binary angle (units of `2⁻³²` turn), rounded to
+/// nearest (error `≤ π/2³² = 7.3e-10` rad), wrapped to `[0, 2³²)`;
+/// non-finite input gives 0.
+pub fn turn_from_radians(rad: f64) -> u32 {
+    if !rad.is_finite() {
+        return 0;
+    }
+    let turns = rad / core::f64::consts::TAU;
+    let frac = turns - libm::floor(turns); // [0, 1]
+    (libm::round(frac * 4_294_967_296.0) as u64 & 0xFFFF_FFFF) as u32
 }
 
 /// A constant coefficient prepared once for every backend: the factor of
@@ -501,5 +575,48 @@ mod tests {
         assert_eq!(1.0f32.sat(f32::NAN), 1.0);
         assert_eq!(I16F16::MIN.sgn(), I16F16::from_num(-1));
         assert_eq!(I16F16::ZERO.sgn(), I16F16::ZERO);
+    }
+
+    /// `c·2³²/L` exactly, as a rational: (numerator in 2⁻³² turn units
+    /// times `L`), reduced modulo one turn.
+    fn exact_turn_times_l(c: u32, l: u32) -> i128 {
+        ((c as i128) << 32).rem_euclid((l as i128) << 32)
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(20_000))]
+        /// `CountToTurn` is within `1 + c·2⁻³³` units of the exact
+        /// `c·2³²/L` (the documented bound), for any `L` and `c < L`.
+        #[test]
+        fn count_to_turn_within_its_bound(l in 1u32..=u32::MAX, c in proptest::prelude::any::<u32>(), pow2 in 0u32..32, use_pow2: bool) {
+            let l = if use_pow2 { 1 << pow2 } else { l };
+            let c = c % l;
+            let got = CountToTurn::new(l).turn(c) as i128;
+            let exact = exact_turn_times_l(c, l); // units·L
+            // Signed distance modulo 2³², in units·L.
+            let m = (1i128 << 32) * l as i128;
+            let mut d = (got * l as i128 - exact).rem_euclid(m);
+            if d > m / 2 {
+                d -= m;
+            }
+            let bound = l as f64 * (1.0 + c as f64 / 8_589_934_592.0);
+            proptest::prop_assert!((d.abs() as f64) < bound, "L = {l}, c = {c}: {d}/{l}");
+            if use_pow2 {
+                proptest::prop_assert_eq!(d, 0);
+            }
+        }
+    }
+
+    #[test]
+    fn turn_from_radians_rounds_and_wraps() {
+        use core::f64::consts::{PI, TAU};
+        assert_eq!(turn_from_radians(0.0), 0);
+        assert_eq!(turn_from_radians(PI), 1 << 31);
+        assert_eq!(turn_from_radians(-PI / 2.0), 3 << 30);
+        assert_eq!(turn_from_radians(TAU), 0);
+        assert_eq!(turn_from_radians(5.0 * TAU + PI / 2.0), 1 << 30);
+        assert_eq!(turn_from_radians(f64::NAN), 0);
+        // Just below a full turn rounds up to 2³² and wraps to 0.
+        assert_eq!(turn_from_radians(TAU - 1e-12), 0);
     }
 }

@@ -96,3 +96,20 @@ pub fn sqrt(x: f64) -> f64 {
         finite_or(libm::sqrt(x), f64::MAX)
     }
 }
+
+/// Cosine of a binary angle: `cos(2π·turn/2³²)`. Exact integer reduction to
+/// the nearest quarter turn (`u = |turn as i32|`, `d = u − k·2³⁰`), then
+/// `libm`'s `cos`/`sin` of `d·2π/2³²` (`|d·2π/2³²| ≤ π/4`); error below
+/// 1e-15, exactly even, `|result| ≤ 1`.
+#[inline]
+pub fn cos_turn(turn: u32) -> f64 {
+    let u = (turn as i32).unsigned_abs(); // [0, 2³¹]
+    let k = (u + (1 << 29)) >> 30; // 0, 1, 2
+    let d = (u as i32).wrapping_sub((k << 30) as i32); // [−2²⁹, 2²⁹]
+    let r = d as f64 * (core::f64::consts::TAU / 4_294_967_296.0);
+    match k {
+        0 => libm::cos(r),
+        1 => -libm::sin(r),
+        _ => -libm::cos(r),
+    }
+}
