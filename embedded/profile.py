@@ -71,6 +71,7 @@ def main():
     if len(groups) != len(addrs):
         sys.exit(f"addr2line gave {len(groups)} groups for {len(addrs)} addresses")
     inner, incl, lines = collections.Counter(), collections.Counter(), collections.Counter()
+    sites = collections.Counter()
     total = sum(hits.values())
     for a, g in zip(addrs, groups):
         frames = [(g[i], g[i + 1]) for i in range(0, len(g) - 1, 2)]
@@ -79,8 +80,14 @@ def main():
         lines[loc(frames[0][1]) + "  " + short(frames[0][0])] += n
         for f in {short(f) for f, _ in frames}:
             incl[f] += n
+        # The call site: the innermost frame in the library outside the
+        # scalar layer (the code that asked for the product or kernel).
+        site = next((fr for fr in frames if "src/" in fr[1] and "/scalar/" not in fr[1]
+                     and "rustc" not in fr[1] and ".cargo" not in fr[1]), frames[-1])
+        sites[loc(site[1]) + "  " + short(site[0])] += n
     print(f"{total} instructions executed (unicorn code hook, condition-failed IT slots not included)\n")
-    for title, c in (("innermost function", inner), ("inclusive (any inline depth)", incl), ("source line", lines)):
+    for title, c in (("innermost function", inner), ("inclusive (any inline depth)", incl), ("source line", lines),
+                     ("call site outside the scalar layer", sites)):
         print(f"-- by {title}")
         for k, n in c.most_common(args.top):
             print(f"{n:7d}  {k}")
