@@ -631,7 +631,7 @@ def all_steps(quick=False):
         Step("torque estimation", "M0+", "I16F16", "est_i16f16", "est_cordic_i16f16", est_vectors(EST_T_X, lambda: xw(RNG.uniform(-2000, 2000))), prepare="prepare_est", per_joint=True, decode=lambda o: x_of(o[0])),
         Step("joint step", "M4F", "f32", "joint_f32", "joint_libm_f32", JOINT_F32, prepare="prepare_joint", per_joint=True, max_insns=800, decode=lambda o: f32_of(o[0]), report_only=JOINT_NOT_MET),
         Step("joint step", "M0+", "I16F16", "joint_i16f16", "joint_cordic_i16f16", JOINT_X, prepare="prepare_joint", per_joint=True, max_insns=4000, max_arm_share=0.12, decode=lambda o: x_of(o[0]), report_only=JOINT_NOT_MET),
-        Step("mulhi (split, black_box)", "M0+", "u32", "mulhi_split_u32", "mulhi_u64_u32",
+        Step("mulhi (split)", "M0+", "u32", "mulhi_split_u32", "mulhi_u64_u32",
              [[0, 0], [0xFFFFFFFF, 0xFFFFFFFF], [0x12345678, 0x9ABCDEF0]]),
     ]
     if quick:

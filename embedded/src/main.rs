@@ -118,8 +118,8 @@ entry!(k_cos_turn_i16f16(t: u32) => kx::cos_turn(t));
 entry!(cordic_cos_turn_i16f16(t: u32) => cordic::cos(I16F16::from_bits(((t as i32 as i64 * 411_775) >> 32) as i32)));
 
 // The `⌊a·b/2³²⌋` building block of the I16F16 kernels, as written in
-// `src/scalar/kernels/i16f16.rs` (four 16×16 products, `black_box` barrier
-// on Arm), against the plain 64-bit product (`__aeabi_lmul` on Armv6-M).
+// `src/scalar/fixed.rs` (four 16×16 products, two add-with-carry steps),
+// against the plain 64-bit product (`__aeabi_lmul` on Armv6-M).
 entry!(mulhi_split_u32(a: u32, b: u32) => reference::mulhi_split(a, b));
 entry!(mulhi_u64_u32(a: u32, b: u32) => ((a as u64 * b as u64) >> 32) as u32);
 

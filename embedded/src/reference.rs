@@ -204,19 +204,16 @@ impl<S: Scalar> RefEstimator<S> {
     }
 }
 
-/// `⌊a·b / 2³²⌋` exactly as the I16F16 kernels compute it (four 16×16
-/// products; `black_box` on Arm keeps LLVM from folding them back into one
-/// 64-bit multiply).
+/// `⌊a·b / 2³²⌋` exactly as the I16F16 kernels compute it: four 16×16
+/// products and two add-with-carry steps (a form LLVM does not fold back
+/// into one 64-bit multiply, so it needs no barrier).
 #[inline(always)]
 pub fn mulhi_split(a: u32, b: u32) -> u32 {
     let (ah, al) = (a >> 16, a & 0xFFFF);
-    #[cfg(target_arch = "arm")]
-    let ah = core::hint::black_box(ah);
     let (bh, bl) = (b >> 16, b & 0xFFFF);
     let ll = al * bl;
-    let lh = al * bh;
-    let hl = ah * bl;
     let hh = ah * bh;
-    let mid = (ll >> 16) + (lh & 0xFFFF) + (hl & 0xFFFF);
-    hh + (lh >> 16) + (hl >> 16) + (mid >> 16)
+    let (mid, c1) = (al * bh).overflowing_add(ah * bl);
+    let (_, c2) = ll.overflowing_add(mid << 16);
+    hh + (mid >> 16) + ((c1 as u32) << 16) + c2 as u32
 }

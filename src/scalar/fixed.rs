@@ -41,27 +41,13 @@ pub(crate) const fn mul_bits_reference(a: i32, b: i32) -> i32 {
     sat_i64(((a as i64) * (b as i64) + (1 << 15)) >> 16)
 }
 
-/// `x` unchanged, hidden from the optimizer on Arm
-/// (`core::hint::black_box`). LLVM recognizes the four-partial-product
-/// idiom of [`wide_mul_split`] and folds it back into one 64-bit multiply —
-/// on Armv6-M an `__aeabi_lmul` call — unless one operand passes through
-/// this barrier. The value is not changed, so host-proven results carry
-/// over bit for bit.
-#[inline(always)]
-pub(crate) fn opaque(x: u32) -> u32 {
-    #[cfg(target_arch = "arm")]
-    let x = core::hint::black_box(x);
-    x
-}
-
 /// The 64-bit product `a·b` as `(high, low)` words.
 ///
 /// On Armv6-M (no `umull`; recognised by its missing 32-bit atomics, since
 /// stable Rust exposes no Thumb-2 feature flag) it is formed from four
 /// 16×16 partial products
-/// (the construction of the kernels' `mulhi`, with the same [`opaque`]
-/// barrier so LLVM does not fold it back into `__aeabi_lmul`); elsewhere the
-/// native widening multiply. Both are exact.
+/// and two add-with-carry steps ([`wide_mul_split`]); elsewhere the native
+/// widening multiply. Both are exact.
 #[inline(always)]
 pub(crate) fn wide_mul(a: u32, b: u32) -> (u32, u32) {
     #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
@@ -84,14 +70,17 @@ pub(crate) fn wide_mul(a: u32, b: u32) -> (u32, u32) {
 )]
 pub(crate) fn wide_mul_split(a: u32, b: u32) -> (u32, u32) {
     let (ah, al) = (a >> 16, a & 0xFFFF);
-    let ah = opaque(ah);
     let (bh, bl) = (b >> 16, b & 0xFFFF);
     let ll = al * bl;
     let hh = ah * bh;
     // a·b = hh·2³² + (lh + hl)·2¹⁶ + ll. The middle sum may carry out of
     // 32 bits (a carry worth 2⁴⁸ = 2¹⁶ in the high word), and its low half
     // shifted up may carry out of the low word: two add-with-carry steps
-    // instead of masking each partial product.
+    // instead of masking each partial product. LLVM does not recognize
+    // this form as a widening multiply, so no optimization barrier is
+    // needed to keep it off `__aeabi_lmul` (a masked form needs one,
+    // `core::hint::black_box`, which costs a stack store and load per
+    // product); the embedded counter shows it if that ever changes.
     let (mid, c1) = (al * bh).overflowing_add(ah * bl);
     let (lo, c2) = ll.overflowing_add(mid << 16);
     let hi = hh + (mid >> 16) + ((c1 as u32) << 16) + c2 as u32;

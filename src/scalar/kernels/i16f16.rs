@@ -117,25 +117,13 @@ const PIO4_BITS: u32 = 51471;
 /// Below this raw input `e^x < 2⁻¹⁷`·0.1: `exp` is 0 without computing.
 const EXP_ZERO_BITS: i32 = -12 << 16;
 
-/// `⌊a·b / 2³²⌋`, exact, from four 16×16→32 products (no 64-bit multiply).
-///
-/// Only the high word is formed: the masked middle sum needs no carry
-/// handling. On Arm the [`opaque`](crate::scalar::fixed::opaque) barrier
-/// keeps LLVM from folding the idiom back into a 64-bit multiply (on
-/// Armv6-M an `__aeabi_lmul` call); it does not change the value, so the
-/// host-proven results carry over bit for bit.
+/// `⌊a·b / 2³²⌋`, exact: the high word of
+/// [`wide_mul`](crate::scalar::fixed::wide_mul) (on Armv6-M four 16×16→32
+/// products with two add-with-carry steps, no `__aeabi_lmul`; elsewhere the
+/// native widening multiply).
 #[inline]
 pub(crate) fn mulhi(a: u32, b: u32) -> u32 {
-    let (ah, al) = (a >> 16, a & 0xFFFF);
-    let ah = crate::scalar::fixed::opaque(ah);
-    let (bh, bl) = (b >> 16, b & 0xFFFF);
-    let ll = al * bl;
-    let lh = al * bh;
-    let hl = ah * bl;
-    let hh = ah * bh;
-    // < 3·2¹⁶: no overflow.
-    let mid = (ll >> 16) + (lh & 0xFFFF) + (hl & 0xFFFF);
-    hh + (lh >> 16) + (hl >> 16) + (mid >> 16)
+    crate::scalar::fixed::wide_mul(a, b).0
 }
 
 /// `⌊n·2ᵏ / d⌋` by restoring division, one quotient bit per step.
