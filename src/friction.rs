@@ -369,11 +369,10 @@ impl<S: Scalar> FrictionConfig<S> {
         let e = theta[3].mul(q2).neg().exp();
         // Outside the velocity layer s = ±1 and its products are free.
         let es = mul_unit(e, s);
-        let y4 = mul_unit(theta[2].mul(q2.mul(e)), s).neg();
-        let torque = theta[0]
-            .mul(qd)
-            .add(mul_unit(theta[1], s))
-            .add(theta[2].mul(es));
+        // f̂_s e s, shared by the torque and Y_4 = −f̂_s q̇² e s.
+        let stribeck = theta[2].mul(es);
+        let y4 = q2.mul(stribeck).neg();
+        let torque = theta[0].mul(qd).add(mul_unit(theta[1], s)).add(stribeck);
         FrictionEval {
             torque,
             regressor: [qd, s, es, y4],

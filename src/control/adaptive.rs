@@ -40,7 +40,7 @@
 //! No division and one `exp` per step; every rate and unit factor is a
 //! prepared [`Coef`].
 
-use super::{keep_number, ControlInput};
+use super::{clamp_or_keep, ControlInput};
 use crate::error::{non_negative, positive, ParamError};
 use crate::friction::{
     mul_unit, parameter_scales, regressor_scales, FrictionBounds, FrictionConfig, FrictionParams,
@@ -586,12 +586,16 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
         let winding = (t.law > l && t.r < S::ZERO) || (t.law < l.neg() && t.r > S::ZERO);
         if !winding {
             let z = st.integral.add(t.r.mul_coef(&self.integral_step));
-            st.integral =
-                keep_number(z, st.integral).clamp(self.integral_limit.neg(), self.integral_limit);
+            st.integral = clamp_or_keep(
+                z,
+                st.integral,
+                self.integral_limit.neg(),
+                self.integral_limit,
+            );
         }
         for j in 0..4 {
             let f = st.friction[j].sub(t.ry[j].mul_coef(&self.adapt[j]));
-            st.friction[j] = keep_number(f, st.friction[j]).clamp(self.lower[j], self.upper[j]);
+            st.friction[j] = clamp_or_keep(f, st.friction[j], self.lower[j], self.upper[j]);
         }
     }
 

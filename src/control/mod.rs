@@ -92,12 +92,85 @@ impl<S: Scalar> ControlInput<S> {
 
 use crate::scalar::Scalar;
 
-/// `new` if it is a number, else `old` (state updates never store NaN).
-#[inline]
-pub(crate) fn keep_number<S: Scalar>(new: S, old: S) -> S {
+/// `new` if it is a number, else `old` (state updates never store NaN);
+/// the reference of [`clamp_or_keep`]'s test.
+#[cfg(test)]
+fn keep_number<S: Scalar>(new: S, old: S) -> S {
     if new.is_nan() {
         old
     } else {
         new
+    }
+}
+
+/// `new` limited to `[lo, hi]` (`lo ≤ hi`), or `old` limited to it when
+/// `new` is NaN, so a state update never stores NaN: equal to
+/// `keep_number(new, old).clamp(lo, hi)` (test below), with two
+/// comparisons on the common path instead of three (a NaN fails both
+/// `new >= lo` and `new < lo`).
+#[inline]
+pub(crate) fn clamp_or_keep<S: Scalar>(new: S, old: S, lo: S, hi: S) -> S {
+    if new >= lo {
+        if new > hi {
+            hi
+        } else {
+            new
+        }
+    } else if new < lo {
+        lo
+    } else {
+        old.clamp(lo, hi)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scalar::I16F16;
+
+    #[test]
+    fn clamp_or_keep_equals_keep_then_clamp() {
+        let vals = [
+            f32::NAN,
+            f32::NEG_INFINITY,
+            -3.0,
+            -1.0,
+            -0.5,
+            -0.0,
+            0.0,
+            0.5,
+            1.0,
+            3.0,
+            f32::INFINITY,
+        ];
+        for &new in &vals {
+            for &old in &vals[1..] {
+                for (lo, hi) in [(-1.0f32, 1.0f32), (0.0, 0.0), (-0.0, 2.0), (0.5, 1.0)] {
+                    let want = Scalar::clamp(keep_number(new, old), lo, hi);
+                    let got = clamp_or_keep(new, old, lo, hi);
+                    assert_eq!(got.to_bits(), want.to_bits(), "{new} {old} {lo} {hi}");
+                }
+            }
+        }
+        let fx = [
+            i32::MIN,
+            -70_000,
+            -65_536,
+            -1,
+            0,
+            1,
+            65_536,
+            70_000,
+            i32::MAX,
+        ]
+        .map(I16F16::from_bits);
+        for &new in &fx {
+            for &old in &fx {
+                for (lo, hi) in [(fx[2], fx[6]), (fx[4], fx[4]), (fx[0], fx[8])] {
+                    let want = Scalar::clamp(keep_number(new, old), lo, hi);
+                    assert_eq!(clamp_or_keep(new, old, lo, hi), want);
+                }
+            }
+        }
     }
 }
