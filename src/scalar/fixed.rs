@@ -29,9 +29,31 @@ pub(crate) const fn sat_i64(v: i64) -> i32 {
 /// 64-bit formula [`mul_bits_reference`] for every pair of operands
 /// (checked at random on the host and exhaustively over edge classes in
 /// the tests below).
+///
+/// When either operand lies in `[−2¹⁵, 2¹⁵)` (a value below 0.5 in
+/// magnitude — small errors, speeds and boundary-layer quantities, the
+/// common case in a control law) the product takes [`mul_bits_short`]: two
+/// 32-bit multiplies and no saturation check.
 #[inline]
 pub(crate) fn mul_bits(a: i32, b: i32) -> i32 {
-    scaled_product((a < 0) != (b < 0), a.unsigned_abs(), b.unsigned_abs(), 16)
+    if b as i16 as i32 == b {
+        mul_bits_short(a, b)
+    } else if a as i16 as i32 == a {
+        mul_bits_short(b, a)
+    } else {
+        scaled_product((a < 0) != (b < 0), a.unsigned_abs(), b.unsigned_abs(), 16)
+    }
+}
+
+/// [`mul_bits`] for `b ∈ [−2¹⁵, 2¹⁵)`, in 32-bit words. With
+/// `a = h·2¹⁶ + l` (`h = a >> 16` signed, `l ∈ [0, 2¹⁶)`):
+/// `⌊(a·b + 2¹⁵)/2¹⁶⌋ = h·b + ⌊(l·b + 2¹⁵)/2¹⁶⌋`, because `h·b·2¹⁶` is a
+/// multiple of 2¹⁶. `|h·b| ≤ 2³⁰` and `l·b + 2¹⁵ ∈ (−2³¹, 2³¹)`, so nothing
+/// overflows, and `|a·b|/2¹⁶ ≤ 2³⁰` never saturates.
+#[inline(always)]
+fn mul_bits_short(a: i32, b: i32) -> i32 {
+    let (h, l) = (a >> 16, a & 0xFFFF);
+    h * b + ((l * b + (1 << 15)) >> 16)
 }
 
 /// The straightforward 64-bit form of [`mul_bits`], the reference of its
@@ -303,6 +325,20 @@ mod tests {
     }
 
     #[test]
+    fn mul_bits_short_path_equals_the_64_bit_formula_at_its_edges() {
+        // Every operand of the short range (and one beyond each end),
+        // against every edge word and the magnitudes that maximize l·b.
+        let mut w = edge_words();
+        w.extend([0xFFFF, -0xFFFF, 0x7FFF_FFFF, 0x1_FFFF, -0x1_0001]);
+        for b in (-32769..=32768).step_by(1) {
+            for &a in &w {
+                assert_eq!(mul_bits(a, b), mul_bits_reference(a, b), "{a} {b}");
+                assert_eq!(mul_bits(b, a), mul_bits_reference(b, a), "{b} {a}");
+            }
+        }
+    }
+
+    #[test]
     fn mul_bits_equals_the_64_bit_formula_on_edge_classes() {
         let w = edge_words();
         for &a in &w {
@@ -318,6 +354,13 @@ mod tests {
         #[test]
         fn mul_bits_equals_the_64_bit_formula(a in proptest::prelude::any::<i32>(), b in proptest::prelude::any::<i32>()) {
             proptest::prop_assert_eq!(mul_bits(a, b), mul_bits_reference(a, b));
+        }
+
+        /// The same with one operand in the short range (the fast path).
+        #[test]
+        fn mul_bits_short_equals_the_64_bit_formula(a in proptest::prelude::any::<i32>(), b in -32768i32..32768) {
+            proptest::prop_assert_eq!(mul_bits(a, b), mul_bits_reference(a, b));
+            proptest::prop_assert_eq!(mul_bits(b, a), mul_bits_reference(b, a));
         }
 
         /// `scaled_product` equals the i128 formula for every shift.
