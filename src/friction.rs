@@ -277,6 +277,23 @@ pub fn sat_with_reciprocal<S: Scalar>(x: S, eps: S, inv_eps: &Coef) -> S {
     }
 }
 
+/// [`sat_with_reciprocal`] with `1/ε` as a stored value `inv` (a plain
+/// product inside the layer instead of a coefficient product): the same
+/// properties (clamped to `[−1, 1]`, odd, non-decreasing, NaN gives 0),
+/// and equal to `x/ε` up to the rounding of `inv` and of the product.
+#[inline]
+pub(crate) fn sat_with_inverse<S: Scalar>(x: S, eps: S, inv: S) -> S {
+    if x > eps {
+        S::ONE
+    } else if x < eps.neg() {
+        S::ONE.neg()
+    } else if x.is_nan() {
+        S::ZERO
+    } else {
+        x.mul(inv).clamp(S::ONE.neg(), S::ONE)
+    }
+}
+
 /// `x · s` for a factor `s ∈ [−1, 1]` that is often exactly `±1` (a
 /// saturated `sat`): those cases skip the multiply (on a Cortex-M0+ an
 /// `I16F16` product is a 64-bit multiply); floats always multiply.
@@ -305,6 +322,12 @@ pub(crate) fn mul_unit<S: Scalar>(x: S, s: S) -> S {
 pub struct FrictionConfig<S> {
     eps: S,
     inv_eps: Coef,
+    /// `1/ε_q̇` as a stored value when it is at most 2¹⁴ (every layer above
+    /// 6.1e-5 rad/s): inside the layer `|q̇| ≤ ε_q̇`, so on `I16F16` the
+    /// product `q̇ · (1/ε_q̇)` has an operand below 0.5 and takes the
+    /// two-multiply path of the `I16F16` product; `None` falls back to the
+    /// coefficient product.
+    inv_eps_value: Option<S>,
 }
 
 /// The nominal friction torque and regressor at one speed.
@@ -322,9 +345,11 @@ impl<S: Scalar> FrictionConfig<S> {
     /// the owning component).
     pub fn new(eps_velocity: f64) -> Self {
         let eps = S::from_f64(eps_velocity * S::UNITS.speed);
+        let inv = 1.0 / eps.to_f64();
         FrictionConfig {
             eps,
-            inv_eps: Coef::new(1.0 / eps.to_f64()),
+            inv_eps: Coef::new(inv),
+            inv_eps_value: (inv <= 16384.0).then(|| S::from_f64(inv)),
         }
     }
 
@@ -364,7 +389,13 @@ impl<S: Scalar> FrictionConfig<S> {
     /// they should.
     #[inline]
     pub fn evaluate(&self, theta: &[S; 4], qd: S) -> FrictionEval<S> {
-        let s = sat_with_reciprocal(qd, self.eps, &self.inv_eps);
+        // Fixed point only (folded at compile time): a float product by the
+        // coefficient is already one multiply.
+        let fixed = S::RESOLUTION.to_f64() >= 1e-6;
+        let s = match self.inv_eps_value {
+            Some(inv) if fixed => sat_with_inverse(qd, self.eps, inv),
+            _ => sat_with_reciprocal(qd, self.eps, &self.inv_eps),
+        };
         let q2 = qd.mul(qd);
         let e = theta[3].mul(q2).neg().exp();
         // Outside the velocity layer s = ±1 and its products are free.
@@ -540,6 +571,24 @@ mod tests {
             let invf = Coef::new(1.0 / ef as f64);
             let af = sat_with_reciprocal(xf, ef, &invf);
             prop_assert!((af - xf.sat(ef)).abs() <= 2.0 * f32::EPSILON);
+        }
+
+        /// `sat_with_inverse` on I16F16 matches the division form within
+        /// the rounding of `1/ε` (≤ |x|·2⁻¹⁷ ≤ ε·2⁻¹⁷) and of the product
+        /// (½ LSB), stays in [−1, 1], is odd and non-decreasing.
+        #[test]
+        fn inverse_sat_matches_eq_4_18_on_i16f16(x in -1.0f64..1.0, dx in 1i32..64, eps in 1e-4f64..0.5) {
+            let e = I16F16::from_f64(eps);
+            let inv = I16F16::from_f64(1.0 / e.to_f64());
+            let xq = I16F16::from_f64(x);
+            let a = sat_with_inverse(xq, e, inv);
+            let want = xq.to_f64().sat(e.to_f64());
+            let q = 1.0 / 65536.0;
+            prop_assert!((a.to_f64() - want).abs() <= 0.5 * q + e.to_f64() * q / 2.0 + 1e-12);
+            prop_assert!(a >= -I16F16::ONE && a <= I16F16::ONE);
+            prop_assert_eq!(sat_with_inverse(xq.neg(), e, inv), a.neg());
+            let up = I16F16::from_bits(xq.to_bits().saturating_add(dx));
+            prop_assert!(sat_with_inverse(up, e, inv) >= a);
         }
     }
 

@@ -444,7 +444,17 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         // p < MN and every product below are exact in 64 bits (LMN ≤ 2⁴⁶
         // is validated); `mul_wide` keeps them off `__aeabi_lmul` on
         // Armv6-M.
-        let p = mul_wide(st.motor_turn, self.m as i64) + st.motor_in_turn as i64;
+        let armv6m = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
+        let p = if armv6m && mn >> 32 == 0 {
+            // Armv6-M (no long multiply) with MN < 2³² (every drive of
+            // Table 3.1 with M < 2¹⁵): one 32-bit multiply, and
+            // turn·M + in_turn < MN cannot wrap.
+            st.motor_turn
+                .wrapping_mul(self.m)
+                .wrapping_add(st.motor_in_turn) as i64
+        } else {
+            mul_wide(st.motor_turn, self.m as i64) + st.motor_in_turn as i64
+        };
         // D ∈ [0, 2·LMN); reduce to [−LMN/2, LMN/2).
         let mut d = mul_wide(c_l, mn) + mul_wide(self.l, p);
         if d >= half {
