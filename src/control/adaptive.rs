@@ -45,7 +45,7 @@ use crate::error::{non_negative, positive, ParamError};
 use crate::friction::{
     mul_unit, parameter_scales, regressor_scales, FrictionBounds, FrictionConfig, FrictionParams,
 };
-use crate::scalar::{units, Coef, Scalar};
+use crate::scalar::{units, Coef, Gain, Scalar};
 
 /// The uncertainty bounds of Assumptions 3–6, eq. (4.11)–(4.14).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -321,9 +321,9 @@ pub struct RobustAdaptiveConfig<S> {
     /// formed as `I_m q̈_d − λ I_m (ė + r)`, see [`law`](Self::law)).
     lambda_inertia: Coef,
     /// `λ` from stored angle to stored speed.
-    lambda: Coef,
+    lambda: Gain<S>,
     /// `1/N` from stored link torque to stored motor torque.
-    feedback: Coef,
+    feedback: Gain<S>,
     /// `K_I T` from stored speed to stored motor torque.
     integral_step: Coef,
     /// `±1 · K_r` as the coefficient `K_r` (stored motor torque) rounds
@@ -433,8 +433,8 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
             friction: FrictionConfig::new(d.eps_velocity),
             accel_inertia: Coef::new(d.rotor_inertia * mt / u.speed),
             lambda_inertia: Coef::new(d.lambda * d.rotor_inertia * mt / u.speed),
-            lambda: Coef::new(d.lambda * u.speed / u.angle),
-            feedback: Coef::new(mt / (d.ratio * u.link_torque)),
+            lambda: Gain::new(d.lambda * u.speed / u.angle),
+            feedback: Gain::new(mt / (d.ratio * u.link_torque)),
             integral_step: Coef::new(d.integral_gain * d.sample_period * mt / u.speed),
             robust_gain_value: [
                 S::ONE.mul_coef(&Coef::new(d.robust_gain() * mt)),
@@ -510,7 +510,7 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
     pub(crate) fn law(&self, st: &RobustAdaptiveState<S>, x: &ControlInput<S>) -> ActiveTerms<S> {
         let e = x.motor_position.sub(x.desired_position);
         let ed = x.motor_velocity.sub(x.desired_velocity);
-        let r = ed.add(e.mul_coef(&self.lambda));
+        let r = ed.add(self.lambda.apply(e));
         // I_m a = I_m q̈_d − 2λ I_m ė − λ² I_m e = I_m q̈_d − λ I_m (ė + r)
         // (r = ė + λe): two products instead of three.
         let ia = x
@@ -548,7 +548,7 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
             param_robust = param_robust.add(term);
         }
         let law = ia
-            .add(x.joint_torque.mul_coef(&self.feedback))
+            .add(self.feedback.apply(x.joint_torque))
             .add(fr.torque)
             .sub(st.integral)
             .sub(robust)

@@ -76,7 +76,7 @@ use crate::error::{positive, ParamError};
 use crate::estimation::collision::{
     CollisionConfig, CollisionParams, CollisionReaction, CollisionState,
 };
-use crate::scalar::{Coef, Scalar};
+use crate::scalar::{Coef, Gain, Scalar};
 
 /// The operating mode of a joint.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -203,9 +203,9 @@ pub struct ModeConfig<S> {
     debounce: u16,
     dwell: u16,
     /// `2ω`, speed → speed/s.
-    two_omega: Coef,
+    two_omega: Gain<S>,
     /// `ω²`, angle → speed/s.
-    omega_sq: Coef,
+    omega_sq: Gain<S>,
     /// `T`, speed/s → speed.
     step_rate: Coef,
     /// `T`, speed → angle.
@@ -300,8 +300,8 @@ impl<S: Scalar> ModeConfig<S> {
             exit_passive: S::from_f64(p.exit_passive * u.link_torque),
             debounce: p.debounce,
             dwell: p.dwell,
-            two_omega: Coef::new(2.0 * w),
-            omega_sq: Coef::new(w * w * u.speed / u.angle),
+            two_omega: Gain::new(2.0 * w),
+            omega_sq: Gain::new(w * w * u.speed / u.angle),
             step_rate: Coef::new(t),
             step_position: Coef::new(t * u.angle / u.speed),
             bias_decay: Coef::new(1.0 - t / p.bias_time_constant),
@@ -365,10 +365,10 @@ impl<S: Scalar> ModeConfig<S> {
                 (xr, S::ZERO)
             }
             _ => {
-                let acc = st
-                    .offset_rate
-                    .mul_coef(&self.two_omega)
-                    .add(st.offset.mul_coef(&self.omega_sq))
+                let acc = self
+                    .two_omega
+                    .apply(st.offset_rate)
+                    .add(self.omega_sq.apply(st.offset))
                     .neg();
                 xr.desired_position = x.desired_position.add(st.offset);
                 xr.desired_velocity = x.desired_velocity.add(st.offset_rate);

@@ -279,6 +279,45 @@ pub fn turn_from_radians(rad: f64) -> u32 {
     (libm::round(frac * 4_294_967_296.0) as u64 & 0xFFFF_FFFF) as u32
 }
 
+/// A constant factor of a control law: a [`Coef`], plus the backend's own
+/// value of it when that value is exact (fixed point; e.g. `λ = 120`,
+/// `1/N = 0.01` in mN·m per N·m, `ω² = 100`). An exact value's product
+/// [`Scalar::mul`] rounds `x·c` to nearest with ties up and saturates, as
+/// [`Scalar::mul_coef`] does, so the results are bit-identical; on
+/// Armv6-M it is the cheaper product (a fixed shift, and two multiplies
+/// when an operand is below 0.5).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Gain<S> {
+    coef: Coef,
+    exact: Option<S>,
+}
+
+impl<S: Scalar> Gain<S> {
+    /// Prepare `value` (configuration time).
+    pub(crate) fn new(value: f64) -> Self {
+        let coef = Coef::new(value);
+        let fixed = S::RESOLUTION.to_f64() >= 1e-6;
+        let v = S::from_f64(value);
+        let exact = fixed && value.is_finite() && v.to_f64() == value && coef.value() == value;
+        Gain {
+            coef,
+            exact: exact.then_some(v),
+        }
+    }
+
+    /// `x · value`.
+    #[inline]
+    pub(crate) fn apply(&self, x: S) -> S {
+        // Floats never hold an exact value (folded at compile time).
+        if S::RESOLUTION.to_f64() >= 1e-6 {
+            if let Some(v) = self.exact {
+                return x.mul(v);
+            }
+        }
+        x.mul_coef(&self.coef)
+    }
+}
+
 /// A constant coefficient prepared once for every backend: the factor of
 /// [`Scalar::mul_coef`] and [`Scalar::from_counts`].
 ///
@@ -412,6 +451,53 @@ mod tests {
     /// Coefficients beyond 2^40 saturate every non-zero product instead of
     /// overflowing the 64-bit intermediate (found by fuzzing the control
     /// configurations), and their `f32` value stays finite.
+    #[test]
+    fn gain_with_an_exact_value_equals_the_coefficient_product() {
+        let mut xs: Vec<i32> = vec![
+            0,
+            1,
+            -1,
+            i32::MAX,
+            i32::MIN,
+            1 << 15,
+            -(1 << 15),
+            32767,
+            -32769,
+        ];
+        let mut v = 0x9E37_79B9u32;
+        for _ in 0..20_000 {
+            v ^= v << 13;
+            v ^= v >> 17;
+            v ^= v << 5;
+            xs.push((v as i32) >> (v % 24));
+        }
+        for value in [
+            120.0,
+            10.0,
+            100.0,
+            20.0,
+            0.01f64,
+            0.5,
+            -3.25,
+            1.0 / 65536.0,
+            32767.0,
+            1e-3,
+            0.1,
+        ] {
+            let g = Gain::<I16F16>::new(value);
+            let c = Coef::new(value);
+            let exact = I16F16::from_f64(value).to_f64() == value;
+            assert_eq!(g.exact.is_some(), exact, "{value}");
+            for &x in &xs {
+                let x = I16F16::from_bits(x);
+                assert_eq!(g.apply(x), x.mul_coef(&c), "{value} {x}");
+            }
+            let gf = Gain::<f32>::new(value);
+            assert!(gf.exact.is_none());
+            assert_eq!(gf.apply(1.5f32), 1.5f32.mul_coef(&c));
+        }
+    }
+
     #[test]
     fn huge_coefficients_saturate() {
         for v in [2f64.powi(41), 1e15, 1e300, f64::MAX] {
