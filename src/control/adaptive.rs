@@ -325,7 +325,7 @@ pub struct RobustAdaptiveConfig<S> {
     /// `1/N` from stored link torque to stored motor torque.
     feedback: Gain<S>,
     /// `K_I T` from stored speed to stored motor torque.
-    integral_step: Coef,
+    integral_step: Gain<S>,
     /// `±1 · K_r` as the coefficient `K_r` (stored motor torque) rounds
     /// them: the robust term outside the layer `|r| > ε_r`.
     robust_gain_value: [S; 2],
@@ -435,7 +435,7 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
             lambda_inertia: Coef::new(d.lambda * d.rotor_inertia * mt / u.speed),
             lambda: Gain::new(d.lambda * u.speed / u.angle),
             feedback: Gain::new(mt / (d.ratio * u.link_torque)),
-            integral_step: Coef::new(d.integral_gain * d.sample_period * mt / u.speed),
+            integral_step: Gain::new(d.integral_gain * d.sample_period * mt / u.speed),
             robust_gain_value: [
                 S::ONE.mul_coef(&Coef::new(d.robust_gain() * mt)),
                 S::ONE.neg().mul_coef(&Coef::new(d.robust_gain() * mt)),
@@ -585,7 +585,7 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
         // z enters with a minus sign: r > 0 raises z and lowers τ.
         let winding = (t.law > l && t.r < S::ZERO) || (t.law < l.neg() && t.r > S::ZERO);
         if !winding {
-            let z = st.integral.add(t.r.mul_coef(&self.integral_step));
+            let z = st.integral.add(self.integral_step.apply(t.r));
             st.integral = clamp_or_keep(
                 z,
                 st.integral,

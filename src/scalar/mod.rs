@@ -297,8 +297,11 @@ impl<S: Scalar> Gain<S> {
     pub(crate) fn new(value: f64) -> Self {
         let coef = Coef::new(value);
         let fixed = S::RESOLUTION.to_f64() >= 1e-6;
-        let v = S::from_f64(value);
-        let exact = fixed && value.is_finite() && v.to_f64() == value && coef.value() == value;
+        // The coefficient's own (31-bit) value: when the backend holds it
+        // exactly, both products round the same real number.
+        let q = coef.quantized();
+        let v = S::from_f64(q);
+        let exact = fixed && q != 0.0 && v.to_f64() == q;
         Gain {
             coef,
             exact: exact.then_some(v),
@@ -371,6 +374,12 @@ impl Coef {
     /// The value this coefficient was built from.
     pub fn value(&self) -> f64 {
         self.value
+    }
+
+    /// The value the fixed-point products use, `mult · 2^-shift` (the
+    /// 31-bit rounding of [`value`](Self::value)).
+    pub(crate) fn quantized(&self) -> f64 {
+        self.mult as f64 * libm::exp2(-self.shift as f64)
     }
 
     /// `round(x · c · 2^extra)` saturated to `i32`, for an integer `x`
@@ -486,7 +495,8 @@ mod tests {
         ] {
             let g = Gain::<I16F16>::new(value);
             let c = Coef::new(value);
-            let exact = I16F16::from_f64(value).to_f64() == value;
+            let q = c.quantized();
+            let exact = q != 0.0 && I16F16::from_f64(q).to_f64() == q;
             assert_eq!(g.exact.is_some(), exact, "{value}");
             for &x in &xs {
                 let x = I16F16::from_bits(x);
