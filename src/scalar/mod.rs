@@ -262,6 +262,11 @@ impl CountToTurn {
     /// within 1.5 units of `c·2³²/L` (see the type docs).
     #[inline]
     pub fn turn(&self, c: u32) -> u32 {
+        if cfg!(all(target_arch = "arm", not(target_has_atomic = "32"))) && self.lo == 0 {
+            // L a power of two (or 1): exact with one multiply (Armv6-M,
+            // where the wide product is four).
+            return c.wrapping_mul(self.hi);
+        }
         let (frac, _) = fixed::wide_mul(c, self.lo);
         c.wrapping_mul(self.hi).wrapping_add(frac)
     }
