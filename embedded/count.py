@@ -548,9 +548,10 @@ def joint_vectors(f):
 
 
 # Reason printed while the joint-step budgets are not met (None: asserted).
-JOINT_NOT_MET = ("budget not met: worst case at a Hold -> Active switch; M0+ about 1,900 in the estimate "
-                 "(tan, exp, eq. 3.7 with three cos_turn) and 4,300 in the mode step (Coef products, sat, "
-                 "friction, exp); M4F about 420 in the estimate and 610 in the mode step")
+JOINT_NOT_MET = ("instruction budget not met: worst case at a Hold -> Active switch with every boundary layer "
+                 "active; M0+ = estimate (<= 1,648: tan with its bit-serial division ~720, two exp, three "
+                 "cos_turn) + mode step (~2,500: about 20 coefficient products of ~60 instructions each); "
+                 "M4F = estimate (<= 423) + mode step (~510)")
 
 JOINT_F32 = joint_vectors(f32w)
 JOINT_X = joint_vectors(xw)
