@@ -266,15 +266,7 @@ pub(crate) fn regressor_scales<S: Scalar>() -> [f64; 4] {
 /// `[−1, 1]`, odd, non-decreasing); NaN gives 0.
 #[inline]
 pub fn sat_with_reciprocal<S: Scalar>(x: S, eps: S, inv_eps: &Coef) -> S {
-    if x > eps {
-        S::ONE
-    } else if x < eps.neg() {
-        S::ONE.neg()
-    } else if x.is_nan() {
-        S::ZERO
-    } else {
-        x.mul_coef(inv_eps).clamp(S::ONE.neg(), S::ONE)
-    }
+    sat_scaled(x, eps, |x| x.mul_coef(inv_eps))
 }
 
 /// [`sat_with_reciprocal`] with `1/ε` as a stored value `inv` (a plain
@@ -283,6 +275,13 @@ pub fn sat_with_reciprocal<S: Scalar>(x: S, eps: S, inv_eps: &Coef) -> S {
 /// and equal to `x/ε` up to the rounding of `inv` and of the product.
 #[inline]
 pub(crate) fn sat_with_inverse<S: Scalar>(x: S, eps: S, inv: S) -> S {
+    sat_scaled(x, eps, |x| x.mul(inv))
+}
+
+/// `±1` outside the layer `|x| ≤ ε`, 0 for NaN, and `scale(x)` (`x/ε`
+/// by some product) clamped to `[−1, 1]` inside it.
+#[inline(always)]
+fn sat_scaled<S: Scalar>(x: S, eps: S, scale: impl Fn(S) -> S) -> S {
     if x > eps {
         S::ONE
     } else if x < eps.neg() {
@@ -290,7 +289,7 @@ pub(crate) fn sat_with_inverse<S: Scalar>(x: S, eps: S, inv: S) -> S {
     } else if x.is_nan() {
         S::ZERO
     } else {
-        x.mul(inv).clamp(S::ONE.neg(), S::ONE)
+        scale(x).clamp(S::ONE.neg(), S::ONE)
     }
 }
 
