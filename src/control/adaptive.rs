@@ -38,7 +38,8 @@
 //!
 //! # Cost
 //! No division and one `exp` per step; every rate and unit factor is a
-//! prepared [`Coef`].
+//! prepared [`Coef`] (on fixed point, a factor whose value the backend
+//! holds exactly uses the backend's own, bit-identical product).
 
 use super::{clamp_or_keep, ControlInput};
 use crate::error::{non_negative, positive, ParamError};
