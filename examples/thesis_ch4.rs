@@ -119,19 +119,7 @@ fn main() -> std::io::Result<()> {
     println!("| k | max |r| (rad/s) | r_bar (rad/s) | exceeded |");
     println!("|---|---|---|---|");
     for k in [0.9, 20.0, 40.0, 60.0] {
-        let case = BoundCase {
-            friction: [1e-5, 0.010, 0.002],
-            stribeck: 1.0,
-            tilt: 0.2,
-            tilt_direction: 0.3,
-            payload: 1.0,
-            payload_distance: 0.4,
-            amplitude: 0.2,
-            period: 2.0,
-            error_fraction: k,
-            error_square_period: 1e9,
-            seed: 1,
-        };
+        let case = BoundCase::feedback_bias(k);
         let r = bound_run(&case, 0.3);
         println!(
             "| {k} | {:.3} | {:.2} | {} |",

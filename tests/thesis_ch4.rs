@@ -141,19 +141,7 @@ proptest! {
 /// `ρ_τt` stays inside.
 #[test]
 fn violated_torque_error_bound_exceeds_the_ultimate_bound() {
-    let mut case = BoundCase {
-        friction: [1e-5, 0.010, 0.002],
-        stribeck: 1.0,
-        tilt: 0.2,
-        tilt_direction: 0.3,
-        payload: 1.0,
-        payload_distance: 0.4,
-        amplitude: 0.2,
-        period: 2.0,
-        error_fraction: 0.9,
-        error_square_period: 1e9,
-        seed: 1,
-    };
+    let mut case = BoundCase::feedback_bias(0.9);
     let ok = bound_run(&case, BOUND_DURATION);
     assert!(ok.reaching_time < 0.5 * BOUND_DURATION, "{ok:?}");
     assert!(ok.max_sliding <= ok.radius, "{ok:?}");

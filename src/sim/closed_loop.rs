@@ -387,6 +387,28 @@ pub struct BoundCase {
     pub seed: u64,
 }
 
+impl BoundCase {
+    /// The feedback-bias case of the ch. 4 reproduction: a tilted joint
+    /// (0.2 rad) with a 1 kg payload at 0.4 m on a 0.2 rad, 2 s trajectory,
+    /// and a torque-feedback error of `error_fraction·ρ_τt` (constant sign:
+    /// square period 10⁹ s), seed 1. Above 1 it violates eq. (4.14).
+    pub fn feedback_bias(error_fraction: f64) -> Self {
+        BoundCase {
+            friction: [1e-5, 0.010, 0.002],
+            stribeck: 1.0,
+            tilt: 0.2,
+            tilt_direction: 0.3,
+            payload: 1.0,
+            payload_distance: 0.4,
+            amplitude: 0.2,
+            period: 2.0,
+            error_fraction,
+            error_square_period: 1e9,
+            seed: 1,
+        }
+    }
+}
+
 /// The design used by the ultimate-bound check: Table 4.1's structure with
 /// boundary layers wide enough that the sampled law at `T = 50 µs` stays
 /// inside its layers (the step ratio of errata E22 below 1 at the
