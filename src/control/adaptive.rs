@@ -530,24 +530,16 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
             r.mul_coef(&self.robust_slope)
                 .clamp(self.robust_gain_value[1], self.robust_gain_value[0])
         };
-        let mut param_robust = S::ZERO;
-        let mut ry = [S::ZERO; 4];
-        for (j, ryj) in ry.iter_mut().enumerate() {
-            let y = fr.regressor[j];
-            // Y_2 = sat(q̇, ε_q̇) is usually ±1.
-            *ryj = if j == 1 { mul_unit(r, y) } else { r.mul(y) };
-            // ρ_j Y_j sat(r Y_j / ε_j): ±ρ_j Y_j outside the layer,
-            // (ρ_j/ε_j) Y_j · r Y_j inside it.
-            let eps = self.eps_f[j];
-            let term = if *ryj > eps {
-                y.mul_coef(&self.rho_param[j])
-            } else if *ryj < eps.neg() {
-                y.mul_coef(&self.rho_param[j]).neg()
-            } else {
-                y.mul_coef(&self.rho_slope[j]).mul(*ryj)
-            };
-            param_robust = param_robust.add(term);
-        }
+        // Written out for the four parameters (a counted loop is not
+        // unrolled on Armv6-M, where its iterator costs more than the body).
+        let y = fr.regressor;
+        // Y_2 = sat(q̇, ε_q̇) is usually ±1.
+        let ry = [r.mul(y[0]), mul_unit(r, y[1]), r.mul(y[2]), r.mul(y[3])];
+        let param_robust = self
+            .param_robust_term(0, y[0], ry[0])
+            .add(self.param_robust_term(1, y[1], ry[1]))
+            .add(self.param_robust_term(2, y[2], ry[2]))
+            .add(self.param_robust_term(3, y[3], ry[3]));
         let law = ia
             .add(self.feedback.apply(x.joint_torque))
             .add(fr.torque)
@@ -560,6 +552,20 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
             r,
             ry,
             valid: x.is_finite() && !law.is_nan() && !r.is_nan(),
+        }
+    }
+
+    /// `ρ_j Y_j sat(r Y_j / ε_j)` of eq. (4.19): `±ρ_j Y_j` outside the
+    /// layer, `(ρ_j/ε_j) Y_j · r Y_j` inside it.
+    #[inline(always)]
+    fn param_robust_term(&self, j: usize, y: S, ry: S) -> S {
+        let eps = self.eps_f[j];
+        if ry > eps {
+            y.mul_coef(&self.rho_param[j])
+        } else if ry < eps.neg() {
+            y.mul_coef(&self.rho_param[j]).neg()
+        } else {
+            y.mul_coef(&self.rho_slope[j]).mul(ry)
         }
     }
 
