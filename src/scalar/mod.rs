@@ -343,6 +343,42 @@ pub struct Coef {
     /// product of [`scale_i32`](Self::scale_i32).
     mag: u32,
     negative: bool,
+    /// The prepared signed path of [`scale_i32`](Self::scale_i32), when it
+    /// applies (`1 ≤ shift ≤ 62` and `|mult| < 2³¹`).
+    signed: Option<SignedCoef>,
+}
+
+/// `mult` as an `i32` with its rounding constant and shift amounts prepared
+/// for [`Coef::scale_i32`] (`sh` = `shift`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct SignedCoef {
+    m: i32,
+    /// `sh ≥ 33`: the rounding and shift apply to the high word alone.
+    high_only: bool,
+    /// `2^(sh−1)` (`sh ≤ 32`, added to the low word) or `2^(sh−33)`
+    /// (`sh ≥ 33`, added to the high word).
+    round: u32,
+    /// `sh − 1` (`sh ≤ 32`) or `sh − 32` (`sh ≥ 33`).
+    rs: u32,
+}
+
+impl SignedCoef {
+    fn new(mult: i64, shift: i32) -> Option<Self> {
+        if !(1..=62).contains(&shift) || mult.unsigned_abs() >= 1 << 31 {
+            return None;
+        }
+        let high_only = shift > 32;
+        Some(SignedCoef {
+            m: mult as i32,
+            high_only,
+            round: if high_only {
+                1 << (shift - 33)
+            } else {
+                1 << (shift - 1)
+            },
+            rs: if high_only { shift - 32 } else { shift - 1 } as u32,
+        })
+    }
 }
 
 impl Coef {
@@ -358,6 +394,7 @@ impl Coef {
                 shift: 0,
                 mag: 0,
                 negative: false,
+                signed: None,
             };
         }
         // |value| · 2^shift ∈ [2^30, 2^31). Beyond 2^40 the fixed-point
@@ -373,6 +410,7 @@ impl Coef {
             shift,
             mag: mult as u32,
             negative: value < 0.0,
+            signed: SignedCoef::new(if value < 0.0 { -mult } else { mult }, shift),
         }
     }
 
@@ -405,16 +443,60 @@ impl Coef {
 
     /// [`scale_int`](Self::scale_int)`(x, 0)` for an `i32` (the product of
     /// [`Scalar::mul_coef`] on `I16F16` bits): the same result for every
-    /// `x` without the 64-bit clamp and absolute value, which on Armv6-M
-    /// are multi-instruction sequences.
+    /// `x` (tests below), in fewer 32-bit operations.
+    ///
+    /// For `1 ≤ shift ≤ 62` (coefficients in `[2^-32, 2^30)`, which
+    /// covers the prepared control-law constants) the product is formed in
+    /// two's complement: the unsigned 64-bit product of the bit patterns,
+    /// whose high word is corrected by `−m` for `x < 0` and by `−x` for
+    /// `m < 0`, is the signed product `V = x·m` (`|V| < 2⁶²`). Then
+    /// `⌊(V + 2^(sh−1)) / 2^sh⌋`:
+    /// * `sh ≥ 33`: the rounding constant `2^(sh−1)` has no low-word bits,
+    ///   and `⌊(hi·2³² + lo + 2^(sh−1)) / 2^sh⌋ = ⌊(hi + 2^(sh−33)) /
+    ///   2^(sh−32)⌋` because `lo < 2³²` cannot carry the integer numerator
+    ///   past a multiple of `2^(sh−32)`; the result is below `2²⁹` in
+    ///   magnitude, so it never saturates.
+    /// * `sh ≤ 32`: add `2^(sh−1)` to the low word with carry, then the
+    ///   shifted value fits `i32` exactly when the high word shifted right
+    ///   (arithmetically) by `sh − 1` is `0` or `−1`; otherwise it saturates
+    ///   with the sign of the product.
+    ///
+    /// No absolute values, no sign fix-up of the result and no branch on
+    /// the shift class beyond `sh > 32`; other coefficients take
+    /// [`fixed::scaled_product`].
     #[inline(always)]
     pub(crate) fn scale_i32(&self, x: i32) -> i32 {
-        fixed::scaled_product(
-            (x < 0) != self.negative,
-            x.unsigned_abs(),
-            self.mag,
-            self.shift,
-        )
+        let Some(c) = self.signed else {
+            return fixed::scaled_product(
+                (x < 0) != self.negative,
+                x.unsigned_abs(),
+                self.mag,
+                self.shift,
+            );
+        };
+        let m = c.m;
+        let (hi, lo) = fixed::wide_mul(x as u32, m as u32);
+        let mut hi = hi as i32;
+        if x < 0 {
+            hi = hi.wrapping_sub(m);
+        }
+        if m < 0 {
+            hi = hi.wrapping_sub(x);
+        }
+        if c.high_only {
+            // |hi| ≤ 2³⁰ and round = 2^(sh−33) ≤ 2²⁹: no overflow.
+            return (hi + c.round as i32) >> c.rs;
+        }
+        let (lo, carry) = lo.overflowing_add(c.round);
+        let hi = hi + carry as i32; // |hi| ≤ 2³⁰ before the carry
+        let top = hi >> c.rs; // rs = sh − 1
+        if top != (top >> 31) {
+            // top ∉ {0, −1}: beyond the i32 range.
+            return if hi < 0 { i32::MIN } else { i32::MAX };
+        }
+        // (hi:lo) >> sh for sh ∈ [1, 32]: `hi << (31 − rs)` and `lo >> sh`
+        // written as two shifts, so that sh = 32 needs no special case.
+        (hi << (31 - c.rs)) | ((lo >> c.rs) >> 1) as i32
     }
 
     /// The straightforward 64-bit form of [`scale_int`](Self::scale_int),
