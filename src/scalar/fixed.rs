@@ -24,7 +24,7 @@ pub(crate) const fn sat_i64(v: i64) -> i32 {
 /// Rounded, saturating Q16.16 product of two raw bit patterns:
 /// `sat(⌊(a·b + 2¹⁵) / 2¹⁶⌋)`.
 ///
-/// Computed by [`scaled_product`] without a 64-bit multiply or shift (so
+/// Computed by [`mul_bits_long`] without a 64-bit multiply or shift (so
 /// Armv6-M calls neither `__aeabi_lmul` nor a 64-bit shift); equal to the
 /// 64-bit formula [`mul_bits_reference`] for every pair of operands
 /// (checked at random on the host and exhaustively over edge classes in
@@ -41,8 +41,33 @@ pub(crate) fn mul_bits(a: i32, b: i32) -> i32 {
     } else if a as i16 as i32 == a {
         mul_bits_short(b, a)
     } else {
-        scaled_product((a < 0) != (b < 0), a.unsigned_abs(), b.unsigned_abs(), 16)
+        mul_bits_long(a, b)
     }
+}
+
+/// [`mul_bits`] for any operands, in two's complement: the unsigned 64-bit
+/// product of the bit patterns with its high word corrected by `−b` for
+/// `a < 0` and by `−a` for `b < 0` is the signed product `V = a·b`
+/// (`|V| ≤ 2⁶²`, so `|hi| ≤ 2³⁰`). `V + 2¹⁵` shifted right by 16 fits
+/// `i32` exactly when its high word shifted right by 15 is `0` or `−1`;
+/// otherwise the result saturates with the sign of `V`.
+#[inline(always)]
+fn mul_bits_long(a: i32, b: i32) -> i32 {
+    let (hi, lo) = wide_mul(a as u32, b as u32);
+    let mut hi = hi as i32;
+    if a < 0 {
+        hi = hi.wrapping_sub(b);
+    }
+    if b < 0 {
+        hi = hi.wrapping_sub(a);
+    }
+    let (lo, carry) = lo.overflowing_add(1 << 15);
+    let hi = hi + carry as i32;
+    let top = hi >> 15;
+    if top != (top >> 31) {
+        return if hi < 0 { i32::MIN } else { i32::MAX };
+    }
+    (hi << 16) | (lo >> 16) as i32
 }
 
 /// [`mul_bits`] for `b ∈ [−2¹⁵, 2¹⁵)`, in 32-bit words. With
