@@ -197,7 +197,7 @@ const fn recip_seed() -> [u16; 256] {
 ///    `x₁ = x₀ + x₀·(2⁶⁴ − x₀·D)/2⁶⁴` with the full `D` (three 16×16
 ///    products), every truncation rounding down. The exact step never
 ///    exceeds `X` (`X − x₁ = D·(X − x₀)²/2⁶⁴`), rounding down keeps that,
-///    and `X − x₁ ≤ X·ε₀² + 2¹⁰ + 2 < 2^15.05`. `v` is clamped at 0 (for `D`
+///    and `X − x₁ ≤ X·ε₀² + 2¹⁰ + 5 < 2^15.05`. `v` is clamped at 0 (for `D`
 ///    just below `2³²`, `x₁` may fall under `2³²`; since `2³² < X` the clamp
 ///    keeps `x₁ ≤ X`).
 /// 3. `q₁ = u₁ + ⌊u₁·v/2³²⌋` from three 16×16 products (the low one
@@ -248,15 +248,18 @@ fn div_frac_wide_steps(n: u32, d: u32, k: u32) -> (u32, u32) {
         .wrapping_sub((seed * dl) >> 16) as i32;
     // x₀·e/2³² = e + seed·e/2¹⁶ (|seed·(e >> 10)| < 2³⁰).
     let corr = e + (((seed as i32) * (e >> 10)) >> 6);
-    let v = (seed << 16).saturating_add_signed(corr); // x₁ − 2³²
+    // v = x₁ − 2³², halved so that the sum fits an `i32` (seed·2¹⁵ < 2³¹,
+    // |corr| < 2²⁵), clamped at 0 and doubled: one unit lower at most.
+    let v = ((((seed << 15) as i32 + (corr >> 1)).max(0)) as u32) << 1;
     let (uh, ul) = (u1 >> 16, u1 & 0xFFFF);
     let (vh, vl) = (v >> 16, v & 0xFFFF);
     let q1 = u1 + uh * vh + ((uh * vl) >> 16) + ((ul * vh) >> 16);
     let (ph, pl) = crate::scalar::fixed::wide_mul(q1, dn);
     let (r_lo, b) = u0.overflowing_sub(pl);
-    let r_hi = u1 - ph - b as u32; // r₁ = N − q₁·D < 2⁴⁸
-    let rs = (r_hi << 16) | (r_lo >> 16); // ⌊r₁/2¹⁶⌋ < 2³²
-                                          // rs·x₁/2⁴⁸ = (rs + rs·v/2³²)/2¹⁶ ≤ (r₁/D)·… < 2¹⁶.
+    // r₁ = N − q₁·D < 2⁴⁸ (high word r_hi < 2¹⁶); rs = ⌊r₁/2¹⁶⌋ < 2³²,
+    // rs·x₁/2⁴⁸ = (rs + rs·v/2³²)/2¹⁶ ≤ r₁/D < 2¹⁶.
+    let r_hi = u1 - ph - b as u32;
+    let rs = (r_hi << 16) | (r_lo >> 16);
     let delta = (rs + (rs >> 16) * vh + (((rs & 0xFFFF) * vh) >> 16)) >> 16;
     let (lo_p, hi_p) = (delta * dl, delta * dh);
     let (p_lo, c) = lo_p.overflowing_add(hi_p << 16);
@@ -591,29 +594,17 @@ pub fn tan(x: I16F16) -> I16F16 {
     with_sign(mag.min(i32::MAX as u32) as i32, bits < 0)
 }
 
-/// `h.leading_zeros()` for `1 ≤ h < 2¹⁶` by a four-step binary search
-/// (about 12 Thumb-1 instructions; Armv6-M has no `CLZ`, and the generic
-/// `leading_zeros` costs about 30). Checked at every `h` by
-/// `leading_zeros_16_is_exact`.
+/// `h.leading_zeros()` for `1 ≤ h < 2¹⁶`: two comparisons pick the
+/// leading nibble, a 16-byte table counts its zeros (Armv6-M has no `CLZ`;
+/// the generic `leading_zeros` costs about 30 instructions). Checked at
+/// every `h` by `leading_zeros_16_is_exact`.
 #[inline(always)]
 fn leading_zeros_16(h: u32) -> u32 {
-    let (mut h, mut n) = (h, 16);
-    if h < 1 << 8 {
-        h <<= 8;
-        n += 8;
-    }
-    if h < 1 << 12 {
-        h <<= 4;
-        n += 4;
-    }
-    if h < 1 << 14 {
-        h <<= 2;
-        n += 2;
-    }
-    if h < 1 << 15 {
-        n += 1;
-    }
-    n
+    /// Leading zeros of a nibble `y ∈ [1, 16)` within 4 bits.
+    const NIBBLE_LZ: [u8; 16] = [4, 3, 2, 2, 1, 1, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0];
+    let (h, n) = if h >= 1 << 8 { (h >> 8, 16) } else { (h, 24) };
+    let (h, n) = if h >= 1 << 4 { (h >> 4, n) } else { (h, n + 4) };
+    n + NIBBLE_LZ[(h & 0xF) as usize] as u32
 }
 
 /// The operands `(n, d, k)` of the quotient `tan|x|·2¹⁷ ≈ ⌊n·2ᵏ/d⌋` of
