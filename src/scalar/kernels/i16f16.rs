@@ -7,9 +7,12 @@
 //!   multiplies (one `MULS` each on the M0+), so no kernel calls
 //!   `__aeabi_lmul`: **no kernel contains a 64-bit multiply**.
 //! * `div_frac` — `⌊n·2ᵏ / d⌋` by restoring shift-and-subtract (one
-//!   compare/subtract per quotient bit): **no kernel contains a division**
-//!   (neither `__aeabi_uidiv` nor a 64-bit one). Only `tan` (one 64-bit
-//!   subtraction and shift) touches 64-bit values, and only with add/shift.
+//!   compare/subtract per quotient bit), used by `atan`/`atan2`;
+//!   `div_frac_wide` — the same exact quotient for divisors `d ≥ 2²⁹` (the
+//!   two in `tan`) by a table-seeded reciprocal, one Newton step and one
+//!   correction: **no kernel contains a division** (neither
+//!   `__aeabi_uidiv` nor a 64-bit one). Only `tan` (one 64-bit
+//!   subtraction) touches 64-bit values, and only with add/shift.
 //! * `sqrt_q16` — digit-by-digit integer square root in 32-bit registers.
 //!
 //! Internal values are unsigned `Q0.32`/`Q1.31`/`Q2.30` magnitudes; each
@@ -158,6 +161,116 @@ pub(crate) fn div_frac(n: u32, d: u32, k: u32) -> u32 {
         i += 1;
     }
     q
+}
+
+/// Seeds of the reciprocal in [`div_frac_wide`]: for the normalized divisor
+/// `D ∈ [2³¹, 2³²)` with index `i = ⌊D/2²³⌋ − 256` (the 8 bits after the
+/// leading one), `x₀ = 2³² + RECIP_SEED[i]·2¹⁶ ≈ 2⁶⁴/D`. On the interval
+/// `D ∈ [a, b)`, `a = 2³¹ + i·2²³`, `b = a + 2²³`, the relative error
+/// `|1 − x₀·D/2⁶⁴|` is smallest at its largest for `x₀ = 2⁶⁵/(a + b)` (equal
+/// at both ends), so `RECIP_SEED[i] = round(2²⁶/(513 + 2i)) − 2¹⁶ < 2¹⁶`.
+/// The error is at most `2⁻⁹` (reached at `D = 2³¹`);
+/// `recip_seed_matches_an_independent_computation` recomputes the table in
+/// `f64` and checks the bound at both ends of every interval.
+const RECIP_SEED: [u16; 256] = recip_seed();
+
+const fn recip_seed() -> [u16; 256] {
+    let mut t = [0u16; 256];
+    let mut i = 0;
+    while i < 256 {
+        // round(2²⁶/(513 + 2i)) = ⌈⌊2²⁷/(513 + 2i)⌋/2⌉.
+        let r = ((1u32 << 27) / (513 + 2 * i as u32)).div_ceil(2);
+        t[i] = (r - (1 << 16)) as u16;
+        i += 1;
+    }
+    t
+}
+
+/// `⌊n·2ᵏ / d⌋` for a divisor of at least 30 bits, by a reciprocal instead
+/// of one step per quotient bit; equal to [`div_frac`] wherever both apply.
+///
+/// Requires `d ≥ 2²⁹`, `1 ≤ k ≤ 31` and a quotient below `2³²`. Inside this
+/// domain the result is the exact floor quotient, not an approximation:
+///
+/// 1. `D = d·2ˢ ∈ [2³¹, 2³²)` with `s ∈ {0, 1, 2}` (two comparisons, no
+///    `leading_zeros`), `N = n·2^(k+s) = u₁·2³² + u₀` with `u₁ < D` (the
+///    quotient bound); `⌊N/D⌋` is the wanted quotient.
+/// 2. Reciprocal `x₁ = 2³² + v ≤ X = 2⁶⁴/D`: the seed `x₀` of
+///    [`RECIP_SEED`] (relative error `ε₀ ≤ 2⁻⁹`) and one Newton step
+///    `x₁ = x₀ + x₀·(2⁶⁴ − x₀·D)/2⁶⁴` with the full `D` (three 16×16
+///    products), every truncation rounding down. The exact step never
+///    exceeds `X` (`X − x₁ = D·(X − x₀)²/2⁶⁴`), rounding down keeps that,
+///    and `X − x₁ ≤ X·ε₀² + 2¹⁰ + 5 < 2^15.05`. `v` is clamped at 0 (for `D`
+///    just below `2³²`, `x₁` may fall under `2³²`; since `2³² < X` the clamp
+///    keeps `x₁ ≤ X`).
+/// 3. `q₁ = u₁ + ⌊u₁·v/2³²⌋` from three 16×16 products (the low one
+///    dropped, at most 3 low): `q₁ ≤ ⌊N/D⌋` and
+///    `N/D − q₁ < (X − x₁) + 2 + 3 < 33800`. Exact remainder
+///    `r₁ = N − q₁·D < 33800·D < 2^47.05` (one widening product).
+/// 4. `δ = ⌊(r + ⌊r/2¹⁶⌋·v_h + ⌊(r mod 2¹⁶)·v_h/2¹⁶⌋)/2¹⁶⌋` with
+///    `r = ⌊r₁/2¹⁶⌋ < 2^31.05` and `v_h = ⌊v/2¹⁶⌋` (two `MULS`), a lower
+///    bound of `r·x₁/2⁴⁸ ≤ r₁/D`, so `δ ≤ ⌊r₁/D⌋`. It is low by less than
+///    `2⁻¹⁵` (the dropped bits of `r₁`) `+ 0.27` (`X − x₁`) `+ 0.52` (the
+///    dropped products with `v mod 2¹⁶` and the inner floor) `+ 1` (the
+///    final floor) `< 2`, so `⌊r₁/D⌋ ≤ δ + 1`; `δ < 2¹⁶`. Remainder
+///    `r₂ = r₁ − δ·D ∈ [0, 2D)` from two 16×32 products.
+/// 5. `q = q₁ + δ + [r₂ ≥ D]`: one conditional correction, no loop.
+///    `div_frac_wide_steps` reports it; the tests see both values.
+///
+/// No division, no `leading_zeros`, no 64-bit multiply or shift: one
+/// [`wide_mul`](crate::scalar::fixed::wide_mul) and ten 32-bit `MULS`.
+#[inline]
+fn div_frac_wide(n: u32, d: u32, k: u32) -> u32 {
+    div_frac_wide_steps(n, d, k).0
+}
+
+/// [`div_frac_wide`] and its final correction (0 or 1), which the tests
+/// count (the optimizer drops it from [`div_frac_wide`]).
+#[inline(always)]
+fn div_frac_wide_steps(n: u32, d: u32, k: u32) -> (u32, u32) {
+    let s = if d >= 1 << 31 {
+        0
+    } else if d >= 1 << 30 {
+        1
+    } else {
+        2
+    };
+    let dn = d << s; // D ∈ [2³¹, 2³²)
+    let t = k + s; // 1..=33
+    let (u1, u0) = if t >= 32 {
+        (n << (t - 32), 0)
+    } else {
+        (n >> (32 - t), n << t)
+    };
+    // x₀ = 2³² + seed·2¹⁶; e = (2⁶⁴ − x₀·D)/2³² rounded down, |e| ≤ 2²³ + 1:
+    // x₀·D/2³² = D + seed·D/2¹⁶ < D + seed·⌊D/2¹⁶⌋ + ⌊seed·(D mod 2¹⁶)/2¹⁶⌋ + 1.
+    let seed = RECIP_SEED[((dn >> 23) & 0xFF) as usize] as u32;
+    let (dh, dl) = (dn >> 16, dn & 0xFFFF);
+    let e = (!dn) // −D − 1
+        .wrapping_sub(seed * dh)
+        .wrapping_sub((seed * dl) >> 16) as i32;
+    // x₀·e/2³² = e + seed·e/2¹⁶ (|seed·(e >> 10)| < 2³⁰).
+    let corr = e + (((seed as i32) * (e >> 10)) >> 6);
+    // v = x₁ − 2³², halved so that the sum fits an `i32` (seed·2¹⁵ < 2³¹,
+    // |corr| < 2²⁵), clamped at 0 and doubled: one unit lower at most.
+    let v = ((((seed << 15) as i32 + (corr >> 1)).max(0)) as u32) << 1;
+    let (uh, ul) = (u1 >> 16, u1 & 0xFFFF);
+    let (vh, vl) = (v >> 16, v & 0xFFFF);
+    let q1 = u1 + uh * vh + ((uh * vl) >> 16) + ((ul * vh) >> 16);
+    let (ph, pl) = crate::scalar::fixed::wide_mul(q1, dn);
+    let (r_lo, b) = u0.overflowing_sub(pl);
+    // r₁ = N − q₁·D < 2⁴⁸ (high word r_hi < 2¹⁶); rs = ⌊r₁/2¹⁶⌋ < 2³²,
+    // rs·x₁/2⁴⁸ = (rs + rs·v/2³²)/2¹⁶ ≤ r₁/D < 2¹⁶.
+    let r_hi = u1 - ph - b as u32;
+    let rs = (r_hi << 16) | (r_lo >> 16);
+    let delta = (rs + (rs >> 16) * vh + (((rs & 0xFFFF) * vh) >> 16)) >> 16;
+    let (lo_p, hi_p) = (delta * dl, delta * dh);
+    let (p_lo, c) = lo_p.overflowing_add(hi_p << 16);
+    let p_hi = (hi_p >> 16) + c as u32;
+    let (r_lo, b) = r_lo.overflowing_sub(p_lo);
+    let r_hi = r_hi - p_hi - b as u32; // r₂ = r₁ − δ·D ∈ [0, 2D)
+    let step = (r_hi != 0 || r_lo >= dn) as u32;
+    (q1 + delta + step, step)
 }
 
 /// `(⌊√(n·2¹⁶)⌋, n·2¹⁶ − root²)`: digit-by-digit square root of a 48-bit
@@ -467,38 +580,76 @@ pub fn sin_cos(x: I16F16) -> (I16F16, I16F16) {
 ///   ≈ 24200`, one input step below `≈ 17670`: a 37 % jump per LSB of input)
 ///   the absolute error stays under 1 LSB.
 /// * Algorithm: `|x| ≤ π/4`: `sin θ / cos θ` from the [`sin`] polynomials,
-///   the quotient formed to 17 bits by `div_frac`. `|x| > π/4`:
-///   `δ = π/2 − |x|` exactly in 48 fractional bits (one 64-bit subtraction),
-///   normalized to a 32-bit mantissa, and `tan x = cos δ / sin δ` with
-///   `sin δ = δ·(1 − z·…)` so the quotient keeps ~30 significant bits even
-///   next to the pole. Cost: 6 `mulhi`, ≤ 33 division steps.
+///   the quotient formed to 17 bits. `|x| > π/4`: `δ = π/2 − |x|` exactly
+///   in 48 fractional bits (one 64-bit subtraction), normalized to a 32-bit
+///   mantissa (a 16-bit leading-zero count and two 32-bit shifts), and
+///   `tan x = cos δ / sin δ` with `sin δ = δ·(1 − z·…)` so the quotient
+///   keeps ~30 significant bits even next to the pole. Both quotients are
+///   the exact floor `⌊n·2ᵏ/d⌋` (divisor `d ≥ 2²⁹`) by `div_frac_wide`:
+///   a reciprocal from a 256-entry seed and one Newton step, one widening
+///   product and one conditional correction, bit-identical to the
+///   bit-serial `div_frac` (tested at every input).
+/// * Cost: 6 `mulhi` + `div_frac_wide` (one widening product, ten `MULS`),
+///   no loop, no division, no `leading_zeros` call; on the Cortex-M0+ at
+///   most 377 instructions (`embedded/count.py`, kernel row), 721 with the
+///   bit-serial division.
 pub fn tan(x: I16F16) -> I16F16 {
     let bits = x.to_bits();
     let a = bits.unsigned_abs();
     if a >= TAN_SAT_BITS {
         return with_sign(i32::MAX, bits < 0);
     }
-    let q = if a <= PIO4_BITS {
+    let (n, d, k) = tan_quotient_operands(a);
+    let q = div_frac_wide(n, d, k);
+    let mag = (q >> 1) + (q & 1);
+    with_sign(mag.min(i32::MAX as u32) as i32, bits < 0)
+}
+
+/// `h.leading_zeros()` for `1 ≤ h < 2¹⁶`: two comparisons pick the
+/// leading nibble, a 16-byte table counts its zeros (Armv6-M has no `CLZ`;
+/// the generic `leading_zeros` costs about 30 instructions). Checked at
+/// every `h` by `leading_zeros_16_is_exact`.
+#[inline(always)]
+fn leading_zeros_16(h: u32) -> u32 {
+    /// Leading zeros of a nibble `y ∈ [1, 16)` within 4 bits.
+    const NIBBLE_LZ: [u8; 16] = [4, 3, 2, 2, 1, 1, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0];
+    let (h, n) = if h >= 1 << 8 { (h >> 8, 16) } else { (h, 24) };
+    let (h, n) = if h >= 1 << 4 { (h >> 4, n) } else { (h, n + 4) };
+    n + NIBBLE_LZ[(h & 0xF) as usize] as u32
+}
+
+/// The operands `(n, d, k)` of the quotient `tan|x|·2¹⁷ ≈ ⌊n·2ᵏ/d⌋` of
+/// [`tan`] for the raw magnitude `a < TAN_SAT_BITS`.
+///
+/// * `a ≤ PIO4_BITS`: `n = sin θ` (`Q0.32`), `d = cos θ ∈ [2^30.5, 2³¹]`
+///   (`Q1.31`), `k = 16`; quotient `< 2¹⁸`.
+/// * otherwise: `n = cos δ` (`Q1.31`), `d = sin δ·2^(15+lz) ∈ [2^29.9, 2³¹)`,
+///   `k = lz + 1 ∈ 17..=31`; quotient `< 2³²`.
+///
+/// Both satisfy the preconditions of [`div_frac`] and of [`div_frac_wide`]
+/// (`d ≥ 2²⁹`), checked at every `a` by `tan_quotients_are_exact`.
+#[inline(always)]
+fn tan_quotient_operands(a: u32) -> (u32, u32, u32) {
+    if a <= PIO4_BITS {
         let theta = a << 16; // Q0.32
         let z = mulhi(theta, theta);
         let s = sin_poly(theta, z); // Q0.32
         let c31 = (1u32 << 31) - (one_minus_cos_poly(z) >> 1); // Q1.31
                                                                // tan·2¹⁷ = s·2¹⁶ / c31
-        div_frac(s, c31, 16)
+        (s, c31, 16)
     } else {
         let d48 = PIO2_Q48 - ((a as u64) << 32); // δ·2⁴⁸, δ ∈ (2⁻¹⁵, π/4]
-        let lz = d48.leading_zeros(); // 16..=30
-        let m = ((d48 << lz) >> 32) as u32; // δ·2^(16+lz) ∈ [2³¹, 2³²)
+        let (hi, lo) = ((d48 >> 32) as u32, d48 as u32); // hi ∈ [2, 2¹⁶)
+        let lz = leading_zeros_16(hi); // of d48: 16..=30
+        let m = (hi << lz) | (lo >> (32 - lz)); // δ·2^(16+lz) ∈ [2³¹, 2³²)
         let delta = (d48 >> 16) as u32; // Q0.32
         let z = mulhi(delta, delta);
         let zh = mulhi(z, SIN_K1 - mulhi(z, SIN_K2 - mulhi(z, SIN_K3)));
         let den = (m - mulhi(m, zh)) >> 1; // sin δ·2^(15+lz) ∈ [2^29.9, 2³¹)
         let c31 = (1u32 << 31) - (one_minus_cos_poly(z) >> 1);
         // tan·2¹⁷ = (c31/den)·2^(lz+1)
-        div_frac(c31, den, lz + 1)
-    };
-    let mag = (q >> 1) + (q & 1);
-    with_sign(mag.min(i32::MAX as u32) as i32, bits < 0)
+        (c31, den, lz + 1)
+    }
 }
 
 /// `e^x` (thesis eqs. 2.29 and 4.7: exponential Stribeck friction).
@@ -622,4 +773,174 @@ pub fn sqrt(x: I16F16) -> I16F16 {
     }
     let (root, rem) = sqrt_q16(bits as u32);
     I16F16::from_bits((root + (rem > root) as u32) as i32)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `⌊n·2ᵏ/d⌋` in 128-bit arithmetic: the reference of both divisions.
+    fn floor_quotient(n: u32, d: u32, k: u32) -> u128 {
+        ((n as u128) << k) / d as u128
+    }
+
+    /// `tan` as it was before [`div_frac_wide`]: the same operands through
+    /// the bit-serial [`div_frac`].
+    fn tan_bit_serial(x: I16F16) -> I16F16 {
+        let bits = x.to_bits();
+        let a = bits.unsigned_abs();
+        if a >= TAN_SAT_BITS {
+            return with_sign(i32::MAX, bits < 0);
+        }
+        let (n, d, k) = tan_quotient_operands(a);
+        let q = div_frac(n, d, k);
+        let mag = (q >> 1) + (q & 1);
+        with_sign(mag.min(i32::MAX as u32) as i32, bits < 0)
+    }
+
+    /// Every input of `tan`'s domain: the operands satisfy the documented
+    /// ranges, both divisions equal the 128-bit floor quotient, the
+    /// final correction is 0 or 1 (both occur), and `tan` is bit-identical
+    /// to the bit-serial version (both signs, and past the saturation).
+    #[test]
+    fn tan_quotients_are_exact() {
+        let mut max_steps = [0u32; 2];
+        for a in 0..TAN_SAT_BITS {
+            let (n, d, k) = tan_quotient_operands(a);
+            let branch = (a > PIO4_BITS) as usize;
+            assert!((1 << 29..=1 << 31).contains(&d), "a = {a}: d = {d}");
+            if branch == 0 {
+                assert_eq!(k, 16);
+                assert!(d >= 3_037_000_000 / 2, "a = {a}: d = {d}");
+            } else {
+                assert!((17..=31).contains(&k), "a = {a}: k = {k}");
+                assert!(d as f64 >= 2f64.powf(29.9), "a = {a}: d = {d}");
+            }
+            let want = floor_quotient(n, d, k);
+            assert!(want < 1 << (if branch == 0 { 18 } else { 32 }));
+            let (q, steps) = div_frac_wide_steps(n, d, k);
+            assert_eq!(q as u128, want, "a = {a}: n = {n}, d = {d}, k = {k}");
+            assert_eq!(div_frac(n, d, k) as u128, want, "a = {a}");
+            max_steps[branch] = max_steps[branch].max(steps);
+        }
+        assert_eq!(max_steps, [1, 1]);
+        for a in 0..TAN_SAT_BITS as i32 + 100 {
+            for bits in [a, -a] {
+                let x = I16F16::from_bits(bits);
+                assert_eq!(tan(x), tan_bit_serial(x), "bits = {bits}");
+            }
+        }
+        for bits in [i32::MIN, i32::MIN + 1, i32::MAX] {
+            let x = I16F16::from_bits(bits);
+            assert_eq!(tan(x), tan_bit_serial(x), "bits = {bits}");
+        }
+    }
+
+    #[test]
+    fn leading_zeros_16_is_exact() {
+        for h in 1..1u32 << 16 {
+            assert_eq!(leading_zeros_16(h), h.leading_zeros(), "h = {h}");
+        }
+    }
+
+    /// The seed table from an independent (`f64`) evaluation of its
+    /// definition, and the seed error bound `ε₀ < 2⁻⁹` (with `|e| < 2²⁴`)
+    /// at both ends of every interval, in exact 128-bit arithmetic.
+    #[test]
+    fn recip_seed_matches_an_independent_computation() {
+        let mut max_eps = 0f64;
+        for (i, &seed) in RECIP_SEED.iter().enumerate() {
+            let a = 2f64.powi(31) + i as f64 * 2f64.powi(23);
+            let b = a + 2f64.powi(23);
+            let best = 2f64.powi(65) / (a + b); // equal relative error at a and b
+            let want = (best / 65536.0).round() - 65536.0;
+            assert_eq!(seed as f64, want, "entry {i}");
+            let x0 = (1u128 << 32) + ((seed as u128) << 16);
+            for dn in [
+                (1u128 << 31) + ((i as u128) << 23),
+                (1u128 << 31) + ((i as u128 + 1) << 23) - 1,
+            ] {
+                let e = (1i128 << 64) - (x0 * dn) as i128;
+                assert!(e.abs() < 1i128 << 56, "entry {i}: e = {e}");
+                max_eps = max_eps.max(e.abs() as f64 / 2f64.powi(64));
+            }
+        }
+        // Equality at D = 2³¹ (x₀ = 2³³ − 2²⁴).
+        assert!(max_eps <= 2f64.powi(-9), "{max_eps}");
+    }
+
+    /// Edge cases of the precondition domain of [`div_frac_wide`]: the
+    /// divisor at `2²⁹`, `2³⁰`, `2³¹` and their neighbours, near `2³²`, with
+    /// the largest numerator whose quotient stays below `2³²` and a few
+    /// below it, for every `k`.
+    #[test]
+    fn div_frac_wide_matches_on_edges() {
+        let divisors = [
+            1u32 << 29,
+            (1 << 29) + 1,
+            (1 << 30) - 1,
+            1 << 30,
+            (1 << 30) + 1,
+            (1 << 31) - 1,
+            1 << 31,
+            (1 << 31) + 1,
+            0xC000_0000,
+            u32::MAX - 1,
+            u32::MAX,
+        ];
+        let mut max_steps = 0;
+        for d in divisors {
+            for k in 1..=31u32 {
+                // Largest n with ⌊n·2ᵏ/d⌋ < 2³²: n·2ᵏ < d·2³².
+                let n_max = ((((d as u128) << 32) - 1) >> k).min(u32::MAX as u128) as u32;
+                for n in [
+                    0,
+                    1,
+                    2,
+                    d - 1,
+                    d,
+                    d.wrapping_add(1),
+                    n_max,
+                    n_max - 1,
+                    n_max / 2,
+                    n_max / 3,
+                ] {
+                    if floor_quotient(n, d, k) >= 1 << 32 {
+                        continue;
+                    }
+                    let (q, steps) = div_frac_wide_steps(n, d, k);
+                    assert_eq!(
+                        q as u128,
+                        floor_quotient(n, d, k),
+                        "n = {n}, d = {d}, k = {k}"
+                    );
+                    max_steps = max_steps.max(steps);
+                }
+            }
+        }
+        assert_eq!(max_steps, 1);
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(200_000))]
+        /// Over the whole documented domain (`d ≥ 2²⁹`, `1 ≤ k ≤ 31`,
+        /// quotient `< 2³²`): the exact floor quotient, with a final correction
+        /// of 0 or 1. `n` is drawn below the largest admissible
+        /// numerator `⌊(d·2³² − 1)/2ᵏ⌋`, as a fraction of it or near it.
+        #[test]
+        fn div_frac_wide_is_exact(
+            d in (1u32 << 29)..=u32::MAX,
+            k in 1u32..=31,
+            frac in proptest::prelude::any::<u32>(),
+            near in 0u32..3,
+        ) {
+            let n_max = ((((d as u128) << 32) - 1) >> k).min(u32::MAX as u128) as u32;
+            let n = match near {
+                0 => ((n_max as u64 * frac as u64) >> 32) as u32,
+                1 => n_max - (frac % 1024).min(n_max),
+                _ => frac % (n_max.max(1)),
+            };
+            proptest::prop_assert_eq!(div_frac_wide(n, d, k) as u128, floor_quotient(n, d, k));
+        }
+    }
 }
