@@ -83,6 +83,41 @@ fn mul_wide(a: u32, b: i64) -> i64 {
     ((hi as u64) << 32 | lo as u64) as i64
 }
 
+/// `⌊(2³² − 1)/d⌋` for `d ≥ 1`: the prepared reciprocal of [`div_rem`].
+const fn reciprocal(d: u32) -> u32 {
+    u32::MAX / if d == 0 { 1 } else { d }
+}
+
+/// `(⌊x/d⌋, x mod d)` for every `u32` `x` and `d ≥ 1`, with
+/// `r = reciprocal(d)` prepared at configuration time.
+///
+/// Armv6-M has no divide instruction (`/` is a library loop of about 250
+/// instructions); there the quotient comes from the reciprocal
+/// ([`div_rem_reciprocal`]), elsewhere from the hardware division.
+#[inline(always)]
+fn div_rem(x: u32, d: u32, r: u32) -> (u32, u32) {
+    if cfg!(not(all(target_arch = "arm", not(target_has_atomic = "32")))) {
+        return (x / d, x % d);
+    }
+    div_rem_reciprocal(x, d, r)
+}
+
+/// [`div_rem`] from `r = ⌊(2³² − 1)/d⌋`: `q₀ = ⌊x·r/2³²⌋` (one 32×32 → 64
+/// product) is `q = ⌊x/d⌋` or `q − 1`, because `r ≤ 2³²/d` gives
+/// `q₀ ≤ x/d` and `r ≥ (2³² − d)/d` gives `x·r/2³² ≥ x/d − x/2³² > x/d − 1`.
+/// The remainder `x − q₀·d ∈ [0, 2d)` is at most `x`, so its 32-bit
+/// difference is exact, and one comparison corrects the quotient.
+#[inline(always)]
+fn div_rem_reciprocal(x: u32, d: u32, r: u32) -> (u32, u32) {
+    let (q, _) = crate::scalar::fixed::wide_mul(x, r);
+    let rem = x.wrapping_sub(q.wrapping_mul(d));
+    if rem >= d {
+        (q + 1, rem - d)
+    } else {
+        (q, rem)
+    }
+}
+
 /// Physical parameters of the estimator.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TorqueEstimatorParams {
@@ -196,6 +231,10 @@ pub struct TorqueEstimatorConfig<S> {
     l: u32,
     m: u32,
     n: u32,
+    /// [`reciprocal`]s of `L`, `M` and `N` for [`div_rem`].
+    l_recip: u32,
+    m_recip: u32,
+    n_recip: u32,
     /// `M·N` and `L·M·N` (counts per output revolution), prepared once.
     mn: i64,
     lmn: i64,
@@ -260,6 +299,9 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             l,
             m,
             n,
+            l_recip: reciprocal(l),
+            m_recip: reciprocal(m),
+            n_recip: reciprocal(n),
             mn: m as i64 * n as i64,
             lmn: l as i64 * m as i64 * n as i64,
             half_lmn: l as i64 * m as i64 * n as i64 / 2,
@@ -286,7 +328,8 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     /// 32-bit arithmetic only: the new position is `p + δ mod MN` in the
     /// canonical form `(turn, in_turn) ∈ [0, N) × [0, M)`; a move of less
     /// than one motor revolution needs no division, a longer one one
-    /// `u32` division by `M` and at most one by `N` (no 64-bit division on
+    /// `u32` division by `M` and at most one by `N` ([`div_rem`]: on
+    /// Armv6-M a multiply by a prepared reciprocal; no 64-bit division on
     /// any path). Equal to the 64-bit formula [`advance_reference`] for
     /// every state and counter (tests below).
     #[inline]
@@ -299,7 +342,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         let (q, r) = if mag < m {
             (0, mag)
         } else {
-            (mag / m, mag % m)
+            div_rem(mag, m, self.m_recip)
         };
         let turn = if delta >= 0 {
             // in_turn + r < 2M, compared without overflow.
@@ -310,7 +353,11 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             } else {
                 in_turn += r;
             }
-            let c = if carry < n { carry } else { carry % n };
+            let c = if carry < n {
+                carry
+            } else {
+                div_rem(carry, n, self.n_recip).1
+            };
             if c >= n - turn {
                 c - (n - turn)
             } else {
@@ -324,7 +371,11 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             } else {
                 in_turn -= r;
             }
-            let b = if borrow < n { borrow } else { borrow % n };
+            let b = if borrow < n {
+                borrow
+            } else {
+                div_rem(borrow, n, self.n_recip).1
+            };
             if b > turn {
                 turn + (n - b)
             } else {
@@ -436,7 +487,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         self.advance(st, motor_counter);
         let invalid = link_count >= self.l;
         let c_l = if invalid {
-            link_count % self.l
+            div_rem(link_count, self.l, self.l_recip).1
         } else {
             link_count
         };
@@ -515,6 +566,45 @@ mod tests {
 
     const L: u32 = 1 << 17;
     const M: u32 = 2000;
+
+    /// The reciprocal division equals `/` and `%` on edges of every kind:
+    /// divisors 1, 2, powers of two and their neighbours, the estimator's
+    /// M, N and L, the largest `u32`; dividends around multiples of `d`
+    /// and at the ends of the `u32` range.
+    #[test]
+    fn reciprocal_division_is_exact_on_edges() {
+        let mut ds = vec![1u32, 2, 3, 7, 100, 160, M, L, u32::MAX, u32::MAX - 1];
+        for k in 1..32 {
+            ds.extend([(1u32 << k) - 1, 1 << k, (1 << k) + 1]);
+        }
+        for &d in &ds {
+            let mut xs = vec![0u32, 1, d - 1, d, d.wrapping_add(1), u32::MAX, u32::MAX - 1];
+            xs.extend([1u32 << 31, (1 << 31) - 1, (1 << 31) + 1]);
+            let top = u32::MAX / d;
+            for q in [1, 2, top / 2, top - 1, top] {
+                let base = q.wrapping_mul(d);
+                xs.extend([base, base.wrapping_sub(1), base.wrapping_add(1)]);
+            }
+            for x in xs {
+                assert_eq!(
+                    div_rem_reciprocal(x, d, reciprocal(d)),
+                    (x / d, x % d),
+                    "{x} / {d}"
+                );
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(100_000))]
+        /// The reciprocal division equals `/` and `%` for random operands.
+        #[test]
+        fn reciprocal_division_is_exact(x: u32, d in 1u32.., small in 1u32..5000) {
+            for d in [d, small] {
+                prop_assert_eq!(div_rem_reciprocal(x, d, reciprocal(d)), (x / d, x % d));
+            }
+        }
+    }
 
     fn params(ke: Option<KinematicErrorModel>) -> TorqueEstimatorParams {
         let drive = CatalogueData::SHD_17_100.identify().unwrap();
