@@ -45,14 +45,20 @@ pub(crate) fn mul_bits(a: i32, b: i32) -> i32 {
     }
 }
 
-/// [`mul_bits`] for any operands, in two's complement: the unsigned 64-bit
-/// product of the bit patterns with its high word corrected by `−b` for
-/// `a < 0` and by `−a` for `b < 0` is the signed product `V = a·b`
-/// (`|V| ≤ 2⁶²`, so `|hi| ≤ 2³⁰`). `V + 2¹⁵` shifted right by 16 fits
-/// `i32` exactly when its high word shifted right by 15 is `0` or `−1`;
-/// otherwise the result saturates with the sign of `V`.
+/// [`mul_bits`] for any operands: [`signed_wide_mul`], then
+/// [`round_shift_sat`] by 16.
 #[inline(always)]
 fn mul_bits_long(a: i32, b: i32) -> i32 {
+    let (hi, lo) = signed_wide_mul(a, b);
+    round_shift_sat(hi, lo, 1 << 15, 15)
+}
+
+/// The signed 64-bit product `V = a·b` as `(high word, low word)`, in
+/// two's complement: the unsigned product of the bit patterns ([`wide_mul`])
+/// with its high word corrected by `−b` for `a < 0` and by `−a` for `b < 0`.
+/// `|V| ≤ 2⁶²`, so `|high| ≤ 2³⁰`.
+#[inline(always)]
+pub(crate) fn signed_wide_mul(a: i32, b: i32) -> (i32, u32) {
     let (hi, lo) = wide_mul(a as u32, b as u32);
     let mut hi = hi as i32;
     if a < 0 {
@@ -61,13 +67,25 @@ fn mul_bits_long(a: i32, b: i32) -> i32 {
     if b < 0 {
         hi = hi.wrapping_sub(a);
     }
-    let (lo, carry) = lo.overflowing_add(1 << 15);
+    (hi, lo)
+}
+
+/// `sat(⌊(V + round) / 2^sh⌋)` for `V = hi·2³² + lo` with `|hi| ≤ 2³⁰`,
+/// `sh = rs + 1 ∈ [1, 32]` and `round < 2³²` (the rounding constant
+/// `2^(sh−1)`). After the carry of `lo + round` into `hi`, the shifted value
+/// fits `i32` exactly when `hi >> (sh − 1)` (arithmetic) is `0` or `−1`;
+/// otherwise it saturates with the sign of `hi`. `lo >> sh` and
+/// `hi << (32 − sh)` are written with `rs` so that `sh = 32` needs no
+/// special case.
+#[inline(always)]
+pub(crate) fn round_shift_sat(hi: i32, lo: u32, round: u32, rs: u32) -> i32 {
+    let (lo, carry) = lo.overflowing_add(round);
     let hi = hi + carry as i32;
-    let top = hi >> 15;
+    let top = hi >> rs;
     if top != (top >> 31) {
         return if hi < 0 { i32::MIN } else { i32::MAX };
     }
-    (hi << 16) | (lo >> 16) as i32
+    (hi << (31 - rs)) | ((lo >> rs) >> 1) as i32
 }
 
 /// [`mul_bits`] for `b ∈ [−2¹⁵, 2¹⁵)`, in 32-bit words. With

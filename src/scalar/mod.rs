@@ -446,24 +446,19 @@ impl Coef {
     /// `x` (tests below), in fewer 32-bit operations.
     ///
     /// For `1 ≤ shift ≤ 62` (coefficients in `[2^-32, 2^30)`, which
-    /// covers the prepared control-law constants) the product is formed in
-    /// two's complement: the unsigned 64-bit product of the bit patterns,
-    /// whose high word is corrected by `−m` for `x < 0` and by `−x` for
-    /// `m < 0`, is the signed product `V = x·m` (`|V| < 2⁶²`). Then
+    /// covers the prepared control-law constants) the product is the signed
+    /// `V = x·m` of [`fixed::signed_wide_mul`] (`|V| < 2⁶²`), then
     /// `⌊(V + 2^(sh−1)) / 2^sh⌋`:
     /// * `sh ≥ 33`: the rounding constant `2^(sh−1)` has no low-word bits,
     ///   and `⌊(hi·2³² + lo + 2^(sh−1)) / 2^sh⌋ = ⌊(hi + 2^(sh−33)) /
     ///   2^(sh−32)⌋` because `lo < 2³²` cannot carry the integer numerator
     ///   past a multiple of `2^(sh−32)`; the result is below `2²⁹` in
     ///   magnitude, so it never saturates.
-    /// * `sh ≤ 32`: add `2^(sh−1)` to the low word with carry, then the
-    ///   shifted value fits `i32` exactly when the high word shifted right
-    ///   (arithmetically) by `sh − 1` is `0` or `−1`; otherwise it saturates
-    ///   with the sign of the product.
+    /// * `sh ≤ 32`: [`fixed::round_shift_sat`].
     ///
-    /// No absolute values, no sign fix-up of the result and no branch on
-    /// the shift class beyond `sh > 32`; other coefficients take
-    /// [`fixed::scaled_product`].
+    /// No absolute values and no sign fix-up of the result; the rounding
+    /// constant and shift are prepared per coefficient. Other coefficients
+    /// take [`fixed::scaled_product`].
     #[inline(always)]
     pub(crate) fn scale_i32(&self, x: i32) -> i32 {
         let Some(c) = self.signed else {
@@ -474,29 +469,12 @@ impl Coef {
                 self.shift,
             );
         };
-        let m = c.m;
-        let (hi, lo) = fixed::wide_mul(x as u32, m as u32);
-        let mut hi = hi as i32;
-        if x < 0 {
-            hi = hi.wrapping_sub(m);
-        }
-        if m < 0 {
-            hi = hi.wrapping_sub(x);
-        }
+        let (hi, lo) = fixed::signed_wide_mul(x, c.m);
         if c.high_only {
             // |hi| ≤ 2³⁰ and round = 2^(sh−33) ≤ 2²⁹: no overflow.
             return (hi + c.round as i32) >> c.rs;
         }
-        let (lo, carry) = lo.overflowing_add(c.round);
-        let hi = hi + carry as i32; // |hi| ≤ 2³⁰ before the carry
-        let top = hi >> c.rs; // rs = sh − 1
-        if top != (top >> 31) {
-            // top ∉ {0, −1}: beyond the i32 range.
-            return if hi < 0 { i32::MIN } else { i32::MAX };
-        }
-        // (hi:lo) >> sh for sh ∈ [1, 32]: `hi << (31 − rs)` and `lo >> sh`
-        // written as two shifts, so that sh = 32 needs no special case.
-        (hi << (31 - c.rs)) | ((lo >> c.rs) >> 1) as i32
+        fixed::round_shift_sat(hi, lo, c.round, c.rs)
     }
 
     /// The straightforward 64-bit form of [`scale_int`](Self::scale_int),
