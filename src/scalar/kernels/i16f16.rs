@@ -414,16 +414,16 @@ fn atan2_mag(a: u32, b: u32) -> u32 {
 ///   nibble-table leading-zero count, a reciprocal from a 256-entry seed
 ///   and one Newton step, one widening product and one conditional
 ///   correction (bit-identical to the former bit-serial division, tested
-///   on structured and random pairs and at all `2³¹` magnitudes by
+///   on structured and random pairs, and at every magnitude `|x|` by
 ///   `atan_mag_bit_identical_everywhere`); `atan t` from a 32-piece cubic
 ///   table for `t ≥ 1/16` and from the odd series below; `π/2 − atan(1/|x|)`
 ///   for `|x| > 1`; one final rounding.
 /// * Cost: ≤ 4 `mulhi` (16 `MULS`) + `div_ratio` (one widening product, ten
-///   `MULS`), no loop, no division, no `leading_zeros` call, no 64-bit
-///   multiply; on the Cortex-M0+ at most 289 instructions
-///   (`embedded/count.py`, kernel row), 601 with the bit-serial division;
-///   tables 512 B (cubics) + 512 B (reciprocal seeds, shared with [`tan`])
-///   + 16 B (nibble counts).
+///   `MULS`), no loop, no division, no library `leading_zeros` call, no
+///   64-bit multiply; on the Cortex-M0+ at most 289 instructions
+///   (`embedded/count.py`, kernel row), 601 with the bit-serial division.
+///   Tables: 512 B of cubics, 512 B of reciprocal seeds (shared with
+///   [`tan`]) and 16 B of nibble counts.
 pub fn atan(x: I16F16) -> I16F16 {
     let bits = x.to_bits();
     let a = bits.unsigned_abs();
