@@ -9,7 +9,7 @@
 //!   `cargo test --release --lib -- --ignored exhaustive_ --test-threads 1 --nocapture`
 //! * **Kani** (`kani_*`): the same bodies with `kani::any()` inputs, plus
 //!   cheap integer properties of the building blocks (exact `mulhi`,
-//!   `div_frac`, `sqrt_q16`), output ranges and monotone pairs, which Kani
+//!   `div_ratio`, `sqrt_q16`), output ranges and monotone pairs, which Kani
 //!   decides bit-precisely.
 //! * **Random** (proptest, plain `cargo test`): bounded physical ranges.
 //!
@@ -237,9 +237,9 @@ pub fn mulhi_is_exact(a: u32, b: u32) -> bool {
     k::mulhi(a, b) as u64 == (a as u64 * b as u64) >> 32
 }
 
-/// `div_frac(n, d, 32) = ⌊n·2³²/d⌋` for `n < d ≤ 2³¹` (the `atan2` use).
-pub fn div_frac_is_exact(n: u32, d: u32) -> bool {
-    k::div_frac(n, d, 32) as u64 == ((n as u64) << 32) / d as u64
+/// `div_ratio(n, d) = ⌊n·2³²/d⌋` for `n < d ≤ 2³¹` (the `atan2` use).
+pub fn div_ratio_is_exact(n: u32, d: u32) -> bool {
+    k::div_ratio(n, d) as u64 == ((n as u64) << 32) / d as u64
 }
 
 /// `sqrt_q16(n) = (⌊√(n·2¹⁶)⌋, remainder)`.
@@ -266,12 +266,11 @@ mod kani_proofs {
     }
 
     #[kani::proof]
-    #[kani::unwind(40)]
-    fn kani_div_frac_exact() {
+    fn kani_div_ratio_exact() {
         let n: u32 = kani::any();
         let d: u32 = kani::any();
-        kani::assume(n < d && d <= 1 << 31); // precondition of div_frac's atan2 use
-        assert!(div_frac_is_exact(n, d));
+        kani::assume(n < d && d <= 1 << 31); // the operands of atan2_mag
+        assert!(div_ratio_is_exact(n, d));
     }
 
     #[kani::proof]
@@ -635,8 +634,10 @@ mod tests {
                 assert!(mulhi_is_exact(a, b));
             }
         }
-        assert!(div_frac_is_exact(0x7FFF_FFFF, 0x8000_0000));
-        assert!(div_frac_is_exact(1, 0x8000_0000));
+        assert!(div_ratio_is_exact(0x7FFF_FFFF, 0x8000_0000));
+        assert!(div_ratio_is_exact(1, 0x8000_0000));
+        assert!(div_ratio_is_exact(0, 1));
+        assert!(div_ratio_is_exact(0xFFFF, 0x1_0000));
         assert!(sqrt_q16_is_exact(u32::MAX));
         assert!(sqrt_q16_is_exact(0));
     }
@@ -738,7 +739,7 @@ mod tests {
         #[test]
         fn building_blocks_exact(a in any::<u32>(), b in any::<u32>(), d in 1u32..=(1 << 31)) {
             prop_assert!(mulhi_is_exact(a, b));
-            prop_assert!(div_frac_is_exact(a % d, d));
+            prop_assert!(div_ratio_is_exact(a % d, d));
             prop_assert!(sqrt_q16_is_exact(a));
         }
     }

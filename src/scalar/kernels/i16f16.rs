@@ -6,13 +6,17 @@
 //! * `mulhi` — `⌊a·b / 2³²⌋` of two `u32`, built from four 16×16→32
 //!   multiplies (one `MULS` each on the M0+), so no kernel calls
 //!   `__aeabi_lmul`: **no kernel contains a 64-bit multiply**.
-//! * `div_frac` — `⌊n·2ᵏ / d⌋` by restoring shift-and-subtract (one
-//!   compare/subtract per quotient bit), used by `atan`/`atan2`;
-//!   `div_frac_wide` — the same exact quotient for divisors `d ≥ 2²⁹` (the
-//!   two in `tan`) by a table-seeded reciprocal, one Newton step and one
-//!   correction: **no kernel contains a division** (neither
-//!   `__aeabi_uidiv` nor a 64-bit one). Only `tan` (one 64-bit
-//!   subtraction) touches 64-bit values, and only with add/shift.
+//! * `div_frac_wide` — `⌊n·2ᵏ / d⌋` exactly for divisors `d ≥ 2²⁹` (the
+//!   two in `tan`), and `div_ratio` — `⌊n·2³² / d⌋` for any `n < d` (the
+//!   ratio `min/max` of `atan`, `atan2`, `acos`), both by a table-seeded
+//!   reciprocal, one Newton step and one correction on the divisor
+//!   normalized to `[2³¹, 2³²)` (`div_ratio` finds the shift with a
+//!   16-bit nibble-table leading-zero count): **no kernel contains a
+//!   division** (neither `__aeabi_uidiv` nor a 64-bit one) nor a library
+//!   `leading_zeros` call. The bit-serial `div_frac` (restoring
+//!   shift-and-subtract) stays in the tests as their reference. Only `tan`
+//!   (one 64-bit subtraction) touches 64-bit values, and only with
+//!   add/shift.
 //! * `sqrt_q16` — digit-by-digit integer square root in 32-bit registers.
 //!
 //! Internal values are unsigned `Q0.32`/`Q1.31`/`Q2.30` magnitudes; each
@@ -129,12 +133,14 @@ pub(crate) fn mulhi(a: u32, b: u32) -> u32 {
     crate::scalar::fixed::wide_mul(a, b).0
 }
 
-/// `⌊n·2ᵏ / d⌋` by restoring division, one quotient bit per step.
+/// `⌊n·2ᵏ / d⌋` by restoring division, one quotient bit per step: the
+/// reference of [`div_frac_wide`] and [`div_ratio`] in the tests (the
+/// division `tan`, `atan` and `atan2` used before the reciprocal).
 ///
 /// Requires `0 < d ≤ 2³¹`, `n < 4·d` and a quotient below `2³²` (callers
 /// guarantee all three); `r < d ≤ 2³¹` keeps `r << 1` inside `u32`.
-#[inline]
-pub(crate) fn div_frac(n: u32, d: u32, k: u32) -> u32 {
+#[cfg(test)]
+fn div_frac(n: u32, d: u32, k: u32) -> u32 {
     let mut q = 0u32;
     let mut r = n;
     while r >= d {
@@ -187,7 +193,8 @@ const fn recip_seed() -> [u16; 256] {
 }
 
 /// `⌊n·2ᵏ / d⌋` for a divisor of at least 30 bits, by a reciprocal instead
-/// of one step per quotient bit; equal to [`div_frac`] wherever both apply.
+/// of one step per quotient bit; equal to the bit-serial `div_frac` wherever
+/// both apply.
 ///
 /// Requires `d ≥ 2²⁹`, `1 ≤ k ≤ 31` and a quotient below `2³²`. Inside this
 /// domain the result is the exact floor quotient, not an approximation:
@@ -242,6 +249,15 @@ fn div_frac_wide_steps(n: u32, d: u32, k: u32) -> (u32, u32) {
     } else {
         (n >> (32 - t), n << t)
     };
+    div_norm_steps(u1, u0, dn)
+}
+
+/// `⌊(u₁·2³² + u₀)/D⌋` for a normalized divisor `D ∈ [2³¹, 2³²)` and
+/// `u₁ < D` (quotient below `2³²`), with its final correction (0 or 1):
+/// steps 2–5 of [`div_frac_wide`], whose proof covers every such
+/// `(u₁, u₀, D)`.
+#[inline(always)]
+fn div_norm_steps(u1: u32, u0: u32, dn: u32) -> (u32, u32) {
     // x₀ = 2³² + seed·2¹⁶; e = (2⁶⁴ − x₀·D)/2³² rounded down, |e| ≤ 2²³ + 1:
     // x₀·D/2³² = D + seed·D/2¹⁶ < D + seed·⌊D/2¹⁶⌋ + ⌊seed·(D mod 2¹⁶)/2¹⁶⌋ + 1.
     let seed = RECIP_SEED[((dn >> 23) & 0xFF) as usize] as u32;
@@ -271,6 +287,26 @@ fn div_frac_wide_steps(n: u32, d: u32, k: u32) -> (u32, u32) {
     let r_hi = r_hi - p_hi - b as u32; // r₂ = r₁ − δ·D ∈ [0, 2D)
     let step = (r_hi != 0 || r_lo >= dn) as u32;
     (q1 + delta + step, step)
+}
+
+/// `⌊n·2³² / d⌋` for `n < d` (any `d ≥ 1`): the ratio of [`atan2_mag`],
+/// exact, without a division or a `leading_zeros` call; equal to
+/// `div_frac(n, d, 32)`.
+///
+/// `d` is normalized to `D = d·2ˢ ∈ [2³¹, 2³²)` with `s` its leading-zero
+/// count ([`leading_zeros_32`]), `n` by the same shift (`n·2ˢ < D`, so no
+/// bit is lost), and `⌊n·2³²/d⌋ = ⌊(n·2ˢ)·2³²/D⌋` is [`div_norm_steps`]
+/// with `u₁ = n·2ˢ < D` and `u₀ = 0`.
+#[inline(always)]
+pub(crate) fn div_ratio(n: u32, d: u32) -> u32 {
+    div_ratio_steps(n, d).0
+}
+
+/// [`div_ratio`] and its final correction (0 or 1), which the tests count.
+#[inline(always)]
+fn div_ratio_steps(n: u32, d: u32) -> (u32, u32) {
+    let s = leading_zeros_32(d);
+    div_norm_steps(n << s, 0, d << s)
 }
 
 /// `(⌊√(n·2¹⁶)⌋, n·2¹⁶ − root²)`: digit-by-digit square root of a 48-bit
@@ -347,17 +383,21 @@ fn mulhi_signed(h: u32, v: i32) -> i32 {
 }
 
 /// `atan2(a, b)` of two magnitudes (`a, b ≤ 2³¹`, not both 0) in `Q2.30`,
-/// `∈ [0, π/2]`. The ratio `min/max` is formed exactly to `2⁻³²` by
-/// `div_frac`, so there is no loss of accuracy near the axes or at tiny
-/// magnitudes.
+/// `∈ [0, π/2]`. The ratio `min/max` is formed exactly to `2⁻³²` (the floor
+/// `⌊min·2³²/max⌋`) by [`div_ratio`], so there is no loss of accuracy near
+/// the axes or at tiny magnitudes. Bit-identical to the bit-serial
+/// `div_frac` version (`atan2_mag_is_bit_identical`).
 #[inline]
 fn atan2_mag(a: u32, b: u32) -> u32 {
     if a == b {
-        PIO4_Q30
-    } else if a < b {
-        atan_unit(div_frac(a, b, 32)) >> 2
+        return PIO4_Q30;
+    }
+    let (n, d, upper) = if a < b { (a, b, false) } else { (b, a, true) };
+    let t = atan_unit(div_ratio(n, d)) >> 2;
+    if upper {
+        PIO2_Q30 - t
     } else {
-        PIO2_Q30 - (atan_unit(div_frac(b, a, 32)) >> 2)
+        t
     }
 }
 
@@ -369,13 +409,21 @@ fn atan2_mag(a: u32, b: u32) -> u32 {
 ///   measured max error 0.500120 LSB (at `x = −3.76607`); monotone
 ///   non-decreasing over all inputs; odd except at `MIN` (all three in one
 ///   pass: `exhaustive_atan_i16f16`).
-/// * Algorithm: `t = min(|x|,1)/max(|x|,1)` formed to `2⁻³²` by
-///   shift-and-subtract division; `atan t` from a 32-piece cubic table for
-///   `t ≥ 1/16` and from the odd series below; `π/2 − atan(1/|x|)` for
-///   `|x| > 1`; one final rounding. Cost: ≤ 4 `mulhi` (16 `MULS`),
-///   `32 − skip` branch-free division steps (the leading zero quotient bits
-///   are skipped exactly: ~18 steps for `|x| ≫ 1`), no 64-bit multiply;
-///   table 512 B.
+/// * Algorithm: `t = min(|x|,1)/max(|x|,1)` formed exactly to `2⁻³²` (the
+///   floor) by `div_ratio`: the divisor normalized to `[2³¹, 2³²)` by a
+///   nibble-table leading-zero count, a reciprocal from a 256-entry seed
+///   and one Newton step, one widening product and one conditional
+///   correction (bit-identical to the former bit-serial division, tested
+///   on structured and random pairs, and at every magnitude `|x|` by
+///   `atan_mag_bit_identical_everywhere`); `atan t` from a 32-piece cubic
+///   table for `t ≥ 1/16` and from the odd series below; `π/2 − atan(1/|x|)`
+///   for `|x| > 1`; one final rounding.
+/// * Cost: ≤ 4 `mulhi` (16 `MULS`) + `div_ratio` (one widening product, ten
+///   `MULS`), no loop, no division, no library `leading_zeros` call, no
+///   64-bit multiply; on the Cortex-M0+ at most 289 instructions
+///   (`embedded/count.py`, kernel row), 601 with the bit-serial division.
+///   Tables: 512 B of cubics, 512 B of reciprocal seeds (shared with
+///   [`tan`]) and 16 B of nibble counts.
 pub fn atan(x: I16F16) -> I16F16 {
     let bits = x.to_bits();
     let a = bits.unsigned_abs();
@@ -618,6 +666,18 @@ fn leading_zeros_16(h: u32) -> u32 {
     n + NIBBLE_LZ[(h & 0xF) as usize] as u32
 }
 
+/// `d.leading_zeros()` for `d ≥ 1` from [`leading_zeros_16`] of the high
+/// or the low half (one more comparison). Checked against the library
+/// count by `leading_zeros_32_is_exact`.
+#[inline(always)]
+fn leading_zeros_32(d: u32) -> u32 {
+    if d >= 1 << 16 {
+        leading_zeros_16(d >> 16) - 16
+    } else {
+        leading_zeros_16(d)
+    }
+}
+
 /// The operands `(n, d, k)` of the quotient `tan|x|·2¹⁷ ≈ ⌊n·2ᵏ/d⌋` of
 /// [`tan`] for the raw magnitude `a < TAN_SAT_BITS`.
 ///
@@ -626,7 +686,7 @@ fn leading_zeros_16(h: u32) -> u32 {
 /// * otherwise: `n = cos δ` (`Q1.31`), `d = sin δ·2^(15+lz) ∈ [2^29.9, 2³¹)`,
 ///   `k = lz + 1 ∈ 17..=31`; quotient `< 2³²`.
 ///
-/// Both satisfy the preconditions of [`div_frac`] and of [`div_frac_wide`]
+/// Both satisfy the preconditions of `div_frac` and of [`div_frac_wide`]
 /// (`d ≥ 2²⁹`), checked at every `a` by `tan_quotients_are_exact`.
 #[inline(always)]
 fn tan_quotient_operands(a: u32) -> (u32, u32, u32) {
@@ -705,10 +765,12 @@ pub fn exp(x: I16F16) -> I16F16 {
 ///   `exhaustive_atan2_i16f16`; measured max 0.500159 LSB at
 ///   `(y, x) = (122.82422, 32.60938)`), plus random full-range pairs and a dense grid
 ///   at the axes and tiny magnitudes (proptest).
-/// * Algorithm: `t = min(|y|,|x|)/max(|y|,|x|)` formed exactly to `2⁻³²` by
-///   shift-and-subtract division — the ratio is exact for *any* magnitudes, so
-///   there is no loss near the axes or for `|y|, |x|` of a few LSB — then the
-///   [`atan`] core and octant/quadrant unfolding. Cost as [`atan`].
+/// * Algorithm: `t = min(|y|,|x|)/max(|y|,|x|)` formed exactly to `2⁻³²` (the
+///   floor) by the reciprocal division of [`atan`] — the ratio is exact for
+///   *any* magnitudes, so there is no loss near the axes or for `|y|, |x|`
+///   of a few LSB — then the [`atan`] core and octant/quadrant unfolding.
+/// * Cost as [`atan`]: on the Cortex-M0+ at most 298 instructions
+///   (`embedded/count.py`, kernel row), 648 with the bit-serial division.
 pub fn atan2(y: I16F16, x: I16F16) -> I16F16 {
     let (yb, xb) = (y.to_bits(), x.to_bits());
     let (a, b) = (yb.unsigned_abs(), xb.unsigned_abs());
@@ -731,7 +793,9 @@ pub fn atan2(y: I16F16, x: I16F16) -> I16F16 {
 /// * Algorithm: `acos x = atan2(√(1 − x²), x)`, where `1 − x² = (1−|x|)(1+|x|)`
 ///   is exact in 32 bits and its root is taken to `2⁻²⁴` by `sqrt_q16`, so
 ///   the steep ends `x → ±1` lose nothing; then the [`atan2`] core.
-///   Cost: 1 `MULS`, 24 root steps, as [`atan`] afterwards.
+/// * Cost: 1 `MULS`, 24 root steps, as [`atan`] afterwards; on the
+///   Cortex-M0+ at most 795 instructions (`embedded/count.py`, kernel row),
+///   1,139 with the bit-serial division.
 pub fn acos(x: I16F16) -> I16F16 {
     let bits = x.to_bits();
     let a = bits.unsigned_abs();
@@ -833,6 +897,142 @@ mod tests {
         for bits in [i32::MIN, i32::MIN + 1, i32::MAX] {
             let x = I16F16::from_bits(bits);
             assert_eq!(tan(x), tan_bit_serial(x), "bits = {bits}");
+        }
+    }
+
+    /// `atan2_mag` as it was before [`div_ratio`]: the ratio by the
+    /// bit-serial [`div_frac`].
+    fn atan2_mag_bit_serial(a: u32, b: u32) -> u32 {
+        if a == b {
+            PIO4_Q30
+        } else if a < b {
+            atan_unit(div_frac(a, b, 32)) >> 2
+        } else {
+            PIO2_Q30 - (atan_unit(div_frac(b, a, 32)) >> 2)
+        }
+    }
+
+    /// Magnitudes at the edges of `atan2_mag`'s domain `[0, 2³¹]`: 0, 1,
+    /// every power of two and its neighbours, the `I16F16` one (`2¹⁶`) and
+    /// its neighbours, `i32::MIN`'s magnitude `2³¹` and `i32::MAX`.
+    fn edge_magnitudes() -> Vec<u32> {
+        let mut v = vec![
+            0u32,
+            1,
+            2,
+            3,
+            5,
+            7,
+            0xFFFF,
+            0x1_0000,
+            0x1_0001,
+            0x7FFF_FFFF,
+            1 << 31,
+        ];
+        for i in 1..=31 {
+            let p = 1u32 << i;
+            v.extend([p - 1, p, p + 1, p + (p >> 1), p - (p >> 2)]);
+        }
+        v.retain(|&m| m <= 1 << 31);
+        v.sort_unstable();
+        v.dedup();
+        v
+    }
+
+    /// `⌊n·2³²/d⌋` of [`div_ratio`] against the 128-bit floor quotient and
+    /// the bit-serial [`div_frac`], on every pair of edge magnitudes with
+    /// `n < d` and at `n` just below `d` (ratios next to 1), for divisors up
+    /// to `u32::MAX`; both values of the final correction occur.
+    #[test]
+    fn div_ratio_matches_on_edges() {
+        let mut ds = edge_magnitudes();
+        ds.extend([(1 << 31) + 1, 0xC000_0000, u32::MAX - 1, u32::MAX]);
+        let mut seen = [false; 2];
+        for &d in ds.iter().filter(|&&d| d >= 1) {
+            let near = [
+                d - 1,
+                d.saturating_sub(2),
+                d.saturating_sub(3),
+                d / 2,
+                d / 3,
+            ];
+            for n in ds.iter().copied().filter(|&n| n < d).chain(near) {
+                let want = floor_quotient(n, d, 32);
+                let (q, step) = div_ratio_steps(n, d);
+                assert_eq!(q as u128, want, "n = {n}, d = {d}");
+                if d <= 1 << 31 {
+                    assert_eq!(div_frac(n, d, 32), q, "n = {n}, d = {d}");
+                }
+                seen[step as usize] = true;
+            }
+        }
+        assert_eq!(seen, [true, true]);
+    }
+
+    /// Every divisor below 2²⁰ and every power of two with its neighbours.
+    #[test]
+    fn leading_zeros_32_is_exact() {
+        for d in 1..1u32 << 20 {
+            assert_eq!(leading_zeros_32(d), d.leading_zeros(), "d = {d}");
+        }
+        for i in 0..32 {
+            let p = 1u32 << i;
+            for d in [p - 1, p, p + 1, p | (p - 1), u32::MAX >> (31 - i)] {
+                if d >= 1 {
+                    assert_eq!(leading_zeros_32(d), d.leading_zeros(), "d = {d}");
+                }
+            }
+        }
+    }
+
+    /// `atan2_mag` with [`div_ratio`] equals the bit-serial version on
+    /// every pair of edge magnitudes (including equal ones and 0), on
+    /// ratios next to 1 and next to 0 around every edge magnitude, and at
+    /// every operand pair of `acos` (all 2¹⁶ − 1 inputs `0 < |x| < 1`).
+    #[test]
+    fn atan2_mag_is_bit_identical() {
+        let v = edge_magnitudes();
+        let mut count = 0u32;
+        let mut check = |a: u32, b: u32| {
+            if (a, b) != (0, 0) && a <= 1 << 31 && b <= 1 << 31 {
+                assert_eq!(
+                    atan2_mag(a, b),
+                    atan2_mag_bit_serial(a, b),
+                    "a = {a}, b = {b}"
+                );
+                count += 1;
+            }
+        };
+        for &a in &v {
+            for &b in &v {
+                check(a, b);
+            }
+            for j in 1..=8 {
+                check(a, a.wrapping_sub(j));
+                check(a.wrapping_sub(j), a);
+                check(a, a + j);
+                check(a + j, a);
+                check(j, a);
+                check(a, j);
+            }
+        }
+        for a in 1..1u32 << 16 {
+            let (s, _) = sqrt_q16(((1 << 16) - a) * ((1 << 16) + a));
+            check(s, a << 8);
+        }
+        assert!(count > 80_000, "{count}");
+    }
+
+    /// Every input of `atan` (`b = 2¹⁶`, `a` every magnitude up to 2³¹):
+    /// bit-identical to the bit-serial division. 2³¹ pairs, run in release:
+    /// `cargo test --release --lib atan_mag_bit_identical_everywhere -- --ignored`.
+    #[test]
+    #[ignore]
+    fn atan_mag_bit_identical_everywhere() {
+        for a in 0..=1u32 << 31 {
+            if atan2_mag(a, 1 << 16) != atan2_mag_bit_serial(a, 1 << 16) {
+                panic!("a = {a}");
+            }
         }
     }
 
@@ -941,6 +1141,58 @@ mod tests {
                 _ => frac % (n_max.max(1)),
             };
             proptest::prop_assert_eq!(div_frac_wide(n, d, k) as u128, floor_quotient(n, d, k));
+        }
+
+        /// Over the whole documented domain of [`div_ratio`] (`n < d`, any
+        /// `d ≥ 1`): the exact floor quotient, equal to the bit-serial
+        /// `div_frac(n, d, 32)` where that applies (`d ≤ 2³¹`). `d` is drawn
+        /// uniformly or as a power of two times a small factor (tiny and
+        /// round divisors), `n` as a fraction of `d` or just below it.
+        #[test]
+        fn div_ratio_is_exact(
+            d_any in 1u32..=u32::MAX,
+            shift in 0u32..32,
+            pick in 0u32..3,
+            frac in proptest::prelude::any::<u32>(),
+            near in 0u32..2,
+        ) {
+            let d = match pick {
+                0 => d_any,
+                1 => (d_any >> shift).max(1),
+                _ => (d_any & 0xFF).max(1) << shift.min(23),
+            };
+            let n = if near == 0 {
+                ((d as u64 * frac as u64) >> 32) as u32
+            } else {
+                d - 1 - (frac % 1024).min(d - 1)
+            };
+            let q = div_ratio(n, d);
+            proptest::prop_assert_eq!(q as u128, floor_quotient(n, d, 32));
+            if d <= 1 << 31 {
+                proptest::prop_assert_eq!(q, div_frac(n, d, 32));
+            }
+        }
+
+        /// `atan2_mag` with [`div_ratio`] equals the bit-serial version on
+        /// random magnitude pairs over `[0, 2³¹]`: uniform, both scaled down
+        /// by a common random shift (tiny magnitudes), and ratios next to 1.
+        #[test]
+        fn atan2_mag_bit_identical_random(
+            a in 0u32..=(1 << 31),
+            b in 0u32..=(1 << 31),
+            shift in 0u32..32,
+            pick in 0u32..3,
+            j in 0u32..64,
+        ) {
+            let (a, b) = match pick {
+                0 => (a, b),
+                1 => (a >> shift, b >> shift),
+                _ if b & 1 == 0 => (a, a.saturating_sub(j)),
+                _ => (a, (a + j).min(1 << 31)),
+            };
+            if (a, b) != (0, 0) {
+                proptest::prop_assert_eq!(atan2_mag(a, b), atan2_mag_bit_serial(a, b), "a = {}, b = {}", a, b);
+            }
         }
     }
 }
