@@ -415,7 +415,7 @@ fn atan2_mag(a: u32, b: u32) -> u32 {
 ///   and one Newton step, one widening product and one conditional
 ///   correction (bit-identical to the former bit-serial division, tested
 ///   on structured and random pairs, and at every magnitude `|x|` by
-///   `atan_mag_bit_identical_everywhere`); `atan t` from a 32-piece cubic
+///   `exhaustive_atan_bit_identity_i16f16`); `atan t` from a 32-piece cubic
 ///   table for `t ≥ 1/16` and from the odd series below; `π/2 − atan(1/|x|)`
 ///   for `|x| > 1`; one final rounding.
 /// * Cost: ≤ 4 `mulhi` (16 `MULS`) + `div_ratio` (one widening product, ten
@@ -1024,11 +1024,12 @@ mod tests {
     }
 
     /// Every input of `atan` (`b = 2¹⁶`, `a` every magnitude up to 2³¹):
-    /// bit-identical to the bit-serial division. 2³¹ pairs, run in release:
-    /// `cargo test --release --lib atan_mag_bit_identical_everywhere -- --ignored`.
+    /// bit-identical to the bit-serial division. 2³¹ pairs, run in release by
+    /// `.ci/run` with the other exhaustive checks:
+    /// `cargo test --release --lib exhaustive_atan_bit_identity_i16f16 -- --ignored`.
     #[test]
-    #[ignore]
-    fn atan_mag_bit_identical_everywhere() {
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_atan_bit_identity_i16f16() {
         for a in 0..=1u32 << 31 {
             if atan2_mag(a, 1 << 16) != atan2_mag_bit_serial(a, 1 << 16) {
                 panic!("a = {a}");
