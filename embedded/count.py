@@ -549,7 +549,7 @@ def joint_vectors(f):
 
 # Reason printed while the M4F joint-step instruction budget is not met
 # (None: asserted). The M0+ row's budgets are asserted.
-JOINT_F32_NOT_MET = ("instruction budget not met: worst case at a Hold -> Active switch with every boundary layer "
+JOINT_F32_NOT_MET = ("instruction budget not met: worst case at a Hold -> Active switch with boundary layers "
                      "active; estimate (<= 423: two exp ~110, three cos_turn ~85, tan ~55) + mode step (~480) + "
                      "firmware I/O (~60), spread over ~55 float compares (VCMP + VMRS each), ~100 VMUL and ~80 VADD "
                      "(LLVM forms no VMLA for the Cortex-M4, where it is slower in cycles) and ~120 VLDR")
