@@ -180,11 +180,9 @@ mod tests {
                 ]);
             }
         }
-        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        let mut state = 0x9E37_79B9_7F4A_7C15u64;
         for _ in 0..200_000 {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
+            let x = crate::scalar::xorshift64(&mut state);
             xs.push((x as i64) >> (x % 40));
         }
         for c in xs {

@@ -511,6 +511,16 @@ impl Coef {
     }
 }
 
+/// Marsaglia's xorshift64 step: the seeded argument generator of tests
+/// that need many reproducible words without a proptest runner.
+#[cfg(test)]
+pub(crate) fn xorshift64(state: &mut u64) -> u64 {
+    *state ^= *state << 13;
+    *state ^= *state >> 7;
+    *state ^= *state << 17;
+    *state
+}
+
 mod sealed {
     pub trait Sealed {}
     impl Sealed for f32 {}
@@ -538,11 +548,9 @@ mod tests {
             32767,
             -32769,
         ];
-        let mut v = 0x9E37_79B9u32;
+        let mut state = 0x9E37_79B9_7F4A_7C15u64;
         for _ in 0..20_000 {
-            v ^= v << 13;
-            v ^= v >> 17;
-            v ^= v << 5;
+            let v = xorshift64(&mut state) as u32;
             xs.push((v as i32) >> (v % 24));
         }
         for value in [

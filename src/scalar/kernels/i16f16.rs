@@ -639,16 +639,23 @@ pub fn sin_cos(x: I16F16) -> (I16F16, I16F16) {
 ///   bit-serial `div_frac` (tested at every input).
 /// * Cost: 6 `mulhi` + `div_frac_wide` (one widening product, ten `MULS`),
 ///   no loop, no division, no `leading_zeros` call; on the Cortex-M0+ at
-///   most 377 instructions (`embedded/count.py`, kernel row), 721 with the
+///   most 375 instructions (`embedded/count.py`, kernel row), 721 with the
 ///   bit-serial division.
 pub fn tan(x: I16F16) -> I16F16 {
+    tan_with(x, div_frac_wide)
+}
+
+/// [`tan`] with the quotient `⌊n·2ᵏ/d⌋` formed by `div` (the tests pass
+/// the bit-serial division as the reference).
+#[inline(always)]
+fn tan_with(x: I16F16, div: impl Fn(u32, u32, u32) -> u32) -> I16F16 {
     let bits = x.to_bits();
     let a = bits.unsigned_abs();
     if a >= TAN_SAT_BITS {
         return with_sign(i32::MAX, bits < 0);
     }
     let (n, d, k) = tan_quotient_operands(a);
-    let q = div_frac_wide(n, d, k);
+    let q = div(n, d, k);
     let mag = (q >> 1) + (q & 1);
     with_sign(mag.min(i32::MAX as u32) as i32, bits < 0)
 }
@@ -851,15 +858,7 @@ mod tests {
     /// `tan` as it was before [`div_frac_wide`]: the same operands through
     /// the bit-serial [`div_frac`].
     fn tan_bit_serial(x: I16F16) -> I16F16 {
-        let bits = x.to_bits();
-        let a = bits.unsigned_abs();
-        if a >= TAN_SAT_BITS {
-            return with_sign(i32::MAX, bits < 0);
-        }
-        let (n, d, k) = tan_quotient_operands(a);
-        let q = div_frac(n, d, k);
-        let mag = (q >> 1) + (q & 1);
-        with_sign(mag.min(i32::MAX as u32) as i32, bits < 0)
+        tan_with(x, div_frac)
     }
 
     /// Every input of `tan`'s domain: the operands satisfy the documented
