@@ -280,16 +280,21 @@ pub(crate) fn sat_with_inverse<S: Scalar>(x: S, eps: S, inv: S) -> S {
 
 /// `±1` outside the layer `|x| ≤ ε`, 0 for NaN, and `scale(x)` (`x/ε`
 /// by some product) clamped to `[−1, 1]` inside it.
+///
+/// The inside of the layer is tested first, by one magnitude comparison
+/// (false for NaN; on fixed point `|MIN|` saturates to `MAX`, outside any
+/// layer, and `MIN` then takes the `−1` branch as it should).
 #[inline(always)]
 fn sat_scaled<S: Scalar>(x: S, eps: S, scale: impl Fn(S) -> S) -> S {
-    if x > eps {
-        S::ONE
-    } else if x < eps.neg() {
-        S::ONE.neg()
-    } else if x.is_nan() {
-        S::ZERO
-    } else {
+    if x.abs() <= eps {
         scale(x).clamp(S::ONE.neg(), S::ONE)
+    } else if x > S::ZERO {
+        S::ONE
+    } else if x < S::ZERO {
+        S::ONE.neg()
+    } else {
+        // NaN.
+        S::ZERO
     }
 }
 

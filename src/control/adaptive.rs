@@ -509,6 +509,21 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
     /// advancing it.
     #[inline]
     pub(crate) fn law(&self, st: &RobustAdaptiveState<S>, x: &ControlInput<S>) -> ActiveTerms<S> {
+        let mut t = self.law_of_checked_input(st, x);
+        t.valid &= x.is_finite();
+        t
+    }
+
+    /// [`law`](Self::law) for a caller that has already rejected a
+    /// non-finite sample (the mode manager checks its input once, before
+    /// it shifts the reference): `valid` then only tests the law and `r`
+    /// for NaN.
+    #[inline]
+    pub(crate) fn law_of_checked_input(
+        &self,
+        st: &RobustAdaptiveState<S>,
+        x: &ControlInput<S>,
+    ) -> ActiveTerms<S> {
         let e = x.motor_position.sub(x.desired_position);
         let ed = x.motor_velocity.sub(x.desired_velocity);
         let r = ed.add(self.lambda.apply(e));
@@ -521,10 +536,14 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
         let fr = self.friction.evaluate(&st.friction, x.motor_velocity);
         // K_r sat(r/ε_r): ±K_r outside the layer, (K_r/ε_r)·r inside it
         // (one product; the same value up to its rounding).
-        let robust = if r > self.eps_r {
-            self.robust_gain_value[0]
-        } else if r < self.eps_r.neg() {
-            self.robust_gain_value[1]
+        // One magnitude test for the common inside-layer case (a NaN `r`
+        // fails it too, and its law is NaN either way).
+        let robust = if r.abs() > self.eps_r {
+            if r > S::ZERO {
+                self.robust_gain_value[0]
+            } else {
+                self.robust_gain_value[1]
+            }
         } else {
             // Never beyond ±K_r, whatever the product's rounding.
             r.mul_coef(&self.robust_slope)
@@ -551,7 +570,7 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
             e,
             r,
             ry,
-            valid: x.is_finite() && !law.is_nan() && !r.is_nan(),
+            valid: !law.is_nan() && !r.is_nan(),
         }
     }
 
@@ -559,11 +578,16 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
     /// layer, `(ρ_j/ε_j) Y_j · r Y_j` inside it.
     #[inline(always)]
     fn param_robust_term(&self, j: usize, y: S, ry: S) -> S {
-        let eps = self.eps_f[j];
-        if ry > eps {
-            y.mul_coef(&self.rho_param[j])
-        } else if ry < eps.neg() {
-            y.mul_coef(&self.rho_param[j]).neg()
+        // One magnitude test on the inside-layer path (a NaN `ry` takes it
+        // and stays NaN, as with two one-sided tests; `|MIN|` saturates to
+        // `MAX` on fixed point and takes the negative branch, as before).
+        if ry.abs() > self.eps_f[j] {
+            let t = y.mul_coef(&self.rho_param[j]);
+            if ry > S::ZERO {
+                t
+            } else {
+                t.neg()
+            }
         } else {
             y.mul_coef(&self.rho_slope[j]).mul(ry)
         }

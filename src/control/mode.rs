@@ -495,7 +495,8 @@ impl<S: Scalar> ModeConfig<S> {
             JointMode::Passive => (self.passive.law(x, &st.active.friction), x.motor_position),
             mode => {
                 let (xr, acc) = self.reference(st, x);
-                let mut t: ActiveTerms<S> = self.active.law(&st.active, &xr);
+                // `x` was checked above; `xr` only shifts its reference.
+                let mut t: ActiveTerms<S> = self.active.law_of_checked_input(&st.active, &xr);
                 if switched && t.valid {
                     // Re-seed the integral so the law starts near τ_before
                     // (the law is affine in z with slope −1).

@@ -115,6 +115,13 @@ macro_rules! float_scalar {
                 )
             }
             #[inline]
+            fn copysign(self, sign: Self) -> Self {
+                // The sign bit of `sign` on the magnitude of `self`: two bit
+                // operations instead of comparisons and a product.
+                let s = 1 << ($t::MANTISSA_DIGITS + $t::MAX_EXP.trailing_zeros());
+                $t::from_bits((self.to_bits() & !s) | (sign.to_bits() & s))
+            }
+            #[inline]
             fn atan(self) -> Self {
                 kernels::$k::atan(self)
             }

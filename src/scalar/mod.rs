@@ -178,6 +178,22 @@ pub trait Scalar:
         }
     }
 
+    /// `|self|` with the sign of `sign`: `-|self|` when `sign` is negative,
+    /// `|self|` otherwise. Floats read the sign bit (IEEE `copysign`: `-0.0`
+    /// and a NaN with its sign bit set count as negative; a NaN `self`
+    /// stays NaN); fixed point tests `sign < 0` and saturates `|MIN|` to
+    /// `MAX`. For `self ≥ 0` and `sign ≠ 0` this is
+    /// [`sgn`](Scalar::sgn)`(sign) · self` without the product.
+    #[inline]
+    fn copysign(self, sign: Self) -> Self {
+        let m = self.abs();
+        if sign < Self::ZERO {
+            m.neg()
+        } else {
+            m
+        }
+    }
+
     /// Boundary-layer saturation of thesis eq. (4.18), `sat(x, y)` with
     /// `x = self`:
     ///
@@ -744,6 +760,40 @@ mod tests {
         assert_eq!(1.0f32.sat(f32::NAN), 1.0);
         assert_eq!(I16F16::MIN.sgn(), I16F16::from_num(-1));
         assert_eq!(I16F16::ZERO.sgn(), I16F16::ZERO);
+    }
+
+    /// `copysign` against `f32::copysign`/`f64::copysign` (std) on floats,
+    /// and against the defining cases on `I16F16`.
+    #[test]
+    fn copysign_matches_its_definition() {
+        let vals = [
+            0.0f64,
+            -0.0,
+            1.5,
+            -2.25,
+            f64::MIN_POSITIVE,
+            f64::MAX,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ];
+        for &a in &vals {
+            for &b in &vals {
+                assert_eq!(Scalar::copysign(a, b).to_bits(), a.copysign(b).to_bits());
+                let (a32, b32) = (a as f32, b as f32);
+                assert_eq!(
+                    Scalar::copysign(a32, b32).to_bits(),
+                    a32.copysign(b32).to_bits()
+                );
+            }
+        }
+        assert!(Scalar::copysign(f32::NAN, -1.0).is_nan());
+        assert_eq!(Scalar::copysign(2.0f32, -f32::NAN), -2.0);
+        let q = |v: f64| I16F16::from_num(v);
+        assert_eq!(Scalar::copysign(q(1.5), q(-0.25)), q(-1.5));
+        assert_eq!(Scalar::copysign(q(-1.5), q(0.25)), q(1.5));
+        assert_eq!(Scalar::copysign(q(-1.5), I16F16::ZERO), q(1.5));
+        assert_eq!(Scalar::copysign(I16F16::MIN, q(1.0)), I16F16::MAX);
+        assert_eq!(Scalar::copysign(I16F16::MIN, q(-1.0)), -I16F16::MAX);
     }
 
     /// `c·2³²/L` exactly, as a rational: (numerator in 2⁻³² turn units
