@@ -22,7 +22,7 @@
 //! covered by its bound `ρ_fq` (Assumption 3) in the robust law.
 
 use crate::error::{non_negative, positive, ParamError};
-use crate::scalar::{Coef, Scalar};
+use crate::scalar::{slope_within, Coef, Scalar};
 
 /// Friction parameters `F = [b, f_c, f_s, f_τ]` of eq. (4.8), SI units
 /// (see the module table).
@@ -269,15 +269,6 @@ pub fn sat_with_reciprocal<S: Scalar>(x: S, eps: S, inv_eps: &Coef) -> S {
     sat_scaled(x, eps, |x| x.mul_coef(inv_eps))
 }
 
-/// [`sat_with_reciprocal`] with `1/ε` as a stored value `inv` (a plain
-/// product inside the layer instead of a coefficient product): the same
-/// properties (clamped to `[−1, 1]`, odd, non-decreasing, NaN gives 0),
-/// and equal to `x/ε` up to the rounding of `inv` and of the product.
-#[inline]
-pub(crate) fn sat_with_inverse<S: Scalar>(x: S, eps: S, inv: S) -> S {
-    sat_scaled(x, eps, |x| x.mul(inv))
-}
-
 /// `±1` outside the layer `|x| ≤ ε`, 0 for NaN, and `scale(x)` (`x/ε`
 /// by some product) clamped to `[−1, 1]` inside it.
 ///
@@ -286,8 +277,15 @@ pub(crate) fn sat_with_inverse<S: Scalar>(x: S, eps: S, inv: S) -> S {
 /// layer, and `MIN` then takes the `−1` branch as it should).
 #[inline(always)]
 fn sat_scaled<S: Scalar>(x: S, eps: S, scale: impl Fn(S) -> S) -> S {
+    sat_in_layer(x, eps, |x| scale(x).clamp(S::ONE.neg(), S::ONE))
+}
+
+/// [`sat_scaled`] for a `scale` that already keeps `[−ε, ε]` within
+/// `[−1, 1]` (a slope prepared by `slope_within`): no clamp.
+#[inline(always)]
+fn sat_in_layer<S: Scalar>(x: S, eps: S, scale: impl Fn(S) -> S) -> S {
     if x.abs() <= eps {
-        scale(x).clamp(S::ONE.neg(), S::ONE)
+        scale(x)
     } else if x > S::ZERO {
         S::ONE
     } else if x < S::ZERO {
@@ -350,10 +348,19 @@ impl<S: Scalar> FrictionConfig<S> {
     pub fn new(eps_velocity: f64) -> Self {
         let eps = S::from_f64(eps_velocity * S::UNITS.speed);
         let inv = 1.0 / eps.to_f64();
+        let (one, minus_one) = (S::ONE, S::ONE.neg());
+        // `1/ε` at most rounded down so that `±ε·(1/ε)` stays in `[−1, 1]`:
+        // `sat` then needs no clamp inside the layer.
         FrictionConfig {
             eps,
-            inv_eps: Coef::new(inv),
-            inv_eps_value: (inv <= 16384.0).then(|| S::from_f64(inv)),
+            inv_eps: slope_within(inv, Coef::new, |c| {
+                eps.mul_coef(c) <= one && eps.neg().mul_coef(c) >= minus_one
+            }),
+            inv_eps_value: (inv <= 16384.0).then(|| {
+                slope_within(inv, S::from_f64, |&v| {
+                    eps.mul(v) <= one && eps.neg().mul(v) >= minus_one
+                })
+            }),
         }
     }
 
@@ -385,6 +392,22 @@ impl<S: Scalar> FrictionConfig<S> {
         ])
     }
 
+    /// `sat(q̇, ε_q̇)` of eq. (4.18), the regressor's `Y_2`: in `[−1, 1]`,
+    /// odd, non-decreasing, 0 for NaN; within the rounding of the prepared
+    /// `1/ε_q̇` and of one product of `q̇/ε_q̇` inside the layer.
+    #[inline]
+    pub fn sat(&self, qd: S) -> S {
+        // Fixed point only (folded at compile time): a float product by the
+        // coefficient is already one multiply.
+        let fixed = S::RESOLUTION.to_f64() >= 1e-6;
+        // Both slopes are prepared so that the layer's value stays in
+        // [−1, 1] (`new`): no clamp.
+        match self.inv_eps_value {
+            Some(inv) if fixed => sat_in_layer(qd, self.eps, |x| x.mul(inv)),
+            _ => sat_in_layer(qd, self.eps, |x| x.mul_coef(&self.inv_eps)),
+        }
+    }
+
     /// Eq. (4.17): nominal torque `f̂^c(q̇)` and regressor `Y(q̇)` at motor
     /// speed `qd` (stored speed units) for stored parameters `theta`.
     /// One `exp` per call. In fixed point, `q̇²` saturates above
@@ -393,13 +416,7 @@ impl<S: Scalar> FrictionConfig<S> {
     /// they should.
     #[inline]
     pub fn evaluate(&self, theta: &[S; 4], qd: S) -> FrictionEval<S> {
-        // Fixed point only (folded at compile time): a float product by the
-        // coefficient is already one multiply.
-        let fixed = S::RESOLUTION.to_f64() >= 1e-6;
-        let s = match self.inv_eps_value {
-            Some(inv) if fixed => sat_with_inverse(qd, self.eps, inv),
-            _ => sat_with_reciprocal(qd, self.eps, &self.inv_eps),
-        };
+        let s = self.sat(qd);
         let q2 = qd.mul(qd);
         let e = theta[3].mul(q2).neg().exp();
         // Outside the velocity layer s = ±1 and its products are free.
@@ -577,22 +594,57 @@ mod tests {
             prop_assert!((af - xf.sat(ef)).abs() <= 2.0 * f32::EPSILON);
         }
 
-        /// `sat_with_inverse` on I16F16 matches the division form within
-        /// the rounding of `1/ε` (≤ |x|·2⁻¹⁷ ≤ ε·2⁻¹⁷) and of the product
-        /// (½ LSB), stays in [−1, 1], is odd and non-decreasing.
+        /// The friction layer's `sat` on I16F16 (both prepared slopes: the
+        /// stored `1/ε` up to ε ≈ 6.1e-5 and the coefficient beyond)
+        /// matches the division form of eq. (4.18) within the rounding of
+        /// `1/ε` (≤ |x|·2⁻¹⁷ ≤ ε·2⁻¹⁷), of the product (½ LSB) and of
+        /// the preparation (≤ 64·2⁻²³ relative), stays in [−1, 1], is odd
+        /// and non-decreasing.
         #[test]
-        fn inverse_sat_matches_eq_4_18_on_i16f16(x in -1.0f64..1.0, dx in 1i32..64, eps in 1e-4f64..0.5) {
-            let e = I16F16::from_f64(eps);
-            let inv = I16F16::from_f64(1.0 / e.to_f64());
+        fn layer_sat_matches_eq_4_18_on_i16f16(x in -1.0f64..1.0, dx in 1i32..64, eps in 2e-5f64..0.5) {
+            let c = FrictionConfig::<I16F16>::new(eps);
+            let e = c.eps_velocity();
             let xq = I16F16::from_f64(x);
-            let a = sat_with_inverse(xq, e, inv);
+            let a = c.sat(xq);
             let want = xq.to_f64().sat(e.to_f64());
             let q = 1.0 / 65536.0;
-            prop_assert!((a.to_f64() - want).abs() <= 0.5 * q + e.to_f64() * q / 2.0 + 1e-12);
+            let tol = 0.5 * q + e.to_f64() * q / 2.0 + 64.0 / 8_388_608.0 + 1e-12;
+            prop_assert!((a.to_f64() - want).abs() <= tol, "{} vs {want}", a.to_f64());
             prop_assert!(a >= -I16F16::ONE && a <= I16F16::ONE);
-            prop_assert_eq!(sat_with_inverse(xq.neg(), e, inv), a.neg());
+            prop_assert_eq!(c.sat(xq.neg()), a.neg());
             let up = I16F16::from_bits(xq.to_bits().saturating_add(dx));
-            prop_assert!(sat_with_inverse(up, e, inv) >= a);
+            prop_assert!(c.sat(up) >= a);
+        }
+    }
+
+    /// The prepared slopes keep the layer's value in [−1, 1] without a
+    /// clamp: at every I16F16 layer width from 1 LSB to 0.5 rad/s (the
+    /// edge `±ε` is the extreme, the product being monotone) and at 20,000
+    /// f32 and f64 widths.
+    #[test]
+    fn prepared_layer_slope_never_exceeds_one() {
+        for bits in 1..=32768i32 {
+            let eps = I16F16::from_bits(bits).to_f64();
+            let c = FrictionConfig::<I16F16>::new(eps);
+            let e = c.eps_velocity();
+            assert_eq!(e.to_bits(), bits);
+            for x in [e, e.neg()] {
+                let s = c.sat(x);
+                assert!(s.abs() <= I16F16::ONE, "ε bits {bits}: sat = {s}");
+            }
+            // Just inside and outside the layer.
+            assert_eq!(c.sat(I16F16::from_bits(bits + 1)), I16F16::ONE);
+            assert!(c.sat(I16F16::from_bits(bits - 1)) <= I16F16::ONE);
+        }
+        let mut w = 1e-5f64;
+        for _ in 0..20_000 {
+            w *= 1.0004;
+            let c = FrictionConfig::<f32>::new(w);
+            let e = c.eps_velocity();
+            assert!(c.sat(e) <= 1.0 && c.sat(-e) >= -1.0, "f32 ε {e}");
+            let c = FrictionConfig::<f64>::new(w);
+            let e = c.eps_velocity();
+            assert!(c.sat(e) <= 1.0 && c.sat(-e) >= -1.0, "f64 ε {e}");
         }
     }
 

@@ -46,7 +46,7 @@ use crate::error::{non_negative, positive, ParamError};
 use crate::friction::{
     mul_unit, parameter_scales, regressor_scales, FrictionBounds, FrictionConfig, FrictionParams,
 };
-use crate::scalar::{units, Coef, Gain, Scalar};
+use crate::scalar::{slope_within, units, Coef, Gain, Scalar};
 
 /// The uncertainty bounds of Assumptions 3–6, eq. (4.11)–(4.14).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -430,6 +430,14 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
             }
             o
         };
+        let gain = Coef::new(d.robust_gain() * mt);
+        let robust_gain_value = [S::ONE.mul_coef(&gain), S::ONE.neg().mul_coef(&gain)];
+        // K_r/ε_r at most rounded down so that `±ε_r·(K_r/ε_r)` stays within
+        // `[−K_r, K_r]`: the layer's value needs no clamp.
+        let robust_slope = slope_within(d.robust_gain() * mt / eps_r.to_f64(), Coef::new, |c| {
+            eps_r.mul_coef(c) <= robust_gain_value[0]
+                && eps_r.neg().mul_coef(c) >= robust_gain_value[1]
+        });
         RobustAdaptiveConfig {
             friction: FrictionConfig::new(d.eps_velocity),
             accel_inertia: Coef::new(d.rotor_inertia * mt / u.speed),
@@ -437,12 +445,9 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
             lambda: Gain::new(d.lambda * u.speed / u.angle),
             feedback: Gain::new(mt / (d.ratio * u.link_torque)),
             integral_step: Gain::new(d.integral_gain * d.sample_period * mt / u.speed),
-            robust_gain_value: [
-                S::ONE.mul_coef(&Coef::new(d.robust_gain() * mt)),
-                S::ONE.neg().mul_coef(&Coef::new(d.robust_gain() * mt)),
-            ],
+            robust_gain_value,
             eps_r,
-            robust_slope: Coef::new(d.robust_gain() * mt / eps_r.to_f64()),
+            robust_slope,
             rho_param,
             eps_f,
             rho_slope,
@@ -545,9 +550,8 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
                 self.robust_gain_value[1]
             }
         } else {
-            // Never beyond ±K_r, whatever the product's rounding.
+            // Never beyond ±K_r: the slope is prepared for that (`new`).
             r.mul_coef(&self.robust_slope)
-                .clamp(self.robust_gain_value[1], self.robust_gain_value[0])
         };
         // Written out for the four parameters (a counted loop is not
         // unrolled on Armv6-M, where its iterator costs more than the body).
@@ -614,7 +618,15 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
         }
         let l = self.torque_limit;
         // z enters with a minus sign: r > 0 raises z and lowers τ.
-        let winding = (t.law > l && t.r < S::ZERO) || (t.law < l.neg() && t.r > S::ZERO);
+        // One magnitude test on the common unsaturated path (`l` is at most
+        // 16 N·m, inside every backend's range, so `|law| > l` is exactly
+        // `law > l || law < −l`).
+        let winding = t.law.abs() > l
+            && if t.law > S::ZERO {
+                t.r < S::ZERO
+            } else {
+                t.r > S::ZERO
+            };
         if !winding {
             let z = st.integral.add(self.integral_step.apply(t.r));
             st.integral = clamp_or_keep(

@@ -397,6 +397,28 @@ impl SignedCoef {
     }
 }
 
+/// A boundary-layer slope `k/ε` prepared so that its product at the layer's
+/// edge never exceeds the saturation value `k` in the backend's
+/// arithmetic: the first candidate `make(value·f)` with `fits` true, for
+/// `f = 1, 1 − 2⁻²³, 1 − 2·2⁻²³, …` (64 steps: the prepared value and
+/// the product each round by at most about 2⁻²³ relative), then
+/// `f = 1 − 2⁻²², …, 1 − 2⁻¹` as a guard. A rounded product by a positive
+/// factor is non-decreasing in the other operand on every backend, so a
+/// slope that fits at `±ε` fits on the whole layer and the layer's value
+/// needs no clamp. Usually the first candidate fits and nothing changes.
+pub(crate) fn slope_within<T>(value: f64, make: impl Fn(f64) -> T, fits: impl Fn(&T) -> bool) -> T {
+    const ULP23: f64 = 1.0 / 8_388_608.0;
+    let fine = (0..64u32).map(|k| 1.0 - k as f64 * ULP23);
+    let coarse = (1..=22u32).rev().map(|j| 1.0 - 1.0 / (1u64 << j) as f64);
+    for f in fine.chain(coarse) {
+        let t = make(value * f);
+        if fits(&t) {
+            return t;
+        }
+    }
+    make(value * 0.5)
+}
+
 impl Coef {
     /// Prepare a coefficient. A zero or non-finite value yields the zero
     /// coefficient. Magnitudes are limited to `[2^-60, 2^40]`; smaller
@@ -760,6 +782,27 @@ mod tests {
         assert_eq!(1.0f32.sat(f32::NAN), 1.0);
         assert_eq!(I16F16::MIN.sgn(), I16F16::from_num(-1));
         assert_eq!(I16F16::ZERO.sgn(), I16F16::ZERO);
+    }
+
+    /// `slope_within` returns the first candidate that fits, stepping down
+    /// from the value: with a `fits` that accepts only values at most
+    /// `v·(1 − k·2⁻²³)` it returns exactly that candidate, and past the fine
+    /// steps it takes the coarse ones.
+    #[test]
+    fn slope_within_steps_down_to_the_first_fit() {
+        let v = 3.0f64;
+        assert_eq!(slope_within(v, |x| x, |_| true), v);
+        for k in [1u32, 2, 17, 63] {
+            let lim = v * (1.0 - k as f64 / 8_388_608.0);
+            assert_eq!(slope_within(v, |x| x, |&x| x <= lim), lim);
+        }
+        // Below every fine step (the last is 1 − 63·2⁻²³): the first coarse
+        // candidate under the limit 1 − 2⁻¹⁷ = 1 − 64·2⁻²³ is 1 − 2⁻¹⁶.
+        let lim = v * (1.0 - 64.0 / 8_388_608.0);
+        let got = slope_within(v, |x| x, |&x| x < lim);
+        assert_eq!(got, v * (1.0 - 1.0 / 65_536.0));
+        // Nothing fits: half the value.
+        assert_eq!(slope_within(v, |x| x, |_| false), v * 0.5);
     }
 
     /// `copysign` against `f32::copysign`/`f64::copysign` (std) on floats,

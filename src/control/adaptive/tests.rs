@@ -679,3 +679,54 @@ fn stribeck_shape_adaptation_is_below_fixed_point_resolution() {
     assert_eq!(sx.friction[3], cx.initial_state().friction[3]);
     assert!(sx.friction[1] != cx.initial_state().friction[1]);
 }
+
+/// `K_r sat(r/ε_r)` inside the layer is the prepared slope's product
+/// without a clamp: it must stay within `±K_r` at the layer's edge (the
+/// extreme: the product is monotone) for every layer width, on every
+/// backend; on `I16F16` with Table 4.1 it is checked at every `r` of the
+/// layer, non-decreasing and within ½ LSB + the slope's relative
+/// preparation (64·2⁻²³) of `K_r r/ε_r`.
+#[test]
+fn robust_layer_slope_stays_within_the_gain() {
+    fn edge_fits<S: Scalar>(p: &RobustAdaptiveParams) {
+        let c = RobustAdaptiveConfig::<S>::new(p);
+        let [hi, lo] = c.robust_gain_value;
+        for r in [c.eps_r, c.eps_r.neg()] {
+            let v = r.mul_coef(&c.robust_slope);
+            assert!(
+                v <= hi && v >= lo,
+                "ε_r {}: {} outside ±{}",
+                c.eps_r.to_f64(),
+                v.to_f64(),
+                hi.to_f64()
+            );
+        }
+    }
+    let mut w = 2e-4f64;
+    while w < 20.0 {
+        let mut d = table().design;
+        d.eps_r = w;
+        let p = RobustAdaptiveParams::try_new(d).unwrap();
+        edge_fits::<I16F16>(&p);
+        edge_fits::<f32>(&p);
+        edge_fits::<f64>(&p);
+        w *= 1.003;
+    }
+    let c = RobustAdaptiveConfig::<I16F16>::new(&table());
+    let k = c.robust_gain_value[0].to_f64();
+    let e = c.eps_r.to_bits();
+    let mut prev = I16F16::MIN;
+    for bits in -e..=e {
+        let r = I16F16::from_bits(bits);
+        let v = r.mul_coef(&c.robust_slope);
+        let exact = k * bits as f64 / e as f64;
+        let tol = 0.5 / 65536.0 + k * 64.0 / 8_388_608.0 + 1e-12;
+        assert!(
+            (v.to_f64() - exact).abs() <= tol,
+            "r bits {bits}: {} vs {exact}",
+            v.to_f64()
+        );
+        assert!(v >= prev);
+        prev = v;
+    }
+}
