@@ -140,6 +140,21 @@ pub trait Scalar:
     fn tan(self) -> Self;
     /// `e^self`; saturates at `MAX` and flushes to 0 below the backend's range.
     fn exp(self) -> Self;
+    /// `e^{−|self|}`, the decaying exponential of the wave-generator
+    /// stiffness (eq. 2.29) and of the Stribeck friction term (eq. 4.7),
+    /// whose exponents are never positive. In `[0, 1]` for every input, even
+    /// in `self`, 1 at 0 and NaN → 1 on floats; 0 only where `e^{−|self|}`
+    /// is below the backend's resolution (`f32`: `|self| > 87.68`, where
+    /// `e^{−|self|} < 8.4e-39`; `I16F16`: `|self| > 17·ln 2`, below half an
+    /// LSB). The default is `self.abs().neg().exp()` (kept by `I16F16`; `f64`
+    /// computes the same through `libm`); the `f32` kernel
+    /// [`kernels::f32::exp_neg_abs`] is bit-identical to that for
+    /// `|self| ≤ 87.68` and skips the overflow test and the two-factor
+    /// scaling of [`exp`](Scalar::exp).
+    #[inline]
+    fn exp_neg_abs(self) -> Self {
+        self.abs().neg().exp()
+    }
     /// Sine of an angle in radians.
     fn sin(self) -> Self;
     /// Cosine of an angle in radians.
