@@ -185,11 +185,7 @@ pub fn exp_neg_abs_within_bound(x: f32) -> Verdict {
     if a > k::EXP_NEG_ABS_MAX_ARG {
         return Verdict::logical(got.to_bits() == 0 && reference < EXP_NEG_ABS_FLUSH_BOUND);
     }
-    Verdict::logical(got.to_bits() == k::exp(-a).to_bits()).and(within(
-        got,
-        reference,
-        EXP_BOUND,
-    ))
+    Verdict::logical(got.to_bits() == k::exp(-a).to_bits()).and(within(got, reference, EXP_BOUND))
 }
 
 /// `exp_neg_abs(-x) = exp_neg_abs(x)` bit for bit (NaNs of both signs
@@ -730,7 +726,7 @@ mod random {
             prop_assert!(exp_monotone_at(x).holds);
         }
 
-        /// Exponents `−c_w·|τ_m|` (eq. 2.29) and `−θ₄·q̇²` (eq. 4.7), both
+        /// Exponents `−c_w·|τ_w|` (eq. (2.29)) and `−f_lτ·q̇²` (eq. (4.7)), both
         /// signs of the argument, through the flush threshold.
         #[test]
         fn exp_neg_abs_within_bound_on_model_exponents(x in -120.0f32..120.0) {
@@ -795,7 +791,13 @@ mod random {
         assert!(next_up(t) * core::f32::consts::LOG2_E > 126.5);
 
         // 1 at both zeros and for NaNs of both signs (NaN counts as 0).
-        for x in [0.0f32, -0.0, f32::NAN, -f32::NAN, f32::from_bits(0x7fc0_0001)] {
+        for x in [
+            0.0f32,
+            -0.0,
+            f32::NAN,
+            -f32::NAN,
+            f32::from_bits(0x7fc0_0001),
+        ] {
             assert_eq!(k::exp_neg_abs(x).to_bits(), 1.0f32.to_bits(), "{x}");
         }
         // Subnormal and tiny inputs: e^{−a} ≈ 1 − a is nearer to 1 than to

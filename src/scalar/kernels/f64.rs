@@ -55,7 +55,7 @@ pub fn exp(x: f64) -> f64 {
     finite_or(libm::exp(denan(x)), f64::MAX)
 }
 
-/// `e^{−|x|}` (thesis eqs. 2.29 and 4.7), in `[0, 1]`: [`exp`] of `−|x|`
+/// `e^{−|x|}` (thesis eqs. (2.29) and (4.7)), in `[0, 1]`: [`exp`] of `−|x|`
 /// (NaN → 1, as for [`exp`]). `f64` has no cheaper path worth a kernel of
 /// its own.
 #[inline]
