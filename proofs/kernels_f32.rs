@@ -166,6 +166,34 @@ pub fn exp_monotone_at(x: f32) -> Verdict {
     monotone_at(k::exp, x)
 }
 
+/// Upper bound of `e^{−|x|}` where `exp_neg_abs` flushes to 0, as stated on
+/// the kernel (`e^{−EXP_NEG_ABS_MAX_ARG} = 8.31e-39`).
+pub const EXP_NEG_ABS_FLUSH_BOUND: f64 = 8.4e-39;
+
+/// `exp_neg_abs(x)` for `|x| ≤ EXP_NEG_ABS_MAX_ARG` is `exp(−|x|)` bit for
+/// bit and within [`EXP_BOUND`] of `e^{−|x|}` (measured against the
+/// reference here as well, so the summary line carries the error); above,
+/// it is exactly `+0.0` and `e^{−|x|} < EXP_NEG_ABS_FLUSH_BOUND`; NaN gives
+/// exactly 1. Engines: exhaustive (every magnitude), random, Kani.
+pub fn exp_neg_abs_within_bound(x: f32) -> Verdict {
+    let got = k::exp_neg_abs(x);
+    if x.is_nan() {
+        return Verdict::logical(got.to_bits() == 1.0f32.to_bits());
+    }
+    let a = f32::from_bits(x.to_bits() & 0x7fff_ffff);
+    let reference = reference::exp(-(a as f64));
+    if a > k::EXP_NEG_ABS_MAX_ARG {
+        return Verdict::logical(got.to_bits() == 0 && reference < EXP_NEG_ABS_FLUSH_BOUND);
+    }
+    Verdict::logical(got.to_bits() == k::exp(-a).to_bits()).and(within(got, reference, EXP_BOUND))
+}
+
+/// `exp_neg_abs(-x) = exp_neg_abs(x)` bit for bit (NaNs of both signs
+/// included). Engines: exhaustive, Kani.
+pub fn exp_neg_abs_even_at(x: f32) -> Verdict {
+    Verdict::logical(k::exp_neg_abs(-x).to_bits() == k::exp_neg_abs(x).to_bits())
+}
+
 // ------------------------------------------------------------- sin/cos ----
 
 /// `sin` is within [`SIN_COS_BOUND`] of `sin(x)` for finite `x`; `±∞` and
@@ -301,6 +329,13 @@ mod kani_entries {
     fn kani_exp_monotone_f32() {
         let x: f32 = kani::any();
         assert!(exp_monotone_at(x).holds);
+    }
+
+    #[kani::proof]
+    fn kani_exp_neg_abs_f32() {
+        let x: f32 = kani::any();
+        assert!(exp_neg_abs_within_bound(x).holds);
+        assert!(exp_neg_abs_even_at(x).holds);
     }
 
     #[kani::proof]
@@ -516,6 +551,30 @@ mod exhaustive {
 
     #[test]
     #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_exp_neg_abs_f32() {
+        // Every magnitude code (+0 to +∞ and the positive NaNs); the negative
+        // codes by the exact evenness checked in the same pass.
+        let (lo, hi) = POSITIVE_CODES;
+        prove(
+            "exp_neg_abs",
+            &[
+                ("|x|<=87.68312(all-f32;0-above)", "2"),
+                ("|x|<=87.68312(all-f32)", "bit-identical-to-exp(-|x|)"),
+                ("|x|>87.68312(all-f32)", "0(e^-|x|<8.4e-39)"),
+                ("all-f32", "even"),
+            ],
+            lo,
+            hi,
+            show,
+            |c| {
+                let x = bits(c);
+                exp_neg_abs_within_bound(x).and(exp_neg_abs_even_at(x))
+            },
+        );
+    }
+
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
     fn exhaustive_sin_f32() {
         // x ≥ 0; x < 0 by the exact oddness checked in the same pass.
         prove(
@@ -667,6 +726,35 @@ mod random {
             prop_assert!(exp_monotone_at(x).holds);
         }
 
+        /// Exponents `−c_w·|τ_w|` (eq. (2.29)) and `−f_lτ·q̇²` (eq. (4.7)), both
+        /// signs of the argument, through the flush threshold.
+        #[test]
+        fn exp_neg_abs_within_bound_on_model_exponents(x in -120.0f32..120.0) {
+            prop_assert!(exp_neg_abs_within_bound(x).holds);
+            prop_assert!(exp_neg_abs_even_at(x).holds);
+            let a = x.abs();
+            if a <= k::EXP_NEG_ABS_MAX_ARG {
+                prop_assert_eq!(k::exp_neg_abs(x).to_bits(), k::exp(-a).to_bits());
+            } else {
+                prop_assert_eq!(k::exp_neg_abs(x).to_bits(), 0);
+            }
+            // Against the f64 exponential directly (the proven bound of exp).
+            let reference = (-(a as f64)).exp();
+            if a <= k::EXP_NEG_ABS_MAX_ARG {
+                prop_assert!(ulp_error_f32(k::exp_neg_abs(x), reference) <= EXP_BOUND);
+            } else {
+                prop_assert!(reference < EXP_NEG_ABS_FLUSH_BOUND);
+            }
+        }
+
+        /// Any bit pattern (subnormals, huge magnitudes, infinities, NaNs).
+        #[test]
+        fn exp_neg_abs_within_bound_on_all_codes(c in any::<u32>()) {
+            let x = f32::from_bits(c);
+            prop_assert!(exp_neg_abs_within_bound(x).holds);
+            prop_assert!(exp_neg_abs_even_at(x).holds);
+        }
+
         /// Force components in ±10³ N (F/T sensor mapping, ch. 5).
         #[test]
         fn atan2_within_bound_on_forces(y in -1.0e3f32..1.0e3, x in -1.0e3f32..1.0e3) {
@@ -684,6 +772,59 @@ mod random {
         fn sqrt_correctly_rounded_on_norms(x in 0.0f32..1.0e7) {
             prop_assert!(sqrt_correctly_rounded(x).holds);
             prop_assert!(sqrt_monotone_at(x).holds);
+        }
+    }
+
+    /// The edges of `exp_neg_abs`, each against a value computed without
+    /// the kernel.
+    #[test]
+    fn exp_neg_abs_edges() {
+        let t = k::EXP_NEG_ABS_MAX_ARG;
+        // The threshold: 126.5·ln 2 < T < next_up(T), and e^{−T} < 8.4e-39.
+        let half_step = 126.5 * core::f64::consts::LN_2;
+        assert!((t as f64) > half_step && (next_up(t) as f64) - half_step < 2e-5);
+        assert!((-(t as f64)).exp() < EXP_NEG_ABS_FLUSH_BOUND);
+        assert!((-(t as f64)).exp() > 8.3e-39);
+        // The reduction at −T gives k = −126 (the tie 126.5 to even) and at
+        // −next_up(T) k = −127: the f32 product rounds to these.
+        assert_eq!(t * core::f32::consts::LOG2_E, 126.5);
+        assert!(next_up(t) * core::f32::consts::LOG2_E > 126.5);
+
+        // 1 at both zeros and for NaNs of both signs (NaN counts as 0).
+        for x in [
+            0.0f32,
+            -0.0,
+            f32::NAN,
+            -f32::NAN,
+            f32::from_bits(0x7fc0_0001),
+        ] {
+            assert_eq!(k::exp_neg_abs(x).to_bits(), 1.0f32.to_bits(), "{x}");
+        }
+        // Subnormal and tiny inputs: e^{−a} ≈ 1 − a is nearer to 1 than to
+        // the next f32 below, 1 − 2^-24, for a < 2^-25.
+        for c in [1u32, 2, 0x007f_ffff, 0x0080_0000, 0x3000_0000] {
+            for x in [f32::from_bits(c), -f32::from_bits(c)] {
+                assert_eq!(k::exp_neg_abs(x), 1.0, "{x:e}");
+            }
+        }
+        let a = 3.0 * 2f32.powi(-26); // e^{−a} ≈ 1 − 0.75·2^-24: nearest is 1 − 2^-24
+        assert_eq!(k::exp_neg_abs(a), 1.0 - 2f32.powi(-24));
+        // At T: a subnormal, within 2 ulp (2^-149) of e^{−T} and equal to exp.
+        let at_t = k::exp_neg_abs(t);
+        assert!(at_t > 0.0 && at_t < f32::MIN_POSITIVE);
+        assert!(((at_t as f64) - (-(t as f64)).exp()).abs() <= 2.0 * 2f64.powi(-149));
+        assert_eq!(at_t.to_bits(), k::exp(-t).to_bits());
+        assert_eq!(k::exp_neg_abs(-t).to_bits(), at_t.to_bits());
+        // Above T: +0, while exp(−a) is still a positive subnormal there.
+        for x in [next_up(t), 100.0, f32::MAX, f32::INFINITY] {
+            assert_eq!(k::exp_neg_abs(x).to_bits(), 0, "{x}");
+            assert_eq!(k::exp_neg_abs(-x).to_bits(), 0, "{x}");
+        }
+        assert!(k::exp(-next_up(t)) > 0.0);
+        // Mid-range against the f64 exponential.
+        for a in [0.5f32, 1.0, 10.0, 50.0, 87.0] {
+            let got = k::exp_neg_abs(-a);
+            assert!(ulp_error_f32(got, (-(a as f64)).exp()) <= EXP_BOUND, "{a}");
         }
     }
 

@@ -75,6 +75,7 @@ entry!(k_cos_f32(x: f32) => kf::cos(x));
 entry!(k_sin_cos_f32(x: f32) => kf::sin_cos(x));
 entry!(k_atan2_f32(y: f32, x: f32) => kf::atan2(y, x));
 entry!(k_exp_f32(x: f32) => kf::exp(x));
+entry!(k_exp_neg_abs_f32(x: f32) => kf::exp_neg_abs(x));
 entry!(k_sqrt_f32(x: f32) => kf::sqrt(x));
 entry!(k_acos_f32(x: f32) => kf::acos(x));
 
@@ -85,6 +86,7 @@ entry!(libm_cos_f32(x: f32) => libm::cosf(x));
 entry!(libm_sin_cos_f32(x: f32) => libm::sincosf(x));
 entry!(libm_atan2_f32(y: f32, x: f32) => libm::atan2f(y, x));
 entry!(libm_exp_f32(x: f32) => libm::expf(x));
+entry!(libm_exp_neg_abs_f32(x: f32) => libm::expf(-libm::fabsf(x)));
 entry!(libm_sqrt_f32(x: f32) => libm::sqrtf(x));
 entry!(libm_acos_f32(x: f32) => libm::acosf(x));
 

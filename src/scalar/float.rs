@@ -134,6 +134,10 @@ macro_rules! float_scalar {
                 kernels::$k::exp(self)
             }
             #[inline]
+            fn exp_neg_abs(self) -> Self {
+                kernels::$k::exp_neg_abs(self)
+            }
+            #[inline]
             fn sin(self) -> Self {
                 kernels::$k::sin(self)
             }

@@ -140,6 +140,21 @@ pub trait Scalar:
     fn tan(self) -> Self;
     /// `e^self`; saturates at `MAX` and flushes to 0 below the backend's range.
     fn exp(self) -> Self;
+    /// `e^{−|self|}`, the decaying exponential of the wave-generator
+    /// torsion (eq. (2.29)) and of the Stribeck friction term (eq. (4.7)),
+    /// whose exponents are never positive. In `[0, 1]` for every input, even
+    /// in `self`, 1 at 0 and NaN → 1 on floats; 0 only where `e^{−|self|}`
+    /// is below the backend's resolution (`f32`: `|self| > 87.68`, where
+    /// `e^{−|self|} < 8.4e-39`; `I16F16`: `|self| > 17·ln 2`, below half an
+    /// LSB). The default is `self.abs().neg().exp()` (kept by `I16F16`; `f64`
+    /// computes the same through `libm`); the `f32` kernel
+    /// [`kernels::f32::exp_neg_abs`] is bit-identical to that for
+    /// `|self| ≤ 87.68` and skips the overflow test and the two-factor
+    /// scaling of [`exp`](Scalar::exp).
+    #[inline]
+    fn exp_neg_abs(self) -> Self {
+        self.abs().neg().exp()
+    }
     /// Sine of an angle in radians.
     fn sin(self) -> Self;
     /// Cosine of an angle in radians.
@@ -617,6 +632,63 @@ mod tests {
             assert!(gf.exact.is_none());
             assert_eq!(gf.apply(1.5f32), 1.5f32.mul_coef(&c));
         }
+    }
+
+    /// `Scalar::exp_neg_abs` on every backend: even, in `[0, 1]`, and equal
+    /// to `exp(−|x|)` of the same backend (bit for bit for `f32` up to the
+    /// flush threshold and for `f64`; `I16F16` uses the default), against
+    /// the `f64` exponential for the value.
+    #[test]
+    fn exp_neg_abs_is_the_exponential_of_minus_the_magnitude() {
+        let mut state = 0x2545_F491_4F6C_DD1Du64;
+        let mut xs: Vec<f64> = vec![0.0, 1e-9, 0.25, 1.0, 5.0, 11.7, 11.8, 30.0, 87.0, 88.0, 1e3];
+        for _ in 0..5_000 {
+            let u = (xorshift64(&mut state) >> 11) as f64 / (1u64 << 53) as f64;
+            xs.push(u * u * 100.0);
+        }
+        for &m in &xs {
+            for x in [m, -m] {
+                let want = (-m).exp();
+                // f64: the libm exponential of −|x|, within 1e-15 relative.
+                let d = Scalar::exp_neg_abs(x);
+                assert_eq!(d.to_bits(), Scalar::exp(-m).to_bits(), "f64 {x}");
+                assert!((d - want).abs() <= 1e-15 * want, "f64 {x}");
+                // f32: bit-identical to exp(−|x|) up to the threshold, 0 above.
+                let xf = x as f32;
+                let mf = xf.abs();
+                let f = Scalar::exp_neg_abs(xf);
+                assert_eq!(f.to_bits(), Scalar::exp_neg_abs(-xf).to_bits(), "f32 {x}");
+                if mf <= kernels::f32::EXP_NEG_ABS_MAX_ARG {
+                    assert_eq!(f.to_bits(), Scalar::exp(-mf).to_bits(), "f32 {x}");
+                    let r = (-(mf as f64)).exp();
+                    assert!(
+                        ((f as f64) - r).abs()
+                            <= 2.0 * r * f32::EPSILON as f64 + 2.0 * f64::from(f32::from_bits(1)),
+                        "f32 {x}"
+                    );
+                } else {
+                    assert_eq!(f.to_bits(), 0, "f32 {x}");
+                }
+                // I16F16: the default body, within 2 LSB of e^{−|x|} (the
+                // argument quantized first), 0 where that is below 2⁻¹⁷.
+                if m < 32767.0 {
+                    let q = I16F16::from_f64(x);
+                    let e = Scalar::exp_neg_abs(q);
+                    assert_eq!(e, Scalar::exp(q.abs().neg()), "I16F16 {x}");
+                    assert_eq!(e, Scalar::exp_neg_abs(q.neg()), "I16F16 {x}");
+                    let r = (-q.to_f64().abs()).exp();
+                    assert!((e.to_f64() - r).abs() <= 2.0 / 65536.0, "I16F16 {x}");
+                    assert!(e >= I16F16::ZERO && e <= I16F16::ONE, "I16F16 {x}");
+                }
+            }
+        }
+        // NaN → 1 on floats; the extremes of I16F16 (|MIN| saturates).
+        assert_eq!(Scalar::exp_neg_abs(f32::NAN), 1.0);
+        assert_eq!(Scalar::exp_neg_abs(f64::NAN), 1.0);
+        assert_eq!(Scalar::exp_neg_abs(f64::INFINITY), 0.0);
+        assert_eq!(Scalar::exp_neg_abs(I16F16::MIN), I16F16::ZERO);
+        assert_eq!(Scalar::exp_neg_abs(I16F16::MAX), I16F16::ZERO);
+        assert_eq!(Scalar::exp_neg_abs(I16F16::ZERO), I16F16::ONE);
     }
 
     #[test]

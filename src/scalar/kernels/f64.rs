@@ -55,6 +55,14 @@ pub fn exp(x: f64) -> f64 {
     finite_or(libm::exp(denan(x)), f64::MAX)
 }
 
+/// `e^{−|x|}` (thesis eqs. (2.29) and (4.7)), in `[0, 1]`: [`exp`] of `−|x|`
+/// (NaN → 1, as for [`exp`]). `f64` has no cheaper path worth a kernel of
+/// its own.
+#[inline]
+pub fn exp_neg_abs(x: f64) -> f64 {
+    exp(-libm::fabs(x))
+}
+
 /// Sine; domain: every finite `f64` (`±∞` returns 0, like NaN).
 #[inline]
 pub fn sin(x: f64) -> f64 {
