@@ -410,7 +410,7 @@ impl<S: Scalar> FrictionConfig<S> {
 
     /// Eq. (4.17): nominal torque `f̂^c(q̇)` and regressor `Y(q̇)` at motor
     /// speed `qd` (stored speed units) for stored parameters `theta`.
-    /// One `exp` per call. In fixed point, `q̇²` saturates above
+    /// One exponential per call. In fixed point, `q̇²` saturates above
     /// 181 rad/s; there `e^{−f_τ q̇²}` is 0 for every admissible `f_τ`
     /// (see [`FrictionBounds::try_new`]), so the Stribeck terms vanish as
     /// they should.
@@ -418,7 +418,9 @@ impl<S: Scalar> FrictionConfig<S> {
     pub fn evaluate(&self, theta: &[S; 4], qd: S) -> FrictionEval<S> {
         let s = self.sat(qd);
         let q2 = qd.mul(qd);
-        let e = theta[3].mul(q2).neg().exp();
+        // f̂_τ q̇² ≥ 0 (f̂_τ is projected into a box of positive shapes):
+        // e^{−|f̂_τ q̇²|} is e^{−f̂_τ q̇²}.
+        let e = theta[3].mul(q2).exp_neg_abs();
         // Outside the velocity layer s = ±1 and its products are free.
         let es = mul_unit(e, s);
         // f̂_s e s, shared by the torque and Y_4 = −f̂_s q̇² e s.

@@ -358,7 +358,7 @@ impl<S: Scalar> WaveGeneratorConfig<S> {
     /// Output-side wave-generator torsion `Δθ_w / N` of eq. (2.29)/(2.30).
     #[inline]
     pub fn output_torsion(&self, motor_torque: S) -> S {
-        let e = motor_torque.abs().mul_coef(&self.c_w).neg().exp();
+        let e = motor_torque.abs().mul_coef(&self.c_w).exp_neg_abs();
         // `sgn(τ_w)(1 − e)` as a sign transfer: `1 − e ≥ 0`, and it is 0
         // at `τ_w = 0` (and for a NaN torque, where `e = 1`), exactly where
         // `sgn` would give 0.
