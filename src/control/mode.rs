@@ -378,9 +378,18 @@ impl<S: Scalar> ModeConfig<S> {
         }
     }
 
+    /// `v` limited to `±limit`, and whether it was limited: one magnitude
+    /// comparison on the common path. Equal to `v.clamp(−limit, limit)` for
+    /// every non-NaN `v` (the limit is at most 16 N·m, inside every
+    /// backend's range, so `|v| > limit` is `v > limit || v < −limit`).
     #[inline]
-    fn clamp_limit(&self, v: S) -> S {
-        v.clamp(self.limit.neg(), self.limit)
+    fn limit(&self, v: S) -> (S, bool) {
+        let l = self.limit;
+        if v.abs() > l {
+            (if v > S::ZERO { l } else { l.neg() }, true)
+        } else {
+            (v, false)
+        }
     }
 
     /// What the current mode commands on this sample, without advancing
@@ -396,7 +405,7 @@ impl<S: Scalar> ModeConfig<S> {
         // A law that overflowed to NaN (floats, absurd finite inputs)
         // counts as 0, as in `update`.
         let law = if law.is_nan() { S::ZERO } else { law };
-        self.clamp_limit(self.clamp_limit(law).add(st.bias))
+        self.limit(self.limit(law).0.add(st.bias)).0
     }
 
     /// The mode the rules ask for at this sample (before debounce).
@@ -517,19 +526,19 @@ impl<S: Scalar> ModeConfig<S> {
         };
         let overflow = law.is_nan();
         let law = if overflow { S::ZERO } else { law };
-        let limited = self.clamp_limit(law);
+        let (limited, law_limited) = self.limit(law);
         if switched {
             st.bias = before.sub(limited);
         }
         let sum = limited.add(st.bias);
-        let torque = self.clamp_limit(sum);
+        let (torque, sum_limited) = self.limit(sum);
         st.bias = st.bias.mul_coef(&self.bias_decay);
         st.last_torque = torque;
         ModeOutput {
             torque,
             mode: st.mode,
             switched,
-            saturated: limited != law || torque != sum || overflow,
+            saturated: law_limited || sum_limited || overflow,
             invalid_input: overflow,
             interaction,
             collision: st.latched,
