@@ -68,6 +68,7 @@ use crate::harmonic_drive::{
 };
 use crate::scalar::{turn_from_radians, Coef, CountToTurn, Scalar};
 use core::f64::consts::TAU;
+use core::num::NonZeroU32;
 
 /// `a·b` exactly, for `0 ≤ b < 2⁴⁸` (callers: products below 2⁶³). When
 /// `b` fits 32 bits on Armv6-M, one 32×32 → 64 product
@@ -83,26 +84,49 @@ fn mul_wide(a: u32, b: i64) -> i64 {
     ((hi as u64) << 32 | lo as u64) as i64
 }
 
-/// `⌊(2³² − 1)/d⌋` for `d ≥ 1`: the prepared reciprocal of [`div_rem`].
+/// `⌊(2³² − 1)/d⌋` for `d ≥ 1`: the prepared reciprocal of
+/// [`Divisor::div_rem`].
 const fn reciprocal(d: u32) -> u32 {
     u32::MAX / if d == 0 { 1 } else { d }
 }
 
-/// `(⌊x/d⌋, x mod d)` for every `u32` `x` and `d ≥ 1`, with
-/// `r = reciprocal(d)` prepared at configuration time.
-///
-/// Armv6-M has no divide instruction (`/` is a library loop of about 250
-/// instructions); there the quotient comes from the reciprocal
-/// ([`div_rem_reciprocal`]), elsewhere from the hardware division.
-#[inline(always)]
-fn div_rem(x: u32, d: u32, r: u32) -> (u32, u32) {
-    if cfg!(not(all(target_arch = "arm", not(target_has_atomic = "32")))) {
-        return (x / d, x % d);
-    }
-    div_rem_reciprocal(x, d, r)
+/// A divisor `d ≥ 1` prepared for [`div_rem`](Self::div_rem): as a
+/// `NonZeroU32` (the hardware division then needs no zero test) and as
+/// its [`reciprocal`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Divisor {
+    d: NonZeroU32,
+    recip: u32,
 }
 
-/// [`div_rem`] from `r = ⌊(2³² − 1)/d⌋`: `q₀ = ⌊x·r/2³²⌋` (one 32×32 → 64
+impl Divisor {
+    /// `d`, or 1 for `d = 0` (the callers validate `d ≥ 1`).
+    const fn new(d: u32) -> Self {
+        let d = match NonZeroU32::new(d) {
+            Some(d) => d,
+            None => NonZeroU32::MIN,
+        };
+        Divisor {
+            d,
+            recip: reciprocal(d.get()),
+        }
+    }
+
+    /// `(⌊x/d⌋, x mod d)` for every `u32` `x`.
+    ///
+    /// Armv6-M has no divide instruction (`/` is a library loop of about
+    /// 250 instructions); there the quotient comes from the reciprocal
+    /// ([`div_rem_reciprocal`]), elsewhere from the hardware division.
+    #[inline(always)]
+    fn div_rem(&self, x: u32) -> (u32, u32) {
+        if cfg!(not(all(target_arch = "arm", not(target_has_atomic = "32")))) {
+            return (x / self.d, x % self.d);
+        }
+        div_rem_reciprocal(x, self.d.get(), self.recip)
+    }
+}
+
+/// [`Divisor::div_rem`] from `r = ⌊(2³² − 1)/d⌋`: `q₀ = ⌊x·r/2³²⌋` (one 32×32 → 64
 /// product) is `q = ⌊x/d⌋` or `q − 1`, because `r ≤ 2³²/d` gives
 /// `q₀ ≤ x/d` and `r ≥ (2³² − d)/d` gives `x·r/2³² ≥ x/d − x/2³² > x/d − 1`.
 /// The remainder `x − q₀·d ∈ [0, 2d)` is at most `x`, so its 32-bit
@@ -231,10 +255,10 @@ pub struct TorqueEstimatorConfig<S> {
     l: u32,
     m: u32,
     n: u32,
-    /// [`reciprocal`]s of `L`, `M` and `N` for [`div_rem`].
-    l_recip: u32,
-    m_recip: u32,
-    n_recip: u32,
+    /// `L`, `M` and `N` prepared for division.
+    l_div: Divisor,
+    m_div: Divisor,
+    n_div: Divisor,
     /// `M·N` and `L·M·N` (counts per output revolution), prepared once.
     mn: i64,
     lmn: i64,
@@ -299,9 +323,9 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             l,
             m,
             n,
-            l_recip: reciprocal(l),
-            m_recip: reciprocal(m),
-            n_recip: reciprocal(n),
+            l_div: Divisor::new(l),
+            m_div: Divisor::new(m),
+            n_div: Divisor::new(n),
             mn: m as i64 * n as i64,
             lmn: l as i64 * m as i64 * n as i64,
             half_lmn: l as i64 * m as i64 * n as i64 / 2,
@@ -328,7 +352,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     /// 32-bit arithmetic only: the new position is `p + δ mod MN` in the
     /// canonical form `(turn, in_turn) ∈ [0, N) × [0, M)`; a move of less
     /// than one motor revolution needs no division, a longer one one
-    /// `u32` division by `M` and at most one by `N` ([`div_rem`]: on
+    /// `u32` division by `M` and at most one by `N` ([`Divisor::div_rem`]: on
     /// Armv6-M a multiply by a prepared reciprocal; no 64-bit division on
     /// any path). Equal to the 64-bit formula [`advance_reference`] for
     /// every state and counter (tests below).
@@ -342,7 +366,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         let (q, r) = if mag < m {
             (0, mag)
         } else {
-            div_rem(mag, m, self.m_recip)
+            self.m_div.div_rem(mag)
         };
         let turn = if delta >= 0 {
             // in_turn + r < 2M, compared without overflow.
@@ -356,7 +380,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             let c = if carry < n {
                 carry
             } else {
-                div_rem(carry, n, self.n_recip).1
+                self.n_div.div_rem(carry).1
             };
             if c >= n - turn {
                 c - (n - turn)
@@ -374,7 +398,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             let b = if borrow < n {
                 borrow
             } else {
-                div_rem(borrow, n, self.n_recip).1
+                self.n_div.div_rem(borrow).1
             };
             if b > turn {
                 turn + (n - b)
@@ -487,7 +511,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         self.advance(st, motor_counter);
         let invalid = link_count >= self.l;
         let c_l = if invalid {
-            div_rem(link_count, self.l, self.l_recip).1
+            self.l_div.div_rem(link_count).1
         } else {
             link_count
         };

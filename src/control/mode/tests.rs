@@ -305,12 +305,21 @@ fn limit_equals_the_clamp_and_flags_its_changes() {
     fn check<S: Scalar>(cfg: &ModeConfig<S>, v: S) {
         let (got, flag) = cfg.limit(v);
         let want = v.clamp(cfg.limit.neg(), cfg.limit);
-        assert!(got == want, "{} -> {} vs {}", v.to_f64(), got.to_f64(), want.to_f64());
+        assert!(
+            got == want,
+            "{} -> {} vs {}",
+            v.to_f64(),
+            got.to_f64(),
+            want.to_f64()
+        );
         assert_eq!(flag, want != v, "flag at {}", v.to_f64());
     }
     let p = params(3, 10, None);
     let q = ModeConfig::<I16F16>::new(&p);
-    for bits in (i32::MIN..=i32::MAX).step_by(4099).chain([i32::MIN, i32::MAX, -1, 0, 1]) {
+    for bits in (i32::MIN..=i32::MAX)
+        .step_by(4099)
+        .chain([i32::MIN, i32::MAX, -1, 0, 1])
+    {
         check(&q, I16F16::from_bits(bits));
     }
     let l = q.limit.to_bits();
@@ -324,7 +333,16 @@ fn limit_equals_the_clamp_and_flags_its_changes() {
         check(&f, v as f32);
         check(&d, v);
     }
-    for v in [f32::INFINITY, f32::NEG_INFINITY, f32::MAX, f32::MIN, 0.0, -0.0, f.limit, -f.limit] {
+    for v in [
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        f32::MAX,
+        f32::MIN,
+        0.0,
+        -0.0,
+        f.limit,
+        -f.limit,
+    ] {
         check(&f, v);
     }
     for v in [f64::INFINITY, f64::NEG_INFINITY, d.limit, -d.limit] {
