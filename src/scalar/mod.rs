@@ -172,6 +172,18 @@ pub trait Scalar:
     /// angles).
     /// Used by the kinematic error of eq. (3.7) in the torque estimator.
     fn cos_turn(turn: u32) -> Self;
+    /// `(sin, cos)` of a binary angle (units of `2⁻³²` turn): by default
+    /// `(cos_turn(turn − 2³⁰), cos_turn(turn))`, a quarter turn apart, so
+    /// both components have [`cos_turn`](Scalar::cos_turn)'s proven bound;
+    /// a backend may share the range reduction between them as long as it
+    /// returns exactly these values.
+    #[inline]
+    fn sin_cos_turn(turn: u32) -> (Self, Self) {
+        (
+            Self::cos_turn(turn.wrapping_sub(1 << 30)),
+            Self::cos_turn(turn),
+        )
+    }
     /// Four-quadrant arctangent of `self / x` (`self` is `y`), in `[-π, π]`;
     /// `atan2(0, 0) = 0`.
     fn atan2(self, x: Self) -> Self;
