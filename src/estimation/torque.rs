@@ -30,7 +30,12 @@
 //! exact wrapping integer operations, and eq. (3.7) is
 //! `a_0 + R_l·cos_turn(θ_fo − φ_l) + R_1·cos_turn(θ_wi − φ_1) +
 //! R_2·cos_turn(2θ_wi − φ_2)`: three [`Scalar::cos_turn`], three
-//! [`Scalar::mul`], three additions.
+//! [`Scalar::mul`], three additions (fixed point). Float backends take both
+//! motor harmonics from one [`Scalar::sin_cos_turn`] of `u = θ_wi − φ_1`
+//! by the double angle: with `δ = 2φ_1 − φ_2` (exact in binary angles, so
+//! `2u + δ` is exactly `2θ_wi − φ_2`) and `c² + s² = 1`,
+//! `R_1 cos u + R_2 cos(2u + δ) = c (R_1 + A c + B s) − R_2 cos δ`,
+//! `A = 2R_2 cos δ`, `B = −2R_2 sin δ`, the constant folded into `a_0`.
 //!
 //! *Error bound* against `f64` eq. (3.7) at the count angles
 //! `2π c_l/L`, `2π p/M`, in stored torsion units (`R_j` and `a_0` in
@@ -46,11 +51,17 @@
 //!   (while no sum saturates, i.e. for `A` far below the range): about
 //!   `3.5 q + q·ΣR_j`, below `6.5 q` when every amplitude is below 1
 //!   stored unit (1 mrad);
-//! * `f32` (relative rounding `u = 2⁻²⁴`): `a_0`, `R_j`, the three
-//!   products and the three sums each add `≤ u` of a value below `A`,
-//!   `cos_turn` `≤ 2⁻²²` (proven): `|e| ≤ |a_0|u + Σ_j R_j(2u + 2⁻²² +
-//!   e_θ) + 3uA` to first order in `u`, plus second-order terms below
-//!   `30 u² A` (bounded by `40 u² A` in the test).
+//! * `f32` (relative rounding `u = 2⁻²⁴`; `cos_turn` and `sin_cos_turn`
+//!   `≤ 2⁻²² = 4u`, proven): the link term as before,
+//!   `R_l(2u + 4u + e_θ)`; the motor form `M(c, s) = c(R_1 + Ac + Bs)`
+//!   has `|∂M/∂c| ≤ R_1 + 6R_2` and `|∂M/∂s| ≤ 2R_2`, so kernel and angle
+//!   errors add `≤ (R_1 + 8R_2)(4u + e_θ)`; rounding `A`, `B` and
+//!   `a_0 − R_2 cos δ` adds `≤ u(|a_0| + 5R_2)`, the products and sums
+//!   inside the form `≤ u(2R_1 + 10R_2)`, the two outer sums
+//!   `≤ 2u(|a_0| + R_l + R_1 + 3R_2)`: in all `|e| ≤ |a_0|u + R_l(6u +
+//!   e_θ) + (R_1 + 8R_2)(4u + e_θ) + u(2R_1 + 15R_2) + 2u(|a_0| + R_l +
+//!   R_1 + 3R_2)` to first order in `u`, plus second-order terms (bounded
+//!   by `40 u² A` in the test).
 //!
 //! `kinematic_error_from_counts_within_bound` (tests below) checks these
 //! bounds for both backends over many counts.
@@ -232,6 +243,12 @@ struct KinematicErrorPhase<S> {
     amplitudes: [S; 3],
     /// `[φ_l, φ_1, φ_2]`, units of `2⁻³²` turn.
     phases: [u32; 3],
+    /// Float backends: the two motor harmonics from one `(sin, cos)` of
+    /// `u = θ_wi − φ_1` by the double angle,
+    /// `R_1 cos u + R_2 cos(2u + δ) = c (R_1 + A c + B s) − R_2 cos δ`
+    /// with `δ = 2φ_1 − φ_2`, `A = 2R_2 cos δ`, `B = −2R_2 sin δ`
+    /// (`c² + s² = 1`): `[a_0 − R_2 cos δ, A, B]`.
+    double_angle: [S; 3],
 }
 
 /// The estimator quantized for backend `S`.
@@ -308,10 +325,21 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
                 .map(|k| k.coefficients.map(|c| S::from_f64(c * u.torsion))),
             kinematic_error_phase: p.kinematic_error.map(|k| {
                 let f = k.phase_form();
+                let phases = f.phases.map(turn_from_radians);
+                // δ = 2φ_1 − φ_2 from the binary phases, so that 2u + δ is
+                // exactly the count path's 2θ_wi − φ_2.
+                let delta = (phases[1] << 1).wrapping_sub(phases[2]) as f64 * TAU / 4_294_967_296.0;
+                let (sd, cd) = (libm::sin(delta), libm::cos(delta));
+                let r2 = f.amplitudes[2];
                 KinematicErrorPhase {
                     offset: S::from_f64(f.offset * u.torsion),
                     amplitudes: f.amplitudes.map(|r| S::from_f64(r * u.torsion)),
-                    phases: f.phases.map(turn_from_radians),
+                    phases,
+                    double_angle: [
+                        S::from_f64((f.offset - r2 * cd) * u.torsion),
+                        S::from_f64(2.0 * r2 * cd * u.torsion),
+                        S::from_f64(-2.0 * r2 * sd * u.torsion),
+                    ],
                 }
             }),
             link_turn: CountToTurn::new(l),
@@ -442,6 +470,15 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
                 let link = self.link_turn.turn(c_l);
                 let motor = self.motor_turn.turn(p);
                 let (r, phi) = (&k.amplitudes, &k.phases);
+                if S::RESOLUTION.to_f64() < 1e-6 {
+                    // Floats (folded at compile time): one sine and cosine
+                    // of the motor angle for both motor harmonics.
+                    let [o, a, b] = k.double_angle;
+                    let (s, c) = S::sin_cos_turn(motor.wrapping_sub(phi[1]));
+                    return o
+                        .add(r[0].mul(S::cos_turn(link.wrapping_sub(phi[0]))))
+                        .add(c.mul(r[1].add(a.mul(c).add(b.mul(s)))));
+                }
                 k.offset
                     .add(r[0].mul(S::cos_turn(link.wrapping_sub(phi[0]))))
                     .add(r[1].mul(S::cos_turn(motor.wrapping_sub(phi[1]))))
@@ -790,13 +827,14 @@ mod tests {
                     .sum::<f64>()
         } else {
             assert_eq!(S::NAME, "f32");
+            // The double-angle form of the motor harmonics (module docs).
             let u = f32::EPSILON as f64 / 2.0; // 2⁻²⁴
-            let c = 4.0 * u; // cos_turn: 2⁻²²
+            let c = 4.0 * u; // cos_turn, sin_cos_turn: 2⁻²²
             a0 * u
-                + r.iter()
-                    .map(|&rj| rj * (2.0 * u + c + e_theta))
-                    .sum::<f64>()
-                + 3.0 * u * a
+                + r[0] * (2.0 * u + c + e_theta)
+                + (r[1] + 8.0 * r[2]) * (c + e_theta)
+                + u * (2.0 * r[1] + 15.0 * r[2])
+                + 2.0 * u * (a0 + r[0] + r[1] + 3.0 * r[2])
                 + 40.0 * u * u * a
         };
         bound + reference
