@@ -243,12 +243,6 @@ struct KinematicErrorPhase<S> {
     amplitudes: [S; 3],
     /// `[φ_l, φ_1, φ_2]`, units of `2⁻³²` turn.
     phases: [u32; 3],
-    /// Float backends: the two motor harmonics from one `(sin, cos)` of
-    /// `u = θ_wi − φ_1` by the double angle,
-    /// `R_1 cos u + R_2 cos(2u + δ) = c (R_1 + A c + B s) − R_2 cos δ`
-    /// with `δ = 2φ_1 − φ_2`, `A = 2R_2 cos δ`, `B = −2R_2 sin δ`
-    /// (`c² + s² = 1`): `[a_0 − R_2 cos δ, A, B]`.
-    double_angle: [S; 3],
 }
 
 /// The estimator quantized for backend `S`.
@@ -280,6 +274,14 @@ pub struct TorqueEstimatorConfig<S> {
     mn: i64,
     lmn: i64,
     half_lmn: i64,
+    /// Float backends: the two motor harmonics of eq. (3.7) from one
+    /// `(sin, cos)` of `u = θ_wi − φ_1` by the double angle,
+    /// `R_1 cos u + R_2 cos(2u + δ) = c (R_1 + A c + B s) − R_2 cos δ`
+    /// with `δ = 2φ_1 − φ_2`, `A = 2R_2 cos δ`, `B = −2R_2 sin δ`
+    /// (`c² + s² = 1`): `[a_0 − R_2 cos δ, A, B]` (zeros without a model).
+    /// Last, so that the fixed-point layout of the other fields is the
+    /// same with or without it.
+    double_angle: [S; 3],
 }
 
 /// The estimator's state: the motor position within one output revolution,
@@ -325,21 +327,10 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
                 .map(|k| k.coefficients.map(|c| S::from_f64(c * u.torsion))),
             kinematic_error_phase: p.kinematic_error.map(|k| {
                 let f = k.phase_form();
-                let phases = f.phases.map(turn_from_radians);
-                // δ = 2φ_1 − φ_2 from the binary phases, so that 2u + δ is
-                // exactly the count path's 2θ_wi − φ_2.
-                let delta = (phases[1] << 1).wrapping_sub(phases[2]) as f64 * TAU / 4_294_967_296.0;
-                let (sd, cd) = (libm::sin(delta), libm::cos(delta));
-                let r2 = f.amplitudes[2];
                 KinematicErrorPhase {
                     offset: S::from_f64(f.offset * u.torsion),
                     amplitudes: f.amplitudes.map(|r| S::from_f64(r * u.torsion)),
-                    phases,
-                    double_angle: [
-                        S::from_f64((f.offset - r2 * cd) * u.torsion),
-                        S::from_f64(2.0 * r2 * cd * u.torsion),
-                        S::from_f64(-2.0 * r2 * sd * u.torsion),
-                    ],
+                    phases: f.phases.map(turn_from_radians),
                 }
             }),
             link_turn: CountToTurn::new(l),
@@ -357,6 +348,20 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             mn: m as i64 * n as i64,
             lmn: l as i64 * m as i64 * n as i64,
             half_lmn: l as i64 * m as i64 * n as i64 / 2,
+            double_angle: p.kinematic_error.map_or([S::ZERO; 3], |k| {
+                let f = k.phase_form();
+                let phases = f.phases.map(turn_from_radians);
+                // δ = 2φ_1 − φ_2 from the binary phases, so that 2u + δ is
+                // exactly the count path's 2θ_wi − φ_2.
+                let delta = (phases[1] << 1).wrapping_sub(phases[2]) as f64 * TAU / 4_294_967_296.0;
+                let (sd, cd) = (libm::sin(delta), libm::cos(delta));
+                let r2 = f.amplitudes[2];
+                [
+                    S::from_f64((f.offset - r2 * cd) * u.torsion),
+                    S::from_f64(2.0 * r2 * cd * u.torsion),
+                    S::from_f64(-2.0 * r2 * sd * u.torsion),
+                ]
+            }),
         }
     }
 
@@ -473,7 +478,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
                 if S::RESOLUTION.to_f64() < 1e-6 {
                     // Floats (folded at compile time): one sine and cosine
                     // of the motor angle for both motor harmonics.
-                    let [o, a, b] = k.double_angle;
+                    let [o, a, b] = self.double_angle;
                     let (s, c) = S::sin_cos_turn(motor.wrapping_sub(phi[1]));
                     return o
                         .add(r[0].mul(S::cos_turn(link.wrapping_sub(phi[0]))))
