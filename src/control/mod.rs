@@ -75,6 +75,22 @@ impl<S: Scalar> ControlInput<S> {
             // Fixed point has no NaN or infinity (folded at compile time).
             return true;
         }
+        // A finite sum of the fields proves every field finite (a NaN or an
+        // infinity makes the sum NaN or infinite): one sum and one test on
+        // the common path.
+        let sum = self
+            .desired_position
+            .add(self.desired_velocity)
+            .add(self.desired_acceleration)
+            .add(self.motor_position)
+            .add(self.motor_velocity)
+            .add(self.joint_torque)
+            .add(self.desired_joint_torque)
+            .add(self.expected_joint_torque);
+        if sum.sub(sum) == S::ZERO {
+            return true;
+        }
+        // Rare: a non-finite field, or finite fields whose sum overflowed.
         // `v − v` is 0 for a finite float and NaN for NaN and ±∞, and a NaN
         // survives every sum: one comparison instead of eight.
         let d = |v: S| v.sub(v);
@@ -127,6 +143,48 @@ pub(crate) fn clamp_or_keep<S: Scalar>(new: S, old: S, lo: S, hi: S) -> S {
 mod tests {
     use super::*;
     use crate::scalar::I16F16;
+
+    /// `is_finite` is exactly "every field is finite", including samples
+    /// whose finite fields sum beyond the range (the slow path): every
+    /// field position takes each special value among finite neighbours of
+    /// either sign and size.
+    #[test]
+    fn is_finite_is_every_field_finite() {
+        fn sample<S: Scalar + Copy>(v: [S; 8]) -> ControlInput<S> {
+            ControlInput {
+                desired_position: v[0],
+                desired_velocity: v[1],
+                desired_acceleration: v[2],
+                motor_position: v[3],
+                motor_velocity: v[4],
+                joint_torque: v[5],
+                desired_joint_torque: v[6],
+                expected_joint_torque: v[7],
+            }
+        }
+        let fills = [0.0f32, 1.5, -2.0, f32::MAX, f32::MIN, 3e38];
+        let specials = [f32::NAN, f32::INFINITY, f32::NEG_INFINITY, f32::MAX, -1.0];
+        for &fill in &fills {
+            let base = [fill; 8];
+            assert!(sample(base).is_finite(), "all {fill}");
+            for i in 0..8 {
+                for &sp in &specials {
+                    let mut v = base;
+                    v[i] = sp;
+                    let want = v.iter().all(|x| x.is_finite());
+                    assert_eq!(sample(v).is_finite(), want, "field {i} = {sp}, fill {fill}");
+                    let v64 = v.map(f64::from);
+                    assert_eq!(sample(v64).is_finite(), want);
+                }
+            }
+        }
+        // Infinities of both signs cancel to NaN, still rejected.
+        let mut v = [0.0f64; 8];
+        v[0] = f64::INFINITY;
+        v[7] = f64::NEG_INFINITY;
+        assert!(!sample(v).is_finite());
+        assert!(sample([I16F16::MAX; 8]).is_finite());
+    }
 
     #[test]
     fn clamp_or_keep_equals_keep_then_clamp() {
