@@ -10,6 +10,11 @@
 //!   release): every one of the 2³² `u32` angles for `I16F16` and `f32`
 //!   (each prints one `PROOF …` line).
 //!   `cargo test --release --lib -- --ignored exhaustive_cos_turn --nocapture`
+//! * **Shared reduction** (`exhaustive_sin_cos_turn_f32`): the `f32`
+//!   [`Scalar::sin_cos_turn`] kernel equals `(cos_turn(t − 2³⁰),
+//!   cos_turn(t))` bit for bit at every one of the 2³² angles, so both of
+//!   its components carry the proven `cos_turn` bound.
+//!   `cargo test --release --lib -- --ignored exhaustive_sin_cos_turn_f32 --nocapture`
 //! * **Plain tests**: the edges (0, octant and quadrant boundaries, the
 //!   table knots, 2³¹, `u32::MAX`), a dense stride and random angles.
 //!
@@ -56,6 +61,15 @@ pub fn cos_turn_f64_check(turn: u32) -> Verdict {
     let got = f64::cos_turn(turn);
     let err = (got - reference_cos_turn(turn)).abs() / 1e-15;
     Verdict::bounded(err, 1.0).and(Verdict::logical(even_and_bounded(turn, got)))
+}
+
+/// `f32` `sin_cos_turn(turn)` against two `cos_turn` calls a quarter turn
+/// apart: bit-equal components (a logical property, error 0).
+pub fn sin_cos_turn_f32_check(turn: u32) -> Verdict {
+    let (s, c) = f32::sin_cos_turn(turn);
+    let s_ref = f32::cos_turn(turn.wrapping_sub(1 << 30));
+    let c_ref = f32::cos_turn(turn);
+    Verdict::logical(s.to_bits() == s_ref.to_bits() && c.to_bits() == c_ref.to_bits())
 }
 
 /// The edge angles: 0, every multiple of an eighth turn and its
@@ -155,6 +169,97 @@ mod tests {
             prop_assert!(cos_turn_f32_check(t).holds);
             prop_assert!(cos_turn_f64_check(t).holds);
         }
+    }
+
+    /// Every multiple of an eighth turn (the quadrant boundaries of the
+    /// shared reduction are the odd ones) and its neighbours within ±3
+    /// units, 0, 2³¹, `u32::MAX`.
+    fn sin_cos_turn_edges() -> impl Iterator<Item = u32> {
+        (0..8u32)
+            .flat_map(|k| (-3i32..=3).map(move |o| (k << 29).wrapping_add(o as u32)))
+            .chain([0, 1 << 31, u32::MAX])
+    }
+
+    /// Seeded sample of `n` angles (xorshift64).
+    fn sample_turns(n: usize) -> impl Iterator<Item = u32> {
+        let mut state = 0x2545_F491_4F6C_DD1Du64;
+        (0..n).map(move |_| (crate::scalar::xorshift64(&mut state) >> 32) as u32)
+    }
+
+    #[test]
+    fn sin_cos_turn_ties_evaluate_equal_polynomials() {
+        // The two reductions of `sin_cos_turn` and `cos_turn` differ only
+        // at the ties d = −2²⁹ of negative signed angles, where one side
+        // takes the sine polynomial at π/4 and the other the cosine
+        // polynomial: cos_turn(2²⁹) is `sin_poly(π/4)` (k = 1, −s(−π/4)),
+        // cos_turn(3·2²⁹) is `−cos_poly(π/4)` (k = 2, d = −2²⁹).
+        let s = f32::cos_turn(1 << 29);
+        let c = -f32::cos_turn(3 << 29);
+        assert_eq!(s.to_bits(), c.to_bits(), "s(π/4) = {s}, c(π/4) = {c}");
+        // And both are the correctly rounded √½.
+        assert_eq!(s, core::f64::consts::FRAC_1_SQRT_2 as f32);
+    }
+
+    #[test]
+    fn sin_cos_turn_f32_equals_two_cos_turn_at_edges_and_at_random() {
+        for t in sin_cos_turn_edges().chain(sample_turns(300_000)) {
+            let v = sin_cos_turn_f32_check(t);
+            assert!(v.holds, "at {t:#010x}: {:?}", f32::sin_cos_turn(t));
+        }
+    }
+
+    #[test]
+    fn sin_cos_turn_f64_and_i16f16_equal_two_cos_turn() {
+        for t in sin_cos_turn_edges().chain(sample_turns(20_000)) {
+            let a = t.wrapping_sub(1 << 30);
+            let (s, c) = f64::sin_cos_turn(t);
+            assert_eq!(
+                (s.to_bits(), c.to_bits()),
+                (f64::cos_turn(a).to_bits(), f64::cos_turn(t).to_bits()),
+                "f64 at {t:#010x}"
+            );
+            assert_eq!(
+                I16F16::sin_cos_turn(t),
+                (I16F16::cos_turn(a), I16F16::cos_turn(t)),
+                "I16F16 at {t:#010x}"
+            );
+        }
+    }
+
+    #[test]
+    fn sin_cos_turn_f32_within_2_pow_m22_of_f64_sin_cos() {
+        // Independent reference: libm's f64 sine and cosine of the signed
+        // angle in [−π, π), no quarter-turn folding.
+        let bound = 2.0 * ULP1_F32; // 2⁻²²
+        let mut worst = 0.0f64;
+        for t in sin_cos_turn_edges().chain(sample_turns(300_000)) {
+            let x = (t as i32) as f64 * (TAU / 4_294_967_296.0);
+            let (s, c) = f32::sin_cos_turn(t);
+            let es = (s as f64 - libm::sin(x)).abs();
+            let ec = (c as f64 - libm::cos(x)).abs();
+            assert!(es <= bound, "sin at {t:#010x}: {s} vs {}", libm::sin(x));
+            assert!(ec <= bound, "cos at {t:#010x}: {c} vs {}", libm::cos(x));
+            assert!(s.abs() <= 1.0 && c.abs() <= 1.0, "at {t:#010x}");
+            worst = worst.max(es).max(ec);
+        }
+        // The sample reaches well above half the bound (the proven maximum
+        // of cos_turn is 0.905 ulp of 1), so the check is not vacuous.
+        assert!(worst > 0.5 * ULP1_F32, "worst error {worst:e}");
+    }
+
+    /// Every `u32` angle: the `f32` `sin_cos_turn` equals
+    /// `(cos_turn(t − 2³⁰), cos_turn(t))` bit for bit.
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_sin_cos_turn_f32() {
+        let t = Instant::now();
+        let r = exhaustive_u32(0, u32::MAX, sin_cos_turn_f32_check);
+        eprintln!("(sin_cos_turn f32: {:.1} s)", t.elapsed().as_secs_f64());
+        assert_eq!(r.failures, 0, "first failure at {:?}", r.first_failure);
+        println!(
+            "PROOF kernel=sin_cos_turn backend=f32 domain=all bound=bit-identical to (cos_turn(t-2^30), cos_turn(t)), hence 2 ulp of 1 mismatches={} checked={} engine=exhaustive",
+            r.failures, r.checked
+        );
     }
 
     /// Every `u32` angle: `I16F16` within 1 LSB, even, `|c| ≤ 1`.

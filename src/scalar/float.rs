@@ -154,6 +154,10 @@ macro_rules! float_scalar {
                 kernels::$k::cos_turn(turn)
             }
             #[inline]
+            fn sin_cos_turn(turn: u32) -> (Self, Self) {
+                kernels::$k::sin_cos_turn(turn)
+            }
+            #[inline]
             fn atan2(self, x: Self) -> Self {
                 kernels::$k::atan2(self, x)
             }

@@ -341,6 +341,21 @@ const SIN_S: [f32; 4] = [
 /// `cos r ≈ 1 − r²/2 + r⁴·C(r²)` on `|r| ≤ π/4` (degree 2 in `r²`).
 const COS_C: [f32; 3] = [0.041_666_664, -0.001_388_830_2, 2.454_794_2e-5];
 
+/// `sin r = r + r³·S(r²)` for `|r| ≤ π/4`, given `z = r·r`: the one
+/// expression (one operation order) of [`sin_cos`], [`cos_turn`] and
+/// [`sin_cos_turn`], so that their bit identities hold by construction.
+#[inline(always)]
+fn sin_poly(r: f32, z: f32) -> f32 {
+    r + r * z * horner(z, &SIN_S)
+}
+
+/// `cos r = 1 − (r²/2 − r⁴·C(r²))` for `|r| ≤ π/4`, given `z = r·r`: the one
+/// expression of [`sin_cos`], [`cos_turn`] and [`sin_cos_turn`].
+#[inline(always)]
+fn cos_poly(z: f32) -> f32 {
+    1.0 - (0.5 * z - z * z * horner(z, &COS_C))
+}
+
 /// Bits of 2/π after the binary point, preceded by one zero word (the
 /// window of a small argument starts before the binary point).
 const TWO_OVER_PI: [u32; 8] = [
@@ -422,8 +437,8 @@ pub fn sin_cos(x: f32) -> (f32, f32) {
         reduce_quadrant(abits)
     };
     let z = r * r;
-    let s = r + r * z * horner(z, &SIN_S);
-    let c = 1.0 - (0.5 * z - z * z * horner(z, &COS_C));
+    let s = sin_poly(r, z);
+    let c = cos_poly(z);
     let (sv, cv) = if n & 1 == 0 { (s, c) } else { (c, s) };
     // n: 0 → ( s,  c), 1 → ( c, −s), 2 → (−s, −c), 3 → (−c,  s)
     let sin_sign = (n & 2) << 30;
@@ -458,7 +473,7 @@ const RAD_PER_TURN_UNIT: f32 = 1.462_918_1e-9;
 ///   (`cos_turn(t) = cos_turn(t.wrapping_neg())`).
 /// * Algorithm: exact integer reduction: `u = |turn as i32| ∈ [0, 2³¹]`,
 ///   `k` = the nearest quarter turn (`0, 1, 2`) and `d = u − k·2³⁰ ∈
-///   [−2²⁹, 2²⁹]` (exact in `i32`); `r = d·2π/2³²` (one conversion and one
+///   [−2²⁹, 2²⁹)` (exact in `i32`); `r = d·2π/2³²` (one conversion and one
 ///   product, each rounded), then `cos r` (`k = 0`), `−sin r` (`k = 1`) or
 ///   `−cos r` (`k = 2`) with the polynomials of [`sin_cos`] (`S`, `C` on
 ///   `|r| ≤ π/4`). No floating-point range reduction, no division.
@@ -470,18 +485,89 @@ const RAD_PER_TURN_UNIT: f32 = 1.462_918_1e-9;
 pub fn cos_turn(turn: u32) -> f32 {
     let u = (turn as i32).unsigned_abs(); // [0, 2³¹]
     let k = (u + (1 << 29)) >> 30; // 0, 1, 2
-    let d = (u as i32).wrapping_sub((k << 30) as i32); // [−2²⁹, 2²⁹]
-    let r = d as f32 * RAD_PER_TURN_UNIT;
+    let d = (u as i32).wrapping_sub((k << 30) as i32); // [−2²⁹, 2²⁹)
+    let r = turn_radians(d);
     let z = r * r;
     if k & 1 == 0 {
-        let c = 1.0 - (0.5 * z - z * z * horner(z, &COS_C));
+        let c = cos_poly(z);
         if k == 0 {
             c
         } else {
             -c
         }
     } else {
-        -(r + r * z * horner(z, &SIN_S))
+        -sin_poly(r, z)
+    }
+}
+
+/// `d·2π/2³²` in radians for a quarter-turn remainder `d ∈ [−2²⁹, 2²⁹]`
+/// (one conversion and one product, each rounded; exactly odd in `d`, as
+/// both roundings are symmetric). Shared by [`cos_turn`] and
+/// [`sin_cos_turn`].
+#[inline(always)]
+fn turn_radians(d: i32) -> f32 {
+    d as f32 * RAD_PER_TURN_UNIT
+}
+
+/// `(sin, cos)` of a binary angle, `(sin 2π·turn/2³², cos 2π·turn/2³²)`,
+/// with one range reduction for both (thesis eq. (3.7): the kinematic
+/// error of the torque estimator, whose harmonics need a sine and a cosine
+/// of the same phase).
+///
+/// * Domain: every `u32`. The result is **bit for bit**
+///   `(cos_turn(turn − 2³⁰), cos_turn(turn))` (wrapping subtraction) at
+///   every one of the 2³² angles, signed zeros included, so each component
+///   inherits the proven bound of [`cos_turn`]: **≤ 2⁻²² absolute**,
+///   `|component| ≤ 1`.
+/// * Algorithm: exact integer reduction on the unsigned angle: the nearest
+///   quarter turn `k = (turn + 2²⁹) >> 30 ∈ 0..4` (wrapping) and
+///   `d = (turn − k·2³⁰) as i32 ∈ [−2²⁹, 2²⁹)`. The sine polynomial is
+///   evaluated as `cos_turn` does in its odd quadrant, `−s(e)` with
+///   `s(r) = r + r³·S(r²)`, at `e = d` for `k = 1, 2` and `e = −d` for
+///   `k = 0, 3` (an integer negation, selected by the sign of
+///   `turn + 3·2²⁹`); `r = e·2π/2³²`, `z = r²`,
+///   `c = 1 − (z/2 − z²·C(z))` (the polynomials and operation order of
+///   [`cos_turn`]). Then the quarter-turn rotation, with `σ = −s(e)`:
+///   `k = 0 → (σ, c)`, `1 → (c, σ)`, `2 → (σ, −c)`, `3 → (−c, σ)`.
+/// * Why it equals two [`cos_turn`] calls: `cos_turn` reduces
+///   `u = |turn as i32|` instead, which for each component gives the same
+///   quadrant and the remainder `e` (`r(−e) = −r(e)` exactly, `z` is even
+///   and `s` odd, so the cosine does not depend on the sign of `e`). Taking
+///   `e` rather than `d` for the sine keeps the signed zero: at `e = 0`
+///   both sides give `−s(+0) = −0.0` (with `d` and an odd-symmetry sign
+///   flip, `turn = 0` and `3·2³⁰` would give `+0.0`). The only other
+///   disagreements of the two reductions are the ties `d = −2²⁹` of a
+///   negative signed angle (`turn = 0xA000_0000, 0xE000_0000`, and
+///   `0x2000_0000` through the shifted cosine), where one side evaluates
+///   `s(π/4)` and the other `c(π/4)`; both round to the same `f32`,
+///   `0x3f35_04f3` (√½ correctly rounded), so the results agree there too.
+///   `exhaustive_sin_cos_turn_f32` in `proofs/kernels_turn.rs` checks the
+///   identity at every `u32`.
+/// * Cost: 41 Thumb-2 instructions on a Cortex-M4F, straight-line (no
+///   branch, three IT blocks), for both values; two [`cos_turn`] calls take
+///   46 to 55 on their executed paths (both counted in the disassembly of
+///   `thumbv7em-none-eabihf` release builds, `opt-level = 3`, each without
+///   its call overhead and result stores). No division.
+#[inline]
+pub fn sin_cos_turn(turn: u32) -> (f32, f32) {
+    let k = turn.wrapping_add(1 << 29) >> 30; // 0..=3
+    let d = turn.wrapping_sub(k << 30) as i32; // [−2²⁹, 2²⁹)
+                                               // −d for k = 0, 3: exactly when turn + 3·2²⁹ (wrapping) is below 2³¹.
+    let e = if (turn.wrapping_add(3 << 29) as i32) < 0 {
+        d
+    } else {
+        -d
+    };
+    let r = turn_radians(e);
+    let z = r * r;
+    let sigma = -sin_poly(r, z);
+    // −c where the cosine lands in the negative half: k = 2 (cos), 3 (sin).
+    let c = cos_poly(z);
+    let c = if k & 2 == 0 { c } else { -c };
+    if k & 1 == 0 {
+        (sigma, c)
+    } else {
+        (c, sigma)
     }
 }
 

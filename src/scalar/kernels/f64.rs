@@ -121,3 +121,12 @@ pub fn cos_turn(turn: u32) -> f64 {
         _ => -libm::cos(r),
     }
 }
+
+/// `(sin, cos)` of a binary angle: exactly the default of
+/// [`Scalar::sin_cos_turn`](crate::scalar::Scalar::sin_cos_turn),
+/// `(cos_turn(turn − 2³⁰), cos_turn(turn))` (on `f64` the two `libm` calls
+/// dominate; sharing the integer reduction would save nothing measurable).
+#[inline]
+pub fn sin_cos_turn(turn: u32) -> (f64, f64) {
+    (cos_turn(turn.wrapping_sub(1 << 30)), cos_turn(turn))
+}
