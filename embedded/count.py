@@ -550,9 +550,10 @@ def joint_vectors(f):
 # Reason printed while the M4F joint-step instruction budget is not met
 # (None: asserted). The M0+ row's budgets are asserted.
 JOINT_F32_NOT_MET = ("instruction budget not met: worst case at a Hold -> Active switch with boundary layers "
-                     "active; estimate (<= 423: two exp ~110, three cos_turn ~85, tan ~55) + mode step (~480) + "
-                     "firmware I/O (~60), spread over ~55 float compares (VCMP + VMRS each), ~100 VMUL and ~80 VADD "
-                     "(LLVM forms no VMLA for the Cortex-M4, where it is slower in cycles) and ~120 VLDR")
+                     "active; estimate (~350: tan ~55, the wave-generator exponential ~45, the kinematic error ~90) "
+                     "+ mode step (~405, of which the Stribeck exponential ~45) + firmware I/O (~60), spread over "
+                     "~40 float compares (VCMP + VMRS each), ~95 VMUL and ~75 VADD (LLVM forms no VMLA for the "
+                     "Cortex-M4, where it is slower in cycles) and ~115 VLDR")
 
 JOINT_F32 = joint_vectors(f32w)
 JOINT_X = joint_vectors(xw)
