@@ -392,9 +392,10 @@ impl<S: Scalar> FrictionConfig<S> {
         ])
     }
 
-    /// `sat(q̇, ε_q̇)` of eq. (4.18), the regressor's `Y_2`: in `[−1, 1]`,
-    /// odd, non-decreasing, 0 for NaN; within the rounding of the prepared
-    /// `1/ε_q̇` and of one product of `q̇/ε_q̇` inside the layer.
+    /// `sat(q̇, ε_q̇)` of eq. (4.18), the regressor's `Y_2`, at motor speed
+    /// `qd` (stored speed units, rad/s on floats; dimensionless result): in
+    /// `[−1, 1]`, odd, non-decreasing, 0 for NaN; within the rounding of the
+    /// prepared `1/ε_q̇` and of one product of `q̇/ε_q̇` inside the layer.
     #[inline]
     pub fn sat(&self, qd: S) -> S {
         // Fixed point only (folded at compile time): a float product by the
