@@ -70,7 +70,11 @@
 //! beyond it, and whenever the estimate would exceed the configured
 //! `max_torque`, the output is `±max_torque` (sign of the torsion) and
 //! `saturated` is set; a value from the wrong branch of `tan` is never
-//! returned.
+//! returned. Both conditions grow with `|Δθ_f|` (every rounding step is
+//! monotone and `tan` is proven monotone), so they are tested together, by
+//! one comparison of `|Δθ_f|` with the largest torsion that passes both
+//! on either sign, found at configuration time on the backend's own
+//! arithmetic; the saturated path then skips `tan`.
 
 use crate::error::{positive, ParamError};
 use crate::harmonic_drive::{
@@ -282,6 +286,12 @@ pub struct TorqueEstimatorConfig<S> {
     /// Last, so that the fixed-point layout of the other fields is the
     /// same with or without it.
     double_angle: [S; 3],
+    /// The largest `|Δθ_f|` (stored torsion) whose eq. (3.10) torque is on
+    /// the principal branch and within `max_torque`, on both signs
+    /// ([`FlexsplineConfig::torsion_within`]): the saturation test of
+    /// [`finish`](Self::finish) is one comparison against it, made before
+    /// `tan`.
+    torsion_limit: S,
 }
 
 /// The estimator's state: the motor position within one output revolution,
@@ -319,8 +329,10 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         let n = p.drive.ratio as u32;
         let (l, m) = (p.link_counts_per_rev, p.motor_counts_per_rev);
         let lmn = l as f64 * m as f64 * n as f64;
+        let flexspline = FlexsplineConfig::new(&p.drive.flexspline);
+        let max_torque = S::from_f64(p.max_torque * u.link_torque);
         TorqueEstimatorConfig {
-            flexspline: FlexsplineConfig::new(&p.drive.flexspline),
+            flexspline,
             wave_generator: WaveGeneratorConfig::new(&p.drive.wave_generator, p.drive.ratio),
             kinematic_error: p
                 .kinematic_error
@@ -335,7 +347,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             }),
             link_turn: CountToTurn::new(l),
             motor_turn: CountToTurn::new(m),
-            max_torque: S::from_f64(p.max_torque * u.link_torque),
+            max_torque,
             torsion_per_count: Coef::new(TAU / lmn * u.torsion),
             torsion_per_angle: Coef::new(u.torsion / u.angle),
             inv_ratio: Coef::new(1.0 / p.drive.ratio),
@@ -362,6 +374,8 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
                     S::from_f64(-2.0 * r2 * sd * u.torsion),
                 ]
             }),
+            torsion_limit: flexspline
+                .torsion_within(max_torque, p.drive.flexspline.max_torsion() * u.torsion),
         }
     }
 
@@ -506,9 +520,12 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         let flexspline_torsion = torsion
             .add(self.wave_generator.output_torsion(motor_torque))
             .sub(kin_err);
-        let t = self.flexspline.torque(flexspline_torsion);
-        let over = t.torque.abs() > self.max_torque;
-        let saturated = t.saturated || over;
+        // Out of the branch or beyond `max_torque` exactly when |Δθ_f|
+        // exceeds the prepared limit (both tests are monotone in |Δθ_f|):
+        // one comparison, and no `tan` on the saturated path. A NaN
+        // torsion (impossible from counts) fails it and gives tan(NaN) = 0
+        // unflagged, as the direct tests did.
+        let saturated = flexspline_torsion.abs() > self.torsion_limit;
         let torque = if saturated {
             let limit = self.max_torque;
             if flexspline_torsion < S::ZERO {
@@ -517,7 +534,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
                 limit
             }
         } else {
-            t.torque
+            self.flexspline.torque_in_branch(flexspline_torsion)
         };
         TorqueEstimate {
             torque,
@@ -955,6 +972,78 @@ mod tests {
         let e = cfg.update(&mut st, L, 0, 0.0);
         assert!(e.link_count_invalid && e.torque == 0.0);
         let _ = n;
+    }
+
+    /// The saturation of `finish` by one comparison against the prepared
+    /// `torsion_limit` equals the two direct tests it replaces (the `tan`
+    /// argument at or beyond π/2, then `|τ| > max_torque`) at every torsion
+    /// tried: on `I16F16` every code within twice the branch edge, on the
+    /// floats a thousand codes either side of the limit and a log sweep.
+    /// The limit is tight: the direct test passes at it and fails at the
+    /// next code up, for a limit set by `max_torque` (60 N·m) and one set
+    /// by the branch edge (the largest `max_torque`).
+    #[test]
+    fn saturation_by_torsion_limit_equals_the_direct_tests() {
+        fn direct<S: Scalar>(cfg: &TorqueEstimatorConfig<S>, ft: S) -> (S, bool) {
+            let t = cfg.flexspline.torque(ft);
+            let sat = t.saturated || t.torque.abs() > cfg.max_torque;
+            let m = cfg.max_torque;
+            let torque = match (sat, ft < S::ZERO) {
+                (false, _) => t.torque,
+                (true, true) => m.neg(),
+                (true, false) => m,
+            };
+            (torque, sat)
+        }
+        fn agree<S: Scalar + core::fmt::Debug>(cfg: &TorqueEstimatorConfig<S>, ft: S) {
+            let e = cfg.finish(ft, S::ZERO, S::ZERO, false);
+            assert_eq!((e.torque, e.saturated), direct(cfg, ft), "at {ft:?}");
+        }
+        fn floats<S: Scalar + core::fmt::Debug>(
+            cfg: &TorqueEstimatorConfig<S>,
+            step: impl Fn(S, i32) -> S,
+        ) {
+            let a = cfg.torsion_limit;
+            assert!(!direct(cfg, a).1 && !direct(cfg, a.neg()).1);
+            let up = step(a, 1);
+            assert!(direct(cfg, up).1 || direct(cfg, up.neg()).1);
+            for k in -1000..=1000 {
+                let t = step(a, k);
+                agree(cfg, t);
+                agree(cfg, t.neg());
+            }
+            let edge = a.to_f64();
+            for i in 0..=4000 {
+                let t = S::from_f64(edge * 1e-6 * libm::pow(2e6, i as f64 / 4000.0));
+                agree(cfg, t);
+                agree(cfg, t.neg());
+            }
+            for t in [S::ZERO, S::MAX, S::MAX.neg()] {
+                agree(cfg, t);
+            }
+        }
+        for max in [60.0, 30_000.0] {
+            let drive = CatalogueData::SHD_17_100.identify().unwrap();
+            let p = TorqueEstimatorParams::try_new(drive, None, L, M, max).unwrap();
+            floats(&TorqueEstimatorConfig::<f32>::new(&p), |x, k| {
+                f32::from_bits((x.to_bits() as i32 + k) as u32)
+            });
+            floats(&TorqueEstimatorConfig::<f64>::new(&p), |x, k| {
+                f64::from_bits((x.to_bits() as i64 + k as i64) as u64)
+            });
+            let cfg = TorqueEstimatorConfig::<I16F16>::new(&p);
+            let a = cfg.torsion_limit.to_bits();
+            assert!(!direct(&cfg, cfg.torsion_limit).1);
+            let up = I16F16::from_bits(a + 1);
+            assert!(direct(&cfg, up).1 || direct(&cfg, up.neg()).1);
+            let edge = (drive.flexspline.max_torsion() * I16F16::UNITS.torsion * 65536.0) as i32;
+            for b in -2 * edge..=2 * edge {
+                agree(&cfg, I16F16::from_bits(b));
+            }
+            for b in [i32::MIN, i32::MIN + 1, i32::MAX] {
+                agree(&cfg, I16F16::from_bits(b));
+            }
+        }
     }
 
     #[test]

@@ -290,11 +290,72 @@ impl<S: Scalar> FlexsplineConfig<S> {
     #[inline]
     pub fn torque(&self, torsion: S) -> FlexsplineTorque<S> {
         let angle = torsion.mul_coef(&self.angle_per_torsion);
-        let saturated = angle.abs() >= S::FRAC_PI_2;
         FlexsplineTorque {
-            torque: angle.tan().mul_coef(&self.torque_per_tan),
-            saturated,
+            torque: self.torque_of_angle(angle),
+            saturated: angle.abs() >= S::FRAC_PI_2,
         }
+    }
+
+    /// Eq. (3.10) without the branch test, for a caller that has already
+    /// bounded the torsion (see [`torsion_within`](Self::torsion_within)).
+    #[inline]
+    pub(crate) fn torque_in_branch(&self, torsion: S) -> S {
+        self.torque_of_angle(torsion.mul_coef(&self.angle_per_torsion))
+    }
+
+    #[inline(always)]
+    fn torque_of_angle(&self, angle: S) -> S {
+        angle.tan().mul_coef(&self.torque_per_tan)
+    }
+
+    /// The largest stored torsion `a ≥ 0` such that [`torque`](Self::torque)
+    /// at `a` and at `−a` is inside the branch (not `saturated`) with a
+    /// magnitude of at most `limit` (stored torque), while at the next
+    /// representable torsion above `a` one of the two is not. Found once,
+    /// at configuration time, by bisection on the backend's own arithmetic;
+    /// `branch_edge` is the torsion (stored units, as `f64`) where the
+    /// argument of `tan` reaches π/2, the start of the bracket.
+    ///
+    /// Every step of `torque` is non-decreasing in the torsion (the
+    /// products round monotonically; `tan` is proven monotone on f32 and
+    /// `I16F16`), so the torsions whose torque passes both tests are
+    /// exactly those with `|Δθ_f| ≤ a` when the backend is also odd (f32,
+    /// f64: the products and `tan` are exactly odd). On `I16F16` the
+    /// rounding of the products is not exactly odd; `a` is then the
+    /// smaller of the two sides, so `|Δθ_f| ≤ a` never admits a torsion
+    /// that the direct test rejects.
+    pub(crate) fn torsion_within(&self, limit: S, branch_edge: f64) -> S {
+        let fits = |t: S| {
+            let f = self.torque(t);
+            !f.saturated && f.torque.abs() <= limit
+        };
+        let ok = |x: f64| {
+            let t = S::from_f64(x);
+            fits(t) && fits(t.neg())
+        };
+        // `ok(lo)` and `!ok(hi)` throughout; at the end `lo` and `hi` are
+        // adjacent f64s, whose images in `S` are adjacent (or the loop
+        // would have found them equal).
+        let mut hi = 1.5 * branch_edge;
+        if hi.is_nan() || hi >= S::MAX.to_f64() {
+            hi = S::MAX.to_f64();
+            if ok(hi) {
+                return S::MAX;
+            }
+        }
+        let mut lo = 0.0f64;
+        loop {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            if ok(mid) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        S::from_f64(lo)
     }
 }
 
