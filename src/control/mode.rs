@@ -378,17 +378,57 @@ impl<S: Scalar> ModeConfig<S> {
         }
     }
 
-    /// `v` limited to `±limit`, and whether it was limited: one magnitude
-    /// comparison on the common path. Equal to `v.clamp(−limit, limit)` for
-    /// every non-NaN `v` (the limit is at most 16 N·m, inside every
-    /// backend's range, so `|v| > limit` is `v > limit || v < −limit`).
+    /// `v` limited to `±limit`: one magnitude comparison on the common
+    /// path. Equal to `v.clamp(−limit, limit)` for every non-NaN `v` (the
+    /// limit is at most 16 N·m, inside every backend's range, so `|v| >
+    /// limit` is `v > limit || v < −limit`).
     #[inline]
-    fn limit(&self, v: S) -> (S, bool) {
+    fn limit(&self, v: S) -> S {
         let l = self.limit;
         if v.abs() > l {
-            (if v > S::ZERO { l } else { l.neg() }, true)
+            if v > S::ZERO {
+                l
+            } else {
+                l.neg()
+            }
         } else {
-            (v, false)
+            v
+        }
+    }
+
+    /// The command from the law: the law limited to `±limit` (a NaN law,
+    /// an overflow on floats, counts as 0), plus the bias, limited again.
+    /// At a switch the bias is first re-seeded so that the command starts
+    /// at `before`, the previous one. Returns the torque, whether anything
+    /// was limited or overflowed, and whether the law overflowed.
+    #[inline(always)]
+    fn command(&self, law: S, before: S, switched: bool, bias: &mut S) -> (S, bool, bool) {
+        // The common path: neither the law nor the law plus the bias
+        // reaches the limit (one magnitude test each; a NaN law fails the
+        // first), and nothing is flagged.
+        let mut within = None;
+        if law.abs() <= self.limit {
+            if switched {
+                *bias = before.sub(law);
+            }
+            let sum = law.add(*bias);
+            if sum.abs() <= self.limit {
+                within = Some(sum);
+            }
+        }
+        // Otherwise something is limited (or the law overflowed): the
+        // general form, which is `saturated` on every path.
+        match within {
+            Some(sum) => (sum, false, false),
+            None => {
+                let overflow = law.is_nan();
+                let law = if overflow { S::ZERO } else { law };
+                let limited = self.limit(law);
+                if switched {
+                    *bias = before.sub(limited);
+                }
+                (self.limit(limited.add(*bias)), true, overflow)
+            }
         }
     }
 
@@ -405,7 +445,7 @@ impl<S: Scalar> ModeConfig<S> {
         // A law that overflowed to NaN (floats, absurd finite inputs)
         // counts as 0, as in `update`.
         let law = if law.is_nan() { S::ZERO } else { law };
-        self.limit(self.limit(law).0.add(st.bias)).0
+        self.limit(self.limit(law).add(st.bias))
     }
 
     /// The mode the rules ask for at this sample (before debounce).
@@ -524,21 +564,14 @@ impl<S: Scalar> ModeConfig<S> {
                 (t.law, xr.desired_position)
             }
         };
-        let overflow = law.is_nan();
-        let law = if overflow { S::ZERO } else { law };
-        let (limited, law_limited) = self.limit(law);
-        if switched {
-            st.bias = before.sub(limited);
-        }
-        let sum = limited.add(st.bias);
-        let (torque, sum_limited) = self.limit(sum);
+        let (torque, saturated, overflow) = self.command(law, before, switched, &mut st.bias);
         st.bias = st.bias.mul_coef(&self.bias_decay);
         st.last_torque = torque;
         ModeOutput {
             torque,
             mode: st.mode,
             switched,
-            saturated: law_limited || sum_limited || overflow,
+            saturated,
             invalid_input: overflow,
             interaction,
             collision: st.latched,
