@@ -14,8 +14,10 @@ use super::{kernels, Scalar};
 /// rounding of their sum is the rounding of `c` itself.
 #[inline]
 fn count_to_f32(c: i64) -> f32 {
-    if ((c >> 47) + 1) as u64 <= 1 {
-        // −2⁴⁷ ≤ c < 2⁴⁷.
+    // −2⁴⁷ ≤ c < 2⁴⁷ exactly when the high word `⌊c/2³²⌋` is in
+    // [−2¹⁵, 2¹⁵): one add and one shift on a 32-bit core.
+    let high = (c >> 32) as i32;
+    if ((high as u32).wrapping_add(1 << 15)) >> 16 == 0 {
         let hi = (c >> 24) as i32 as f32;
         let lo = (c & 0xFF_FFFF) as i32 as f32;
         hi * 16_777_216.0 + lo
