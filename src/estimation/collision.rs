@@ -145,7 +145,11 @@ impl<S: Scalar> CollisionConfig<S> {
         let mag = residual.abs();
         let was = st.detected;
         if !st.detected {
-            if invalid || mag > self.threshold {
+            // Over the threshold or NaN, in one comparison (`<=` is false
+            // for NaN).
+            #[allow(clippy::neg_cmp_op_on_partial_ord)]
+            let over = !(mag <= self.threshold);
+            if over {
                 st.count = st.count.saturating_add(1);
                 if st.count >= self.debounce {
                     st.detected = true;
@@ -154,7 +158,8 @@ impl<S: Scalar> CollisionConfig<S> {
             } else {
                 st.count = 0;
             }
-        } else if !invalid && mag < self.release_threshold {
+        } else if mag < self.release_threshold {
+            // Under the release threshold (false for NaN).
             st.count = st.count.saturating_add(1);
             if st.count >= self.release {
                 st.detected = false;
@@ -235,6 +240,18 @@ mod tests {
         let mut st = CollisionState::default();
         let o = c.update(&mut st, f32::NAN, 0.0);
         assert!(o.detected && o.invalid_input && o.residual == 0.0);
+        // While detected, a NaN does not count towards the release: it
+        // restarts the run of samples under the release threshold.
+        let c = CollisionConfig::<f32>::new(
+            &CollisionParams::try_new(2.0, 1.0, 1, 2, CollisionReaction::Stop).unwrap(),
+        );
+        let mut st = CollisionState::default();
+        let seq = [f32::NAN, 0.0, f32::NAN, 0.0, 0.0];
+        let detected: Vec<bool> = seq
+            .iter()
+            .map(|&r| c.update(&mut st, r, 0.0).detected)
+            .collect();
+        assert_eq!(detected, [true, true, true, true, false]);
     }
 
     proptest! {
