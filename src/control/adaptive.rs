@@ -41,7 +41,7 @@
 //! prepared [`Coef`] (on fixed point, a factor whose value the backend
 //! holds exactly uses the backend's own, bit-identical product).
 
-use super::{clamp_or_keep, ControlInput};
+use super::{clamp_or_keep, clamp_or_keep_symmetric, ControlInput};
 use crate::error::{non_negative, positive, ParamError};
 use crate::friction::{
     mul_unit, parameter_scales, regressor_scales, FrictionBounds, FrictionConfig, FrictionParams,
@@ -629,12 +629,7 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
             };
         if !winding {
             let z = st.integral.add(self.integral_step.apply(t.r));
-            st.integral = clamp_or_keep(
-                z,
-                st.integral,
-                self.integral_limit.neg(),
-                self.integral_limit,
-            );
+            st.integral = clamp_or_keep_symmetric(z, st.integral, self.integral_limit);
         }
         for j in 0..4 {
             let f = st.friction[j].sub(t.ry[j].mul_coef(&self.adapt[j]));

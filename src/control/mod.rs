@@ -139,6 +139,23 @@ pub(crate) fn clamp_or_keep<S: Scalar>(new: S, old: S, lo: S, hi: S) -> S {
     }
 }
 
+/// [`clamp_or_keep`] for the symmetric range `[−limit, limit]` (`0 ≤ limit <
+/// MAX`), with one magnitude comparison on the common path: a NaN fails it
+/// and both sign tests, and `|MIN|` saturates to `MAX` on fixed point and
+/// takes the negative branch, as the two one-sided tests would.
+#[inline]
+pub(crate) fn clamp_or_keep_symmetric<S: Scalar>(new: S, old: S, limit: S) -> S {
+    if new.abs() <= limit {
+        new
+    } else if new > S::ZERO {
+        limit
+    } else if new < S::ZERO {
+        limit.neg()
+    } else {
+        old.clamp(limit.neg(), limit)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -227,6 +244,69 @@ mod tests {
                 for (lo, hi) in [(fx[2], fx[6]), (fx[4], fx[4]), (fx[0], fx[8])] {
                     let want = Scalar::clamp(keep_number(new, old), lo, hi);
                     assert_eq!(clamp_or_keep(new, old, lo, hi), want);
+                }
+            }
+        }
+    }
+
+    /// The symmetric form equals `clamp_or_keep(new, old, −limit, limit)`
+    /// on the same special values, with limits 0, 1 LSB / the smallest
+    /// subnormal, 1 and one code below `MAX`.
+    #[test]
+    fn clamp_or_keep_symmetric_equals_the_two_sided_form() {
+        let vals = [
+            f32::NAN,
+            f32::NEG_INFINITY,
+            f32::MIN,
+            -3.0,
+            -1.0,
+            -0.5,
+            -f32::from_bits(1),
+            -0.0,
+            0.0,
+            f32::from_bits(1),
+            0.5,
+            1.0,
+            3.0,
+            f32::MAX,
+            f32::INFINITY,
+        ];
+        for &new in &vals {
+            for &old in &vals[1..] {
+                for l in [
+                    0.0f32,
+                    f32::from_bits(1),
+                    1.0,
+                    f32::from_bits(f32::MAX.to_bits() - 1),
+                ] {
+                    let want = clamp_or_keep(new, old, -l, l);
+                    let got = clamp_or_keep_symmetric(new, old, l);
+                    assert_eq!(got.to_bits(), want.to_bits(), "{new} {old} {l}");
+                }
+            }
+        }
+        let fx = [
+            i32::MIN,
+            i32::MIN + 1,
+            -70_000,
+            -65_536,
+            -1,
+            0,
+            1,
+            65_536,
+            70_000,
+            i32::MAX,
+        ]
+        .map(I16F16::from_bits);
+        for &new in &fx {
+            for &old in &fx {
+                for l in [0, 1, 65_536, i32::MAX - 1].map(I16F16::from_bits) {
+                    let want = clamp_or_keep(new, old, l.neg(), l);
+                    assert_eq!(
+                        clamp_or_keep_symmetric(new, old, l),
+                        want,
+                        "{new} {old} {l}"
+                    );
                 }
             }
         }
