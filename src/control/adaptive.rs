@@ -613,9 +613,14 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
     /// Advance integral and adaptation by one sample after `law`.
     #[inline]
     pub(crate) fn commit(&self, st: &mut RobustAdaptiveState<S>, t: &ActiveTerms<S>) {
-        if !t.valid {
-            return;
+        if t.valid {
+            self.commit_valid(st, t);
         }
+    }
+
+    /// [`commit`](Self::commit) for terms already known to be valid.
+    #[inline(always)]
+    pub(crate) fn commit_valid(&self, st: &mut RobustAdaptiveState<S>, t: &ActiveTerms<S>) {
         let l = self.torque_limit;
         // z enters with a minus sign: r > 0 raises z and lowers τ.
         // One magnitude test on the common unsaturated path (`l` is at most

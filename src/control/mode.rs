@@ -546,15 +546,17 @@ impl<S: Scalar> ModeConfig<S> {
                 let (xr, acc) = self.reference(st, x);
                 // `x` was checked above; `xr` only shifts its reference.
                 let mut t: ActiveTerms<S> = self.active.law_of_checked_input(&st.active, &xr);
-                if switched && t.valid {
-                    // Re-seed the integral so the law starts near τ_before
-                    // (the law is affine in z with slope −1).
-                    let zl = self.active.integral_limit();
-                    let z = t.law.sub(before).clamp(zl.neg(), zl);
-                    st.active.integral = z;
-                    t.law = t.law.sub(z);
+                if t.valid {
+                    if switched {
+                        // Re-seed the integral so the law starts near
+                        // τ_before (the law is affine in z with slope −1).
+                        let zl = self.active.integral_limit();
+                        let z = t.law.sub(before).clamp(zl.neg(), zl);
+                        st.active.integral = z;
+                        t.law = t.law.sub(z);
+                    }
+                    self.active.commit_valid(&mut st.active, &t);
                 }
-                self.active.commit(&mut st.active, &t);
                 if mode == JointMode::Active {
                     // Semi-implicit Euler of ö = −2ω ȯ − ω² o.
                     let rate = st.offset_rate.add(acc.mul_coef(&self.step_rate));
