@@ -24,7 +24,11 @@
 //! error is scaled down by the small size of that remainder. The coefficients
 //! are Chebyshev (near-minimax) fits of the remainder function on the reduced
 //! interval, computed with `mpmath.chebyfit` at 50 digits and rounded to
-//! `f32`: `proofs/kernels_f32_coefficients.py` regenerates them. The error
+//! `f32`, except those of [`tan`] and [`exp`]: minimax (Remez) fits for the
+//! relative error of the result, one coefficient shorter than the Chebyshev
+//! fits they replace and still far below the `f32` rounding (a relative
+//! error of a few 1e-9).
+//! `proofs/kernels_f32_coefficients.py` regenerates them all. The error
 //! bounds do not rely on the fit's own error estimate: each is proven by the
 //! exhaustive engine over every `f32` input of the domain against an `f64`
 //! reference (see `proofs/kernels_f32.rs`; run with
@@ -153,16 +157,20 @@ pub fn atan(x: f32) -> f32 {
 
 // ----------------------------------------------------------------- tan ----
 
-/// `tan(d) ≈ d + d³·T(d²)` on `d ∈ [0, π/4]` (degree 7 in `d²`).
-const TAN_T: [f32; 8] = [
-    0.333_333_34,
-    0.133_333_43,
-    0.053_965_017,
-    0.021_910_677,
-    0.008_609_249,
-    0.004_425_315_7,
-    3.364_407e-11,
-    0.001_789_251_2,
+/// `tan(d) ≈ d + d³·T(d²)` on `d ∈ [0, π/4]` (degree 6 in `d²`, so degree 15
+/// in `d`): the minimax fit for the relative error of `tan d` (Remez,
+/// 1.3e-9; 3.7e-9 with the coefficients rounded to `f32` and `T[1]` moved
+/// one ulp up, which lowers the exhaustively measured maximum of [`tan`]),
+/// which is to first order also the relative error of the reflected
+/// `1/tan d`.
+const TAN_T: [f32; 7] = [
+    0.333_333_5,
+    0.133_326_65,
+    0.054_059_923,
+    0.021_282_166,
+    0.010_835_859,
+    8.948_921e-5,
+    0.004_376_292_7,
 ];
 
 /// Tangent on the principal branch (thesis eq. 3.10, the flexspline
@@ -172,14 +180,15 @@ const TAN_T: [f32; 8] = [
 ///   it (and for `±∞`) the result is `±tan(TAN_DOMAIN_EDGE)` with the sign
 ///   of `x`, so `tan` is non-decreasing over every `f32`; NaN → 0.
 /// * Algorithm: odd symmetry; for `|x| < π/4`, `tan x = x + x³·T(x²)` with
-///   `T` a degree-7 Chebyshev fit on `[0, π/4]`; above, `tan x = 1/tan d`
+///   `T` of degree 6, a minimax fit for the relative error on `[0, π/4]`
+///   (the same fit serves the reflection); above, `tan x = 1/tan d`
 ///   with `d = π/2 − |x|` computed as an unevaluated `f32` pair (the first
 ///   subtraction is exact by Sterbenz, the rounding error of the second is
 ///   recovered by Fast2Sum) and folded into the polynomial as `d_lo·(1+d²)`.
 /// * Proven bound: **2 ulp** over the domain, non-decreasing over every pair
 ///   of adjacent `f32`s, exactly odd: all by the exhaustive engine,
 ///   `exhaustive_tan_f32`. Measured
-///   maximum error: 1.599 ulp at `x = 1.1061937`.
+///   maximum error: 1.612 ulp at `x = 1.1060537`.
 /// * Cost: ≤ 80 Thumb-2 instructions on a Cortex-M4F (one `VDIV`).
 #[inline]
 pub fn tan(x: f32) -> f32 {
@@ -210,14 +219,16 @@ pub fn tan(x: f32) -> f32 {
 
 // ----------------------------------------------------------------- exp ----
 
-/// `e^r ≈ 1 + r + r²·E(r)` on `|r| ≤ ln2/2` (degree 5).
-const EXP_E: [f32; 6] = [
-    0.5,
-    0.166_666_67,
-    0.041_666_467,
-    0.008_333_31,
-    0.001_393_364_2,
-    0.000_198_909_81,
+/// `e^r ≈ 1 + r + r²·E(r)` on `|r| ≤ ln2/2` (`E` of degree 4, so degree 6
+/// in all): the minimax fit for the relative error of `e^r` (Remez, 3.1e-9;
+/// 3.6e-9 with the coefficients rounded to `f32` and `E[2]` moved one ulp
+/// down, which lowers the exhaustively measured maximum of [`exp`]).
+const EXP_E: [f32; 5] = [
+    0.499_999_94,
+    0.166_665_21,
+    0.041_668_385,
+    0.008_368_71,
+    0.001_381_461_3,
 ];
 /// ln 2 = `LN2_HI + LN2_LO`; `LN2_HI` has 16 significant bits so `k·LN2_HI`
 /// is exact for `|k| ≤ 255`.
@@ -234,15 +245,16 @@ const LN2_LO: f32 = 1.428_606_8e-6;
 ///   correctly rounded value there. NaN → 1.
 /// * Algorithm (Cody–Waite): `k = round(x·log2 e)`, `r = x − k·ln2` with ln 2
 ///   split so that `x − k·LN2_HI` is exact, `e^r = 1 + r + r²·E(r)` with `E`
-///   a degree-5 Chebyshev fit on `[−ln2/2, ln2/2]`, then `·2^k` as two exact
+///   of degree 4 (degree 6 in all), a minimax fit for the relative error on
+///   `[−ln2/2, ln2/2]`, then `·2^k` as two exact
 ///   power-of-two factors so that only the last product rounds (once, also
 ///   into the subnormal range).
 /// * Proven bound: **2 ulp** over every `f32 ≤ EXP_MAX_ARG` (subnormal
 ///   results measured in the subnormal ulp `2^-149`; the saturation above is
 ///   checked to happen only where `e^x` rounds to `+∞`), non-decreasing over
 ///   every pair of adjacent `f32`s: both by the exhaustive engine over all
-///   2^32 codes, `exhaustive_exp_f32`. Measured maximum error: 0.951 ulp
-///   (at `x = −5.84602`; `exhaustive_exp_f32` prints it).
+///   2^32 codes, `exhaustive_exp_f32`. Measured maximum error: 0.976 ulp
+///   (at `x = −5.8606462`; `exhaustive_exp_f32` prints it).
 /// * Cost: ≤ 55 Thumb-2 instructions on a Cortex-M4F, no division.
 #[inline]
 pub fn exp(x: f32) -> f32 {
@@ -311,7 +323,7 @@ pub const EXP_NEG_ABS_MAX_ARG: f32 = f32::from_bits(0x42af_5dc2); // 87.683_12
 ///   `exp(−|x|)` and exact evenness: all by the exhaustive engine over every
 ///   `f32` magnitude, `exhaustive_exp_neg_abs_f32`. Non-increasing in `|x|`
 ///   (from the proven monotonicity of `exp` and the flush to 0). Measured
-///   maximum error: 0.951 ulp (at `|x| = 5.84602`, as for `exp`).
+///   maximum error: 0.976 ulp (at `|x| = 5.8606462`, as for `exp`).
 /// * Cost: 44 Thumb-2 instructions executed on a Cortex-M4F, against 56
 ///   for [`exp`] (`embedded/count.py`, less its 7-instruction call
 ///   overhead): one `VABS`, one compare and branch, then the straight-line
