@@ -203,6 +203,21 @@ mod tests {
         assert!(sample([I16F16::MAX; 8]).is_finite());
     }
 
+    /// `I16F16` codes for the clamp tests: the extremes, ±1 LSB, ±1 and
+    /// values just beyond ±1.
+    const FX_SPECIAL: [i32; 10] = [
+        i32::MIN,
+        i32::MIN + 1,
+        -70_000,
+        -65_536,
+        -1,
+        0,
+        1,
+        65_536,
+        70_000,
+        i32::MAX,
+    ];
+
     #[test]
     fn clamp_or_keep_equals_keep_then_clamp() {
         let vals = [
@@ -227,21 +242,15 @@ mod tests {
                 }
             }
         }
-        let fx = [
-            i32::MIN,
-            -70_000,
-            -65_536,
-            -1,
-            0,
-            1,
-            65_536,
-            70_000,
-            i32::MAX,
-        ]
-        .map(I16F16::from_bits);
+        let fx = FX_SPECIAL.map(I16F16::from_bits);
+        let b = I16F16::from_bits;
         for &new in &fx {
             for &old in &fx {
-                for (lo, hi) in [(fx[2], fx[6]), (fx[4], fx[4]), (fx[0], fx[8])] {
+                for (lo, hi) in [
+                    (b(-65_536), b(65_536)),
+                    (b(0), b(0)),
+                    (b(i32::MIN), b(i32::MAX)),
+                ] {
                     let want = Scalar::clamp(keep_number(new, old), lo, hi);
                     assert_eq!(clamp_or_keep(new, old, lo, hi), want);
                 }
@@ -285,19 +294,7 @@ mod tests {
                 }
             }
         }
-        let fx = [
-            i32::MIN,
-            i32::MIN + 1,
-            -70_000,
-            -65_536,
-            -1,
-            0,
-            1,
-            65_536,
-            70_000,
-            i32::MAX,
-        ]
-        .map(I16F16::from_bits);
+        let fx = FX_SPECIAL.map(I16F16::from_bits);
         for &new in &fx {
             for &old in &fx {
                 for l in [0, 1, 65_536, i32::MAX - 1].map(I16F16::from_bits) {
