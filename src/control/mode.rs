@@ -442,10 +442,10 @@ impl<S: Scalar> ModeConfig<S> {
                 self.active.law(&st.active, &xr).law
             }
         };
-        // A law that overflowed to NaN (floats, absurd finite inputs)
-        // counts as 0, as in `update`.
-        let law = if law.is_nan() { S::ZERO } else { law };
-        self.limit(self.limit(law).add(st.bias))
+        // The command of `update` without a switch (which leaves the bias
+        // alone); a law that overflowed to NaN counts as 0 there too.
+        let mut bias = st.bias;
+        self.command(law, st.last_torque, false, &mut bias).0
     }
 
     /// The mode the rules ask for at this sample (before debounce).

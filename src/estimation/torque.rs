@@ -980,8 +980,11 @@ mod tests {
     /// tried: on `I16F16` every code within twice the branch edge, on the
     /// floats a thousand codes either side of the limit and a log sweep.
     /// The limit is tight: the direct test passes at it and fails at the
-    /// next code up, for a limit set by `max_torque` (60 N·m) and one set
-    /// by the branch edge (the largest `max_torque`).
+    /// next code up. Three set-ups: SHD-17-100 at 60 N·m and at the largest
+    /// `max_torque` (30 000 N·m; both limits are set by `max_torque`), and
+    /// a flexspline with `c_f = 1000 /(N·m)` at 30 000 N·m, where `tan` of
+    /// the largest in-branch f32 argument gives only about 23 000 N·m, so
+    /// that the f32 limit is set by the branch edge (asserted).
     #[test]
     fn saturation_by_torsion_limit_equals_the_direct_tests() {
         fn direct<S: Scalar>(cfg: &TorqueEstimatorConfig<S>, ft: S) -> (S, bool) {
@@ -999,10 +1002,12 @@ mod tests {
             let e = cfg.finish(ft, S::ZERO, S::ZERO, false);
             assert_eq!((e.torque, e.saturated), direct(cfg, ft), "at {ft:?}");
         }
+        /// Checks one float configuration; returns whether the next torsion
+        /// above the limit leaves the branch (rather than `max_torque`).
         fn floats<S: Scalar + core::fmt::Debug>(
             cfg: &TorqueEstimatorConfig<S>,
             step: impl Fn(S, i32) -> S,
-        ) {
+        ) -> bool {
             let a = cfg.torsion_limit;
             assert!(!direct(cfg, a).1 && !direct(cfg, a.neg()).1);
             let up = step(a, 1);
@@ -1021,11 +1026,19 @@ mod tests {
             for t in [S::ZERO, S::MAX, S::MAX.neg()] {
                 agree(cfg, t);
             }
+            cfg.flexspline.torque(up).saturated
         }
-        for max in [60.0, 30_000.0] {
-            let drive = CatalogueData::SHD_17_100.identify().unwrap();
+        let mut edge_bound = [false; 3];
+        for (case, (c_f, max)) in [(None, 60.0), (None, 30_000.0), (Some(1000.0), 30_000.0)]
+            .into_iter()
+            .enumerate()
+        {
+            let mut drive = CatalogueData::SHD_17_100.identify().unwrap();
+            if let Some(c_f) = c_f {
+                drive.flexspline.c_f = c_f;
+            }
             let p = TorqueEstimatorParams::try_new(drive, None, L, M, max).unwrap();
-            floats(&TorqueEstimatorConfig::<f32>::new(&p), |x, k| {
+            edge_bound[case] = floats(&TorqueEstimatorConfig::<f32>::new(&p), |x, k| {
                 f32::from_bits((x.to_bits() as i32 + k) as u32)
             });
             floats(&TorqueEstimatorConfig::<f64>::new(&p), |x, k| {
@@ -1044,6 +1057,7 @@ mod tests {
                 agree(&cfg, I16F16::from_bits(b));
             }
         }
+        assert_eq!(edge_bound, [false, false, true]);
     }
 
     #[test]
