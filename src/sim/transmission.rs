@@ -89,7 +89,9 @@ impl BackboneShape {
 
 /// A smooth stiffening curve, torque (N·m) from torsion `δ` (rad):
 ///
-/// $$ \tau(\delta) = K_\infty \delta - (K_\infty - K_0)\, w \tanh(\delta/w) $$
+/// ```text
+/// τ(δ) = K_∞ δ − (K_∞ − K_0) w tanh(δ/w)
+/// ```
 ///
 /// local stiffness `K_∞ − (K_∞ − K_0) sech²(δ/w)`, from `K_0` at zero to
 /// `K_∞` for `|δ| ≫ w`. Not a model of the thesis: a plant shape that
