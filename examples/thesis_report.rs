@@ -1139,7 +1139,7 @@ fn escape(s: &str) -> String {
 
 fn index_html(chapters: &[(&str, Vec<Figure>)], quick: bool) -> String {
     let mut h = String::from(
-        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\"/>\n\
          <title>mrr-control: thesis figures</title>\n<style>\n\
          body{font-family:sans-serif;max-width:900px;margin:auto;padding:1em;color:#222}\n\
          figure{margin:2em 0;border-top:1px solid #ccc;padding-top:1em}\n\
@@ -1177,7 +1177,7 @@ fn index_html(chapters: &[(&str, Vec<Figure>)], quick: bool) -> String {
         for f in figs {
             let _ = writeln!(
                 h,
-                "<figure id=\"{id}\">\n<a href=\"{id}\"><img src=\"{id}\" alt=\"{t}\"></a>\n\
+                "<figure id=\"{id}\">\n<a href=\"{id}\"><img src=\"{id}\" alt=\"{t}\"/></a>\n\
                  <figcaption><b>{t}.</b> <span class=\"thesis\">Thesis: {th}.</span> \
                  Here: {o}.</figcaption>\n</figure>",
                 id = escape(&f.file),
