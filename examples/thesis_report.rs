@@ -805,10 +805,9 @@ fn fig3_3(r: &mut Report) -> Result<Figure, Error> {
             ],
             markers: vec![],
         },
-        format!(
-            "eq. (3.7) with Table 3.2; without it the torque error would reach K2·θ_err \
-             (eq. 3.1, Table 3.1: 4.1 N·m for this size)"
-        ),
+        "eq. (3.7) with Table 3.2; without it the torque error would reach K2·θ_err \
+         (eq. 3.1, Table 3.1: 4.1 N·m for this size)"
+            .into(),
         format!(
             "Table 3.2 bound {:.1} µrad (K2·bound = {:.2} N·m); largest |fitted − Table 3.2| {:.1} µrad",
             truth.amplitude_bound() * 1e6,
