@@ -4,7 +4,7 @@
 //! gets (numbers computed here).
 //!
 //! ```sh
-//! cargo run --release --features sim --example thesis_report            # full runs (~1 min)
+//! cargo run --release --features sim --example thesis_report            # full runs (~20 s)
 //! cargo run --release --features sim --example thesis_report -- --quick # shorter runs (CI)
 //! cargo run --release --features sim --example thesis_report -- --out DIR
 //! ```
