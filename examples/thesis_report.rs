@@ -309,18 +309,23 @@ fn draw(path: &Path, c: &Chart) -> Result<(), Error> {
     }
     for s in &c.series {
         let color = s.color;
-        let anno = if s.dots {
-            chart.draw_series(
-                s.points
-                    .iter()
-                    .map(move |&p| Circle::new(p, 3, color.filled())),
-            )?
+        if s.dots {
+            chart
+                .draw_series(
+                    s.points
+                        .iter()
+                        .map(move |&p| Circle::new(p, 3, color.filled())),
+                )?
+                .label(s.label.clone())
+                .legend(move |(x, y)| Circle::new((x + 10, y), 3, color.filled()));
         } else {
-            chart.draw_series(LineSeries::new(s.points.clone(), color.stroke_width(1)))?
-        };
-        anno.label(s.label.clone()).legend(move |(x, y)| {
-            PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-        });
+            chart
+                .draw_series(LineSeries::new(s.points.clone(), color.stroke_width(1)))?
+                .label(s.label.clone())
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                });
+        }
     }
     chart
         .configure_series_labels()
