@@ -15,6 +15,7 @@ use mrr_control::sim::experiments::{
     back_driven, locked_output, torque_estimation, width_at_zero, BackDrivenConfig,
     ComplianceResult, ErrorStats, LockedOutputConfig, Models, TorqueEstimationConfig, ESTIMATORS,
 };
+use mrr_control::sim::experiments::{model_ranking, PlantStructure};
 use mrr_control::sim::transmission::{Backbone, SHD_17_100_K3};
 use mrr_control::sim::BackboneShape;
 use std::fmt::Write as _;
@@ -208,6 +209,7 @@ fn main() -> std::io::Result<()> {
     println!("  largest |I16F16 - f64| (fitted KE): {fx:.2e} N·m; any saturation: {sat}");
     println!("  ({:.1} s)", t0.elapsed().as_secs_f64());
     backbone_table()?;
+    ranking_sweep();
     println!("\nCSV written to target/figures/");
     Ok(())
 }
@@ -295,4 +297,40 @@ fn backbone_table() -> std::io::Result<()> {
     std::fs::write("target/figures/e12_backbones.csv", csv)?;
     println!("  ({:.1} s)", t0.elapsed().as_secs_f64());
     Ok(())
+}
+
+/// Errata E2.9: the locked-output ranking over the drive-torque amplitude
+/// and the plant structure (the table `tests/thesis_ch2_3.rs` checks).
+fn ranking_sweep() {
+    let t0 = Instant::now();
+    println!("\nLocked-output RMS torsion error (rad) per plant structure and drive-torque amplitude (errata E2.9)");
+    println!(
+        "  {:<24} {:>6}  {:>9} {:>9} {:>9} {:>9}  (2.30) best?",
+        "plant", "N·A", "(2.30)", "(2.26)", "(2.11)", "(2.10)"
+    );
+    let structures = [
+        PlantStructure::MeshFriction,
+        PlantStructure::Centred(BackboneShape::CataloguePiecewise),
+        PlantStructure::Centred(BackboneShape::IdentifiedFlexspline),
+    ];
+    for s in structures {
+        for a in [3.0, 5.0, 8.0, 10.0, 15.0] {
+            let r = model_ranking(s, a);
+            println!(
+                "  {:<24} {:>6.1}  {:>9.3e} {:>9.3e} {:>9.3e} {:>9.3e}  {}",
+                s.name(),
+                a,
+                r.proposed,
+                r.flexspline,
+                r.piecewise,
+                r.cubic,
+                if r.proposed_beats_classic() {
+                    "yes"
+                } else {
+                    "no"
+                }
+            );
+        }
+    }
+    println!("  ({:.1} s)", t0.elapsed().as_secs_f64());
 }
