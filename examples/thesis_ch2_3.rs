@@ -3,7 +3,7 @@
 //! back-driven experiment (Fig. 2.21–2.22) and the torque-estimation
 //! accuracy table (Table 3.3), and the locked-output and Table 3.3
 //! comparisons repeated on plants built on different elastic backbones
-//! (errata E12). Writes the figure data as CSV under
+//! (errata E2.9). Writes the figure data as CSV under
 //! `target/figures/` and prints a summary.
 //!
 //! ```sh
@@ -68,7 +68,7 @@ fn main() -> std::io::Result<()> {
     row("cubic eq. (2.10), tau_f", &a.cubic);
     row("piecewise eq. (2.11), -N tau_w", &a.piecewise_input);
     // Diagnostic, not a model of the thesis: eq. (2.30) with the
-    // wave-generator torque's sign reversed (errata E12, E13).
+    // wave-generator torque's sign reversed (errata E2.9, E2.10).
     let m = Models::shd_17_100();
     let flipped = ErrorStats::of(a.samples.iter().map(|s| {
         m.proposed
@@ -220,7 +220,7 @@ fn backbone_table() -> std::io::Result<()> {
     let t0 = Instant::now();
     let shd = CatalogueData::SHD_17_100;
     let m = Models::shd_17_100();
-    println!("\nModel comparison per plant backbone (errata E12)");
+    println!("\nModel comparison per plant backbone (errata E2.9)");
     println!(
         "  curve gap: largest |model curve - backbone| over |tau_f| <= T2 (rad), no hysteresis"
     );
