@@ -98,7 +98,7 @@ pub fn encoder_offset(cw: &[f64], ccw: &[f64], ratio: u32) -> Result<f64, ParamE
     }
     let n = cw.len() as f64;
     let resultant = libm::hypot(s, c);
-    if !(resultant > 1e-9 * n) {
+    if resultant <= 1e-9 * n {
         return Err(ParamError::NotRepresentable {
             name: "readings",
             value: resultant / n,
