@@ -55,8 +55,8 @@ fn pitch(ratio: u32) -> Result<f64, ParamError> {
 /// (the minimiser of `Σ d(m_i, x)²` with `d` the distance modulo `P`, for
 /// scatter well below a pitch) and, when no reading wraps and the numbering
 /// starts at link angle 0, equal to the printed formula up to rounding
-/// (≈ 1e-16 rad); a circular mean alone would differ from it by a term of
-/// third order in the scatter. Neither form depends on the sign of the lag.
+/// (≈ 1e-16 rad), where a circular mean alone would differ from it on
+/// scattered readings. Neither form depends on the sign of the lag.
 ///
 /// Errors: `ratio = 0`; `cw` or `ccw` empty, of different lengths
 /// (`name = "ccw.len()"`), or containing a non-finite reading
