@@ -631,8 +631,11 @@ fn model_ranking_over_amplitudes_and_plant_structures() {
         let mesh = r.structure == PlantStructure::MeshFriction;
         // On the Fig. 2.7 plant at small amplitudes the wave generator's
         // torsion is most of the classic models' error: eq. (2.30) wins.
-        if mesh && r.drive_amplitude <= 5.0 {
+        if mesh && r.drive_amplitude <= 8.0 {
             assert!(r.proposed_beats_classic(), "{r:?}");
+            assert!(r.proposed < r.flexspline, "{r:?}");
+        }
+        if mesh && r.drive_amplitude <= 5.0 {
             assert!(r.proposed < 0.5 * r.piecewise, "{r:?}");
         }
         // At 10 N·m and above eq. (2.30) loses on both structures.
