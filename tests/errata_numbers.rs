@@ -11,6 +11,8 @@ use mrr_control::{Scalar, I16F16};
 
 const ERRATA: &str = include_str!("../docs/ERRATA.md");
 const README: &str = include_str!("../README.md");
+const KINEMATIC_ERROR_RS: &str = include_str!("../src/harmonic_drive/kinematic_error.rs");
+const THESIS_CH2_3_RS: &str = include_str!("thesis_ch2_3.rs");
 
 /// The entry `id` of ERRATA.md (from its heading to the next one).
 fn entry(id: &str) -> &'static str {
@@ -44,7 +46,7 @@ fn e2_3_k_f0_is_8335_98_everywhere() {
     assert!((hand - lib).abs() < 1e-9 * hand);
     assert_eq!(format!("{hand:.2}"), "8335.98");
     assert_printed("E2.3", "8 335.98 N·m/rad");
-    for doc in [ERRATA, README] {
+    for doc in [ERRATA, README, THESIS_CH2_3_RS] {
         for wrong in ["8 336.1", "8336.1", "8336.07", "8.336e3"] {
             assert!(!doc.contains(wrong), "`{wrong}` printed");
         }
@@ -68,7 +70,10 @@ fn e2_9_hand_numbers_at_10_nm() {
     for n in ["1.1274e-3", "1.2724e-3", "1.1132e-3", "374.615", "1.450e-4"] {
         assert_printed("E2.9", n);
     }
-    assert!(!entry("E2.9").contains("1.1271e-3") && !entry("E2.9").contains("1.2721e-3"));
+    for doc in [entry("E2.9"), THESIS_CH2_3_RS] {
+        assert!(!doc.contains("1.1271e-3") && !doc.contains("1.2721e-3"));
+    }
+    assert!(THESIS_CH2_3_RS.contains("1.1274e-3") && THESIS_CH2_3_RS.contains("1.2724e-3"));
 }
 
 /// E3.2: the model's motor terms are harmonics of the measured input angle
@@ -117,6 +122,7 @@ fn e3_3_peak_to_peak_and_drift() {
     assert_eq!(format!("{drift:.1}"), "233.7");
     assert_printed("E3.3", "3.33e-4 rad");
     assert_printed("E3.3", "233.7°");
+    assert!(KINEMATIC_ERROR_RS.contains("error, 3.33e-4 rad, lies within it"));
 }
 
 /// E3.4: the SHD-17-100's rated torque (Table 3.1) lies above its `T2`

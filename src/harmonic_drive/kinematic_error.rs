@@ -18,7 +18,8 @@
 //! degrees too — read as radians, the largest term (`b_l1 = −0.0043`) would
 //! be ten times the catalogue's maximum kinematic error for this drive
 //! (4.4e-4 rad, Table 3.1), whereas in degrees the modelled peak-to-peak
-//! error, 2.1e-4 rad, lies within it (`table_3_2_is_in_degrees` checks both).
+//! error, 3.33e-4 rad, lies within it (`table_3_2_is_in_degrees` checks both;
+//! errata E3.3).
 //!
 //! [`KinematicErrorModel`] stores SI values (rad) with the harmonic counts as
 //! integers per revolution, so the model is exactly periodic;
