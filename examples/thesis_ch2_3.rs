@@ -3,7 +3,7 @@
 //! back-driven experiment (Fig. 2.21–2.22) and the torque-estimation
 //! accuracy table (Table 3.3), and the locked-output and Table 3.3
 //! comparisons repeated on plants built on different elastic backbones
-//! (errata E12). Writes the figure data as CSV under
+//! (errata E2.9). Writes the figure data as CSV under
 //! `$CARGO_TARGET_DIR/figures/` (else `target/figures/`) and prints a summary.
 //!
 //! ```sh
@@ -15,6 +15,7 @@ use mrr_control::sim::experiments::{
     back_driven, locked_output, torque_estimation, width_at_zero, BackDrivenConfig,
     ComplianceResult, ErrorStats, LockedOutputConfig, Models, TorqueEstimationConfig, ESTIMATORS,
 };
+use mrr_control::sim::experiments::{model_ranking, PlantStructure};
 use mrr_control::sim::transmission::{Backbone, SHD_17_100_K3};
 use mrr_control::sim::BackboneShape;
 use std::fmt::Write as _;
@@ -76,7 +77,7 @@ fn main() -> std::io::Result<()> {
     row("cubic eq. (2.10), tau_f", &a.cubic);
     row("piecewise eq. (2.11), -N tau_w", &a.piecewise_input);
     // Diagnostic, not a model of the thesis: eq. (2.30) with the
-    // wave-generator torque's sign reversed (errata E12, E13).
+    // wave-generator torque's sign reversed (errata E2.9, E2.10).
     let m = Models::shd_17_100();
     let flipped = ErrorStats::of(a.samples.iter().map(|s| {
         m.proposed
@@ -214,6 +215,7 @@ fn main() -> std::io::Result<()> {
     println!("  largest |I16F16 - f64| (fitted KE): {fx:.2e} N·m; any saturation: {sat}");
     println!("  ({:.1} s)", t0.elapsed().as_secs_f64());
     backbone_table(&dir)?;
+    ranking_sweep();
     println!("\nCSV written to {}", dir.display());
     Ok(())
 }
@@ -224,7 +226,7 @@ fn backbone_table(dir: &std::path::Path) -> std::io::Result<()> {
     let t0 = Instant::now();
     let shd = CatalogueData::SHD_17_100;
     let m = Models::shd_17_100();
-    println!("\nModel comparison per plant backbone (errata E12)");
+    println!("\nModel comparison per plant backbone (errata E2.9)");
     println!(
         "  curve gap: largest |model curve - backbone| over |tau_f| <= T2 (rad), no hysteresis"
     );
@@ -301,4 +303,40 @@ fn backbone_table(dir: &std::path::Path) -> std::io::Result<()> {
     std::fs::write(dir.join("e12_backbones.csv"), csv)?;
     println!("  ({:.1} s)", t0.elapsed().as_secs_f64());
     Ok(())
+}
+
+/// Errata E2.9: the locked-output ranking over the drive-torque amplitude
+/// and the plant structure (the table `tests/thesis_ch2_3.rs` checks).
+fn ranking_sweep() {
+    let t0 = Instant::now();
+    println!("\nLocked-output RMS torsion error (rad) per plant structure and drive-torque amplitude (errata E2.9)");
+    println!(
+        "  {:<24} {:>6}  {:>9} {:>9} {:>9} {:>9}  (2.30) best?",
+        "plant", "N·A", "(2.30)", "(2.26)", "(2.11)", "(2.10)"
+    );
+    let structures = [
+        PlantStructure::MeshFriction,
+        PlantStructure::Centred(BackboneShape::CataloguePiecewise),
+        PlantStructure::Centred(BackboneShape::IdentifiedFlexspline),
+    ];
+    for s in structures {
+        for a in [3.0, 5.0, 8.0, 10.0, 15.0] {
+            let r = model_ranking(s, a);
+            println!(
+                "  {:<24} {:>6.1}  {:>9.3e} {:>9.3e} {:>9.3e} {:>9.3e}  {}",
+                s.name(),
+                a,
+                r.proposed,
+                r.flexspline,
+                r.piecewise,
+                r.cubic,
+                if r.proposed_beats_classic() {
+                    "yes"
+                } else {
+                    "no"
+                }
+            );
+        }
+    }
+    println!("  ({:.1} s)", t0.elapsed().as_secs_f64());
 }

@@ -15,14 +15,14 @@
 //! its transmission torque `τ_t` is the torque the drive applies to the
 //! link (eq. 4.1), which is what the F/T sensor reads and what
 //! [`ControlInput::joint_torque`] expects. The estimator is fed as errata
-//! E13 prescribes ([`estimator_counts`]: motor counter negated) and returns
+//! E2.10 prescribes ([`estimator_counts`]: motor counter negated) and returns
 //! `−τ_t`, so the feedback is `τ̂_t = −estimate`.
 //!
 //! # Scenarios
 //! * [`active_tracking`] ([`TrackingConfig`]) — §4.4.1, Fig. 4.2–4.3:
 //!   eq. (4.19) with no, sensed or estimated joint torque
 //!   ([`JointTorqueFeedback`]), with Table 4.1's gains or, in the regime
-//!   where the sampled law keeps its boundary layers (errata E22), with
+//!   where the sampled law keeps its boundary layers (errata E4.4), with
 //!   [`bound_design`]'s.
 //! * [`bound_run`] ([`BoundCase`]) — one case of Theorem 1's ultimate bound
 //!   on the sampled loop, with the sampling disturbance measured and the
@@ -440,7 +440,7 @@ impl BoundCase {
 
 /// The design used by the ultimate-bound check: Table 4.1's structure with
 /// boundary layers wide enough that the sampled law at `T = 50 µs` stays
-/// inside its layers (the step ratio of errata E22 below 1 at the
+/// inside its layers (the step ratio of errata E4.4 below 1 at the
 /// trajectory speeds), and bounds that cover the simulated plant:
 ///
 /// * friction box `b ∈ [0, 1e-4]`, `f_c, f_s ∈ [0, 0.012]` N·m, the
@@ -538,7 +538,7 @@ pub struct BoundRun {
     pub max_feedback_error: f64,
     /// Samples whose command hit the torque limit.
     pub saturated_samples: usize,
-    /// The E22 step ratio at the largest motor speed of the trajectory.
+    /// The E4.4 step ratio at the largest motor speed of the trajectory.
     pub step_ratio: f64,
 }
 
@@ -802,7 +802,7 @@ pub struct BackDriveSample {
 
 /// The passive-mode experiment of §4.4.2 (Fig. 4.11–4.12).
 ///
-/// `K_p`: eq. (4.32) gives the motor `q̈_m = −K_p τ̂_t/N` (errata E9),
+/// `K_p`: eq. (4.32) gives the motor `q̈_m = −K_p τ̂_t/N` (errata E4.1),
 /// against `q̈_m = −τ_t/(N I_m)` for a bare rotor, so the torque feedback
 /// makes the joint lighter than its own rotor only for `Î_m K_p > 1`.
 /// Sampled at `T`, the motor–drive loop `q̈_m = −K_p K_d q_m/N²` (drive
@@ -1125,7 +1125,7 @@ pub struct ModeScenarioConfig {
 impl ModeScenarioConfig {
     /// 0.1 ms tick ([`bound_design`]'s law, which the sampled loop holds
     /// smoothly), enter 4 N·m / exit 2 N·m (above the estimator's error of
-    /// about 1 N·m, Table 3.3 and errata E12), `ω = 10 rad/s`, no detector,
+    /// about 1 N·m, Table 3.3 and errata E2.9), `ω = 10 rad/s`, no detector,
     /// `Î_m K_p = 2`.
     pub fn interaction() -> Self {
         ModeScenarioConfig {
