@@ -269,8 +269,21 @@ pub(crate) fn denan<S: Scalar>(x: S) -> S {
 }
 
 #[inline]
-fn sq<S: Scalar>(x: S) -> S {
+pub(crate) fn sq<S: Scalar>(x: S) -> S {
     x.mul(x)
+}
+
+/// `√(a² + b²)` without squaring small values (scaled by the larger
+/// magnitude), so fixed point keeps its resolution for tiny vectors.
+#[inline]
+pub(crate) fn hypot<S: Scalar>(a: S, b: S) -> S {
+    let (a, b) = (a.abs(), b.abs());
+    let (m, n) = if a >= b { (a, b) } else { (b, a) };
+    if m <= S::ZERO {
+        return S::ZERO;
+    }
+    let r = n.div(m);
+    m.mul(S::ONE.add(sq(r)).sqrt())
 }
 
 impl<S: Scalar> WristConfig<S> {
@@ -307,7 +320,7 @@ impl<S: Scalar> WristConfig<S> {
         let b_coef = cp.mul(c13);
         let c_coef = c1.mul(s3).mul(sp2).neg();
         // Eq. (5.10) and the physical root, eq. (5.12).
-        let b = sq(a_coef).add(sq(b_coef)).sqrt();
+        let b = hypot(a_coef, b_coef);
         let a = b_coef.atan2(a_coef);
         let theta4 = wrap(a.sub(c_coef.div(b).acos()));
         let (s4, c4) = theta4.sin_cos();
@@ -355,14 +368,16 @@ impl<S: Scalar> WristConfig<S> {
         let (mut sg, mut cg) = g.sin_cos();
         let two = S::ONE.add(S::ONE);
         let half = S::ONE.div(two);
-        // sin²(β/2) = sin²(δ/2) + cos δ sin²(γ/2), eq. (5.13) in half angles.
-        let mut half_bend_sq = sq(d.mul(half).sin()).add(cd.mul(sq(g.mul(half).sin())));
-        if half_bend_sq > self.sin_phi_sq {
+        // sin(β/2) = |(sin(δ/2), √cos δ · sin(γ/2))|, eq. (5.13) in half
+        // angles (a norm, not a difference of cosines: exact near the
+        // straight pose on every backend).
+        let mut half_bend = hypot(d.mul(half).sin(), cd.sqrt().mul(g.mul(half).sin()));
+        if half_bend > self.sin_phi {
             // Outside: the boundary pose with the same output-axis
             // azimuth, z = (sin 2φ·n, cos 2φ).
             saturated = true;
             let (zx, zy) = (sd.mul(cg), sg.neg());
-            let n = sq(zx).add(sq(zy)).sqrt();
+            let n = hypot(zx, zy);
             let (ux, uy) = if n > S::ZERO {
                 (zx.div(n), zy.div(n))
             } else {
@@ -374,14 +389,15 @@ impl<S: Scalar> WristConfig<S> {
                 self.cos_max_bend,
             );
             d = bx.atan2(bz);
-            g = by.neg().atan2(sq(bx).add(sq(bz)).sqrt());
+            g = by.neg().atan2(hypot(bx, bz));
             (sd, cd) = d.sin_cos();
             (sg, cg) = g.sin_cos();
-            half_bend_sq = self.sin_phi_sq;
+            half_bend = self.sin_phi;
         }
+        let half_bend_sq = sq(half_bend);
         let pose = PitchYaw { delta: d, gamma: g };
         // sin(θ4/2) ∈ [0, 1], cos(θ4/2) ≥ 0.
-        let sh = half_bend_sq.sqrt().div(self.sin_phi).min(S::ONE);
+        let sh = half_bend.div(self.sin_phi).min(S::ONE);
         let ch = S::ONE.sub(sq(sh)).sqrt();
         let theta4 = two.mul(sh.atan2(ch));
         if sh == S::ZERO {

@@ -10,12 +10,18 @@
 //! * [`WristConfig::inverse`] / [`WristConfig::update`] — `(δ, γ)` to the
 //!   motor angles `(θ1, θ3)`, saturating and flagged outside the workspace;
 //! * [`WristConfig::forward`] — motor angles to `(δ, γ)`;
-//! * [`jacobian::ForceMapping`] — interaction torques `(τ_δ, τ_γ)` to motor
-//!   torques `(τ_1, τ_3)`, eq. (5.28)/(6.1), and back, eq. (5.29).
+//! * [`ForceMapping`] — interaction torques `(τ_δ, τ_γ)` to motor torques
+//!   `(τ1, τ3)`, eq. (5.28)/(6.1), and back, eq. (5.29); the exact
+//!   Jacobian by default.
 
+pub mod alpha_beta;
+pub mod figures;
+pub mod jacobian;
 pub mod kinematics;
 pub mod ujoint;
 
+pub use alpha_beta::AlphaBeta;
+pub use jacobian::{ForceMapping, Jacobian, JacobianKind, MappedTorques};
 pub use kinematics::{
     Forward, IkState, Inverse, MotorAngles, PitchYaw, Unreachable, WristConfig, WristParams,
 };
