@@ -17,15 +17,17 @@
 //!   `θ3 ← θ3 + π/2` reads
 //!
 //!   $$ \alpha \approx \frac{\theta_3-\theta_1}{2} + \pi,\qquad
-//!      \beta \approx -2\arctan\!\Big(\tan\varphi\,\sin\frac{\theta_1+\theta_3}{2}\Big), $$
+//!   \beta \approx -2\arctan\!\Big(\tan\varphi\,\sin\frac{\theta_1+\theta_3}{2}\Big), $$
 //!
 //!   a signed bend (a negative `β` is the bend `|β|` in direction
 //!   `α + π`); [`WristConfig::alpha_beta_approx`] returns it normalized.
-//!   Over the whole workspace its bend differs from the exact one by at
-//!   most 0.0088 rad = 1.6 % of `2φ`, its direction by 0.041 rad, and the
-//!   bend vector `β(cos α, sin α)` by 0.023 rad = 4.0 % of `2φ`
-//!   (`tests::ryew_choi_error_over_the_workspace`), so the thesis's
-//!   "less than 2 %" holds for this corrected form.
+//!   Over the reachable poses with `|δ|, |γ| ≤ 30°` its bend differs from
+//!   the exact one by at most 0.0088 rad = 1.6 % of `2φ`, its direction by
+//!   0.040 rad (1.3 % of π; for `β > 0.05`), and the bend vector
+//!   `β(cos α, sin α)` by 0.023 rad = 4.0 % of `2φ`
+//!   (`tests::ryew_choi_error_over_the_workspace`): the thesis's "less
+//!   than 2 %" holds for `β` and `α` of this corrected form, not for the
+//!   pose they describe together.
 
 use super::kinematics::{denan, hypot, wrap, MotorAngles, PitchYaw, WristConfig, WristParams};
 use crate::scalar::Scalar;
@@ -113,11 +115,10 @@ impl<S: Scalar> WristConfig<S> {
     }
 }
 
-/// `x` reduced to `(−π, π]` for any finite `x`.
+/// `x` reduced to `[−π, π]` for any `x`, through `(sin x, cos x)`.
 fn wrap_turns<S: Scalar>(x: S) -> S {
-    let tp = S::PI.add(S::PI);
-    let turns = S::from_f64(libm::round(x.div(tp).to_f64()));
-    wrap(x.sub(turns.mul(tp)))
+    let (s, c) = x.sin_cos();
+    s.atan2(c)
 }
 
 /// One sample of the α/β comparison of Fig. 5.10–5.11 (rad).

@@ -15,11 +15,12 @@
 //!   `θ̇1 e_z + θ̇4 m + θ̇3 z`, with that of the universal joint,
 //!   `δ̇ e_y + γ̇ g` (`m = R_z(θ1)(0, −Sφ, Cφ)` the oblique axis,
 //!   `g = R_y(δ) e_x`, `z` the output axis), and solving by Cramer's rule
-//!   with `D = Sδ Sφ S1 + Cδ Cφ ≥ cos 2φ cos φ − sin 2φ sin φ > 0`:
+//!   with `D = Sδ Sφ S1 + Cδ Cφ ≥ cos 2φ cos φ − sin 2φ sin φ = cos 3φ > 0`
+//!   (`|δ| ≤ 2φ`, `φ ≤ 30°`):
 //!
 //!   $$ J = \frac{1}{D}\begin{bmatrix} C_\delta S_\varphi C_1 & S_\varphi C_1 C_\gamma - S_\gamma D \\
-//!        -S_\varphi S_1 & C_\gamma (S_\delta C_\varphi - C_\delta S_\varphi S_1) \end{bmatrix},\qquad
-//!      \det J = \frac{S_\varphi (C_1 S_\delta C_\gamma - S_1 S_\gamma)}{D}. $$
+//!   -S_\varphi S_1 & C_\gamma (S_\delta C_\varphi - C_\delta S_\varphi S_1) \end{bmatrix},\qquad
+//!   \det J = \frac{S_\varphi (C_1 S_\delta C_\gamma - S_1 S_\gamma)}{D}. $$
 //!
 //! * [`JacobianKind::Thesis`]: the thesis's chain `J = J_2 J_c`,
 //!   eq. (5.23)–(5.27), with `J_c` the derivative of Ryew–Choi's
@@ -50,6 +51,11 @@ use crate::scalar::Scalar;
 /// regularized (see the module docs). For `φ = 16°` it is reached within
 /// about 2° of the straight pose and of the workspace boundary.
 pub const DET_MIN: f64 = 0.01;
+
+/// Torques beyond `±MAX_TORQUE` (in the caller's unit; N·m at the API
+/// boundary) are clamped and flagged: no wrist torque comes near it, and
+/// it keeps every product finite on every backend.
+pub const MAX_TORQUE: f64 = 1e4;
 
 /// Which Jacobian a [`ForceMapping`] uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -165,6 +171,8 @@ pub struct MappedTorques<S> {
     /// The Jacobian was singular (`|det J| < DET_MIN`); for
     /// [`ForceMapping::task_torques`] the result is regularized.
     pub singular: bool,
+    /// An input torque was outside `±MAX_TORQUE` (or NaN) and was clamped.
+    pub saturated: bool,
 }
 
 /// The force mapping between output torques `(τ_δ, τ_γ)` and motor torques
@@ -175,6 +183,7 @@ pub struct ForceMapping<S> {
     kind: JacobianKind,
     det_min: S,
     inv_det_min_sq: S,
+    max_torque: S,
 }
 
 impl<S: Scalar> ForceMapping<S> {
@@ -186,12 +195,24 @@ impl<S: Scalar> ForceMapping<S> {
             kind,
             det_min: S::from_f64(DET_MIN),
             inv_det_min_sq: S::from_f64(1.0 / (DET_MIN * DET_MIN)),
+            max_torque: S::from_f64(MAX_TORQUE),
         }
     }
 
     /// The kinematics this mapping evaluates.
     pub fn config(&self) -> &WristConfig<S> {
         &self.cfg
+    }
+
+    /// Clamp an input torque pair; `true` when anything was changed.
+    fn clamp_torques(&self, t: [S; 2]) -> ([S; 2], bool) {
+        let l = self.max_torque;
+        let a = denan(t[0]).clamp(l.neg(), l);
+        let b = denan(t[1]).clamp(l.neg(), l);
+        (
+            [a, b],
+            a != t[0] || b != t[1] || t[0].is_nan() || t[1].is_nan(),
+        )
     }
 
     /// The Jacobian used, at the motor angles (rad).
@@ -203,17 +224,19 @@ impl<S: Scalar> ForceMapping<S> {
     }
 
     /// Eq. (5.28), (6.1)–(6.2): the motor torques `(τ1, τ3) = Jᵀ (τ_δ, τ_γ)`
-    /// at the motor angles (rad). Bounded everywhere; `singular` only
-    /// reports the configuration. NaN torques are read as 0.
+    /// at the motor angles (rad). Bounded everywhere (`|τ_i| ≤ 1.4 (|τ_δ| + |τ_γ|)`
+    /// for `φ = 16°`); `singular` only reports the configuration. Inputs are
+    /// clamped to `±MAX_TORQUE` (NaN read as 0) and flagged.
     pub fn motor_torques(&self, motors: MotorAngles<S>, task: [S; 2]) -> MappedTorques<S> {
         let j = self.jacobian(motors);
-        let (td, tg) = (denan(task[0]), denan(task[1]));
+        let ([td, tg], saturated) = self.clamp_torques(task);
         MappedTorques {
             torque: [
                 j.m[0][0].mul(td).add(j.m[1][0].mul(tg)),
                 j.m[0][1].mul(td).add(j.m[1][1].mul(tg)),
             ],
             singular: j.singular,
+            saturated,
         }
     }
 
@@ -223,7 +246,7 @@ impl<S: Scalar> ForceMapping<S> {
     /// `|τ| ≤ ‖adj J‖ |τ_motor| / DET_MIN`).
     pub fn task_torques(&self, motors: MotorAngles<S>, motor: [S; 2]) -> MappedTorques<S> {
         let j = self.jacobian(motors);
-        let (t1, t3) = (denan(motor[0]), denan(motor[1]));
+        let ([t1, t3], saturated) = self.clamp_torques(motor);
         let factor = if j.det.abs() >= self.det_min {
             S::ONE.div(j.det)
         } else {
@@ -237,6 +260,7 @@ impl<S: Scalar> ForceMapping<S> {
                 a.mul(t3).sub(b.mul(t1)).mul(factor),
             ],
             singular: j.singular,
+            saturated,
         }
     }
 }

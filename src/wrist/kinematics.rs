@@ -95,14 +95,14 @@ impl WristParams {
     /// in degrees (see the module docs).
     pub const THESIS_PHI_DEG: f64 = 16.0;
 
-    /// Validate `φ` (rad): finite and in `[1°, 40°]`. Below 45° the two
-    /// roots of eq. (5.10) never merge (`|C/b| ≤ tan²φ < 1`); the margin
-    /// keeps the Jacobian's conditioning (`1/cos 2φ`) moderate on every
-    /// backend. Above 1° the workspace is wider than the `I16F16`
-    /// resolution by four orders of magnitude.
+    /// Validate `φ` (rad): finite and in `[1°, 30°]`. Below 45° the two
+    /// roots of eq. (5.10) never merge (`|C/b| ≤ tan²φ < 1`); below 30° the
+    /// Jacobian's denominator `D = Sδ Sφ S1 + Cδ Cφ ≥ cos 3φ` stays positive
+    /// (see [`super::jacobian`]). Above 1° the workspace is wider than the
+    /// `I16F16` resolution by four orders of magnitude.
     pub fn try_new(phi: f64) -> Result<Self, ParamError> {
         let phi = finite("phi", phi)?;
-        let (min, max) = (1f64.to_radians(), 40f64.to_radians());
+        let (min, max) = (1f64.to_radians(), 30f64.to_radians());
         if !(min..=max).contains(&phi) {
             return Err(ParamError::OutOfRange {
                 name: "phi",
@@ -258,10 +258,10 @@ pub(crate) fn wrap<S: Scalar>(x: S) -> S {
     }
 }
 
-/// NaN read as 0 (floats; a no-op on fixed point).
+/// NaN and infinities read as 0 (floats; a no-op on fixed point).
 #[inline]
 pub(crate) fn denan<S: Scalar>(x: S) -> S {
-    if x.is_nan() {
+    if x.is_nan() || x.abs() > S::MAX {
         S::ZERO
     } else {
         x
@@ -308,7 +308,7 @@ impl<S: Scalar> WristConfig<S> {
     }
 
     /// Forward kinematics, eq. (5.8)–(5.12): motor angles (rad, any value;
-    /// NaN is read as 0) to the pose and the oblique joint angle. Every
+    /// NaN and infinities are read as 0) to the pose and the oblique joint angle. Every
     /// motor position is a pose of the wrist: there is no error case.
     pub fn forward(&self, m: MotorAngles<S>) -> Forward<S> {
         let (s1, c1) = denan(m.theta1).sin_cos();
@@ -319,7 +319,7 @@ impl<S: Scalar> WristConfig<S> {
         let c13 = c1.mul(c3).sub(s1.mul(s3));
         let b_coef = cp.mul(c13);
         let c_coef = c1.mul(s3).mul(sp2).neg();
-        // Eq. (5.10) and the physical root, eq. (5.12).
+        // Eq. (5.10) and the physical root, eq. (5.12), repeated as (5.18).
         let b = hypot(a_coef, b_coef);
         let a = b_coef.atan2(a_coef);
         let theta4 = wrap(a.sub(c_coef.div(b).acos()));
@@ -360,7 +360,7 @@ impl<S: Scalar> WristConfig<S> {
         let half_pi = S::FRAC_PI_2;
         let d0 = denan(target.delta);
         let g0 = denan(target.gamma);
-        let nan = d0 != target.delta || g0 != target.gamma;
+        let nan = target.delta.is_nan() || target.gamma.is_nan();
         let mut d = d0.clamp(half_pi.neg(), half_pi);
         let mut g = g0.clamp(half_pi.neg(), half_pi);
         let mut saturated = nan || d != d0 || g != g0;
@@ -501,10 +501,12 @@ impl<S: Scalar> WristConfig<S> {
             let mut diff = n.sub(p);
             let tp = two_pi::<S>();
             let k = diff.div(tp);
-            // |diff| may be large after many turns: remove whole turns.
+            // |diff| may be large after many turns: remove whole turns,
+            // then reduce exactly through (sin, cos).
             let turns = S::from_f64(libm::round(k.to_f64()));
             diff = diff.sub(turns.mul(tp));
-            p.add(wrap(diff))
+            let (s, c) = diff.sin_cos();
+            p.add(s.atan2(c))
         };
         r.motors = MotorAngles {
             theta1: near(p1, n1),
@@ -787,6 +789,21 @@ pub(crate) mod tests {
             }
         }
         assert!(worst < 1e-14, "{worst}");
+    }
+
+    #[test]
+    fn params_reject_bad_inclinations_naming_them() {
+        assert!(WristParams::try_new(16f64.to_radians()).is_ok());
+        for bad in [0.0, -0.1, 35f64.to_radians(), 1.0] {
+            assert!(matches!(
+                WristParams::try_new(bad),
+                Err(ParamError::OutOfRange { name: "phi", .. })
+            ));
+        }
+        assert!(matches!(
+            WristParams::try_new(f64::NAN),
+            Err(ParamError::NotFinite { name: "phi", .. })
+        ));
     }
 
     #[test]

@@ -12,7 +12,7 @@
 //! The bend is limited to [`MAX_BEND`] (85°): beyond it `cos β` is too
 //! small for a physical joint; larger inputs are clamped and flagged.
 
-use super::kinematics::{denan, wrap};
+use super::kinematics::denan;
 use crate::scalar::Scalar;
 
 /// Largest accepted bend of the joint (rad), 85°.
@@ -34,12 +34,13 @@ pub struct Transmission<S> {
 
 /// Eq. (5.1)–(5.3): the output angle, speed and torque for input angle
 /// `theta3` (rad), speed `omega3` (rad/s) and torque `tau3`, bend `beta`
-/// (rad). Never NaN (NaN inputs are read as 0).
+/// (rad). Never NaN (NaN and infinite inputs are read as 0); the speed
+/// and torque gains are at most `1/cos(MAX_BEND)` = 11.5.
 pub fn transmit<S: Scalar>(beta: S, theta3: S, omega3: S, tau3: S) -> Transmission<S> {
     let lim = S::from_f64(MAX_BEND);
     let b0 = denan(beta);
     let b = b0.clamp(lim.neg(), lim);
-    let saturated = b != beta;
+    let saturated = b != beta || denan(theta3) != theta3;
     let cb = b.cos();
     let t3 = denan(theta3);
     // The wrapped part goes through atan2, the whole turns are added back.
@@ -60,11 +61,10 @@ pub fn transmit<S: Scalar>(beta: S, theta3: S, omega3: S, tau3: S) -> Transmissi
     }
 }
 
-/// `x` reduced to `(−π, π]` for any finite `x` (whole turns removed).
+/// `x` reduced to `[−π, π]` for any `x`, through `(sin x, cos x)`.
 fn wrap_any<S: Scalar>(x: S) -> S {
-    let tp = S::PI.add(S::PI);
-    let turns = S::from_f64(libm::round(x.div(tp).to_f64()));
-    wrap(x.sub(turns.mul(tp)))
+    let (s, c) = x.sin_cos();
+    s.atan2(c)
 }
 
 #[cfg(test)]
