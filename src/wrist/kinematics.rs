@@ -439,7 +439,8 @@ impl<S: Scalar> WristConfig<S> {
     pub fn try_inverse(&self, target: PitchYaw<S>) -> Result<Inverse<S>, Unreachable> {
         let (d, g) = (target.delta.to_f64(), target.gamma.to_f64());
         let h = core::f64::consts::FRAC_PI_2;
-        let hb = libm::sin(d / 2.0).powi(2) + libm::cos(d) * libm::sin(g / 2.0).powi(2);
+        let (sdh, sgh) = (libm::sin(d / 2.0), libm::sin(g / 2.0));
+        let hb = sdh * sdh + libm::cos(d) * sgh * sgh;
         let tol = 4.0 * S::RESOLUTION.to_f64();
         if d.is_nan()
             || g.is_nan()
