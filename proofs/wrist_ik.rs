@@ -4,7 +4,7 @@
 //!
 //! | property | I16F16 | f32 | f64 |
 //! |---|---|---|---|
-//! | `branch_and_round_trip` — at a reachable `(δ, γ)`: not flagged, no NaN, the selected branch (`θ4 ≥ 0`, `θ1 + θ3 ∈ [−π − ε, ε]`) and `FK(IK(δ, γ)) = (δ, γ)` within [`round_trip_bound`] | Kani entry (not run here); exhaustive (256 × 256 grid) | exhaustive (same grid); random | random |
+//! | `branch_and_round_trip` — at a reachable `(δ, γ)`: not flagged, no NaN, the selected branch (`θ4 ≥ 0`, `θ1 + θ3 ∈ [−π − ε, ε]`) and `FK(IK(δ, γ)) = (δ, γ)` within [`round_trip_bound`] | Kani entry (not run here); exhaustive (256 × 256 grid, and every code within 64 LSB of the straight pose) | exhaustive (same grid); random | random |
 //! | `continuity_step` — for two reachable poses `Δ = |Δδ| + |Δγ|` apart with bends `≥ β_min`, each motor angle moves (mod 2π) by at most [`continuity_modulus`] | exhaustive (grid neighbours) | exhaustive; random | random |
 //!
 //! **The grid.** Code `c = 256 i + j` (16 bits) is the pose
@@ -323,6 +323,24 @@ mod tests {
     #[ignore = "exhaustive: run in release by .ci/run"]
     fn exhaustive_wrist_ik_f32() {
         exhaustive_grid::<f32>("f32");
+    }
+
+    /// Every I16F16 pose within 64 LSB of the straight pose (129 × 129
+    /// codes, the 0/0 point of the printed formulas and its neighbours).
+    #[test]
+    fn wrist_ik_near_the_straight_pose_i16f16() {
+        let p = wrist();
+        let cfg = WristConfig::<I16F16>::new(&p);
+        let mut worst: f64 = 0.0;
+        for i in -64i32..=64 {
+            for j in -64i32..=64 {
+                let (d, g) = (I16F16::from_bits(i), I16F16::from_bits(j));
+                let v = branch_and_round_trip(&cfg, &p, d, g);
+                assert!(v.holds, "({i}, {j}) LSB: {}", v.error);
+                worst = worst.max(v.error);
+            }
+        }
+        println!("near straight, I16F16: max {worst:.3} of the round-trip bound");
     }
 
     /// The property can fail: a wrong branch (θ4 < 0, the motors of the
