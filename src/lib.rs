@@ -9,6 +9,7 @@ pub mod harmonic_drive;
 pub mod scalar;
 #[cfg(feature = "sim")]
 pub mod sim;
+pub mod wrist;
 
 pub use error::ParamError;
 pub use scalar::{Scalar, I16F16};
