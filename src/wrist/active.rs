@@ -34,6 +34,15 @@
 //! eq. (4.28)–(4.31) with `I_m → I_mi N_i` (checked against the printed
 //! ch. 6 formulas in `table_6_1_bound_matches_eq_6_25_by_hand`).
 //!
+//! The uncertainty bounds are the ch. 4 ones in ch. 6 numbering: the
+//! friction box and `ρ_F` of Property 2, eq. (6.6)–(6.7)
+//! ([`FrictionBounds`]); `ρ_fq` of Assumption 7, eq. (6.8); `ρ_base` of
+//! Assumption 8, eq. (6.9)–(6.10); `ρ_τt` of Assumption 9, eq. (6.11)
+//! (`ρ_τδ, ρ_τγ` enter only through `ρ_τt`); `ρ_f` of Assumption 10.
+//! The proof of Theorem 2, eq. (6.16)–(6.23), is the proof of Theorem 1,
+//! eq. (4.20)–(4.27), with `I_m → I_mi N_i` term by term (the shared code
+//! and its tests check it; the printed proof's typos are errata E6.4).
+//!
 //! The joint references `q_id, q̇_id, q̈_id` come from the task-space
 //! reference `(δ_d, γ_d)` through the inverse and differential kinematics
 //! of ch. 5 (eq. 6.12's note); that mapping is the caller's step.
