@@ -178,9 +178,7 @@ fn wrist_bound_run(case: &WristCase, design: &WristMotorDesign, duration: f64) -
         }
         let held = st;
         let o = law.update(&mut st, &x);
-        for i in 0..2 {
-            sat += o[i].saturated as usize;
-        }
+        sat += o.iter().filter(|m| m.saturated).count();
         for s in 0..sub {
             let tt = time + s as f64 * dt;
             let (ab, _, _) = arm(tt);

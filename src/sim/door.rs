@@ -31,7 +31,7 @@
 //!   passive law, eq. (4.32) ([`PassiveConfig`]), on its joint-torque
 //!   sensor; the wrist's F/T sensor is read through
 //!   [`FtSensorConfig`] (eq. 6.35, 6.3), the reference comes from the
-//!   admittance law ([`AdmittanceConfig`], eq. 6.32) through the mode
+//!   admittance law ([`crate::wrist::admittance::AdmittanceConfig`], eq. 6.32) through the mode
 //!   manager ([`WristModeConfig`], held in Passive), and both wrist motors
 //!   run the active law ([`WristActiveConfig`], eq. 6.15) on it.
 //! * Contrast run ([`DoorControl::ActiveHold`]): turret and wrist hold
@@ -462,7 +462,7 @@ pub fn door_opening(cfg: &DoorConfig) -> DoorRun {
         .collect();
     let mut jerks = Vec::new();
     let mut tj = 0.5;
-    while cfg.jerk_rate > 0.0 {
+    while cfg.jerk_rate > 0.0 && tj <= cfg.opening_time {
         tj += -libm::log(1.0 - rng.uniform()) / cfg.jerk_rate;
         if tj > cfg.opening_time {
             break;

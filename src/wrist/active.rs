@@ -57,6 +57,10 @@
 //! motor of a heavy arm joint, not a wrist motor. The preset uses
 //! 1.05e-6 kg·m².
 
+// Two- and six-element arrays indexed in parallel (axes, rows): index loops
+// read better than zipped iterators here.
+#![allow(clippy::needless_range_loop)]
+
 use crate::control::{
     ActiveOutput, ControlInput, RobustAdaptiveConfig, RobustAdaptiveDesign, RobustAdaptiveParams,
     RobustAdaptiveState, UltimateBound, UncertaintyBounds,
@@ -419,11 +423,13 @@ mod tests {
     /// Table 6.1's numbers, independently of the ch. 4 calculator:
     /// `c = ε_r/4 (ρ_f + ρ_τt/N + ρ_fq + I_m ρ_base) + Σ ρ_Fj ε_Fj/4`,
     /// `r* = √(c/(I_m N λ))`, `r_S = √(2c/(I_m N λ))`.
-    /// By hand: `ρ_f + ρ_τt/N + ρ_fq + I_m ρ_base = 0.04 + 0.0018832 + 0.5
-    /// + 5.25e-5 = 0.5419357`, `c = 0.025·0.5419357 + (1e-7 + 1e-5 + 1e-5
-    /// + 0.1)/4 = 0.013548 + 0.025005025 = 0.038553`, `I_m N λ =
-    /// 1.05e-6·531·160 = 0.089208`, `r_S = √(2·0.038553/0.089208) = 0.92970
-    /// rad/s`, `|e| ≤ r_S/λ = 5.81e-3 rad` (0.33° of joint).
+    /// By hand: `ρ_f + ρ_τt/N + ρ_fq + I_m ρ_base =
+    /// 0.04 + 0.0018832 + 0.5 + 5.25e-5 = 0.5419357`,
+    /// `c = 0.025·0.5419357 + (1e-7 + 1e-5 + 1e-5 + 0.1)/4 =
+    /// 0.013548 + 0.025005025 = 0.038553`,
+    /// `I_m N λ = 1.05e-6·531·160 = 0.089208`,
+    /// `r_S = √(2·0.038553/0.089208) = 0.92970 rad/s`,
+    /// `|e| ≤ r_S/λ = 5.81e-3 rad` (0.33° of joint).
     #[test]
     fn table_6_1_bound_matches_eq_6_25_by_hand() {
         let p = WristActiveParams::table_6_1().unwrap();

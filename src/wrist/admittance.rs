@@ -52,6 +52,10 @@
 //! gain outside `(0, a_max/(T K_t))` for the stated stiffness with
 //! [`ParamError::OutOfRange`] named `"admittance_gain"`.
 
+// Two- and six-element arrays indexed in parallel (axes, rows): index loops
+// read better than zipped iterators here.
+#![allow(clippy::needless_range_loop)]
+
 use crate::error::{finite, non_negative, positive, ParamError};
 use crate::scalar::{Coef, Scalar};
 

@@ -38,6 +38,10 @@
 //! forces in N and torques in N·m (the link-torque unit): ±32 768 N and a
 //! resolution of 1.5e-5 N·m, ample for a Mini45 (±580 N, ±20 N·m).
 
+// Two- and six-element arrays indexed in parallel (axes, rows): index loops
+// read better than zipped iterators here.
+#![allow(clippy::needless_range_loop)]
+
 use crate::error::{finite, positive, ParamError};
 use crate::scalar::{Coef, Scalar};
 
@@ -176,7 +180,8 @@ impl DecouplingMatrix {
         }
         let inverse = invert(&matrix);
         let condition = inverse.map_or(f64::INFINITY, |i| n * norm1(&i));
-        if !(condition <= max_condition) || max_condition < 1.0 {
+        let within = condition <= max_condition; // false for NaN and ∞ > max
+        if !within || max_condition < 1.0 {
             return Err(ParamError::OutOfRange {
                 name: "decoupling_condition",
                 value: condition,

@@ -40,6 +40,10 @@
 //! ([`WristModeInput::request`]) switches at once (the manual switching of
 //! the thesis's experiments).
 
+// Two- and six-element arrays indexed in parallel (axes, rows): index loops
+// read better than zipped iterators here.
+#![allow(clippy::needless_range_loop)]
+
 use super::admittance::{AdmittanceConfig, AdmittanceParams, AdmittanceState};
 use crate::error::{increasing, positive, ParamError};
 use crate::scalar::{Coef, Scalar};
