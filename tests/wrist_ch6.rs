@@ -392,64 +392,79 @@ fn table_6_1_chatters_at_4ms() {
     }
 }
 
-fn door_runs() -> &'static [DoorRun; 3] {
-    static R: OnceLock<[DoorRun; 3]> = OnceLock::new();
+/// Seeds of the door runs (slip and jerk sequences).
+const DOOR_SEEDS: [u64; 3] = [3, 6, 7];
+
+fn door_runs() -> &'static Vec<[DoorRun; 3]> {
+    static R: OnceLock<Vec<[DoorRun; 3]>> = OnceLock::new();
     R.get_or_init(|| {
-        [
-            door_opening(&DoorConfig::thesis(DoorControl::Passive, 0.0, 7)),
-            door_opening(&DoorConfig::thesis(
-                DoorControl::Passive,
-                3f64.to_radians(),
-                7,
-            )),
-            door_opening(&DoorConfig::thesis(DoorControl::ActiveHold, 0.0, 7)),
-        ]
+        DOOR_SEEDS
+            .iter()
+            .map(|&seed| {
+                [
+                    door_opening(&DoorConfig::thesis(DoorControl::Passive, 0.0, seed)),
+                    door_opening(&DoorConfig::thesis(
+                        DoorControl::Passive,
+                        3f64.to_radians(),
+                        seed,
+                    )),
+                    door_opening(&DoorConfig::thesis(DoorControl::ActiveHold, 0.0, seed)),
+                ]
+            })
+            .collect()
     })
 }
 
-/// §6.4.4 qualitatively. In every run the door opens (the base carries
-/// the grasp round; at least 80° of the planned 90°), the passive wrist
-/// stays inside its ±30° workspace and its motors are never at their
-/// limit. The passive yaw torque is what moves the admittance reference
-/// (`τ = γ̇_r/K_c`) plus the wrist's lag, while the held wrist must
-/// absorb every deviation of the base from the door's circle through the
-/// grasp stiffness: its yaw peak must be at least twice the passive one.
-/// A 3° heading error displaces the base's circle by
-/// `2 ρ_b sin(1.5°) = 5.6 cm`, which the passive joints absorb only by
-/// moving faster: its peak is at least the nominal one, and still below
-/// the held wrist's.
+/// §6.4.4 qualitatively, for three slip/jerk sequences. In every run the
+/// door opens (the base carries the grasp round; at least 80° of the
+/// planned 90°), the passive wrist stays inside its ±30° workspace and its
+/// motors are never at their limit.
+///
+/// *Passive against held.* The held wrist must absorb every deviation of
+/// the base from the door's circle through the grasp's yaw stiffness; the
+/// passive one yields to it. "Well below" is asserted as at most half the
+/// held wrist's yaw peak (a qualitative margin, not a derived constant).
+///
+/// *Heading error.* A 3° error displaces the base's circle by
+/// `2 ρ_b sin(1.5°) = 5.6 cm` (`ρ_b = 1.06 m`), which the passive joints
+/// take up over the 12 s opening: a rate of about
+/// `0.056 m / 0.75 m / 12 s ≈ 6e-3 rad/s`, i.e. `6e-3/K_c ≈ 0.06 N·m` of
+/// admittance torque — small against the jerk-driven peaks. Expected: its
+/// yaw peak of the same magnitude as without the error (within a factor 2
+/// either way, the thesis's "comparable magnitude") and below the held
+/// wrist's.
+///
+/// *Measured against true.* The library's F/T chain reads the true torques
+/// within the gauge noise: ±0.5 mV through the torque rows of the example
+/// matrix (`Σ_j |M_ij| ≤ 5.8 N·m/V`: 2.9e-3 N·m) plus `l` times the force
+/// rows (`≤ 140 N/V`: 0.07 N · 0.05 m = 3.5e-3 N·m): 0.01 N·m.
 #[test]
 fn door_opening_passive_wrist_limits_the_interaction_torque() {
-    let [nominal, heading, hold] = door_runs();
-    for r in [nominal, heading, hold] {
-        assert!(
-            r.door_angle > 80f64.to_radians(),
-            "{}",
-            r.door_angle.to_degrees()
-        );
-    }
-    for r in [nominal, heading] {
-        assert!(r.wrist_range[0] < 30f64.to_radians() && r.wrist_range[1] < 30f64.to_radians());
-        assert_eq!(r.saturated_samples, 0);
-    }
-    assert!(
-        2.0 * nominal.peak_measured[1] < hold.peak_measured[1],
-        "{:?} {:?}",
-        nominal.peak_measured,
-        hold.peak_measured
-    );
-    assert!(heading.peak_measured[1] >= nominal.peak_measured[1]);
-    assert!(heading.peak_measured[1] < hold.peak_measured[1]);
-    // The measured torques (library F/T chain with gauge noise) agree with
-    // the true ones within the noise: ±0.5 mV through M's torque rows
-    // (Σ|M_ij| ≤ 5.6 N·m/V → 2.8e-3 N·m) and l·(force rows, ≤ 205 N/V →
-    // 0.1 N · 0.05 m): 0.01 N·m.
-    for r in [nominal, heading, hold] {
-        for i in 0..2 {
+    for [nominal, heading, hold] in door_runs() {
+        for r in [nominal, heading, hold] {
             assert!(
-                (r.peak_measured[i] - r.peak_interaction[i]).abs()
-                    < 0.01 + 1e-3 * r.peak_interaction[i].max(1.0)
+                r.door_angle > 80f64.to_radians(),
+                "{}",
+                r.door_angle.to_degrees()
             );
+            for i in 0..2 {
+                let d = (r.peak_measured[i] - r.peak_interaction[i]).abs();
+                assert!(d < 0.01, "{:?} {:?}", r.peak_measured, r.peak_interaction);
+            }
         }
+        for r in [nominal, heading] {
+            assert!(r.wrist_range[0] < 30f64.to_radians());
+            assert!(r.wrist_range[1] < 30f64.to_radians());
+            assert_eq!(r.saturated_samples, 0);
+        }
+        assert!(
+            2.0 * nominal.peak_measured[1] < hold.peak_measured[1],
+            "{:?} {:?}",
+            nominal.peak_measured,
+            hold.peak_measured
+        );
+        assert!(heading.peak_measured[1] < hold.peak_measured[1]);
+        let ratio = heading.peak_measured[1] / nominal.peak_measured[1];
+        assert!((0.5..=2.0).contains(&ratio), "{ratio}");
     }
 }

@@ -13,7 +13,11 @@
 //! ch. 5 is the caller's step (or [`super::modes`]'s user's): this module
 //! stays in task space, where the thesis's law is written and where the
 //! singularity of the joint-space map at `δ = γ = 0` (§6.2) does not
-//! appear.
+//! appear. With the ch. 5 kinematics of this crate the step is
+//! `WristConfig::inverse(PitchYaw { delta, gamma }).motors` (or its
+//! continuous `IkState` form) for the joint references of
+//! [`super::active::WristJointSample`], and the force mapping of eq. (6.1)
+//! for its `interaction_torque`.
 //!
 //! # Sign (errata E6.2)
 //! Here `τ` is the torque the environment applies to the wrist, positive
