@@ -468,3 +468,106 @@ fn door_opening_passive_wrist_limits_the_interaction_torque() {
         assert!((0.5..=2.0).contains(&ratio), "{ratio}");
     }
 }
+
+/// Bumpless in motor space: the mode manager's task reference (active on a
+/// trajectory, a torque pulse into Passive, guidance, release, rejoin),
+/// mapped every sample through the ch. 5 inverse kinematics kept
+/// continuous in time (`WristConfig::update`), gives motor references that
+/// (a) reach the reference (forward kinematics back within 1e-9 rad) and
+/// (b) move per sample — switching samples included — by no more than the
+/// local inverse Jacobian allows: `|Δθ| ≤ 1.5 ‖J⁻¹‖∞ |Δx|∞ + 1e-9`, with
+/// `J` from central differences of the forward kinematics (independent of
+/// the library's Jacobians) and 1.5 covering its variation over one step.
+/// The path stays away from the straight pose, where `J` is singular.
+#[test]
+fn mode_switching_is_bumpless_through_the_inverse_kinematics() {
+    use mrr_control::wrist::admittance::AdmittanceParams;
+    use mrr_control::wrist::modes::{WristMode, WristModeConfig, WristModeInput, WristModeParams};
+    use mrr_control::wrist::{IkState, MotorAngles, PitchYaw, WristConfig, WristParams};
+    let kin = WristConfig::<f64>::new(&WristParams::thesis());
+    let fk = |m: MotorAngles<f64>| {
+        let p = kin.forward(m).pose;
+        [p.delta, p.gamma]
+    };
+    let a = AdmittanceParams::thesis(200.0).unwrap();
+    let modes = WristModeConfig::<f64>::new(
+        &WristModeParams::try_new(a, 1.5, 0.5, 0.01, 5, 50, 10.0).unwrap(),
+    );
+    let x0 = [0.2, 0.1];
+    let mut st = modes.initial_state(WristMode::Active, x0);
+    let mut ik = IkState::new(
+        kin.inverse(PitchYaw {
+            delta: x0[0],
+            gamma: x0[1],
+        })
+        .motors,
+    );
+    let (mut last_x, mut last_m) = (x0, ik.motors);
+    let mut switches = 0;
+    for k in 0..2500 {
+        let t = k as f64 * 0.004;
+        let desired = [0.2 + 0.05 * t.sin(), 0.1 + 0.03 * (0.5 * t).sin()];
+        let desired_rate = [0.05 * t.cos(), 0.015 * (0.5 * t).cos()];
+        let tau = if (1.0..1.2).contains(&t) {
+            [2.0, -2.0]
+        } else if (1.2..5.0).contains(&t) {
+            [0.3 + 0.1 * (3.0 * t).sin(), -0.3]
+        } else {
+            [0.0, 0.0]
+        };
+        let o = modes.update(
+            &mut st,
+            &WristModeInput {
+                desired,
+                desired_rate,
+                interaction: tau,
+                request: None,
+            },
+        );
+        switches += o.switched as usize;
+        let inv = kin.update(
+            &mut ik,
+            PitchYaw {
+                delta: o.reference[0],
+                gamma: o.reference[1],
+            },
+        );
+        assert!(!inv.saturated && !inv.straight, "k={k}");
+        let back = fk(inv.motors);
+        assert!((back[0] - o.reference[0]).abs() < 1e-9 && (back[1] - o.reference[1]).abs() < 1e-9);
+        // ‖J⁻¹‖∞ at the previous motors by central differences of FK.
+        let h = 1e-6;
+        let m = last_m;
+        let col = |d1: f64, d3: f64| {
+            let p = fk(MotorAngles {
+                theta1: m.theta1 + d1,
+                theta3: m.theta3 + d3,
+            });
+            let q = fk(MotorAngles {
+                theta1: m.theta1 - d1,
+                theta3: m.theta3 - d3,
+            });
+            [(p[0] - q[0]) / (2.0 * h), (p[1] - q[1]) / (2.0 * h)]
+        };
+        let (c1, c3) = (col(h, 0.0), col(0.0, h));
+        let det = c1[0] * c3[1] - c3[0] * c1[1];
+        let inv_norm = ((c3[1].abs() + c3[0].abs()).max(c1[1].abs() + c1[0].abs())) / det.abs();
+        let dx = (o.reference[0] - last_x[0])
+            .abs()
+            .max((o.reference[1] - last_x[1]).abs());
+        let dm = (inv.motors.theta1 - m.theta1)
+            .abs()
+            .max((inv.motors.theta3 - m.theta3).abs());
+        assert!(
+            dm <= 1.5 * inv_norm * dx + 1e-9,
+            "k={k}: {dm} vs {}",
+            inv_norm * dx
+        );
+        last_x = o.reference;
+        last_m = inv.motors;
+    }
+    assert_eq!(
+        switches, 2,
+        "into Passive at the pulse, back after the release"
+    );
+}

@@ -38,9 +38,16 @@
 //!   their initial positions with the ch. 4 / ch. 6 active laws.
 //!
 //! # Simplifications (stated)
-//! * The wrist's joint coordinates are taken equal to `(δ, γ)` (the DAUJ
-//!   map is the identity to first order at the straight pose, which the
-//!   run stays near); the ch. 5 IK replaces this identity when present.
+//! * The wrist is simulated as two independent axes in task coordinates
+//!   `(δ, γ)`, each with a Table 6.1 rotor and gear and the law of eq.
+//!   (6.15) in those coordinates: an idealized (Cartesian) wrist. The real
+//!   DAUJ maps `(δ, γ)` to its motor angles through the ch. 5 inverse
+//!   kinematics ([`crate::wrist::WristConfig`]), a polar-like map whose
+//!   Jacobian is singular at the straight pose (§6.2), with the torques
+//!   mapped by eq. (6.1) ([`crate::wrist::ForceMapping`]); the door runs
+//!   stay within a few degrees of the straight pose, where that map is far
+//!   from the identity, so the DAUJ's own motor dynamics are not what
+//!   these runs reproduce.
 //! * The wrist gains are [`door_wrist_design`]'s, not Table 6.1's:
 //!   sampled at 4 ms, Table 6.1's law cannot hold its boundary layer
 //!   (errata E6.3), the same regime as ch. 4's errata E22.
