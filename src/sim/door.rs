@@ -316,10 +316,11 @@ impl DoorRun {
 /// The wrist motor design of the door runs: Table 6.1's structure and
 /// rotor, re-tuned so that the law sampled at 4 ms stays a boundary-layer
 /// law (errata E6.3): the step ratio
-/// `T (K_r/ε_r + I_m N λ)/(I_m N) = 0.004 (0.0536/0.5 + 0.01115)/5.5755e-4
-/// = 0.85 < 1` with `λ = 20`, `ε_r = 0.5 rad/s`, `ρ_fq = 0.01 N·m`,
-/// `ρ_f = 0.04` (derived from the box `f_c, f_s ∈ [0, 0.01]`), the
-/// friction box of the plant, `ρ_F = [1e-4, 1e-3, 1e-3, 0]` with
+/// `T (K_r/ε_r + I_m N λ)/(I_m N) = 0.004 (0.031935/0.5 + 0.011151)/
+/// 5.5755e-4 = 0.54 < 1` with `λ = 20`, `ε_r = 0.5 rad/s`,
+/// `K_r = ρ_f + ρ_fq + I_m ρ_base + ρ_τt/N = 0.02 + 0.01 + 5.25e-5 +
+/// 0.001883`, the friction box `f_c, f_s ∈ [0, 0.01]` N·m,
+/// `b ∈ [0, 2e-3]`, `ρ_F = [1e-4, 1e-3, 1e-3, 0]` with
 /// `ε_F = [10, 1, 1, 0.1]` and the Stribeck shape known (`μ_4 = 0`);
 /// `ρ_base = 50 rad/s²`, `ρ_τt = 1 N·m`, `K_I = 1`, `μ = 0.1`, limits
 /// 0.6 N·m (torque) and 0.02 N·m (integral), `T` given.
@@ -373,8 +374,9 @@ pub fn door_wrist_design(sample_period: f64) -> WristMotorDesign {
 }
 
 /// The turret's active hold law (ch. 4 law on the Table 4.1 joint, with
-/// boundary layers wide enough for the 4 ms tick: step ratio
-/// `0.004 (0.0404/20 + 1.14e-5·30)/1.14e-5 = 0.83`).
+/// boundary layers wide enough for the 4 ms tick: with
+/// `K_r = 0.02 + 0.01 + 1.14e-5·100 + 1/100 = 0.04114` N·m the step ratio
+/// is `0.004 (0.04114/20 + 1.14e-5·30)/1.14e-5 = 0.84`).
 fn turret_hold_design() -> RobustAdaptiveDesign {
     let mut d = RobustAdaptiveDesign::table_4_1();
     d.lambda = 30.0;
@@ -802,4 +804,35 @@ fn transpose(a: &M3) -> M3 {
         [a[0][1], a[1][1], a[2][1]],
         [a[0][2], a[1][2], a[2][2]],
     ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::control::UltimateBound;
+
+    /// The step ratios claimed in the docs, by hand against the ch. 4
+    /// calculator; both designs validate.
+    #[test]
+    fn door_designs_are_boundary_layer_laws_at_4ms() {
+        let w = door_wrist_design(0.004).law_design();
+        RobustAdaptiveParams::try_new(w).unwrap();
+        let kr = 0.02 + 0.01 + 1.05e-6 * 50.0 + 1.0 / 531.0;
+        let m = 1.05e-6 * 531.0;
+        let hand = 0.004 * (kr / 0.5 + m * 20.0) / m;
+        let got = UltimateBound::new(&w).boundary_layer_step_ratio;
+        assert!(
+            (got - hand).abs() < 1e-9 && (hand - 0.538).abs() < 1e-3,
+            "{got}"
+        );
+        let t = turret_hold_design();
+        RobustAdaptiveParams::try_new(t).unwrap();
+        let kr = 0.02 + 0.01 + 1.14e-5 * 100.0 + 0.01;
+        let hand = 0.004 * (kr / 20.0 + 1.14e-5 * 30.0) / 1.14e-5;
+        let got = UltimateBound::new(&t).boundary_layer_step_ratio;
+        assert!(
+            (got - hand).abs() < 1e-9 && (hand - 0.842).abs() < 1e-3,
+            "{got}"
+        );
+    }
 }

@@ -476,6 +476,7 @@ mod tests {
             (guided, total, st.mode())
         };
         let (guided, _, _) = run(1e3);
+        std::println!("torque-only exit rule: {guided} switches while guided");
         assert!(
             guided >= 4,
             "torque-only rule: {guided} switches while guided"
