@@ -513,4 +513,45 @@ mod tests {
         assert!(WristModeParams::try_new(a, 1.0, 0.5, 0.01, 0, 50, 10.0).is_err());
         assert!(WristModeParams::try_new(a, 1.0, 0.5, 0.01, 1, 50, 200.0).is_err());
     }
+
+    /// The guided scenario of `rest_condition_stops_cycling_while_guided`
+    /// on `f32` and `I16F16`: the same switches as `f64` (one in, one out)
+    /// and references within the backends' rounding of the `f64` ones.
+    #[test]
+    fn backends_switch_alike() {
+        use crate::scalar::I16F16;
+        fn run<S: Scalar>() -> (usize, f64) {
+            let a = AdmittanceParams::thesis(200.0).unwrap();
+            let p = WristModeParams::try_new(a, 0.5, 0.45, 0.01, 5, 25, 10.0).unwrap();
+            let c = WristModeConfig::<S>::new(&p);
+            let mut st = c.initial_state(WristMode::Active, [S::ZERO; 2]);
+            let mut switches = 0;
+            let mut max_ref = 0.0f64;
+            for k in 0..2500 {
+                let time = k as f64 * 0.004;
+                let tau = if time < 4.0 {
+                    20.0 * (0.03 * time - st.reference()[1].to_f64())
+                } else {
+                    0.0
+                };
+                let o = c.update(
+                    &mut st,
+                    &WristModeInput {
+                        interaction: [S::ZERO, S::from_f64(tau)],
+                        ..Default::default()
+                    },
+                );
+                switches += o.switched as usize;
+                max_ref = max_ref.max(o.reference[1].to_f64());
+            }
+            (switches, max_ref)
+        }
+        let (s64, r64) = run::<f64>();
+        let (s32, r32) = run::<f32>();
+        let (sfx, rfx) = run::<I16F16>();
+        assert_eq!((s64, s32, sfx), (2, 2, 2));
+        assert!((r32 - r64).abs() < 1e-4, "{r32} {r64}");
+        // ≤ 1000 guided steps, each rounded to ½ LSB (7.6e-6 rad).
+        assert!((rfx - r64).abs() < 1000.0 * 7.7e-6, "{rfx} {r64}");
+    }
 }
