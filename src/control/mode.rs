@@ -217,7 +217,7 @@ pub struct ModeConfig<S> {
 
 /// The manager's state.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ModeState<S> {
+pub struct ModeState<S: Scalar> {
     mode: JointMode,
     active: RobustAdaptiveState<S>,
     offset: S,
