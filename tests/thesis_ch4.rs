@@ -400,3 +400,48 @@ fn count_speed_is_within_one_count_per_window() {
         }
     }
 }
+
+/// The joint mode manager's cycling under hand guidance (module docs of
+/// `control::mode`): in the interaction scenario (a hand leads the link to
+/// 0.4 rad over 2 s, holds it 0.5 s and lets go at 3 s) the torque-only
+/// Passive → Active rule cycles — at least 20 switches while the hand is
+/// on the link (36 measured) — and the release rule of
+/// `ModeScenarioConfig::interaction` switches exactly twice: to Passive
+/// when the hand starts pushing, back to Active after it let go.
+#[test]
+fn hand_guidance_does_not_cycle_the_modes() {
+    use mrr_control::control::ReleaseRule;
+    let cfg = ModeScenarioConfig::interaction();
+    let fixed = interaction_scenario(&cfg);
+    let mut old = cfg.clone();
+    old.release = Some(ReleaseRule::torque_only(20));
+    let cycling = interaction_scenario(&old);
+    let times = |r: &mrr_control::sim::closed_loop::ModeScenarioResult| {
+        r.switches
+            .iter()
+            .map(|e| format!("{:.3}", e.time))
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    println!(
+        "torque-only rule: {} switches [{}]",
+        cycling.switches.len(),
+        times(&cycling)
+    );
+    println!(
+        "release rule: {} switches [{}]",
+        fixed.switches.len(),
+        times(&fixed)
+    );
+    let while_guided = cycling
+        .switches
+        .iter()
+        .filter(|e| (0.5..3.0).contains(&e.time))
+        .count();
+    assert!(while_guided >= 20, "{while_guided}");
+    assert_eq!(fixed.switches.len(), 2, "{:?}", fixed.switches);
+    assert_eq!(fixed.switches[0].to, JointMode::Passive);
+    assert!(fixed.switches[0].time >= 0.5 && fixed.switches[0].time < 1.0);
+    assert_eq!(fixed.switches[1].to, JointMode::Active);
+    assert!(fixed.switches[1].time > 3.0, "{:?}", fixed.switches[1]);
+}

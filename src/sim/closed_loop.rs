@@ -1063,22 +1063,33 @@ pub struct ModeScenarioConfig {
     pub passive_gain: f64,
     /// Noise seed.
     pub seed: u64,
+    /// The Passive → Active release rule; `None` for the manager's default
+    /// ([`crate::control::ModeParams::try_new`]).
+    pub release: Option<crate::control::ReleaseRule>,
 }
 
 impl ModeScenarioConfig {
     /// 0.1 ms tick ([`bound_design`]'s law, which the sampled loop holds
     /// smoothly), enter 4 N·m / exit 2 N·m (above the estimator's error of
-    /// about 1 N·m, Table 3.3 and errata E12), `ω = 10 rad/s`, no detector,
-    /// `Î_m K_p = 2`.
+    /// about 1 N·m, Table 3.3 and errata E12; its peaks in the released
+    /// passive joint reach 1.8 N·m), `ω = 10 rad/s`, no detector,
+    /// `Î_m K_p = 2`, and the release rule `|q̇_m| ≤ 10 rad/s` (motor side:
+    /// 0.1 rad/s at the link, twice the 5.1 rad/s jitter of the released
+    /// passive joint and a third of the 31 rad/s peak of the guidance)
+    /// held for 1 s (twice the hand's 0.5 s pause before it lets go).
     pub fn interaction() -> Self {
         ModeScenarioConfig {
             sample_period: 1e-4,
             enter_passive: 4.0,
-            exit_passive: 1.0,
+            exit_passive: 2.0,
             rejoin_bandwidth: 10.0,
             collision: None,
             passive_gain: 2.0,
             seed: 21,
+            release: Some(crate::control::ReleaseRule {
+                speed: 10.0,
+                samples: 10_000,
+            }),
         }
     }
 }
@@ -1177,6 +1188,10 @@ pub fn mode_scenario(
         collision,
     )
     .expect("valid mode parameters");
+    let params = match cfg.release {
+        Some(rule) => params.with_release(rule).expect("valid release rule"),
+        None => params,
+    };
     let mc = ModeConfig::<f64>::new(&params);
     let mut st = mc.initial_state();
     let steps = ((t / 1e-4).round() as usize).max(1);
