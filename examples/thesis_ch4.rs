@@ -94,6 +94,7 @@ fn main() -> std::io::Result<()> {
             error_fraction: u(0.0, 0.9),
             error_square_period: if k % 2 == 0 { 0.0 } else { u(0.02, 0.5) },
             seed: k,
+            estimated_feedback: false,
         };
         let r = bound_run(&case, 0.3);
         worst_ratio = worst_ratio.max(r.max_sliding / r.radius);

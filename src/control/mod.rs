@@ -34,7 +34,9 @@ pub use adaptive::{
 };
 pub use bound::UltimateBound;
 pub use mode::{JointMode, ModeConfig, ModeOutput, ModeParams, ModeState, ReleaseRule};
-pub use passive::{PassiveConfig, PassiveOutput, PassiveParams};
+pub use passive::{
+    HandContact, PassiveCharacteristics, PassiveConfig, PassiveOutput, PassiveParams, Pole,
+};
 
 /// One control sample of one joint, in stored units of `S::UNITS`.
 ///
