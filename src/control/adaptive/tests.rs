@@ -897,12 +897,8 @@ fn adaptation_trajectories_agree_across_backends() {
             sci(b),
             sci(m)
         );
-        for j in 0..4 {
-            assert!(
-                w[j] <= 1.0,
-                "{name} I16F16 parameter {j}: {} of the bound",
-                w[j]
-            );
+        for (j, wj) in w.iter().enumerate() {
+            assert!(*wj <= 1.0, "{name} I16F16 parameter {j}: {wj} of the bound");
         }
         assert!(
             m[3] > 10.0 * b[3],
@@ -917,12 +913,8 @@ fn adaptation_trajectories_agree_across_backends() {
             sci(b),
             sci(m)
         );
-        for j in 0..4 {
-            assert!(
-                w[j] <= 1.0,
-                "{name} f32 parameter {j}: {} of the bound",
-                w[j]
-            );
+        for (j, wj) in w.iter().enumerate() {
+            assert!(*wj <= 1.0, "{name} f32 parameter {j}: {wj} of the bound");
         }
         assert!(
             m[3] > 10.0 * b[3],
