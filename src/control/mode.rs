@@ -80,6 +80,20 @@
 //! [`ModeConfig::switch_jump_bound`] returns this bound; the property test
 //! `switching_is_bumpless` checks it over random states.
 //!
+//! # Fixed-point resolution of the manager's slow states
+//! The adapted friction estimates carry a sub-LSB residual
+//! ([`crate::scalar::Scalar::integrate`]); the manager's own states do not,
+//! and on `I16F16` they stop where their increments round to zero:
+//! * the rejoin offset when `|ȯ T|` and `|acc T|` are both below ½ LSB, so
+//!   `|o| < (1 + 2ω) 2⁻¹⁷/(ω² T)` rad (motor side): 4.0e-4 rad at
+//!   `ω = 10 rad/s`, 5.7e-3 rad at `ω = 1 rad/s` with `T = 4 ms` (below
+//!   one count of the thesis's 0.01° link encoder at the link for `N =
+//!   100`; the bound grows as `1/ω²`, so choose `ω` accordingly). Test
+//!   `rejoin_offset_stall_is_within_its_bound`.
+//! * the bias when `|b| T/T_b < ½ LSB`, i.e. `|b| < T_b/(2T)` LSB of motor
+//!   torque: 12.5 LSB = 1.9e-7 N·m for `T_b = 0.1 s` at 4 ms, a
+//!   millionth of the 0.188 N·m limit.
+//!
 //! The measured position is never overwritten: the manager's position
 //! state (offset or hold point) is defined relative to the measured
 //! position at the switch, so the reference is continuous with the joint.

@@ -560,3 +560,46 @@ fn command_equals_the_two_clamps() {
     vq.push(I16F16::from_bits(i32::MIN));
     check(&q, &vq);
 }
+
+/// The rejoin offset on `I16F16` stops where both of its increments round
+/// to zero: `|ȯ T| < ½ LSB` and `|acc T| < ½ LSB` with
+/// `acc = −2ω ȯ − ω² o`, so `|o| < (1 + 2ω) 2⁻¹⁷/(ω² T)` (the bound
+/// checked here, 20 000 samples at 4 ms after a 0.5 rad offset). At
+/// `ω = 1 rad/s` that is 5.7e-3 rad motor side (5.7e-5 rad at the link
+/// for `N = 100`, a third of the 0.01° link encoder's count); `f64` rejoins
+/// exactly (below 1e-9 rad).
+#[test]
+fn rejoin_offset_stall_is_within_its_bound() {
+    for w in [1.0, 3.0, 10.0, 100.0] {
+        let p = ModeParams::try_new(
+            RobustAdaptiveParams::table_4_1().unwrap(),
+            PassiveParams::table_4_1(2000.0).unwrap(),
+            2.0,
+            1.0,
+            1,
+            0,
+            w,
+            0.1,
+            None,
+        )
+        .unwrap();
+        fn run<S: Scalar>(p: &ModeParams) -> f64 {
+            let cfg = ModeConfig::<S>::new(p);
+            let mut st = cfg.initial_state();
+            step(&cfg, &mut st, 3.0);
+            let x = quantize::<S>(&ControlInput {
+                motor_position: 0.5,
+                ..Default::default()
+            });
+            cfg.update(&mut st, &x);
+            for _ in 0..20_000 {
+                cfg.update(&mut st, &x);
+            }
+            st.rejoin_offset().0.to_f64()
+        }
+        let stall = run::<I16F16>(&p);
+        let bound = (1.0 + 2.0 * w) * 2f64.powi(-17) / (w * w * 0.004);
+        assert!(stall.abs() <= bound, "ω = {w}: {stall} > {bound}");
+        assert!(run::<f64>(&p).abs() < 1e-9);
+    }
+}
