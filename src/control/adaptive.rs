@@ -369,10 +369,14 @@ pub struct RobustAdaptiveConfig<S> {
 /// non-zero `r Y_j` product moves it (the smallest, one LSB of
 /// `r Y_4` times `4e-7`, is `6e-12`, `1.7e3` accumulator steps). The same
 /// holds at Table 6.1's gains (`μ = 0.1`, `T = 4 ms`: the same
-/// coefficients). On floats the value itself is the accumulator: `f64`
-/// loses a step only below `2⁻⁵³` of the value; `f32` below `2⁻²⁴`
-/// (`|r Y_4| < 1.5e-4` at `f̂_τ ≈ 1`, `|r| ≲ 0.03 rad/s` at the peak of
-/// `Y_4`) — measured against `f64` by
+/// coefficients). `f64` keeps its value as the accumulator (a step is
+/// lost only below `2⁻⁵³` of the value: `rY_4 ≲ 1e-12` at `f̂_τ ≈ 1`).
+/// A plain `f32` sum would lose every step below `2⁻²⁴` of the value
+/// (`|r Y_4| < 1.5e-4` at `f̂_τ ≈ 1`, `< 6e-4` at `f̂_τ = 4`): in the
+/// test scenario a plain `f32` `f̂_τ` started at 4 never moves
+/// (`plain_f32_sum_loses_the_stribeck_shape_adaptation`), so `f32` carries
+/// the rounding error of each sum as its residual (a compensated sum).
+/// All three backends are compared against `f64` within a derived bound by
 /// `adaptation_trajectories_agree_across_backends`.
 ///
 /// The integral `z` is not a slow integrator in this sense: its step
