@@ -178,8 +178,10 @@ impl Pole {
 /// eigenvalues of `M`. As `T → 0` two of them tend to `e^{sT}` of the
 /// continuous poles and the third (the torque loop) to
 /// `(1 − Î_m K_p) I_l/J₀`; the loop is unstable when a pole leaves the unit
-/// circle, which happens for large `K_p` (`|1 − Î_m K_p| I_l/J₀ > 1`) or
-/// for a stiff hand at a long period.
+/// circle, which happens for large `K_p` (`|1 − Î_m K_p| I_l/J₀ > 1`, at
+/// any period: on the thesis joint with its bare link, `Î_m K_p > 4.64`,
+/// test `sampled_torque_loop_limits_the_gain`) or for a stiff hand at a
+/// long period.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PassiveCharacteristics {
     /// Apparent link-side inertia `J = I_l + N²/K_p`, kg·m².
@@ -796,6 +798,32 @@ mod tests {
             frictionless(1.14e-5, 0.0, 100.0).characteristics(&free, 1e-3),
             Err(ParamError::NotPositive { name: "gain", .. })
         ));
+    }
+
+    /// The sampled torque loop's pole `(1 − Î_m K_p) I_l/J₀` limits the
+    /// gain whatever the period: on the thesis joint with its bare link
+    /// (`I_l = 0.64·0.45²/3 = 0.0432 kg·m²`, `J₀ = I_l + N² I_m = 0.1572`)
+    /// the loop is unstable for `Î_m K_p > 1 + J₀/I_l = 4.64`, at 1 ms and
+    /// at 10 µs alike (hand 200 N·m/rad, 5 N·m·s/rad).
+    #[test]
+    fn sampled_torque_loop_limits_the_gain() {
+        let il = 0.64 * 0.45 * 0.45 / 3.0;
+        let j0 = il + 1e4 * 1.14e-5;
+        let limit = 1.0 + j0 / il;
+        assert!((limit - 4.64).abs() < 0.01, "{limit}");
+        let hand = HandContact {
+            stiffness: 200.0,
+            damping: 5.0,
+            link_inertia: il,
+        };
+        for t in [1e-3, 1e-5] {
+            for (c, stable) in [(0.95 * limit, true), (1.05 * limit, false)] {
+                let ch = frictionless(1.14e-5, c / 1.14e-5, 100.0)
+                    .characteristics(&hand, t)
+                    .unwrap();
+                assert_eq!(ch.spectral_radius < 1.0, stable, "c = {c}, T = {t}: {ch:?}");
+            }
+        }
     }
 
     struct RobustFriction;
