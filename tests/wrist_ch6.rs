@@ -345,7 +345,7 @@ fn violated_sensor_bound_exceeds_the_ultimate_bound() {
     );
 }
 
-/// Errata E6.3: Table 6.1 sampled at the thesis's 4 ms. The E22 step
+/// Errata E6.3: Table 6.1 sampled at the thesis's 4 ms. The E4.4 step
 /// ratio of the law (ch. 4's calculator on the ch. 6 design) is
 /// `T (K_r/ε_r + I_m N λ)/(I_m N) = 0.004 (0.5419357/0.1 + 0.089208)/
 /// 5.5755e-4 = 39.52` by hand: far above 2, so the sampled robust term

@@ -50,7 +50,7 @@
 //!   these runs reproduce.
 //! * The wrist gains are [`door_wrist_design`]'s, not Table 6.1's:
 //!   sampled at 4 ms, Table 6.1's law cannot hold its boundary layer
-//!   (errata E6.3), the same regime as ch. 4's errata E22.
+//!   (errata E6.3), the same regime as ch. 4's errata E4.4.
 //! * The gripper is light (its inertia is added to the wrist yaw and
 //!   pitch), the arm's mass is lumped on the link.
 
