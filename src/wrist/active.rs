@@ -309,7 +309,7 @@ pub struct WristActiveConfig<S> {
 /// The adapted state of both motors (ch. 4 state: `F̂^c_i` and the
 /// integral).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct WristActiveState<S> {
+pub struct WristActiveState<S: Scalar> {
     /// Per motor.
     pub motors: [RobustAdaptiveState<S>; 2],
 }
