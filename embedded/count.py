@@ -37,6 +37,8 @@ Usage: count.py [--profile release|release-s] [--quick] [--qemu] [--selftest]
 """
 
 import argparse
+import shutil
+import json
 import math
 import os
 import random
@@ -593,6 +595,8 @@ class Step:
     max_arm_share: float = None  # required ARM_JOINTS x cycles x 2 / tick
     per_joint: bool = False  # a step that runs once per joint (6-joint column)
     ratio_range: float = None  # ratio over the vectors with |first argument| <= this only
+    image: str = "main"  # "variants": the second image (src/main.rs)
+    prep_mask: int = 0  # or-ed into word 3 of `prepare_joint`'s arguments: which states to warm up
     note: str = None  # printed in the budget column (e.g. "informative")
 
 
@@ -652,13 +656,92 @@ def kernel_steps():
     return steps
 
 
+# Vectors found by the counter-guided search (`search.py`, offline),
+# replayed by every run: {"CORE ENTRY": [{"pre": [...], "args": [...],
+# "count": n}, ...]}.
+FOUND_PATH = os.path.join(HERE, "found_vectors.json")
+
+
+def found_vectors(core, entries):
+    """The stored search results for `entries` on `core`, as vectors."""
+    if not os.path.exists(FOUND_PATH):
+        return []
+    with open(FOUND_PATH) as fh:
+        data = json.load(fh)
+    out = []
+    for e in entries:
+        for v in data.get(f"{core} {e}", []):
+            out.append((list(v["pre"]), list(v["args"])) if v.get("pre") is not None else list(v["args"]))
+    return out
+
+
+# Masks of `prepare_joint` (bits 8-11 of its scenario word): the mode
+# states to warm up, f32 Stop / Passive, I16F16 Stop / Passive.
+MASK = {("f32", "stop"): 1 << 8, ("f32", "passive"): 2 << 8, ("x", "stop"): 4 << 8, ("x", "passive"): 8 << 8}
+# The joint configurations a user chooses between: (entry infix, label,
+# collision reaction, kinematic-error model).
+JOINT_CONFIGS = [
+    ("", "joint step", "stop"),
+    ("passive_", "joint step, reaction Passive", "passive"),
+    ("noke_", "joint step, no kinematic error", "stop"),
+    ("passive_noke_", "joint step, Passive, no kin. error", "passive"),
+]
+
+
+def joint_steps(quick=False):
+    """Every joint configuration on both cores (budgets asserted on every
+    one), the f32 step on the M0+ (soft float, informative), and the
+    stand-alone laws. The default configuration gets all 900 readings and
+    its libm / cordic reference; the others every third reading. All get
+    the search's vectors of every configuration of their backend."""
+    steps = []
+    for backend, core, vecs, dec, xs in (("f32", "M4F", JOINT_F32, f32_of, "f32"),
+                                         ("I16F16", "M0+", JOINT_X, x_of, "i16f16")):
+        key = "f32" if backend == "f32" else "x"
+        budget = dict(max_insns=800) if core == "M4F" else dict(max_insns=4000, max_arm_share=0.12)
+        found = found_vectors(core, [f"joint_{i}{xs}" for i, _, _ in JOINT_CONFIGS])
+        for infix, label, reaction in JOINT_CONFIGS:
+            own = vecs if not infix else vecs[::3]
+            ref = (f"joint_libm_f32" if backend == "f32" else "joint_cordic_i16f16") if not infix else None
+            steps.append(Step(label, core, backend, f"joint_{infix}{xs}", ref, own + found, prepare="prepare_joint",
+                              per_joint=True, decode=lambda o, d=dec: d(o[0]), prep_mask=MASK[(key, reaction)],
+                              image="variants" if infix else "main", **budget))
+    # f32 on the M0+: soft float (compiler_builtins), no budget.
+    steps.append(Step("joint step (soft float)", "M0+", "f32", "joint_f32", None, JOINT_F32[::9] + found_vectors("M0+", ["joint_f32"]),
+                      prepare="prepare_joint", per_joint=True, prep_mask=MASK[("f32", "stop")], note="informative"))
+    for backend, core, vecs, xs, key in (("f32", "M4F", JOINT_F32, "f32", "f32"), ("I16F16", "M0+", JOINT_X, "i16f16", "x")):
+        law = [(pre, args[2:]) for pre, args in vecs[::3]]
+        steps.append(Step("active law", core, backend, f"active_{xs}", None, law, prepare="prepare_joint",
+                          per_joint=True, prep_mask=MASK[(key, "stop")], image="variants"))
+        steps.append(Step("passive law", core, backend, f"passive_{xs}", None, [args for _, args in law], per_joint=True,
+                          image="variants"))
+    return steps
+
+
+def radians_vectors(f, torque):
+    rng = random.Random(0x4AD)
+    out = [[f(a), f(b), f(t)] for a in (0.0, 1.0, -3.1, 3.2) for b in (0.0, 100.0, -314.0, 400.0) for t in (0.0, torque, -torque)]
+    out += [[f(rng.uniform(-4, 4)), f(rng.uniform(-400, 400)), f(rng.uniform(-torque, torque))] for _ in range(200)]
+    return out
+
+
+def wrist_steps(quick=False):
+    """Hook for the wrist step (ch. 5-6): one `Step` row per core, with its
+    `entry!` in src/main.rs. Empty until the wrist step exists."""
+    return []
+
+
 def all_steps(quick=False):
     steps = kernel_steps()
     steps += [
         Step("torque estimation", "M4F", "f32", "est_f32", "est_libm_f32", est_vectors(EST_T_F32, lambda: f32w(RNG.uniform(-2, 2))), prepare="prepare_est", per_joint=True, decode=lambda o: f32_of(o[0])),
         Step("torque estimation", "M0+", "I16F16", "est_i16f16", "est_cordic_i16f16", est_vectors(EST_T_X, lambda: xw(RNG.uniform(-2000, 2000))), prepare="prepare_est", per_joint=True, decode=lambda o: x_of(o[0])),
-        Step("joint step", "M4F", "f32", "joint_f32", "joint_libm_f32", JOINT_F32, prepare="prepare_joint", per_joint=True, max_insns=800, decode=lambda o: f32_of(o[0])),
-        Step("joint step", "M0+", "I16F16", "joint_i16f16", "joint_cordic_i16f16", JOINT_X, prepare="prepare_joint", per_joint=True, max_insns=4000, max_arm_share=0.12, decode=lambda o: x_of(o[0])),
+        Step("update_radians", "M4F", "f32", "est_radians_f32", None, radians_vectors(f32w, 2.0) + [[0x7FC00000, 0, 0], [f32w(1e30), f32w(-1e30), 0]], per_joint=True, image="variants"),
+        Step("update_radians", "M0+", "I16F16", "est_radians_i16f16", None, radians_vectors(xw, 2000.0) + [[0x7FFFFFFF, 0x80000000, 0x7FFFFFFF]], per_joint=True, image="variants"),
+    ]
+    steps += joint_steps(quick)
+    steps += wrist_steps(quick)
+    steps += [
         Step("mulhi (split)", "M0+", "u32", "mulhi_split_u32", "mulhi_u64_u32",
              [[0, 0], [0xFFFFFFFF, 0xFFFFFFFF], [0x12345678, 0x9ABCDEF0]]),
     ]
@@ -669,11 +752,23 @@ def all_steps(quick=False):
 
 
 # ------------------------------------------------------------------- driver
-def build(core, profile, target_dir):
+def elf_path(core, profile, target_dir, image="main"):
+    base = os.path.join(target_dir, core.triple, profile, "mrr-control-embedded")
+    return base if image == "main" else base + "-" + image
+
+
+def build(core, profile, target_dir, image="main"):
+    """Builds one image: `main` (the default entries) or `variants` (the
+    `variants` feature, copied beside the main image)."""
     cmd = ["cargo", "build", "--quiet", "--profile", profile, "--target", core.triple]
+    if image != "main":
+        cmd += ["--features", image]
     env = dict(os.environ, CARGO_TARGET_DIR=target_dir)
     subprocess.run(cmd, cwd=HERE, env=env, check=True)
-    return os.path.join(target_dir, core.triple, profile, "mrr-control-embedded")
+    path = elf_path(core, profile, target_dir)
+    if image != "main":
+        shutil.copyfile(path, elf_path(core, profile, target_dir, image))
+    return elf_path(core, profile, target_dir, image)
 
 
 @dataclass
@@ -686,7 +781,7 @@ class Result:
     bad: list = field(default_factory=list)  # (args, status)
 
 
-def measure(fw, entry, vectors, prepare, bound=None):
+def measure(fw, entry, vectors, prepare, bound=None, mask=0):
     """Every vector through `entry`; with a static `bound`, also records the
     loop iterations and executed blocks its checks need."""
     r = Result()
@@ -698,8 +793,13 @@ def measure(fw, entry, vectors, prepare, bound=None):
     try:
         for v in vectors:
             pre, args = v if isinstance(v, tuple) else (None, v)
-            if pre is not None:
-                fw.call(prepare, pre, limit=2_000_000)
+            if pre is not None and prepare is not None:
+                if mask:
+                    pre = pre[:3] + [pre[3] | mask] + pre[4:]
+                st = fw.call(prepare, pre, limit=5_000_000)[3]
+                if st != "ok":
+                    r.bad.append((pre, f"prepare: {st}"))
+                    continue
             n, cyc, out, status = fw.call(entry, args, count=True)
             r.outputs.append(out)
             r.counts.append(n if status == "ok" else None)
@@ -748,25 +848,30 @@ def run(args):
 
     target_dir = os.environ.get("CARGO_TARGET_DIR", os.path.join(HERE, "target"))
     fws, progs = {}, {}
-    for key, core in CORES.items():
-        path = build(core, args.profile, target_dir) if not args.no_build else os.path.join(
-            target_dir, core.triple, args.profile, "mrr-control-embedded")
-        fws[key] = Firmware(core, path)
-        progs[key] = wcet.Program(path, core.cycles)
     steps = all_steps(args.quick)
     if args.only:
         steps = [s for s in steps if args.only in s.label]
-    base = {k: fws[k].call("io_overhead", [0], count=True)[0] for k in fws}
+    # The variants image first: both share the output path, and the main
+    # image must be the one left there (QEMU, profile.py, the bit check).
+    for image in ("variants", "main"):
+        if image != "main" and not any(s.image == image for s in steps):
+            continue
+        for key, core in CORES.items():
+            path = build(core, args.profile, target_dir, image) if not args.no_build else elf_path(
+                core, args.profile, target_dir, image)
+            fws[key, image] = Firmware(core, path)
+            progs[key, image] = wcet.Program(path, core.cycles)
+    base = {k: fws[k, "main"].call("io_overhead", [0], count=True)[0] for k in CORES}
     rows, failures = [], []
     for s in steps:
-        fw = fws[s.core]
+        fw = fws[s.core, s.image]
         bound = None
         try:
-            bound = progs[s.core].bound(fw.syms[s.entry])
+            bound = progs[s.core, s.image].bound(fw.syms[s.entry])
         except wcet.WcetError as e:
             failures.append(f"{s.label} {s.core}: no static bound: {e}")
-        own = measure(fw, s.entry, s.vectors, s.prepare, bound)
-        ref = measure(fw, s.reference, s.vectors, s.prepare) if s.reference else None
+        own = measure(fw, s.entry, s.vectors, s.prepare, bound, s.prep_mask)
+        ref = measure(fw, s.reference, s.vectors, s.prepare, mask=s.prep_mask) if s.reference else None
         if bound is not None:
             failures += bound_checks(s, bound, own)
         ratio = None
@@ -793,7 +898,7 @@ def run(args):
                 failures.append(f"{s.label} {s.core} {s.backend}: {ARM_JOINTS} joints use {arm:.1%} "
                                 f"> {s.max_arm_share:.0%} of the tick (static bound)")
     print_table(rows, base, args.profile)
-    return failures, fws
+    return failures, {k: fw for (k, image), fw in fws.items() if image == "main"}
 
 
 def share(cycles, clock_hz=150e6, joints=1):

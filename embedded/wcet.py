@@ -51,7 +51,15 @@ from elftools.elf.elffile import ELFFile
 # header per entry into the loop, and why. `count.py` records, for every
 # vector it runs, the back-edge traversals per loop entry in the emulator and
 # fails if one exceeds its bound here.
+_ADAPT = (3, "the adaptation of the four friction parameters, `for j in 0..4` in "
+              "RobustAdaptiveConfig::commit_valid (src/control/adaptive.rs): four passes, three jumps back")
 LOOP_BOUNDS = {
+    ("ModeConfig", "6update"): _ADAPT,
+    ("RobustAdaptiveConfig", "6update"): _ADAPT,
+    "active_i16f16": _ADAPT,
+    "active_f32": _ADAPT,
+    ("KinematicErrorModel", "6series"): (6, "the seven terms of eq. (3.7), `KinematicErrorModel::series` "
+                                            "(src/harmonic_drive/kinematic_error.rs): seven passes, six jumps back"),
     # compiler_builtins' shift-and-subtract division (Armv6-M has no divide
     # instruction): at most one iteration per quotient bit.
     "__udivsi3": (32, "one iteration per quotient bit of a 32-bit division"),

@@ -145,8 +145,53 @@ entry!(prepare_est(pos_lo: u32, pos_hi: u32, counter: u32) => unsafe { steps::pr
 // `prepare_joint` sets the estimator state and drives the mode state into
 // one of the scenarios of `joint::warm_up`. The reference variants replace
 // the estimator's `sin_cos`, `exp`, `tan` by libm / cordic.
-entry!(joint_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, q: f32, v: f32, te: f32) => unsafe { joint::step_f32(l, m, [qd, vd, ad, q, v, te]) });
-entry!(joint_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, te: I16F16) => unsafe { joint::step_x(l, m, [qd, vd, ad, q, v, te]) });
+entry!(joint_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, q: f32, v: f32, te: f32) => unsafe { joint::step_f32::<{ joint::KE }, { joint::STOP }>(l, m, [qd, vd, ad, q, v, te]) });
+entry!(joint_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, te: I16F16) => unsafe { joint::step_x::<{ joint::KE }, { joint::STOP }>(l, m, [qd, vd, ad, q, v, te]) });
+// The entries below are built only with the `variants` feature, into a
+// second image: each added caller of a library function changes LLVM's
+// inlining decisions, and the image above must stay the firmware a user of
+// the default joint configuration builds. In the second image functions
+// shared by several of these entries are called rather than inlined, so
+// its counts are, if anything, high.
+// The other configurations a user can choose: collision reaction Passive,
+// and no kinematic-error model (same readings, same prepare).
+#[cfg(feature = "variants")]
+entry!(joint_passive_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, q: f32, v: f32, te: f32) => unsafe { joint::step_f32::<{ joint::KE }, { joint::PASSIVE }>(l, m, [qd, vd, ad, q, v, te]) });
+#[cfg(feature = "variants")]
+entry!(joint_noke_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, q: f32, v: f32, te: f32) => unsafe { joint::step_f32::<{ joint::NO_KE }, { joint::STOP }>(l, m, [qd, vd, ad, q, v, te]) });
+#[cfg(feature = "variants")]
+entry!(joint_passive_noke_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, q: f32, v: f32, te: f32) => unsafe { joint::step_f32::<{ joint::NO_KE }, { joint::PASSIVE }>(l, m, [qd, vd, ad, q, v, te]) });
+#[cfg(feature = "variants")]
+entry!(joint_passive_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, te: I16F16) => unsafe { joint::step_x::<{ joint::KE }, { joint::PASSIVE }>(l, m, [qd, vd, ad, q, v, te]) });
+#[cfg(feature = "variants")]
+entry!(joint_noke_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, te: I16F16) => unsafe { joint::step_x::<{ joint::NO_KE }, { joint::STOP }>(l, m, [qd, vd, ad, q, v, te]) });
+#[cfg(feature = "variants")]
+entry!(joint_passive_noke_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, te: I16F16) => unsafe { joint::step_x::<{ joint::NO_KE }, { joint::PASSIVE }>(l, m, [qd, vd, ad, q, v, te]) });
+
+// The stand-alone laws (arguments: desired position, speed, acceleration,
+// measured position, speed, joint torque; `prepare_joint` sets the active
+// law's state): the robust adaptive law with adaptation, eq. (4.19), and
+// the passive law, eq. (4.32).
+#[cfg(feature = "variants")]
+entry!(active_f32(qd: f32, vd: f32, ad: f32, q: f32, v: f32, tau: f32) => unsafe { joint::active_f32([qd, vd, ad, q, v, tau]) });
+#[cfg(feature = "variants")]
+entry!(active_i16f16(qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, tau: I16F16) => unsafe { joint::active_x([qd, vd, ad, q, v, tau]) });
+#[cfg(feature = "variants")]
+entry!(passive_f32(qd: f32, vd: f32, ad: f32, q: f32, v: f32, tau: f32) => unsafe { joint::passive_f32([qd, vd, ad, q, v, tau]) });
+#[cfg(feature = "variants")]
+entry!(passive_i16f16(qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, tau: I16F16) => unsafe { joint::passive_x([qd, vd, ad, q, v, tau]) });
+
+// The estimate from angles (`update_radians`, eq. 2.13 from radians; with
+// the kinematic-error model): link angle, motor angle (stored angle units),
+// motor torque.
+#[cfg(feature = "variants")]
+entry!(est_radians_f32(l: f32, m: f32, t: f32) => unsafe { steps::EST_F32.assume_init_ref().update_radians(l, m, t) });
+#[cfg(feature = "variants")]
+entry!(est_radians_i16f16(l: I16F16, m: I16F16, t: I16F16) => unsafe { steps::EST_X.assume_init_ref().update_radians(l, m, t) });
+
+// Hook for the wrist step (ch. 5-6): one `entry!` line per backend here,
+// its configuration built in `init`, and a `Step` row in count.py's
+// `wrist_steps()`.
 entry!(joint_libm_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, q: f32, v: f32, te: f32) => unsafe { joint::step_libm_f32(l, m, [qd, vd, ad, q, v, te]) });
 entry!(joint_cordic_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, te: I16F16) => unsafe { joint::step_cordic_x(l, m, [qd, vd, ad, q, v, te]) });
 entry!(prepare_joint(pos_lo: u32, pos_hi: u32, counter: u32, scenario: u32, seed: u32) => unsafe { joint::prepare(pos_lo, pos_hi, counter, scenario, seed) });
@@ -161,14 +206,20 @@ mod steps {
 
     /// SHD-17-100 with the Table 3.2 kinematic error, a 17-bit link encoder
     /// and a 2000-count motor encoder, ±60 N·m output limit.
-    pub fn params() -> TorqueEstimatorParams {
+    /// `with_kinematic_error: false`: the same drive and encoders without
+    /// the model.
+    pub fn params(with_kinematic_error: bool) -> TorqueEstimatorParams {
         let drive = match CatalogueData::SHD_17_100.identify() {
             Ok(d) => d,
             Err(_) => crate::firmware_panic(),
         };
         match TorqueEstimatorParams::try_new(
             drive,
-            Some(KinematicErrorModel::table_3_2()),
+            if with_kinematic_error {
+                Some(KinematicErrorModel::table_3_2())
+            } else {
+                None
+            },
             1 << 17,
             2000,
             60.0,
@@ -188,12 +239,12 @@ mod steps {
     pub static mut REF_ST: MaybeUninit<RefState> = MaybeUninit::uninit();
 
     pub unsafe fn init() {
-        let p = params();
+        let p = params(true);
         EST_F32.write(TorqueEstimatorConfig::new(&p));
         EST_X.write(TorqueEstimatorConfig::new(&p));
         REF_F32.write(RefEstimator::new(&p));
         REF_X.write(RefEstimator::new(&p));
-        crate::joint::init(&p);
+        crate::joint::init(&p, &params(false));
     }
 
     /// Motor position (i64 from two words) and counter for every estimator
