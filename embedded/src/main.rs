@@ -435,34 +435,103 @@ mod target {
         };
     }
 
-    type Case = (extern "C" fn(), [u32; 3]);
+    type Case = (extern "C" fn(), [u32; 8]);
+    /// Pads an argument list to the eight words of a case.
+    const fn w<const N: usize>(a: [u32; N]) -> [u32; 8] {
+        let mut out = [0; 8];
+        let mut i = 0;
+        while i < N {
+            out[i] = a[i];
+            i += 1;
+        }
+        out
+    }
     /// IT-heavy f32 kernels (M4F) and the I16F16 kernels (M0+) at inputs
-    /// that take different branches.
+    /// that take different branches, then the joint step on both cores
+    /// (its state set by `prepare_joint`, scenario 1 with only the
+    /// backend's Stop state warmed up; an in-range reading and a link count
+    /// out of range with a counter jump).
     #[cfg(target_abi = "eabihf")]
-    static CROSSCHECK: [Case; 12] = [
-        (k_atan_f32, [0x3f00_0000, 0, 0]),
-        (k_atan_f32, [0xc2c8_0000, 0, 0]),
-        (k_tan_f32, [0x3fc9_0fda, 0, 0]),
-        (k_tan_f32, [0xbf40_0000, 0, 0]),
-        (k_sin_cos_f32, [0x4479_8000, 0, 0]),
-        (k_atan2_f32, [0xbf80_0000, 0xc000_0000, 0]),
-        (k_exp_f32, [0xc2c0_0000, 0, 0]),
-        (k_sqrt_f32, [0x0000_0003, 0, 0]),
-        (k_acos_f32, [0xbf7f_0000, 0, 0]),
-        (libm_tan_f32, [0x4479_8000, 0, 0]),
-        (est_f32, [1000, 5, 0x3e4c_cccd]),
-        (est_f32, [0xffff_ffff, 0x7fff_ffff, 0xbf80_0000]),
+    static CROSSCHECK: [Case; 16] = [
+        (k_atan_f32, w([0x3f00_0000, 0, 0])),
+        (k_atan_f32, w([0xc2c8_0000, 0, 0])),
+        (k_tan_f32, w([0x3fc9_0fda, 0, 0])),
+        (k_tan_f32, w([0xbf40_0000, 0, 0])),
+        (k_sin_cos_f32, w([0x4479_8000, 0, 0])),
+        (k_atan2_f32, w([0xbf80_0000, 0xc000_0000, 0])),
+        (k_exp_f32, w([0xc2c0_0000, 0, 0])),
+        (k_sqrt_f32, w([0x0000_0003, 0, 0])),
+        (k_acos_f32, w([0xbf7f_0000, 0, 0])),
+        (libm_tan_f32, w([0x4479_8000, 0, 0])),
+        (est_f32, w([1000, 5, 0x3e4c_cccd])),
+        (est_f32, w([0xffff_ffff, 0x7fff_ffff, 0xbf80_0000])),
+        (prepare_joint, w([0xffff_fc18, 0xffff_ffff, 5, 0x101, 7])),
+        (
+            joint_f32,
+            [
+                1000,
+                5,
+                0x3f80_0000,
+                0x4000_0000,
+                0x42c8_0000,
+                0x3f80_20c5,
+                0x4020_0000,
+                0x3f00_0000,
+            ],
+        ),
+        (prepare_joint, w([0x3b9a_c9ff, 0, 0x1234_5678, 0x103, 99])),
+        (
+            joint_f32,
+            [
+                0xffff_ffff,
+                0x7fff_ffff,
+                0xc1f0_0000,
+                0x4248_0000,
+                0x46ea_6000,
+                0xc1ef_ffff,
+                0x4120_0000,
+                0xc0a0_0000,
+            ],
+        ),
     ];
     #[cfg(not(target_abi = "eabihf"))]
-    static CROSSCHECK: [Case; 8] = [
-        (k_atan_i16f16, [0x0001_8000, 0, 0]),
-        (k_tan_i16f16, [0x0001_9000, 0, 0]),
-        (k_sin_cos_i16f16, [0x0100_0000, 0, 0]),
-        (k_atan2_i16f16, [0xffff_0000, 0xfffe_0000, 0]),
-        (k_exp_i16f16, [0xfffc_0000, 0, 0]),
-        (k_sqrt_i16f16, [0x0000_0003, 0, 0]),
-        (est_i16f16, [1000, 5, 0x0000_c000]),
-        (est_i16f16, [0xffff_ffff, 0x7fff_ffff, 0xfc18_0000]),
+    static CROSSCHECK: [Case; 12] = [
+        (k_atan_i16f16, w([0x0001_8000, 0, 0])),
+        (k_tan_i16f16, w([0x0001_9000, 0, 0])),
+        (k_sin_cos_i16f16, w([0x0100_0000, 0, 0])),
+        (k_atan2_i16f16, w([0xffff_0000, 0xfffe_0000, 0])),
+        (k_exp_i16f16, w([0xfffc_0000, 0, 0])),
+        (k_sqrt_i16f16, w([0x0000_0003, 0, 0])),
+        (est_i16f16, w([1000, 5, 0x0000_c000])),
+        (est_i16f16, w([0xffff_ffff, 0x7fff_ffff, 0xfc18_0000])),
+        (prepare_joint, w([0xffff_fc18, 0xffff_ffff, 5, 0x401, 7])),
+        (
+            joint_i16f16,
+            [
+                1000,
+                5,
+                0x0001_0000,
+                0x0002_0000,
+                0x0064_0000,
+                0x0001_0042,
+                0x0002_8000,
+                0x0000_8000,
+            ],
+        ),
+        (prepare_joint, w([0x3b9a_c9ff, 0, 0x1234_5678, 0x403, 99])),
+        (
+            joint_i16f16,
+            [
+                0xffff_ffff,
+                0x7fff_ffff,
+                0xffe2_0000,
+                0x0032_0000,
+                0x7530_0000,
+                0xffe2_0001,
+                0x000a_0000,
+                0xfffb_0000,
+            ],
+        ),
     ];
 
     /// Semihosting `SYS_EXIT` (`ADP_Stopped_ApplicationExit` for status 0).
