@@ -1,15 +1,20 @@
 #!/usr/bin/env python3
-"""Instruction counts of mrr-control's steps on Cortex-M4F and Cortex-M0+.
+"""Instruction counts and static bounds of mrr-control's steps on Cortex-M4F
+and Cortex-M0+.
 
 Builds the firmware crate of this directory for `thumbv7em-none-eabihf`
-(Cortex-M4F, f32) and `thumbv6m-none-eabi` (Cortex-M0+, I16F16), loads each
-ELF into the unicorn CPU emulator, calls every entry of `all_steps()` over
-its list of worst-case argument vectors, and counts the executed
-instructions. It prints one table (step x core x backend: worst-case
-instructions, estimated cycles, share of the 4 ms budget, ratio to the
-libm/cordic reference) and exits non-zero when a budget of a `Step` row is
-exceeded. Adding a step is one `Step(...)` line in `all_steps()` (and one
-`entry!` line in `src/main.rs`).
+(Cortex-M4F, f32) and `thumbv6m-none-eabi` (Cortex-M0+, I16F16), as two
+images (the default entries, and the `variants` feature's), computes each
+entry's static worst-case bound from the ELF (`wcet.py`), loads each ELF
+into the unicorn CPU emulator, calls every entry of `all_steps()` over its
+list of argument vectors (plus the search's `found_vectors.json`), and
+counts the executed instructions. It prints one table (step x core x
+backend: bound, largest observed count, bound / observed, the bound's
+cycles and shares of the 4 ms tick, the libm/cordic reference) and exits
+non-zero when a budget of a `Step` row is exceeded by its bound, when an
+observed count exceeds its bound, or when a loop bound or the coverage of
+the analysed graph is contradicted by the emulator. Adding a step is one
+`Step(...)` line in `all_steps()` (and one `entry!` line in `src/main.rs`).
 
 Counting. The table counts per translation block: every instruction of an
 executed block counts once, which includes the condition-failed
@@ -33,7 +38,7 @@ single-cycle multiplier (MULS = 1 cycle; the small-multiplier option takes
 32). Shares of the 4 ms tick use cycles x 2 for wait states and model error.
 
 Usage: count.py [--profile release|release-s] [--quick] [--qemu] [--selftest]
-                [--bitcheck N] [--no-build] [--report-only]
+                [--bitcheck N] [--no-build] [--report-only] [--main-only] [--only LABEL]
 """
 
 import argparse
@@ -851,6 +856,8 @@ def run(args):
     steps = all_steps(args.quick)
     if args.only:
         steps = [s for s in steps if args.only in s.label]
+    if args.main_only:
+        steps = [s for s in steps if s.image == "main"]
     # The variants image first: both share the output path, and the main
     # image must be the one left there (QEMU, profile.py, the bit check).
     for image in ("variants", "main"):
@@ -1119,6 +1126,7 @@ def main():
     p.add_argument("--quick", action="store_true", help="a twelfth of the argument vectors")
     p.add_argument("--only", metavar="LABEL", help="only the rows whose label contains LABEL")
     p.add_argument("--no-build", action="store_true")
+    p.add_argument("--main-only", action="store_true", help="only the rows of the main image (no variants build)")
     p.add_argument("--report-only", action="store_true", help="print the table; do not fail on a budget")
     p.add_argument("--qemu", action="store_true", help="cross-check the IT-block accounting against QEMU")
     p.add_argument("--bitcheck", type=int, default=0, metavar="N",

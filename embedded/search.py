@@ -35,7 +35,7 @@ LINKS = [L, L + 1, 0xFFFFFFFF, 0x80000000, 0, L - 1]
 # The readings and their ranges (SI: rad, rad/s, rad/s², N·m; the step
 # stores I16F16 values in the crate's stored units, which for these fields
 # are the same).
-COORDS = ["scenario", "seed", "pos", "c0", "jump", "link", "qd", "vd", "ad", "e", "ev", "te"]
+COORDS = ["scenario", "seed", "pos", "c0", "jump", "link", "wrap", "qd", "vd", "ad", "e", "ev", "te"]
 
 
 def random_point(rng):
@@ -47,6 +47,9 @@ def random_point(rng):
         "jump": rng.choice([rng.randrange(-60, 60), rng.choice(JUMPS), rng.randrange(-(2**31), 2**31)]),
         "link": ("torsion", rng.choice(count.JOINT_D) + rng.randrange(-2000, 2000)) if rng.random() < 0.7
         else ("raw", rng.choice(LINKS + [rng.getrandbits(32)])),
+        # a consistent link count made invalid by adding wrap * L (the
+        # estimator reduces it modulo L and flags it)
+        "wrap": rng.choice([0, 0, 1, rng.randrange(1 << 15)]),
         "qd": rng.uniform(-30, 30),
         "vd": rng.uniform(-50, 50),
         "ad": rng.choice([0.0, rng.uniform(-2000, 2000), 3e4]),
@@ -62,6 +65,8 @@ def mutate(p, k, rng):
     r = rng.random()
     if k == "scenario":
         q[k] = rng.randrange(count.JOINT_SCENARIOS)
+    elif k == "wrap":
+        q[k] = rng.choice([0, 1, rng.randrange(1 << 15)])
     elif k in ("seed", "c0"):
         q[k] = rng.getrandbits(32)
     elif k == "pos":
@@ -93,6 +98,7 @@ def words(p, f):
         pp = p["pos"] % MN
         pe = (pp + p["jump"]) % MN
         lc = ((p["link"][1] - pe * L) // MN) % L
+        lc += min(p.get("wrap", 0), (0xFFFFFFFF - lc) // L) * L
         pos, m = -pp, (p["c0"] - p["jump"]) & 0xFFFFFFFF
     else:
         lc, pos, m = p["link"][1], p["pos"], (p["c0"] + p["jump"]) & 0xFFFFFFFF
@@ -101,7 +107,7 @@ def words(p, f):
     return pre, args
 
 
-def search(fw, entry, f, mask, seconds, rng, keep=8):
+def search(fw, entry, f, mask, seconds, rng, keep=8, pinned=False):
     def evaluate(p):
         pre, args = words(p, f)
         pre[3] |= mask
@@ -112,20 +118,32 @@ def search(fw, entry, f, mask, seconds, rng, keep=8):
 
     t_end = time.time() + seconds
     found, evals = [], 0
+    restarts = 0
     while time.time() < t_end:
         cur = random_point(rng)
+        if restarts % 3 == 2 or pinned:
+            # every third restart from an invalid link count with a counter
+            # jump of an output revolution or more (a known expensive pair)
+            cur["link"] = (("raw", rng.choice([L, 0xFFFFFFFF, L + rng.getrandbits(16)])) if rng.random() < 0.3
+                           else ("torsion", rng.choice(count.JOINT_D)))
+            cur["wrap"] = rng.choice([1, rng.randrange(1, 1 << 15)])
+            cur["jump"] = rng.choice([-907_999_999, 907_999_999, rng.randrange(-(2**31), -(10**8))])
+        restarts += 1
         c = evaluate(cur)
         evals += 1
         improved = True
         while improved and time.time() < t_end:
             improved = False
-            for k in rng.sample(COORDS, len(COORDS)):
+            coords = [k for k in COORDS if not (pinned and k in ("wrap", "jump"))]
+            for k in rng.sample(coords, len(coords)):
                 for _ in range(4):
                     q = mutate(cur, k, rng)
                     n = evaluate(q)
                     evals += 1
                     if n > c:
                         cur, c, improved = q, n, True
+                    elif n == c and rng.random() < 0.2:
+                        cur = q  # drift along a plateau
         found.append((c, cur))
     found.sort(key=lambda t: -t[0])
     out, seen = [], set()
@@ -156,6 +174,8 @@ def main():
     ap.add_argument("--only", help="entries containing this")
     ap.add_argument("--no-build", action="store_true")
     ap.add_argument("--out", default=count.FOUND_PATH)
+    ap.add_argument("--pinned", action="store_true",
+                    help="every restart from an invalid link count with a large counter jump, kept fixed")
     args = ap.parse_args()
     target_dir = os.environ.get("CARGO_TARGET_DIR", os.path.join(count.HERE, "target"))
     data = {}
@@ -171,7 +191,7 @@ def main():
                     else count.build(core, "release", target_dir, image))
             fw = count.Firmware(core, path)
             rng = random.Random(f"{args.seed} {core_key} {entry}")
-            out, evals, restarts = search(fw, entry, f, mask, args.seconds, rng)
+            out, evals, restarts = search(fw, entry, f, mask, args.seconds, rng, pinned=args.pinned)
             key = f"{core_key} {entry}"
             old = data.get(key, [])
             merged = sorted(old + out, key=lambda v: -v["count"])
