@@ -177,7 +177,7 @@ fn record(
         measured_torsion: measured_torsion(m, s, 0),
         true_torsion,
         proposed: models.proposed.torsion(tau_f, tau_w),
-        flexspline: models.proposed.flexspline.torsion(tau_f),
+        flexspline: models.proposed.flexspline().torsion(tau_f),
         piecewise: models.piecewise.torsion(tau_f),
         cubic: models.cubic.torsion(tau_f),
         piecewise_input: models.piecewise.torsion(-n * tau_w),

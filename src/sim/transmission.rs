@@ -180,7 +180,7 @@ impl FlexsplineBackbone {
     }
 
     fn ck(&self) -> f64 {
-        self.flexspline.c_f * self.flexspline.k_f0
+        self.flexspline.c_f() * self.flexspline.k_f0()
     }
 
     /// Torque (N·m) at torsion `δ` (rad).
@@ -196,7 +196,7 @@ impl FlexsplineBackbone {
 
     fn stiffness_abs(&self, d: f64) -> f64 {
         let tan = libm::tan(self.ck() * d.min(self.limit()));
-        self.flexspline.k_f0 * (1.0 + tan * tan)
+        self.flexspline.k_f0() * (1.0 + tan * tan)
     }
 
     /// Local stiffness `K_f0 (1 + tan²(c_f K_f0 δ))` (N·m/rad), eq. (2.24)
@@ -210,8 +210,8 @@ impl FlexsplineBackbone {
     /// (`x = |δ| − δ_L`).
     pub fn energy(&self, torsion: f64) -> f64 {
         let (d, l) = (torsion.abs(), self.limit());
-        let c = self.flexspline.c_f;
-        let v = |x: f64| -libm::log(libm::cos(self.ck() * x)) / (c * c * self.flexspline.k_f0);
+        let c = self.flexspline.c_f();
+        let v = |x: f64| -libm::log(libm::cos(self.ck() * x)) / (c * c * self.flexspline.k_f0());
         if d <= l {
             v(d)
         } else {
@@ -274,7 +274,7 @@ impl Backbone {
                 Backbone::Tanh(TanhStiffness::through_t2_knee(&piecewise)?)
             }
             BackboneShape::IdentifiedFlexspline => Backbone::Flexspline(FlexsplineBackbone {
-                flexspline: data.identify()?.flexspline,
+                flexspline: data.identify()?.flexspline(),
             }),
         })
     }
@@ -434,7 +434,7 @@ impl DrivePlantParams {
         match &self.kinematic_error {
             None => (0.0, 0.0, 0.0),
             Some(k) => {
-                let c = &k.coefficients;
+                let c = &k.coefficients();
                 let (sl, cl) = libm::sincos(q_l);
                 let (s1, c1) = libm::sincos(-q_m);
                 let (s2, c2) = (2.0 * s1 * c1, c1 * c1 - s1 * s1);
@@ -643,7 +643,7 @@ mod tests {
         assert!((cubic.torque(d1) - c.t1).abs() < 1e-9 * c.t2);
         assert!((cubic.torque(d2) - c.t2).abs() < 1e-9 * c.t2);
         let flex = get(BackboneShape::IdentifiedFlexspline);
-        let fs = c.identify().unwrap().flexspline;
+        let fs = c.identify().unwrap().flexspline();
         for t in [-12.0, 0.5, 7.0] {
             assert!((flex.torque(fs.torsion(t)) - t).abs() < 1e-9 * 12.0);
         }
