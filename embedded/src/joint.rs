@@ -13,7 +13,7 @@
 use core::mem::MaybeUninit;
 use fixed::types::I16F16;
 use mrr_control::control::{
-    ControlInput, ModeConfig, ModeOutput, ModeParams, ModeState, PassiveParams,
+    ControlInput, ModeConfig, ModeOutput, ModeParams, ModeSettings, ModeState, PassiveParams,
     RobustAdaptiveParams,
 };
 use mrr_control::estimation::collision::{CollisionParams, CollisionReaction};
@@ -37,23 +37,23 @@ fn ok<T, E>(r: Result<T, E>) -> T {
 /// 0.1 s; collisions above 4 N·m for 2 samples (released below 3 N·m for
 /// 2 samples) stop the joint.
 pub fn mode_params() -> ModeParams {
-    ok(ModeParams::try_new(
-        ok(RobustAdaptiveParams::table_4_1()),
-        ok(PassiveParams::table_4_1(2000.0)),
-        2.0,
-        1.0,
-        3,
-        5,
-        10.0,
-        0.1,
-        Some(ok(CollisionParams::try_new(
+    ok(ModeParams::try_new(ModeSettings {
+        active: ok(RobustAdaptiveParams::table_4_1()),
+        passive: ok(PassiveParams::table_4_1(2000.0)),
+        enter_passive: 2.0,
+        exit_passive: 1.0,
+        debounce: 3,
+        dwell: 5,
+        rejoin_bandwidth: 10.0,
+        bias_time_constant: 0.1,
+        collision: Some(ok(CollisionParams::try_new(
             4.0,
             3.0,
             2,
             2,
             CollisionReaction::Stop,
         ))),
-    ))
+    }))
 }
 
 static mut EST_F32: MaybeUninit<TorqueEstimatorConfig<f32>> = MaybeUninit::uninit();

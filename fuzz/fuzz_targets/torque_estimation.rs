@@ -52,7 +52,9 @@ fuzz_target!(
         };
         // Scaled catalogues either fail by name or identify.
         if let Ok(c) = CatalogueData::scaled_from_shd17(cat[0], cat[1], cat[6]) {
-            let d = c.identify().expect("a scaled SHD-17 catalogue always identifies");
+            let d = c
+                .identify()
+                .expect("a scaled SHD-17 catalogue always identifies");
             assert!(d.flexspline().k_f0().is_finite() && d.flexspline().c_f().is_finite());
         }
         let ke = with_ke.then(KinematicErrorModel::table_3_2);

@@ -33,7 +33,7 @@ pub use adaptive::{
     RobustAdaptiveState, UncertaintyBounds,
 };
 pub use bound::UltimateBound;
-pub use mode::{JointMode, ModeConfig, ModeOutput, ModeParams, ModeState};
+pub use mode::{JointMode, ModeConfig, ModeOutput, ModeParams, ModeSettings, ModeState};
 pub use passive::{PassiveConfig, PassiveOutput, PassiveParams};
 
 /// One control sample of one joint, in stored units of `S::UNITS`.

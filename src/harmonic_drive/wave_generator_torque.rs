@@ -18,13 +18,12 @@
 use crate::error::{gear_ratio, positive, ParamError};
 use crate::scalar::{Coef, Scalar};
 
-/// Parameters of the back-driving friction play, eq. (2.40).
+/// Parameters of the back-driving friction play, eq. (2.40); built only by
+/// [`try_new`](Self::try_new).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WaveGeneratorTorqueParams {
-    /// Back-driving friction torque at the flexspline `τ_fb`, N·m (> 0).
-    pub backdrive_friction: f64,
-    /// Gear ratio `N` (≥ 1).
-    pub ratio: f64,
+    backdrive_friction: f64,
+    ratio: f64,
 }
 
 impl WaveGeneratorTorqueParams {
@@ -36,6 +35,16 @@ impl WaveGeneratorTorqueParams {
             backdrive_friction,
             ratio,
         })
+    }
+
+    /// Back-driving friction torque at the flexspline `τ_fb`, N·m (> 0).
+    pub fn backdrive_friction(&self) -> f64 {
+        self.backdrive_friction
+    }
+
+    /// Gear ratio `N` (≥ 1).
+    pub fn ratio(&self) -> f64 {
+        self.ratio
     }
 }
 
