@@ -264,6 +264,60 @@ impl TorqueEstimatorParams {
         self.max_torque
     }
 
+    /// The agreement of backend `S` with `f64` on the count path, summed
+    /// term by term from the kernels' proven bounds and doubled (for the
+    /// second-order terms and the rounding of the bound's own inputs):
+    ///
+    /// * `I16F16` (torsion step `q = 2⁻¹⁶` mrad): the torsion from counts
+    ///   `q/2`; the wave-generator term `A_w(2⁻¹⁵ + 2⁻¹⁷(1 + c_w/10³)) + q/2`
+    ///   (`A_w` its amplitude in mrad: `exp` error, quantized input and
+    ///   product); the kinematic error of the module docs,
+    ///   `q/2 + Σ_j [q + R_j(2⁻¹⁶ + 5.1e-9)]`; the `tan` argument's rounding
+    ///   to `2⁻¹⁷` rad, `2⁻¹⁷/(c_f K_f0)` rad of torsion. Torque: `tan` ≤ 1
+    ///   step (proven), scaled by `1/c_f`, and the last rounding:
+    ///   `2⁻¹⁶/c_f + 2⁻¹⁶` N·m, plus `2⁻²⁹` relative (31-bit coefficients).
+    /// * `f32` (`u = 2⁻²⁴`): torsion `8u` of the torsion range, `8u A_w`,
+    ///   `(30u + 5.1e-9)` times the kinematic-error bound; torque `2⁻²⁰`
+    ///   relative (`tan` ≤ 2⁻²², proven, and three roundings).
+    /// * `f64`: zero (the reference itself).
+    pub fn agreement_bound<S: Scalar>(&self) -> AgreementBound {
+        let ke = self.kinematic_error.map_or(0.0, |k| k.amplitude_bound());
+        let wg = self.drive.output_wave_generator_torsion();
+        let f = self.drive.flexspline();
+        let e_theta = 3.5 * TAU / 4_294_967_296.0;
+        if S::NAME == "I16F16" {
+            let t = crate::scalar::units::FIXED.torsion;
+            let q = 1.0 / 65536.0; // stored torsion step, mrad
+            let amp = wg * t;
+            let c_w = self.drive.wave_generator().c_w();
+            let wave = amp * (2.0 * q + q / 2.0 * (1.0 + c_w / 1e3)) + q / 2.0;
+            let kin = self.kinematic_error.map_or(0.0, |k| {
+                let r = k.phase_form().amplitudes;
+                q / 2.0 + r.iter().map(|rj| q + rj * t * (q + e_theta)).sum::<f64>()
+            });
+            let angle = q / 2.0 / (f.c_f() * f.k_f0()) * t;
+            AgreementBound {
+                torsion: 2.0 * (q / 2.0 + wave + kin + angle) / t,
+                torque_relative: 2.0 * 2f64.powi(-29),
+                torque_absolute: 2.0 * (q / f.c_f() + q),
+            }
+        } else if S::NAME == "f32" {
+            let u = 2f64.powi(-24);
+            AgreementBound {
+                torsion: 2.0
+                    * (8.0 * u * self.torsion_range() + 8.0 * u * wg + (30.0 * u + e_theta) * ke),
+                torque_relative: 2.0 * 2f64.powi(-20),
+                torque_absolute: 1e-30,
+            }
+        } else {
+            AgreementBound {
+                torsion: 0.0,
+                torque_relative: 0.0,
+                torque_absolute: 0.0,
+            }
+        }
+    }
+
     /// The largest total torsion `|Δθ|` (rad) the model can produce with
     /// any torques: the flexspline's `π/(2 c_f K_f0)`, plus the
     /// wave-generator term `1/(c_w N K_w0)`, plus the kinematic-error
@@ -275,6 +329,55 @@ impl TorqueEstimatorParams {
         1.01 * (self.drive.flexspline().max_torsion()
             + self.drive.output_wave_generator_torsion()
             + ke)
+    }
+}
+
+/// How far the estimate of a backend may lie from the `f64` estimate for
+/// the same readings on the count path ([`TorqueEstimatorConfig::update`];
+/// the motor torque quantized to the backend's unit): the backend's
+/// flexspline torsion `Δθ_f` within [`torsion`](Self::torsion) of the `f64`
+/// one, and its torque inside
+/// [`torque_interval`](Self::torque_interval). From
+/// [`TorqueEstimatorParams::agreement_bound`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AgreementBound {
+    /// Bound on the flexspline-torsion difference, rad.
+    pub torsion: f64,
+    /// Relative bound on the torque rounding after eq. (3.10)'s `tan`.
+    pub torque_relative: f64,
+    /// Absolute bound on the torque rounding, N·m.
+    pub torque_absolute: f64,
+}
+
+impl AgreementBound {
+    /// The interval (N·m) that holds the backend's torque when the `f64`
+    /// flexspline torsion is `flexspline_torsion` (rad): eq. (3.10) in
+    /// `f64`, saturated at `±max_torque` and out of the `tan` branch (a
+    /// non-decreasing function `T`), taken at `Δθ_f ∓ torsion`, widened by
+    /// the relative and absolute torque bounds.
+    pub fn torque_interval(
+        &self,
+        p: &TorqueEstimatorParams,
+        flexspline_torsion: f64,
+    ) -> (f64, f64) {
+        let f = p.drive.flexspline();
+        let max = p.max_torque;
+        let t = |x: f64| {
+            let angle = x * f.c_f() * f.k_f0();
+            if angle.abs() >= core::f64::consts::FRAC_PI_2 {
+                max.copysign(x)
+            } else {
+                (libm::tan(angle) / f.c_f()).clamp(-max, max)
+            }
+        };
+        let (lo, hi) = (
+            t(flexspline_torsion - self.torsion),
+            t(flexspline_torsion + self.torsion),
+        );
+        (
+            lo - self.torque_relative * lo.abs() - self.torque_absolute,
+            hi + self.torque_relative * hi.abs() + self.torque_absolute,
+        )
     }
 }
 
