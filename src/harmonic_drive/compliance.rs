@@ -237,6 +237,11 @@ impl CubicStiffness {
 ///
 /// Built only by [`try_new`](Self::try_new), so every value a
 /// configuration sees has passed its checks.
+///
+/// ```compile_fail
+/// // Fields are private: a NaN `c_f` cannot skip `try_new`.
+/// let f = mrr_control::harmonic_drive::FlexsplineParams { k_f0: 8.3e3, c_f: f64::NAN };
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FlexsplineParams {
     k_f0: f64,
