@@ -14,7 +14,7 @@ use core::f64::consts::FRAC_PI_2;
 use core::hint::black_box;
 use criterion::{BenchmarkId, Criterion, Throughput};
 use mrr_control::control::{
-    ControlInput, ModeConfig, ModeParams, PassiveParams, RobustAdaptiveParams,
+    ControlInput, ModeConfig, ModeParams, ModeSettings, PassiveParams, RobustAdaptiveParams,
 };
 use mrr_control::estimation::collision::{CollisionParams, CollisionReaction};
 use mrr_control::estimation::torque::{TorqueEstimatorConfig, TorqueEstimatorParams};
@@ -128,20 +128,20 @@ fn estimator_bench<S: Scalar>(g: &mut Group<'_>) {
 /// interaction and back below 1 N·m (debounce 3, dwell 5), collision stop
 /// above 4 N·m.
 fn mode_params() -> ModeParams {
-    ModeParams::try_new(
-        RobustAdaptiveParams::table_4_1().expect("Table 4.1"),
-        PassiveParams::table_4_1(2000.0).expect("Table 4.1"),
-        2.0,
-        1.0,
-        3,
-        5,
-        10.0,
-        0.1,
-        Some(
+    ModeParams::try_new(ModeSettings {
+        active: RobustAdaptiveParams::table_4_1().expect("Table 4.1"),
+        passive: PassiveParams::table_4_1(2000.0).expect("Table 4.1"),
+        enter_passive: 2.0,
+        exit_passive: 1.0,
+        debounce: 3,
+        dwell: 5,
+        rejoin_bandwidth: 10.0,
+        bias_time_constant: 0.1,
+        collision: Some(
             CollisionParams::try_new(4.0, 3.0, 2, 2, CollisionReaction::Stop)
                 .expect("valid detector"),
         ),
-    )
+    })
     .expect("valid mode parameters")
 }
 

@@ -154,14 +154,14 @@ fn main() -> std::io::Result<()> {
 
     let t0 = Instant::now();
     let c = torque_estimation(&TorqueEstimationConfig::default());
-    let k = c.fitted_kinematic_error.coefficients;
+    let k = c.fitted_kinematic_error.coefficients();
     println!("\nKinematic error fitted from two calibration revolutions (rad):");
     println!(
         "  a0 {:.3e} al1 {:.3e} bl1 {:.3e} aw1 {:.3e} bw1 {:.3e} aw2 {:.3e} bw2 {:.3e}",
         k[0], k[1], k[2], k[3], k[4], k[5], k[6]
     );
-    let t =
-        mrr_control::harmonic_drive::kinematic_error::KinematicErrorModel::table_3_2().coefficients;
+    let t = mrr_control::harmonic_drive::kinematic_error::KinematicErrorModel::table_3_2()
+        .coefficients();
     println!(
         "  Table 3.2:  a0 {:.3e} al1 {:.3e} bl1 {:.3e} aw1 {:.3e} bw1 {:.3e} aw2 {:.3e} bw2 {:.3e}",
         t[0], t[1], t[2], t[3], t[4], t[5], t[6]
@@ -252,7 +252,7 @@ fn backbone_table(dir: &std::path::Path) -> std::io::Result<()> {
             let tau = i as f64 * shd.t2 / 1200.0;
             let truth = b.torsion_by_bisection(tau);
             let models = [
-                m.proposed.flexspline.torsion(tau),
+                m.proposed.flexspline().torsion(tau),
                 m.piecewise.torsion(tau),
                 m.cubic.torsion(tau),
             ];

@@ -374,7 +374,7 @@ fn fig2_11(r: &mut Report) -> Result<Figure, Error> {
     let taus = torque_grid(d.t2, 480);
     let proposed: Vec<_> = taus
         .iter()
-        .map(|&t| (t, m.proposed.flexspline.local_stiffness(t) * 1e-3))
+        .map(|&t| (t, m.proposed.flexspline().local_stiffness(t) * 1e-3))
         .collect();
     let piecewise: Vec<_> = taus
         .iter()
@@ -384,7 +384,7 @@ fn fig2_11(r: &mut Report) -> Result<Figure, Error> {
         .iter()
         .map(|&t| (t, m.cubic.local_stiffness(m.cubic.torsion(t)) * 1e-3))
         .collect();
-    let k = |t: f64| m.proposed.flexspline.local_stiffness(t) * 1e-3;
+    let k = |t: f64| m.proposed.flexspline().local_stiffness(t) * 1e-3;
     figure(
         &dir,
         "fig2_11_local_stiffness.svg",
@@ -424,7 +424,7 @@ fn fig2_12(r: &mut Report) -> Result<Figure, Error> {
     };
     let mut gap = 0.0f64;
     for &t in taus.iter().filter(|t| t.abs() <= d.t2) {
-        gap = gap.max((m.proposed.flexspline.torsion(t) - m.piecewise.torsion(t)).abs());
+        gap = gap.max((m.proposed.flexspline().torsion(t) - m.piecewise.torsion(t)).abs());
     }
     figure(
         &dir,
@@ -438,7 +438,7 @@ fn fig2_12(r: &mut Report) -> Result<Figure, Error> {
                 line(
                     "proposed, eq. (2.26)",
                     BLUE_,
-                    curve(&|t| m.proposed.flexspline.torsion(t)),
+                    curve(&|t| m.proposed.flexspline().torsion(t)),
                 ),
                 line(
                     "catalogue piecewise, eq. (2.11)",
@@ -690,18 +690,16 @@ const RATIO: f64 = 100.0;
 
 /// The link-side part of a kinematic-error model (`a0`, `a_l1`, `b_l1`).
 fn link_part(m: &KinematicErrorModel) -> KinematicErrorModel {
-    let c = m.coefficients;
-    KinematicErrorModel {
-        coefficients: [c[0], c[1], c[2], 0.0, 0.0, 0.0, 0.0],
-    }
+    let c = m.coefficients();
+    KinematicErrorModel::try_new([c[0], c[1], c[2], 0.0, 0.0, 0.0, 0.0])
+        .expect("a part of a valid model is valid")
 }
 
 /// The motor-side part (`a_w1`, `b_w1`, `a_w2`, `b_w2`).
 fn motor_part(m: &KinematicErrorModel) -> KinematicErrorModel {
-    let c = m.coefficients;
-    KinematicErrorModel {
-        coefficients: [0.0, 0.0, 0.0, c[3], c[4], c[5], c[6]],
-    }
+    let c = m.coefficients();
+    KinematicErrorModel::try_new([0.0, 0.0, 0.0, c[3], c[4], c[5], c[6]])
+        .expect("a part of a valid model is valid")
 }
 
 /// Link angles over one output revolution, rad.

@@ -17,13 +17,10 @@ use crate::scalar::Scalar;
 
 /// The drive the properties are stated for.
 pub fn shd17() -> FlexsplineParams {
+    // The catalogue constants are valid (tested); the error is unreachable.
     match CatalogueData::SHD_17_100.identify() {
-        Ok(p) => p.flexspline,
-        // The catalogue constants are valid; this arm is unreachable.
-        Err(_) => FlexsplineParams {
-            k_f0: 8.336e3,
-            c_f: 0.0449,
-        },
+        Ok(p) => p.flexspline(),
+        Err(e) => panic!("SHD-17-100 catalogue data rejected: {e}"),
     }
 }
 
@@ -52,7 +49,7 @@ pub fn sign_and_saturation_of<S: Scalar>(
     };
     // The flag is computed from the rounded angle: exact angle within one
     // resolution step (relative for floats) of π/2 may go either way.
-    let angle = d.to_f64() * (p.c_f * p.k_f0) / S::UNITS.torsion;
+    let angle = d.to_f64() * (p.c_f() * p.k_f0()) / S::UNITS.torsion;
     let slack = S::RESOLUTION.to_f64() * (1.0 + angle.abs());
     let half_pi = core::f64::consts::FRAC_PI_2;
     let flag_ok = d.is_nan()
@@ -113,7 +110,7 @@ pub fn round_trip_of<S: Scalar>(
     }
     let back = cfg.torsion(r.torque).to_f64();
     let df = d.to_f64();
-    let g = S::UNITS.torsion / (p.c_f * p.k_f0);
+    let g = S::UNITS.torsion / (p.c_f() * p.k_f0());
     let theta = df / g;
     let bound = if S::RESOLUTION.to_f64() < 1e-6 {
         // f32 and f64: relative.
@@ -124,9 +121,9 @@ pub fn round_trip_of<S: Scalar>(
         // |tan θ| from the computed torque: t̂ = |T|·c_f within the tan
         // kernel's bound (1 LSB + 2⁻²⁶|t|) and the roundings (½ LSB + 2⁻³⁰),
         // so t ≤ (t̂ + 2q)(1 + 2⁻²⁵) bounds it from above.
-        let t_hat = r.torque.to_f64().abs() * p.c_f / S::UNITS.link_torque;
+        let t_hat = r.torque.to_f64().abs() * p.c_f() / S::UNITS.link_torque;
         let t = (t_hat + 2.0 * q) * (1.0 + 2f64.powi(-25));
-        let e_u = t * 2f64.powi(-25) + (1.5 + 0.5 * p.c_f) * q;
+        let e_u = t * 2f64.powi(-25) + (1.5 + 0.5 * p.c_f()) * q;
         let m = (t_hat - 2.0 * q - e_u).max(0.0);
         g * ((0.5 * q + theta.abs() * 2f64.powi(-30)) + e_u / (1.0 + m * m) + 2.0 * q)
             + df.abs() * 2f64.powi(-30)
@@ -279,10 +276,7 @@ mod tests {
     #[test]
     fn round_trip_check_detects_inconsistent_coefficients() {
         let p = shd17();
-        let skewed = FlexsplineParams {
-            c_f: p.c_f * (1.0 + 1e-4),
-            ..p
-        };
+        let skewed = FlexsplineParams::try_new(p.k_f0(), p.c_f() * (1.0 + 1e-4)).unwrap();
         let inv = FlexsplineConfig::<f32>::new(&skewed);
         let fwd = FlexsplineConfig::<f32>::new(&p);
         let d = 0.9 * p.max_torsion() as f32;

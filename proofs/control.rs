@@ -200,7 +200,7 @@ mod tests {
     extern crate std;
     use super::super::engine::{exhaustive_u32, exhaustive_u32_chained};
     use super::*;
-    use crate::control::{ModeParams, PassiveParams};
+    use crate::control::{ModeParams, ModeSettings, PassiveParams};
     use crate::estimation::{CollisionParams, CollisionReaction};
     use crate::scalar::I16F16;
     use proptest::prelude::*;
@@ -298,17 +298,19 @@ mod tests {
     }
 
     fn mode<S: Scalar>() -> ModeConfig<S> {
-        let p = ModeParams::try_new(
-            RobustAdaptiveParams::table_4_1().unwrap(),
-            PassiveParams::table_4_1(2000.0).unwrap(),
-            2.0,
-            1.0,
-            1,
-            0,
-            10.0,
-            0.1,
-            Some(CollisionParams::try_new(4.0, 3.0, 2, 1, CollisionReaction::Passive).unwrap()),
-        )
+        let p = ModeParams::try_new(ModeSettings {
+            active: RobustAdaptiveParams::table_4_1().unwrap(),
+            passive: PassiveParams::table_4_1(2000.0).unwrap(),
+            enter_passive: 2.0,
+            exit_passive: 1.0,
+            debounce: 1,
+            dwell: 0,
+            rejoin_bandwidth: 10.0,
+            bias_time_constant: 0.1,
+            collision: Some(
+                CollisionParams::try_new(4.0, 3.0, 2, 1, CollisionReaction::Passive).unwrap(),
+            ),
+        })
         .unwrap();
         ModeConfig::new(&p)
     }

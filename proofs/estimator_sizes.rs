@@ -67,8 +67,8 @@ pub fn size_case(row: DriveSize) -> Option<SizeCase> {
     let params =
         TorqueEstimatorParams::try_new(drive, None, LINK_COUNTS, MOTOR_COUNTS, limit).ok()?;
     let lmn = LINK_COUNTS as f64 * MOTOR_COUNTS as f64 * row.ratio as f64;
-    let torsion_at_limit = drive.flexspline.torsion(limit)
-        + 1.0 / (drive.wave_generator.c_w * drive.ratio * drive.wave_generator.k_w0);
+    let torsion_at_limit = drive.flexspline().torsion(limit)
+        + 1.0 / (drive.wave_generator().c_w() * drive.ratio() * drive.wave_generator().k_w0());
     let d_max = libm::ceil(1.1 * torsion_at_limit * lmn / TAU) as i64;
     Some(SizeCase {
         row,
@@ -83,22 +83,22 @@ pub fn size_case(row: DriveSize) -> Option<SizeCase> {
 /// saturated at the limit with the sign of the flexspline torsion.
 pub fn reference_torque(case: &SizeCase, d: i64, motor_torque: f64) -> f64 {
     let lmn = LINK_COUNTS as f64 * MOTOR_COUNTS as f64 * case.row.ratio as f64;
-    let w = case.drive.wave_generator;
-    let n = case.drive.ratio;
+    let w = case.drive.wave_generator();
+    let n = case.drive.ratio();
     let wg = if motor_torque == 0.0 {
         0.0
     } else {
-        motor_torque.signum() * (1.0 - libm::exp(-w.c_w * motor_torque.abs()))
-            / (w.c_w * n * w.k_w0)
+        motor_torque.signum() * (1.0 - libm::exp(-w.c_w() * motor_torque.abs()))
+            / (w.c_w() * n * w.k_w0())
     };
     let flex_torsion = d as f64 * TAU / lmn + wg;
-    let f = case.drive.flexspline;
-    let angle = flex_torsion * f.c_f * f.k_f0;
-    let limit = case.params.max_torque;
+    let f = case.drive.flexspline();
+    let angle = flex_torsion * f.c_f() * f.k_f0();
+    let limit = case.params.max_torque();
     if angle.abs() >= FRAC_PI_2 {
         return limit.copysign(flex_torsion);
     }
-    let t = libm::tan(angle) / f.c_f;
+    let t = libm::tan(angle) / f.c_f();
     if t.abs() > limit {
         limit.copysign(flex_torsion)
     } else {
@@ -237,7 +237,7 @@ mod tests {
     fn every_size_sets_up_and_reaches_the_limit() {
         for row in TABLE_3_1 {
             let case = size_case(row).unwrap();
-            let limit = case.params.max_torque;
+            let limit = case.params.max_torque();
             assert_eq!(reference_torque(&case, case.d_max, 0.0), limit);
             assert_eq!(reference_torque(&case, -case.d_max, 0.0), -limit);
             assert!(reference_torque(&case, case.d_max / 2, 0.0) < limit);
@@ -250,8 +250,20 @@ mod tests {
     #[test]
     fn agreement_detects_a_wrong_stiffness() {
         let case = size_case(TABLE_3_1[3]).unwrap();
-        let mut wrong = case.params;
-        wrong.drive.flexspline.k_f0 *= 1.01;
+        let (p, drive) = (case.params, case.params.drive());
+        let f = drive.flexspline();
+        let stiffer =
+            crate::harmonic_drive::FlexsplineParams::try_new(f.k_f0() * 1.01, f.c_f()).unwrap();
+        let drive =
+            HarmonicDriveParams::try_new(stiffer, drive.wave_generator(), drive.ratio()).unwrap();
+        let wrong = TorqueEstimatorParams::try_new(
+            drive,
+            p.kinematic_error(),
+            p.link_counts_per_rev(),
+            p.motor_counts_per_rev(),
+            p.max_torque(),
+        )
+        .unwrap();
         let cfg = TorqueEstimatorConfig::<f32>::new(&wrong);
         let d = case.d_max * 8 / 10;
         assert!(!agreement(&case, d, 0.0, &estimate(&cfg, d, 0.0)).holds);

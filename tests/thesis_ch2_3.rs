@@ -298,7 +298,7 @@ fn proposed_model_predicts_worst_on_every_backbone() {
                 .iter()
                 .map(|s| f(s.flexspline_torque) - b.torsion_by_bisection(s.flexspline_torque)))
         };
-        let g_flex = gap(&|t| m.proposed.flexspline.torsion(t));
+        let g_flex = gap(&|t| m.proposed.flexspline().torsion(t));
         let g_pw = gap(&|t| m.piecewise.torsion(t));
         let g_cubic = gap(&|t| m.cubic.torsion(t));
         for (name, e, g) in [
@@ -337,7 +337,7 @@ fn proposed_model_predicts_worst_on_every_backbone() {
 fn wave_generator_term_raises_estimation_error_on_every_backbone() {
     let m = Models::shd_17_100();
     let idx = |name: &str| ESTIMATORS.iter().position(|e| *e == name).unwrap();
-    let low = m.proposed.flexspline.k_f0
+    let low = m.proposed.flexspline().k_f0()
         * SHD.hysteresis_loss
         * 0.5
         * (1.0 - (-0.03 / SHD.starting_torque).exp())
@@ -368,8 +368,8 @@ fn calibration_recovers_the_kinematic_error() {
     let r = estimation();
     let t = mrr_control::harmonic_drive::kinematic_error::KinematicErrorModel::table_3_2();
     let q = core::f64::consts::TAU / (2000.0 * 100.0);
-    let fitted = r.fitted_kinematic_error.coefficients;
-    for (f, t) in fitted.iter().zip(t.coefficients) {
+    let fitted = r.fitted_kinematic_error.coefficients();
+    for (f, t) in fitted.iter().zip(t.coefficients()) {
         assert!((f - t).abs() < q / 10.0, "{fitted:?} vs {t}");
     }
 }
@@ -387,9 +387,9 @@ fn fixed_point_estimate_agrees_with_f64() {
     let r = estimation();
     let lsb = 1.0 / 65536.0;
     let m = Models::shd_17_100();
-    let ck = m.proposed.flexspline.c_f * m.proposed.flexspline.k_f0 * 1e-3;
-    let slope = 1.0 + (m.proposed.flexspline.c_f * 15.0f64).powi(2);
-    let bound = ((9.5 * ck + 0.5) * slope + 1.0) * lsb / m.proposed.flexspline.c_f + 0.5 * lsb;
+    let ck = m.proposed.flexspline().c_f() * m.proposed.flexspline().k_f0() * 1e-3;
+    let slope = 1.0 + (m.proposed.flexspline().c_f() * 15.0f64).powi(2);
+    let bound = ((9.5 * ck + 0.5) * slope + 1.0) * lsb / m.proposed.flexspline().c_f() + 0.5 * lsb;
     for l in &r.levels {
         assert!(l.fixed_vs_float <= bound, "{} > {bound}", l.fixed_vs_float);
     }

@@ -15,8 +15,8 @@ use fixed::types::I16F16;
 #[cfg(feature = "variants")]
 use mrr_control::control::{ActiveOutput, PassiveOutput};
 use mrr_control::control::{
-    ControlInput, ModeConfig, ModeOutput, ModeParams, ModeState, PassiveConfig, PassiveParams,
-    RobustAdaptiveParams, RobustAdaptiveState,
+    ControlInput, ModeConfig, ModeOutput, ModeParams, ModeSettings, ModeState, PassiveConfig,
+    PassiveParams, RobustAdaptiveParams, RobustAdaptiveState,
 };
 use mrr_control::estimation::collision::{CollisionParams, CollisionReaction};
 use mrr_control::estimation::torque::{
@@ -40,17 +40,17 @@ fn ok<T, E>(r: Result<T, E>) -> T {
 /// 2 samples) stop the joint (`reaction` Stop) or make it passive
 /// (`reaction` Passive).
 pub fn mode_params(reaction: CollisionReaction) -> ModeParams {
-    ok(ModeParams::try_new(
-        ok(RobustAdaptiveParams::table_4_1()),
-        ok(PassiveParams::table_4_1(2000.0)),
-        2.0,
-        1.0,
-        3,
-        5,
-        10.0,
-        0.1,
-        Some(ok(CollisionParams::try_new(4.0, 3.0, 2, 2, reaction))),
-    ))
+    ok(ModeParams::try_new(ModeSettings {
+        active: ok(RobustAdaptiveParams::table_4_1()),
+        passive: ok(PassiveParams::table_4_1(2000.0)),
+        enter_passive: 2.0,
+        exit_passive: 1.0,
+        debounce: 3,
+        dwell: 5,
+        rejoin_bandwidth: 10.0,
+        bias_time_constant: 0.1,
+        collision: Some(ok(CollisionParams::try_new(4.0, 3.0, 2, 2, reaction))),
+    }))
 }
 
 // The configurations a user chooses between: estimators with

@@ -79,18 +79,13 @@ pub struct RefState {
 impl<S: Scalar> RefEstimator<S> {
     pub fn new(p: &TorqueEstimatorParams) -> Self {
         let u = S::UNITS;
-        let d = &p.drive;
-        let n = d.ratio as u32;
-        let (l, m) = (p.link_counts_per_rev, p.motor_counts_per_rev);
+        let d = &p.drive();
+        let n = d.ratio() as u32;
+        let (l, m) = (p.link_counts_per_rev(), p.motor_counts_per_rev());
         let lmn = l as f64 * m as f64 * n as f64;
-        let ck = d.flexspline.c_f * d.flexspline.k_f0;
-        let wg = &d.wave_generator;
-        let ke = p
-            .kinematic_error
-            .unwrap_or(KinematicErrorModel {
-                coefficients: [0.0; 7],
-            })
-            .coefficients;
+        let ck = d.flexspline().c_f() * d.flexspline().k_f0();
+        let wg = &d.wave_generator();
+        let ke = p.kinematic_error().map_or([0.0; 7], |k| k.coefficients());
         RefEstimator {
             l,
             m,
@@ -98,12 +93,12 @@ impl<S: Scalar> RefEstimator<S> {
             torsion_per_count: Coef::new(TAU / lmn * u.torsion),
             link_rad_per_count: Coef::new(TAU / l as f64),
             motor_rad_per_count: Coef::new(TAU / m as f64),
-            c_w: Coef::new(wg.c_w / u.motor_torque),
-            amplitude: Coef::new(u.torsion / (wg.c_w * d.ratio * wg.k_w0)),
+            c_w: Coef::new(wg.c_w() / u.motor_torque),
+            amplitude: Coef::new(u.torsion / (wg.c_w() * d.ratio() * wg.k_w0())),
             angle_per_torsion: Coef::new(ck / u.torsion),
-            torque_per_tan: Coef::new(u.link_torque / d.flexspline.c_f),
+            torque_per_tan: Coef::new(u.link_torque / d.flexspline().c_f()),
             kinematic_error: ke.map(|c| S::from_f64(c * u.torsion)),
-            max_torque: S::from_f64(p.max_torque * u.link_torque),
+            max_torque: S::from_f64(p.max_torque() * u.link_torque),
         }
     }
 
@@ -200,6 +195,7 @@ impl<S: Scalar> RefEstimator<S> {
             flexspline_torsion,
             saturated,
             link_count_invalid: invalid,
+            invalid_input: false,
         }
     }
 }

@@ -7,8 +7,8 @@
 
 use libfuzzer_sys::fuzz_target;
 use mrr_control::control::{
-    ControlInput, ModeConfig, ModeParams, PassiveConfig, PassiveParams, RobustAdaptiveConfig,
-    RobustAdaptiveDesign, RobustAdaptiveParams,
+    ControlInput, ModeConfig, ModeParams, ModeSettings, PassiveConfig, PassiveParams,
+    RobustAdaptiveConfig, RobustAdaptiveDesign, RobustAdaptiveParams,
 };
 use mrr_control::estimation::{CollisionParams, CollisionReaction};
 use mrr_control::scalar::{Scalar, I16F16};
@@ -122,29 +122,29 @@ fuzz_target!(|data: ([f64; 8], [f64; 4], u8, u8, bool, Vec<[f32; 8]>)| {
     };
     let collision =
         CollisionParams::try_new(th[1], th[2], debounce.max(1) as u16, 2, reaction).ok();
-    let mode = ModeParams::try_new(
+    let mode = ModeParams::try_new(ModeSettings {
         active,
         passive,
-        th[3],
-        th[3] * 0.5,
-        debounce.max(1) as u16,
-        3,
-        (0.1 / ad.sample_period).min(1e5),
-        0.1,
+        enter_passive: th[3],
+        exit_passive: th[3] * 0.5,
+        debounce: debounce.max(1) as u16,
+        dwell: 3,
+        rejoin_bandwidth: (0.1 / ad.sample_period).min(1e5),
+        bias_time_constant: 0.1,
         collision,
-    )
+    })
     .or_else(|_| {
-        ModeParams::try_new(
+        ModeParams::try_new(ModeSettings {
             active,
             passive,
-            2.0,
-            1.0,
-            1,
-            0,
-            (0.1 / ad.sample_period).min(1e5),
-            0.1_f64.max(ad.sample_period),
+            enter_passive: 2.0,
+            exit_passive: 1.0,
+            debounce: 1,
+            dwell: 0,
+            rejoin_bandwidth: (0.1 / ad.sample_period).min(1e5),
+            bias_time_constant: 0.1_f64.max(ad.sample_period),
             collision,
-        )
+        })
     })
     .unwrap();
     let seq = &seq[..seq.len().min(128)];

@@ -12,7 +12,7 @@ use mrr_control::scalar::{Scalar, I16F16};
 fn run<S: Scalar>(p: &TorqueEstimatorParams, start: i64, readings: &[(u32, u32, f32)]) {
     let cfg = TorqueEstimatorConfig::<S>::new(p);
     let mut st = cfg.state(start, readings.first().map_or(0, |r| r.1));
-    let limit = S::from_f64(p.max_torque * S::UNITS.link_torque);
+    let limit = S::from_f64(p.max_torque() * S::UNITS.link_torque);
     for &(link, motor, tau_w) in readings {
         let e = cfg.update(&mut st, link, motor, S::from_f64(tau_w as f64));
         assert!(!e.torque.is_nan() && !e.torsion.is_nan() && !e.flexspline_torsion.is_nan());
@@ -42,8 +42,8 @@ fuzz_target!(
         let drive = match catalogue.identify() {
             Ok(d) => {
                 // An accepted catalogue gives a physical model.
-                let (f, w) = (d.flexspline, d.wave_generator);
-                for v in [f.k_f0, f.c_f, w.k_w0, w.c_w, d.ratio] {
+                let (f, w) = (d.flexspline(), d.wave_generator());
+                for v in [f.k_f0(), f.c_f(), w.k_w0(), w.c_w(), d.ratio()] {
                     assert!(v.is_finite() && v > 0.0, "{d:?} from {catalogue:?}");
                 }
                 d
@@ -52,8 +52,10 @@ fuzz_target!(
         };
         // Scaled catalogues either fail by name or identify.
         if let Ok(c) = CatalogueData::scaled_from_shd17(cat[0], cat[1], cat[6]) {
-            let d = c.identify().expect("a scaled SHD-17 catalogue always identifies");
-            assert!(d.flexspline.k_f0.is_finite() && d.flexspline.c_f.is_finite());
+            let d = c
+                .identify()
+                .expect("a scaled SHD-17 catalogue always identifies");
+            assert!(d.flexspline().k_f0().is_finite() && d.flexspline().c_f().is_finite());
         }
         let ke = with_ke.then(KinematicErrorModel::table_3_2);
         let max_torque = (max_t % 30_000) as f64 + 0.5;

@@ -33,7 +33,9 @@ pub use adaptive::{
     RobustAdaptiveState, UncertaintyBounds,
 };
 pub use bound::UltimateBound;
-pub use mode::{JointMode, ModeConfig, ModeOutput, ModeParams, ModeState, ReleaseRule};
+pub use mode::{
+    JointMode, ModeConfig, ModeOutput, ModeParams, ModeSettings, ModeState, ReleaseRule,
+};
 pub use passive::{
     HandContact, PassiveCharacteristics, PassiveConfig, PassiveOutput, PassiveParams, Pole,
 };

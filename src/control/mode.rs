@@ -120,7 +120,8 @@ pub enum JointMode {
     Passive,
 }
 
-/// Parameters of the mode manager, SI.
+/// Parameters of the mode manager, SI; built only by
+/// [`try_new`](Self::try_new) from named [`ModeSettings`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ModeParams {
     active: RobustAdaptiveParams,
@@ -147,6 +148,82 @@ pub struct ReleaseRule {
     pub samples: u16,
 }
 
+/// The settings of the mode manager by name, for [`ModeParams::try_new`]:
+/// a struct literal names every value, so two of the same type (`debounce`
+/// and `dwell`, or `rejoin_bandwidth` and `bias_time_constant`) cannot be
+/// swapped silently.
+///
+/// ```
+/// use mrr_control::control::{ModeParams, ModeSettings};
+/// let settings = ModeSettings {
+///     debounce: 4,
+///     dwell: 50,
+///     ..ModeSettings::table_4_1(2000.0)?
+/// };
+/// let params = ModeParams::try_new(settings)?;
+/// assert_eq!((params.settings().debounce, params.settings().dwell), (4, 50));
+/// # Ok::<(), mrr_control::ParamError>(())
+/// ```
+///
+/// The positional form, where `debounce` and `dwell` could trade places,
+/// no longer compiles:
+///
+/// ```compile_fail
+/// use mrr_control::control::{ModeParams, PassiveParams, RobustAdaptiveParams};
+/// let a = RobustAdaptiveParams::table_4_1().unwrap();
+/// let p = PassiveParams::table_4_1(2000.0).unwrap();
+/// let _ = ModeParams::try_new(a, p, 2.0, 1.0, 5, 3, 10.0, 0.1, None);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ModeSettings {
+    /// The robust adaptive law of the Active and Hold modes, eq. (4.19).
+    pub active: RobustAdaptiveParams,
+    /// The passive law, eq. (4.32); its torque limit must equal the active
+    /// one.
+    pub passive: PassiveParams,
+    /// Interaction torque `|τ_i|` above which Active → Passive, N·m (link
+    /// side), `≤ 30 000`.
+    pub enter_passive: f64,
+    /// Interaction torque `|τ_i|` below which Passive → Active, N·m,
+    /// `0 < exit_passive < enter_passive`.
+    pub exit_passive: f64,
+    /// Consecutive samples a switching condition must hold, `≥ 1`.
+    pub debounce: u16,
+    /// Samples a mode lasts at least before the torque rules may leave it.
+    pub dwell: u16,
+    /// Bandwidth `ω` of the rejoin offset's decay, rad/s (`0 < ω T ≤ 0.5`,
+    /// `ω ≤ 1e5`).
+    pub rejoin_bandwidth: f64,
+    /// Time constant `T_b` of the bumpless-transfer bias's decay, s
+    /// (`≥ T`).
+    pub bias_time_constant: f64,
+    /// Collision detection and reaction, or `None`.
+    pub collision: Option<CollisionParams>,
+}
+
+impl ModeSettings {
+    /// The Table 4.1 laws (active, and passive with `passive_gain`,
+    /// 1/(kg·m²)) with this crate's example manager settings — the thesis
+    /// switches modes by hand and gives none: passive above 2 N·m
+    /// interaction and back below 1 N·m, debounce 3 samples, dwell 5
+    /// samples, rejoin bandwidth 10 rad/s, bias time constant 0.1 s, no
+    /// collision detection. Change fields by name before
+    /// [`ModeParams::try_new`].
+    pub fn table_4_1(passive_gain: f64) -> Result<Self, ParamError> {
+        Ok(ModeSettings {
+            active: RobustAdaptiveParams::table_4_1()?,
+            passive: PassiveParams::table_4_1(passive_gain)?,
+            enter_passive: 2.0,
+            exit_passive: 1.0,
+            debounce: 3,
+            dwell: 5,
+            rejoin_bandwidth: 10.0,
+            bias_time_constant: 0.1,
+            collision: None,
+        })
+    }
+}
+
 impl ModeParams {
     /// Validate: `0 < exit_passive < enter_passive ≤ 30 000` N·m
     /// (interaction torque, link side); `debounce ≥ 1` sample; the passive
@@ -155,18 +232,18 @@ impl ModeParams {
     /// discrete rejoin filter is then stable and not oscillatory) and
     /// `ω ≤ 1e5` (so `ω²` is an exact coefficient); a bias
     /// time constant `T_b ≥ T` s.
-    #[allow(clippy::too_many_arguments)]
-    pub fn try_new(
-        active: RobustAdaptiveParams,
-        passive: PassiveParams,
-        enter_passive: f64,
-        exit_passive: f64,
-        debounce: u16,
-        dwell: u16,
-        rejoin_bandwidth: f64,
-        bias_time_constant: f64,
-        collision: Option<CollisionParams>,
-    ) -> Result<Self, ParamError> {
+    pub fn try_new(settings: ModeSettings) -> Result<Self, ParamError> {
+        let ModeSettings {
+            active,
+            passive,
+            enter_passive,
+            exit_passive,
+            debounce,
+            dwell,
+            rejoin_bandwidth,
+            bias_time_constant,
+            collision,
+        } = settings;
         positive("exit_passive", exit_passive)?;
         positive("enter_passive", enter_passive)?;
         crate::error::increasing(
@@ -230,6 +307,21 @@ impl ModeParams {
             collision,
             release,
         })
+    }
+
+    /// The settings this was validated from.
+    pub fn settings(&self) -> ModeSettings {
+        ModeSettings {
+            active: self.active,
+            passive: self.passive,
+            enter_passive: self.enter_passive,
+            exit_passive: self.exit_passive,
+            debounce: self.debounce,
+            dwell: self.dwell,
+            rejoin_bandwidth: self.rejoin_bandwidth,
+            bias_time_constant: self.bias_time_constant,
+            collision: self.collision,
+        }
     }
 
     /// Replace the Passive → Active release rule (module docs,

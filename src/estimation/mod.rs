@@ -8,5 +8,6 @@ pub use collision::{
     CollisionConfig, CollisionOutput, CollisionParams, CollisionReaction, CollisionState,
 };
 pub use torque::{
-    TorqueEstimate, TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorState,
+    AgreementBound, TorqueEstimate, TorqueEstimatorConfig, TorqueEstimatorParams,
+    TorqueEstimatorState,
 };

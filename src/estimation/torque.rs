@@ -76,7 +76,7 @@
 //! on either sign, found at configuration time on the backend's own
 //! arithmetic; the saturated path then skips `tan`.
 
-use crate::error::{positive, ParamError};
+use crate::error::{combination, integer, positive, ParamError};
 use crate::harmonic_drive::{
     kinematic_error::KinematicErrorModel, FlexsplineConfig, HarmonicDriveParams,
     WaveGeneratorConfig,
@@ -158,28 +158,78 @@ fn div_rem_reciprocal(x: u32, d: u32, r: u32) -> (u32, u32) {
 }
 
 /// Physical parameters of the estimator.
+///
+/// Built only by [`try_new`](Self::try_new): every value a
+/// [`TorqueEstimatorConfig`] is built from has been validated, so no
+/// configuration can divide by zero or invert an empty domain.
+///
+/// ```
+/// use mrr_control::prelude::*;
+/// let drive = CatalogueData::SHD_17_100.identify()?;
+/// let p = TorqueEstimatorParams::try_new(drive, None, 1 << 17, 2000, 60.0)?;
+/// let cfg = TorqueEstimatorConfig::<f32>::new(&p);
+/// let e = cfg.update(&mut cfg.state(0, 0), 0, 0, 0.0);
+/// assert!(e.torque_si().abs() < 1e-9 && !e.invalid_input);
+/// // A zero motor resolution is refused by name instead of dividing by 0.
+/// let err = TorqueEstimatorParams::try_new(drive, None, 1 << 17, 0, 60.0).unwrap_err();
+/// assert_eq!(err.to_string(), "parameter `motor_counts_per_rev` must be > 0, got 0");
+/// # Ok::<(), ParamError>(())
+/// ```
+///
+/// A struct literal, which used to skip the checks, no longer compiles:
+///
+/// ```compile_fail
+/// use mrr_control::prelude::*;
+/// let drive = CatalogueData::SHD_17_100.identify().unwrap();
+/// let p = TorqueEstimatorParams {
+///     drive,
+///     kinematic_error: None,
+///     link_counts_per_rev: 1 << 17,
+///     motor_counts_per_rev: 0,
+///     max_torque: 60.0,
+/// };
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TorqueEstimatorParams {
-    /// The identified compliance model, eq. (2.30). Its ratio must be an
-    /// integer for the count path.
-    pub drive: HarmonicDriveParams,
-    /// Kinematic-error model of eq. (3.7), or `None` to leave it out.
-    pub kinematic_error: Option<KinematicErrorModel>,
-    /// Link-side absolute encoder counts per revolution `L`.
-    pub link_counts_per_rev: u32,
-    /// Motor-side incremental counts per motor revolution `M` (after
-    /// quadrature decoding).
-    pub motor_counts_per_rev: u32,
-    /// Largest torque the estimate may report, N·m (> 0); larger estimates
-    /// saturate here and are flagged.
-    pub max_torque: f64,
+    drive: HarmonicDriveParams,
+    kinematic_error: Option<KinematicErrorModel>,
+    link_counts_per_rev: u32,
+    motor_counts_per_rev: u32,
+    max_torque: f64,
 }
 
+/// Smallest accepted `max_torque`, N·m: 65 steps of the fixed-point
+/// link-torque unit, so that no backend rounds the limit to 0.
+pub const MIN_TORQUE_LIMIT: f64 = 1e-3;
+
+/// Largest accepted `max_torque`, N·m (representable by every backend with
+/// room for the sums of the step).
+pub const MAX_TORQUE_LIMIT: f64 = 30_000.0;
+
+/// Largest accepted product `L·M·N` (counts of the torsion unit per output
+/// revolution): `2⁴⁶`, so that every product of the count path is exact in
+/// 64 bits.
+pub const MAX_COUNTS_PER_OUTPUT_REV: f64 = 70_368_744_177_664.0;
+
+/// The name of the product `L·M·N` in errors.
+const LMN_NAME: &str = "link_counts_per_rev·motor_counts_per_rev·ratio";
+
 impl TorqueEstimatorParams {
-    /// Validate: integer ratio in `[1, 65535]`; `L, M ≥ 1`; `max_torque > 0`
-    /// and representable by every backend (≤ 30 000 N·m); and encoder
-    /// resolutions whose count range (2³¹ counts of `2π/(LMN)`) covers the
-    /// model's whole torsion range (`2 × max torsion`).
+    /// Validate, each rule once and naming what broke it:
+    /// * `ratio` (the drive's `N`): an integer in `[1, 65535]`
+    ///   ([`ParamError::NotInteger`]);
+    /// * `link_counts_per_rev` `L` and `motor_counts_per_rev` `M` (after
+    ///   quadrature decoding): at least 1;
+    /// * `max_torque`: finite, in `[0.001, 30 000]` N·m
+    ///   ([`MIN_TORQUE_LIMIT`], [`MAX_TORQUE_LIMIT`]);
+    /// * the product `L·M·N` (named as such,
+    ///   [`ParamError::CombinationOutOfRange`]): at most `2⁴⁶`
+    ///   ([`MAX_COUNTS_PER_OUTPUT_REV`]), and small enough that 2³¹ counts of
+    ///   `2π/(LMN)` cover twice the [`torsion_range`](Self::torsion_range)
+    ///   (the count range of [`Scalar::from_counts`]).
+    ///
+    /// The drive and the kinematic-error model were validated by their own
+    /// `try_new`.
     pub fn try_new(
         drive: HarmonicDriveParams,
         kinematic_error: Option<KinematicErrorModel>,
@@ -187,15 +237,7 @@ impl TorqueEstimatorParams {
         motor_counts_per_rev: u32,
         max_torque: f64,
     ) -> Result<Self, ParamError> {
-        let n = drive.ratio;
-        if n != libm::floor(n) || !(1.0..=65535.0).contains(&n) {
-            return Err(ParamError::OutOfRange {
-                name: "ratio",
-                value: n,
-                min: 1.0,
-                max: 65535.0,
-            });
-        }
+        let n = integer("ratio", drive.ratio(), 1.0, 65535.0)?;
         for (name, v) in [
             ("link_counts_per_rev", link_counts_per_rev),
             ("motor_counts_per_rev", motor_counts_per_rev),
@@ -205,35 +247,169 @@ impl TorqueEstimatorParams {
             }
         }
         let max_torque = positive("max_torque", max_torque)?;
-        if max_torque > 30_000.0 {
+        if !(MIN_TORQUE_LIMIT..=MAX_TORQUE_LIMIT).contains(&max_torque) {
             return Err(ParamError::OutOfRange {
                 name: "max_torque",
                 value: max_torque,
-                min: 0.0,
-                max: 30_000.0,
+                min: MIN_TORQUE_LIMIT,
+                max: MAX_TORQUE_LIMIT,
             });
         }
-        let lmn = link_counts_per_rev as f64 * motor_counts_per_rev as f64 * n;
-        let count_range = 2_147_483_648.0 * TAU / lmn;
-        let needed = 2.0 * drive.flexspline.max_torsion()
-            + 2.0 / (drive.wave_generator.c_w * n * drive.wave_generator.k_w0);
-        if count_range < needed || lmn > 70_368_744_177_664.0 {
-            return Err(ParamError::OutOfRange {
-                name: "link_counts_per_rev",
-                value: link_counts_per_rev as f64,
-                min: 1.0,
-                max: libm::floor(
-                    2_147_483_648.0 * TAU / needed / (motor_counts_per_rev as f64 * n),
-                ),
-            });
-        }
-        Ok(TorqueEstimatorParams {
+        let p = TorqueEstimatorParams {
             drive,
             kinematic_error,
             link_counts_per_rev,
             motor_counts_per_rev,
             max_torque,
-        })
+        };
+        let lmn = link_counts_per_rev as f64 * motor_counts_per_rev as f64 * n;
+        let by_range = libm::floor(2_147_483_648.0 * TAU / (2.0 * p.torsion_range()));
+        combination(LMN_NAME, lmn, 1.0, by_range.min(MAX_COUNTS_PER_OUTPUT_REV))?;
+        Ok(p)
+    }
+
+    /// The identified compliance model, eq. (2.30) (integer ratio).
+    pub fn drive(&self) -> HarmonicDriveParams {
+        self.drive
+    }
+
+    /// Kinematic-error model of eq. (3.7), or `None` when it is left out.
+    pub fn kinematic_error(&self) -> Option<KinematicErrorModel> {
+        self.kinematic_error
+    }
+
+    /// Link-side absolute encoder counts per revolution `L`.
+    pub fn link_counts_per_rev(&self) -> u32 {
+        self.link_counts_per_rev
+    }
+
+    /// Motor-side incremental counts per motor revolution `M` (after
+    /// quadrature decoding).
+    pub fn motor_counts_per_rev(&self) -> u32 {
+        self.motor_counts_per_rev
+    }
+
+    /// Largest torque the estimate may report, N·m; larger estimates
+    /// saturate here and are flagged.
+    pub fn max_torque(&self) -> f64 {
+        self.max_torque
+    }
+
+    /// The agreement of backend `S` with `f64` on the count path, summed
+    /// term by term from the kernels' proven bounds and doubled (for the
+    /// second-order terms and the rounding of the bound's own inputs):
+    ///
+    /// * `I16F16` (torsion step `q = 2⁻¹⁶` mrad): the torsion from counts
+    ///   `q/2`; the wave-generator term `A_w(2⁻¹⁵ + 2⁻¹⁷(1 + c_w/10³)) + q/2`
+    ///   (`A_w` its amplitude in mrad: `exp` error, quantized input and
+    ///   product); the kinematic error of the module docs,
+    ///   `q/2 + Σ_j [q + R_j(2⁻¹⁶ + 5.1e-9)]`; the `tan` argument's rounding
+    ///   to `2⁻¹⁷` rad, `2⁻¹⁷/(c_f K_f0)` rad of torsion. Torque: `tan` ≤ 1
+    ///   step (proven), scaled by `1/c_f`, and the last rounding:
+    ///   `2⁻¹⁶/c_f + 2⁻¹⁶` N·m, plus `2⁻²⁹` relative (31-bit coefficients).
+    /// * `f32` (`u = 2⁻²⁴`): torsion `8u` of the torsion range, `8u A_w`,
+    ///   `(30u + 5.1e-9)` times the kinematic-error bound; torque `2⁻²⁰`
+    ///   relative (`tan` ≤ 2⁻²², proven, and three roundings).
+    /// * `f64`: zero (the reference itself).
+    pub fn agreement_bound<S: Scalar>(&self) -> AgreementBound {
+        let ke = self.kinematic_error.map_or(0.0, |k| k.amplitude_bound());
+        let wg = self.drive.output_wave_generator_torsion();
+        let f = self.drive.flexspline();
+        let e_theta = 3.5 * TAU / 4_294_967_296.0;
+        if S::NAME == "I16F16" {
+            let t = crate::scalar::units::FIXED.torsion;
+            let q = 1.0 / 65536.0; // stored torsion step, mrad
+            let amp = wg * t;
+            let c_w = self.drive.wave_generator().c_w();
+            let wave = amp * (2.0 * q + q / 2.0 * (1.0 + c_w / 1e3)) + q / 2.0;
+            let kin = self.kinematic_error.map_or(0.0, |k| {
+                let r = k.phase_form().amplitudes;
+                q / 2.0 + r.iter().map(|rj| q + rj * t * (q + e_theta)).sum::<f64>()
+            });
+            let angle = q / 2.0 / (f.c_f() * f.k_f0()) * t;
+            AgreementBound {
+                torsion: 2.0 * (q / 2.0 + wave + kin + angle) / t,
+                torque_relative: 2.0 * libm::exp2(-29.0),
+                torque_absolute: 2.0 * (q / f.c_f() + q),
+            }
+        } else if S::NAME == "f32" {
+            let u = libm::exp2(-24.0);
+            AgreementBound {
+                torsion: 2.0
+                    * (8.0 * u * self.torsion_range() + 8.0 * u * wg + (30.0 * u + e_theta) * ke),
+                torque_relative: 2.0 * libm::exp2(-20.0),
+                torque_absolute: 1e-30,
+            }
+        } else {
+            AgreementBound {
+                torsion: 0.0,
+                torque_relative: 0.0,
+                torque_absolute: 0.0,
+            }
+        }
+    }
+
+    /// The largest total torsion `|Δθ|` (rad) the model can produce with
+    /// any torques: the flexspline's `π/(2 c_f K_f0)`, plus the
+    /// wave-generator term `1/(c_w N K_w0)`, plus the kinematic-error
+    /// bound, widened by 1 % so that the rounding of any backend stays
+    /// inside. A reading beyond it is impossible for the modelled drive
+    /// (see [`TorqueEstimate::invalid_input`]).
+    pub fn torsion_range(&self) -> f64 {
+        let ke = self.kinematic_error.map_or(0.0, |k| k.amplitude_bound());
+        1.01 * (self.drive.flexspline().max_torsion()
+            + self.drive.output_wave_generator_torsion()
+            + ke)
+    }
+}
+
+/// How far the estimate of a backend may lie from the `f64` estimate for
+/// the same readings on the count path ([`TorqueEstimatorConfig::update`];
+/// the motor torque quantized to the backend's unit, and inside its range:
+/// `|τ_w| < 32.7 N·m` on `I16F16`): the backend's
+/// flexspline torsion `Δθ_f` within [`torsion`](Self::torsion) of the `f64`
+/// one, and its torque inside
+/// [`torque_interval`](Self::torque_interval). From
+/// [`TorqueEstimatorParams::agreement_bound`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AgreementBound {
+    /// Bound on the flexspline-torsion difference, rad.
+    pub torsion: f64,
+    /// Relative bound on the torque rounding after eq. (3.10)'s `tan`.
+    pub torque_relative: f64,
+    /// Absolute bound on the torque rounding, N·m.
+    pub torque_absolute: f64,
+}
+
+impl AgreementBound {
+    /// The interval (N·m) that holds the backend's torque when the `f64`
+    /// flexspline torsion is `flexspline_torsion` (rad): eq. (3.10) in
+    /// `f64`, saturated at `±max_torque` and out of the `tan` branch (a
+    /// non-decreasing function `T`), taken at `Δθ_f ∓ torsion`, widened by
+    /// the relative and absolute torque bounds.
+    pub fn torque_interval(
+        &self,
+        p: &TorqueEstimatorParams,
+        flexspline_torsion: f64,
+    ) -> (f64, f64) {
+        let f = p.drive.flexspline();
+        let max = p.max_torque;
+        let t = |x: f64| {
+            let angle = x * f.c_f() * f.k_f0();
+            if angle.abs() >= core::f64::consts::FRAC_PI_2 {
+                max.copysign(x)
+            } else {
+                (libm::tan(angle) / f.c_f()).clamp(-max, max)
+            }
+        };
+        let (lo, hi) = (
+            t(flexspline_torsion - self.torsion),
+            t(flexspline_torsion + self.torsion),
+        );
+        (
+            lo - self.torque_relative * lo.abs() - self.torque_absolute,
+            hi + self.torque_relative * hi.abs() + self.torque_absolute,
+        )
     }
 }
 
@@ -292,6 +468,10 @@ pub struct TorqueEstimatorConfig<S> {
     /// [`finish`](Self::finish) is one comparison against it, made before
     /// `tan`.
     torsion_limit: S,
+    /// [`TorqueEstimatorParams::torsion_range`] in stored torsion units:
+    /// a torsion beyond it is an impossible reading, clamped here and
+    /// flagged.
+    torsion_range: S,
 }
 
 /// The estimator's state: the motor position within one output revolution,
@@ -307,11 +487,21 @@ pub struct TorqueEstimatorState {
 }
 
 /// One torque estimate.
+///
+/// Every field is finite on every backend, whatever the readings: a bad
+/// reading is replaced as documented on each field and flagged by
+/// `invalid_input` (or `link_count_invalid`). The fields are in stored
+/// units (`S::UNITS`); [`torque_si`](Self::torque_si) and the other `_si`
+/// methods give SI values on every backend.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TorqueEstimate<S> {
-    /// Estimated joint (flexspline) torque `τ_f`, stored link-torque units.
+    /// Estimated joint (flexspline) torque `τ_f`, stored link-torque units,
+    /// within `±max_torque`.
     pub torque: S,
-    /// Total torsion `Δθ` of eq. (2.13), stored torsion units.
+    /// Total torsion `Δθ` of eq. (2.13), stored torsion units, within
+    /// `±torsion_range` ([`TorqueEstimatorParams::torsion_range`]): a
+    /// larger (or NaN) torsion is impossible for the drive and is replaced
+    /// by `±torsion_range` (its sign; 0 for NaN) with `invalid_input` set.
     pub torsion: S,
     /// Flexspline torsion `Δθ_f` of eq. (3.9), stored torsion units.
     pub flexspline_torsion: S,
@@ -320,23 +510,46 @@ pub struct TorqueEstimate<S> {
     pub saturated: bool,
     /// The link count was not below `L`; it was reduced modulo `L`.
     pub link_count_invalid: bool,
+    /// A reading was impossible: a torsion beyond `±torsion_range` (a
+    /// counter jump or angles no torque can produce; the torque is then
+    /// `±max_torque` with `saturated` set), a NaN or infinite angle, or a
+    /// NaN or infinite motor torque (taken as 0 in eq. 3.9).
+    pub invalid_input: bool,
+}
+
+impl<S: Scalar> TorqueEstimate<S> {
+    /// [`torque`](Self::torque) in N·m on every backend.
+    pub fn torque_si(&self) -> f64 {
+        self.torque.to_f64() / S::UNITS.link_torque
+    }
+
+    /// [`torsion`](Self::torsion) in rad on every backend.
+    pub fn torsion_si(&self) -> f64 {
+        self.torsion.to_f64() / S::UNITS.torsion
+    }
+
+    /// [`flexspline_torsion`](Self::flexspline_torsion) in rad on every
+    /// backend.
+    pub fn flexspline_torsion_si(&self) -> f64 {
+        self.flexspline_torsion.to_f64() / S::UNITS.torsion
+    }
 }
 
 impl<S: Scalar> TorqueEstimatorConfig<S> {
     /// Quantize validated parameters once.
     pub fn new(p: &TorqueEstimatorParams) -> Self {
         let u = S::UNITS;
-        let n = p.drive.ratio as u32;
+        let n = p.drive.ratio() as u32;
         let (l, m) = (p.link_counts_per_rev, p.motor_counts_per_rev);
         let lmn = l as f64 * m as f64 * n as f64;
-        let flexspline = FlexsplineConfig::new(&p.drive.flexspline);
+        let flexspline = FlexsplineConfig::new(&p.drive.flexspline());
         let max_torque = S::from_f64(p.max_torque * u.link_torque);
         TorqueEstimatorConfig {
             flexspline,
-            wave_generator: WaveGeneratorConfig::new(&p.drive.wave_generator, p.drive.ratio),
+            wave_generator: WaveGeneratorConfig::new(&p.drive.wave_generator(), p.drive.ratio()),
             kinematic_error: p
                 .kinematic_error
-                .map(|k| k.coefficients.map(|c| S::from_f64(c * u.torsion))),
+                .map(|k| k.coefficients().map(|c| S::from_f64(c * u.torsion))),
             kinematic_error_phase: p.kinematic_error.map(|k| {
                 let f = k.phase_form();
                 KinematicErrorPhase {
@@ -350,7 +563,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             max_torque,
             torsion_per_count: Coef::new(TAU / lmn * u.torsion),
             torsion_per_angle: Coef::new(u.torsion / u.angle),
-            inv_ratio: Coef::new(1.0 / p.drive.ratio),
+            inv_ratio: Coef::new(1.0 / p.drive.ratio()),
             l,
             m,
             n,
@@ -375,7 +588,8 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
                 ]
             }),
             torsion_limit: flexspline
-                .torsion_within(max_torque, p.drive.flexspline.max_torsion() * u.torsion),
+                .torsion_within(max_torque, p.drive.flexspline().max_torsion() * u.torsion),
+            torsion_range: S::from_f64(p.torsion_range() * u.torsion),
         }
     }
 
@@ -508,7 +722,10 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     }
 
     /// Eq. (3.9)–(3.10) from a torsion, the kinematic error and the motor
-    /// torque, with the output saturation.
+    /// torque, with the output saturation and the input checks of
+    /// [`TorqueEstimate::invalid_input`]: a torsion beyond `±torsion_range`
+    /// (or NaN) is clamped to it (NaN to 0), a non-finite motor torque is
+    /// taken as 0, and either sets `invalid_input`.
     #[inline]
     fn finish(
         &self,
@@ -517,14 +734,27 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         motor_torque: S,
         link_count_invalid: bool,
     ) -> TorqueEstimate<S> {
+        // One comparison on the common path; NaN fails it.
+        let (torsion, torsion_bad) = if torsion.abs() <= self.torsion_range {
+            (torsion, false)
+        } else if torsion > S::ZERO {
+            (self.torsion_range, true)
+        } else if torsion < S::ZERO {
+            (self.torsion_range.neg(), true)
+        } else {
+            (S::ZERO, true)
+        };
+        // Fixed point has no NaN or infinity (folded at compile time); on
+        // floats `τ − τ` is 0 exactly for a finite `τ`.
+        let torque_bad = S::RESOLUTION.to_f64() < 1e-6 && motor_torque.sub(motor_torque) != S::ZERO;
+        let motor_torque = if torque_bad { S::ZERO } else { motor_torque };
         let flexspline_torsion = torsion
             .add(self.wave_generator.output_torsion(motor_torque))
             .sub(kin_err);
         // Out of the branch or beyond `max_torque` exactly when |Δθ_f|
         // exceeds the prepared limit (both tests are monotone in |Δθ_f|):
-        // one comparison, and no `tan` on the saturated path. A NaN
-        // torsion (impossible from counts) fails it and gives tan(NaN) = 0
-        // unflagged, as the direct tests did.
+        // one comparison, and no `tan` on the saturated path. The torsion
+        // and the kinematic error are finite here, so `Δθ_f` is too.
         let saturated = flexspline_torsion.abs() > self.torsion_limit;
         let torque = if saturated {
             let limit = self.max_torque;
@@ -542,6 +772,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             flexspline_torsion,
             saturated,
             link_count_invalid,
+            invalid_input: torsion_bad || torque_bad,
         }
     }
 
@@ -622,6 +853,10 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     /// torque command. A convenience for float backends: in `I16F16` the
     /// torsion then has the resolution of a radian angle (1.5e-5 rad), not
     /// that of the encoders — use [`update`](Self::update) there.
+    ///
+    /// A NaN or infinite angle gives torsion 0, no kinematic error, and
+    /// `invalid_input` (so the torque is that of the motor torque alone);
+    /// the torque is finite on every backend.
     pub fn update_radians(
         &self,
         link_angle: S,
@@ -631,6 +866,18 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         let torsion = link_angle
             .add(motor_angle.mul_coef(&self.inv_ratio))
             .mul_coef(&self.torsion_per_angle);
+        // Floats: `v − v` is 0 for a finite angle and NaN for NaN and ±∞,
+        // and a NaN survives the sum. Fixed point has neither (folded at
+        // compile time).
+        let angles_bad = S::RESOLUTION.to_f64() < 1e-6 && {
+            let d = |v: S| v.sub(v);
+            d(link_angle).add(d(motor_angle)) != S::ZERO
+        };
+        if angles_bad {
+            let mut e = self.finish(S::ZERO, S::ZERO, motor_torque, false);
+            e.invalid_input = true;
+            return e;
+        }
         let kin_err = if self.kinematic_error.is_some() {
             self.kinematic_error(link_angle.sin_cos(), motor_angle.sin_cos())
         } else {
@@ -643,9 +890,10 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::harmonic_drive::CatalogueData;
+    use crate::harmonic_drive::{CatalogueData, FlexsplineParams};
     use crate::scalar::I16F16;
     use proptest::prelude::*;
+    use std::string::ToString;
 
     const L: u32 = 1 << 17;
     const M: u32 = 2000;
@@ -694,11 +942,24 @@ mod tests {
         TorqueEstimatorParams::try_new(drive, ke, L, M, 60.0).unwrap()
     }
 
+    /// The SHD-17-100 estimator with other encoders `L`, `M` and ratio `N`.
+    fn params_sized(
+        ke: Option<KinematicErrorModel>,
+        l: u32,
+        m: u32,
+        n: u32,
+    ) -> TorqueEstimatorParams {
+        let d = CatalogueData::SHD_17_100.identify().unwrap();
+        let drive =
+            HarmonicDriveParams::try_new(d.flexspline(), d.wave_generator(), n as f64).unwrap();
+        TorqueEstimatorParams::try_new(drive, ke, l, m, 60.0).unwrap()
+    }
+
     /// Encoder readings for a joint at link angle `link` (rad) carrying a
     /// flexspline torque `tau` with motor torque `tau_w` (forward model,
     /// eq. 2.30 and 3.8), and the half-width of the torsion quantization.
     fn readings(p: &TorqueEstimatorParams, link: f64, tau: f64, tau_w: f64) -> (u32, i64, f64) {
-        let n = p.drive.ratio;
+        let n = p.drive.ratio();
         let base = p.drive.torsion(tau, tau_w);
         let mut torsion = base;
         if let Some(k) = p.kinematic_error {
@@ -733,11 +994,11 @@ mod tests {
             let est = cfg.update(&mut st, c_l, 12345, tau_w);
             prop_assert!(!est.saturated);
             let ke_slope = ke.map_or(0.0, |k| {
-                let c = k.coefficients;
+                let c = k.coefficients();
                 (c[1].abs() + c[2].abs()) * TAU / L as f64 + (c[3].abs() + c[4].abs() + 2.0 * (c[5].abs() + c[6].abs())) * TAU / M as f64
             });
             let d = q + ke_slope + 1e-12;
-            let f = p.drive.flexspline;
+            let f = p.drive.flexspline();
             let true_tf = f.torsion(tau);
             let (lo, hi) = (f.torque(true_tf - d).torque, f.torque(true_tf + d).torque);
             prop_assert!(est.torque >= lo - 1e-9 && est.torque <= hi + 1e-9, "{} not in [{lo}, {hi}] (τ = {tau})", est.torque);
@@ -780,6 +1041,54 @@ mod tests {
     }
 
     proptest! {
+        /// f32 and I16F16 lie within their documented `AgreementBound` of
+        /// f64 on the SHD-17-100 (with and without Table 3.2), over the
+        /// torque range and beyond (saturation), on the count path.
+        #[test]
+        fn backends_within_the_agreement_bound(
+            link in 0.0f64..TAU, tau in -80.0f64..80.0, tau_w in -0.2f64..0.2, with_ke: bool,
+        ) {
+            let p = params(with_ke.then(KinematicErrorModel::table_3_2));
+            let (c_l, p_m, _) = readings(&p, link, tau, tau_w);
+            let cf = TorqueEstimatorConfig::<f64>::new(&p);
+            let a = cf.update(&mut cf.state(p_m, 0), c_l, 0, tau_w);
+            fn backend<S: Scalar>(p: &TorqueEstimatorParams, c_l: u32, p_m: i64, tau_w: f64) -> TorqueEstimate<S> {
+                let c = TorqueEstimatorConfig::<S>::new(p);
+                c.update(&mut c.state(p_m, 0), c_l, 0, S::from_f64(tau_w * S::UNITS.motor_torque))
+            }
+            for (b, bound) in [
+                (backend::<f32>(&p, c_l, p_m, tau_w), p.agreement_bound::<f32>()),
+            ].into_iter().map(|(b, bd)| ((b.torque_si(), b.flexspline_torsion_si()), bd))
+                .chain([{
+                    let b = backend::<I16F16>(&p, c_l, p_m, tau_w);
+                    ((b.torque_si(), b.flexspline_torsion_si()), p.agreement_bound::<I16F16>())
+                }])
+            {
+                let (lo, hi) = bound.torque_interval(&p, a.flexspline_torsion);
+                prop_assert!(lo <= b.0 && b.0 <= hi, "{} not in [{lo}, {hi}]", b.0);
+                prop_assert!((b.1 - a.flexspline_torsion).abs() <= bound.torsion);
+            }
+        }
+    }
+
+    /// The agreement bound is not vacuous: at a loaded torsion the
+    /// interval excludes 0 (a silent 0 fails it) and is narrower than
+    /// 0.01 N·m on I16F16 and 1e-3 N·m on f32.
+    #[test]
+    fn agreement_bound_rejects_a_silent_zero() {
+        let p = params(Some(KinematicErrorModel::table_3_2()));
+        let torsion = p.drive().flexspline().torsion(10.0);
+        for (bound, width) in [
+            (p.agreement_bound::<I16F16>(), 0.01),
+            (p.agreement_bound::<f32>(), 1e-3),
+        ] {
+            let (lo, hi) = bound.torque_interval(&p, torsion);
+            assert!(lo > 0.0 && hi - lo < width, "[{lo}, {hi}]");
+            assert!(lo <= 10.0 && 10.0 <= hi);
+        }
+    }
+
+    proptest! {
         #![proptest_config(ProptestConfig::with_cases(20_000))]
         /// The 32-bit `advance` equals the 64-bit formula from any state
         /// for any counter (moves up to ±2³¹ counts), on the Table 3.2
@@ -790,9 +1099,9 @@ mod tests {
             size in 0usize..4,
         ) {
             let (m, n) = [(M, 100u32), (1, 1), (3, 65535), (1 << 20, 160)][size];
-            let mut p = params(None);
-            p.motor_counts_per_rev = m;
-            p.drive.ratio = n as f64;
+            // The link encoder plays no part in `advance`; L = 1 keeps every
+            // size within the validated `L·M·N`.
+            let p = params_sized(None, 1, m, n);
             let cfg = TorqueEstimatorConfig::<f64>::new(&p);
             let counter = if small { last.wrapping_add(counter % 8001).wrapping_sub(4000) } else { counter };
             let mut a = cfg.state(pos, last);
@@ -881,9 +1190,7 @@ mod tests {
     /// `2π c_l/L`, `2π p/M` (stored units), over the test counts; panics
     /// beyond [`ke_count_bound`].
     fn ke_count_worst<S: Scalar>(k: KinematicErrorModel, l: u32, m: u32) -> f64 {
-        let mut p = params(Some(k));
-        p.link_counts_per_rev = l;
-        p.motor_counts_per_rev = m;
+        let p = params_sized(Some(k), l, m, 100);
         let cfg = TorqueEstimatorConfig::<S>::new(&p);
         let bound = ke_count_bound::<S>(&k);
         let mut worst = 0.0f64;
@@ -910,9 +1217,8 @@ mod tests {
     /// with power-of-two and other encoder resolutions.
     #[test]
     fn kinematic_error_from_counts_within_bound() {
-        let larger = KinematicErrorModel {
-            coefficients: [2e-4, 3e-4, -1e-4, -2e-4, 1.5e-4, 1e-4, -3e-4],
-        };
+        let larger =
+            KinematicErrorModel::try_new([2e-4, 3e-4, -1e-4, -2e-4, 1.5e-4, 1e-4, -3e-4]).unwrap();
         let mut worst = [0.0f64; 2];
         for k in [KinematicErrorModel::table_3_2(), larger] {
             for (l, m) in [(L, M), (100_000, 4096), (36_000, 1000), (1 << 20, 3)] {
@@ -935,14 +1241,13 @@ mod tests {
         let p = params(Some(KinematicErrorModel::table_3_2()));
         let cfg = TorqueEstimatorConfig::<I16F16>::new(&p);
         let tw = I16F16::from_num(3);
-        for (c_l, pos) in [
-            (0u32, 0i64),
-            (L / 4, 12_345),
-            (L - 1, 199_999),
-            (77_777, 3_333),
-        ] {
+        // Motor positions near the rigid one, `−c_l·MN/L`, so that the
+        // torsion stays inside the model's range.
+        let mn = M as i64 * 100;
+        for (c_l, off) in [(0u32, 0i64), (L / 4, 5), (L - 1, -3), (77_777, 2)] {
+            let pos = -(c_l as i64 * mn / L as i64) + off;
             let with = cfg.update(&mut cfg.state(pos, 0), c_l, 0, tw);
-            let ke = cfg.kinematic_error_from_counts(c_l, (pos % M as i64) as u32);
+            let ke = cfg.kinematic_error_from_counts(c_l, pos.rem_euclid(M as i64) as u32);
             assert_ne!(ke, I16F16::ZERO);
             assert_eq!(with.flexspline_torsion, {
                 let none = TorqueEstimatorConfig::<I16F16>::new(&params(None));
@@ -982,7 +1287,8 @@ mod tests {
     /// The limit is tight: the direct test passes at it and fails at the
     /// next code up. Three set-ups: SHD-17-100 at 60 N·m and at the largest
     /// `max_torque` (30 000 N·m; both limits are set by `max_torque`), and
-    /// a flexspline with `c_f = 1000 /(N·m)` at 30 000 N·m, where `tan` of
+    /// a flexspline with `c_f = 1000 /(N·m)` (and `K_f0 = 1000 N·m/rad`, so
+    /// that its largest torsion, 1.6 µrad, is accepted) at 30 000 N·m, where `tan` of
     /// the largest in-branch f32 argument gives only about 23 000 N·m, so
     /// that the f32 limit is set by the branch edge (asserted).
     #[test]
@@ -1035,7 +1341,9 @@ mod tests {
         {
             let mut drive = CatalogueData::SHD_17_100.identify().unwrap();
             if let Some(c_f) = c_f {
-                drive.flexspline.c_f = c_f;
+                let f = FlexsplineParams::try_new(1000.0, c_f).unwrap();
+                drive =
+                    HarmonicDriveParams::try_new(f, drive.wave_generator(), drive.ratio()).unwrap();
             }
             let p = TorqueEstimatorParams::try_new(drive, None, L, M, max).unwrap();
             edge_bound[case] = floats(&TorqueEstimatorConfig::<f32>::new(&p), |x, k| {
@@ -1049,7 +1357,7 @@ mod tests {
             assert!(!direct(&cfg, cfg.torsion_limit).1);
             let up = I16F16::from_bits(a + 1);
             assert!(direct(&cfg, up).1 || direct(&cfg, up.neg()).1);
-            let edge = (drive.flexspline.max_torsion() * I16F16::UNITS.torsion * 65536.0) as i32;
+            let edge = (drive.flexspline().max_torsion() * I16F16::UNITS.torsion * 65536.0) as i32;
             for b in -2 * edge..=2 * edge {
                 agree(&cfg, I16F16::from_bits(b));
             }
@@ -1062,12 +1370,23 @@ mod tests {
 
     #[test]
     fn rejects_non_integer_ratio_and_coarse_encoders() {
-        let mut drive = CatalogueData::SHD_17_100.identify().unwrap();
-        drive.ratio = 100.5;
-        assert!(matches!(
-            TorqueEstimatorParams::try_new(drive, None, L, M, 60.0),
-            Err(ParamError::OutOfRange { name: "ratio", .. })
-        ));
+        let d = CatalogueData::SHD_17_100.identify().unwrap();
+        let drive =
+            HarmonicDriveParams::try_new(d.flexspline(), d.wave_generator(), 100.5).unwrap();
+        let e = TorqueEstimatorParams::try_new(drive, None, L, M, 60.0).unwrap_err();
+        assert_eq!(
+            e,
+            ParamError::NotInteger {
+                name: "ratio",
+                value: 100.5,
+                min: 1.0,
+                max: 65535.0
+            }
+        );
+        assert_eq!(
+            e.to_string(),
+            "parameter `ratio` must be an integer in [1, 65535], got 100.5"
+        );
         let drive = CatalogueData::SHD_17_100.identify().unwrap();
         assert!(matches!(
             TorqueEstimatorParams::try_new(drive, None, 0, M, 60.0),
@@ -1087,10 +1406,132 @@ mod tests {
         // 2^16-count motor encoder is too fine.
         assert!(matches!(
             TorqueEstimatorParams::try_new(drive, None, 1 << 26, 1 << 16, 60.0),
-            Err(ParamError::OutOfRange {
-                name: "link_counts_per_rev",
-                ..
-            })
+            Err(ParamError::CombinationOutOfRange { name: LMN_NAME, .. })
         ));
+    }
+
+    /// A zero motor resolution used to reach `state()` through a struct
+    /// literal and divide by zero; now it is rejected by name, as is a zero
+    /// link resolution (which used to give a silent 0).
+    #[test]
+    fn zero_encoder_resolutions_are_rejected_by_name() {
+        let drive = CatalogueData::SHD_17_100.identify().unwrap();
+        for (l, m, name) in [
+            (L, 0, "motor_counts_per_rev"),
+            (0, M, "link_counts_per_rev"),
+        ] {
+            let e = TorqueEstimatorParams::try_new(drive, None, l, m, 60.0).unwrap_err();
+            assert_eq!(e, ParamError::NotPositive { name, value: 0.0 });
+            assert_eq!(
+                e.to_string(),
+                std::format!("parameter `{name}` must be > 0, got 0")
+            );
+        }
+    }
+
+    /// `L = M = u32::MAX` breaks the product rule, and the error names the
+    /// whole product `L·M·N` with its value, not `L` alone.
+    #[test]
+    fn oversized_encoder_product_names_the_product() {
+        let drive = CatalogueData::SHD_17_100.identify().unwrap();
+        let e = TorqueEstimatorParams::try_new(drive, None, u32::MAX, u32::MAX, 60.0).unwrap_err();
+        let lmn = u32::MAX as f64 * u32::MAX as f64 * 100.0;
+        match e {
+            ParamError::CombinationOutOfRange {
+                name,
+                value,
+                min,
+                max,
+            } => {
+                assert_eq!(name, "link_counts_per_rev·motor_counts_per_rev·ratio");
+                assert_eq!(value, lmn);
+                assert_eq!(min, 1.0);
+                // The torsion range rule binds before 2⁴⁶ for this drive:
+                // 2³¹ counts of 2π/(LMN) must cover twice the range.
+                let p = params(None);
+                let want = libm::floor(2_147_483_648.0 * TAU / (2.0 * p.torsion_range()));
+                assert_eq!(max, want);
+                assert!(max < MAX_COUNTS_PER_OUTPUT_REV);
+            }
+            other => panic!("{other:?}"),
+        }
+        assert!(e
+            .to_string()
+            .starts_with("`link_counts_per_rev·motor_counts_per_rev·ratio` must lie in [1, "));
+    }
+
+    /// `update_radians` with NaN or infinite readings: every field finite,
+    /// `invalid_input` set, on every backend that has non-finite values;
+    /// and a NaN or infinite motor torque on the count path is flagged
+    /// (it used to count as 0, or be clamped, silently).
+    #[test]
+    fn non_finite_readings_are_flagged() {
+        fn check<S: Scalar + core::fmt::Debug>(bad: [S; 3]) {
+            let p = params(Some(KinematicErrorModel::table_3_2()));
+            let cfg = TorqueEstimatorConfig::<S>::new(&p);
+            let ok = S::from_f64(0.01);
+            let finite = |e: &TorqueEstimate<S>| {
+                [e.torque, e.torsion, e.flexspline_torsion]
+                    .iter()
+                    .all(|v| v.to_f64().is_finite())
+            };
+            for &x in &bad {
+                for (la, ma, tw) in [(x, x, x), (x, ok, ok), (ok, x, ok), (ok, ok, x)] {
+                    let e = cfg.update_radians(la, ma, tw);
+                    assert!(e.invalid_input && finite(&e), "{la:?} {ma:?} {tw:?}: {e:?}");
+                    assert!(e.torque.abs() <= cfg.max_torque);
+                }
+                let e = cfg.update(&mut cfg.state(0, 0), 5, 0, x);
+                assert!(e.invalid_input && finite(&e), "{x:?}: {e:?}");
+                // Taken as zero motor torque.
+                let zero = cfg.update(&mut cfg.state(0, 0), 5, 0, S::ZERO);
+                assert_eq!((e.torque, e.torsion), (zero.torque, zero.torsion));
+                assert!(!zero.invalid_input);
+            }
+            // Finite readings of a small torsion (1 µrad) are not flagged.
+            let e = cfg.update_radians(S::from_f64(0.002), S::from_f64(-0.1999), ok);
+            assert!(!e.invalid_input && finite(&e));
+        }
+        check::<f32>([f32::NAN, f32::INFINITY, f32::NEG_INFINITY]);
+        check::<f64>([f64::NAN, f64::INFINITY, f64::NEG_INFINITY]);
+    }
+
+    /// A counter jump that no torque can produce (here half an output
+    /// revolution of torsion) is flagged, the torque saturates with its
+    /// flag, and the reported torsion is the documented clamp
+    /// `±torsion_range` on every backend (it used to be 2.628 rad on f32
+    /// and 0.515 rad on I16F16 for the same readings).
+    #[test]
+    fn impossible_counter_jump_is_flagged_and_agrees_across_backends() {
+        fn jump<S: Scalar>(p: &TorqueEstimatorParams, counts: u32) -> TorqueEstimate<S> {
+            let cfg = TorqueEstimatorConfig::<S>::new(p);
+            let mut st = cfg.state(0, 0);
+            cfg.update(&mut st, 0, counts, S::ZERO)
+        }
+        let p = params(None);
+        let range = p.torsion_range();
+        // Motor counts (of MN = 200 000 per output revolution) for a torsion
+        // of +2.6 rad and of −1.3 rad.
+        for (counts, sign) in [(82_761u32, 1.0), (u32::MAX - 41_380, -1.0)] {
+            let a = jump::<f32>(&p, counts);
+            let b = jump::<f64>(&p, counts);
+            let c = jump::<I16F16>(&p, counts);
+            for (e, flagged, q) in [
+                (a.torsion_si(), a.invalid_input && a.saturated, 1e-7 * range),
+                (b.torsion_si(), b.invalid_input && b.saturated, 1e-15),
+                (c.torsion_si(), c.invalid_input && c.saturated, 1e-8),
+            ] {
+                assert!(flagged);
+                assert!((e - sign * range).abs() <= q, "{e} vs {}", sign * range);
+            }
+            assert_eq!(a.torque_si(), sign * 60.0);
+            assert_eq!(b.torque_si(), sign * 60.0);
+            assert_eq!(c.torque_si(), sign * 60.0);
+        }
+        // The largest torsion the model can produce is not flagged.
+        let cfg = TorqueEstimatorConfig::<f64>::new(&p);
+        let edge = (p.drive().flexspline().max_torsion() / TAU * (M as f64 * 100.0)) as u32;
+        let e = cfg.update(&mut cfg.state(0, 0), 0, edge, 0.0);
+        assert!(!e.invalid_input && e.torsion > 0.0, "{e:?}");
     }
 }

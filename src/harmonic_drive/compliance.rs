@@ -17,7 +17,7 @@
 //! (stored units `S::UNITS`), and the `f64` methods are those configs with
 //! `S = f64`, so each formula exists once.
 
-use crate::error::{finite, gear_ratio, increasing, positive, ParamError};
+use crate::error::{combination, finite, gear_ratio, in_range, increasing, positive, ParamError};
 use crate::scalar::{units::Units, Coef, Scalar};
 
 /// The catalogue's piecewise-linear torsion curve, eq. (2.11), odd in the
@@ -40,9 +40,27 @@ pub struct CataloguePiecewise {
     t2: f64,
 }
 
+/// The five numbers of a catalogue curve by name, for
+/// [`CataloguePiecewise::try_new`] (five `f64`s in a row could be swapped
+/// silently).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CatalogueCurve {
+    /// Slope up to `T1`, N·m/rad.
+    pub k1: f64,
+    /// Slope from `T1` to `T2`, N·m/rad.
+    pub k2: f64,
+    /// Slope above `T2`, N·m/rad.
+    pub k3: f64,
+    /// First knee torque, N·m.
+    pub t1: f64,
+    /// Second knee torque, N·m.
+    pub t2: f64,
+}
+
 impl CataloguePiecewise {
     /// Validates `K1, K2, K3 > 0` (N·m/rad) and `0 < T1 < T2` (N·m).
-    pub fn try_new(k1: f64, k2: f64, k3: f64, t1: f64, t2: f64) -> Result<Self, ParamError> {
+    pub fn try_new(curve: CatalogueCurve) -> Result<Self, ParamError> {
+        let CatalogueCurve { k1, k2, k3, t1, t2 } = curve;
         let (k1, k2, k3) = (
             positive("k1", k1)?,
             positive("k2", k2)?,
@@ -51,6 +69,17 @@ impl CataloguePiecewise {
         let (t1, t2) = (positive("t1", t1)?, positive("t2", t2)?);
         increasing(("t1", t1), ("t2", t2))?;
         Ok(CataloguePiecewise { k1, k2, k3, t1, t2 })
+    }
+
+    /// The validated curve.
+    pub fn curve(&self) -> CatalogueCurve {
+        CatalogueCurve {
+            k1: self.k1,
+            k2: self.k2,
+            k3: self.k3,
+            t1: self.t1,
+            t2: self.t2,
+        }
     }
 
     /// Torsion at the knee `T1`, rad.
@@ -171,15 +200,29 @@ impl CubicStiffness {
     /// the linear guess; the function is increasing and convex for
     /// `Δθ > 0`, so Newton from `τ/a1` (which over-estimates) decreases
     /// monotonically to the root.
+    ///
+    /// Both `τ/a1` and `∛(τ/a3)` over-estimate the root; Newton starts from
+    /// the smaller, so the cubic never overflows for `|τ| ≤ 1e300` N·m
+    /// (larger torques are taken as 1e300; a non-finite torque gives 0).
     pub fn torsion(&self, torque: f64) -> f64 {
         if !torque.is_finite() {
             return 0.0;
         }
-        let t = torque.abs();
+        let t = torque.abs().min(1e300);
         let mut x = t / self.a1;
+        if self.a3 > 0.0 {
+            x = x.min(libm::cbrt(t / self.a3));
+        }
+        if !x.is_finite() {
+            // Only for a1 and a3 so small that the torsion exceeds f64.
+            return f64::MAX.copysign(torque);
+        }
         for _ in 0..60 {
             let f = self.torque(x) - t;
             let step = f / self.local_stiffness(x);
+            if !step.is_finite() {
+                break;
+            }
             x -= step;
             if step.abs() <= 1e-17 * x.abs() {
                 break;
@@ -191,21 +234,59 @@ impl CubicStiffness {
 
 /// Flexspline stiffness of the proposed model, eq. (2.24):
 /// `K_fl = K_f0 (1 + (c_f τ_f)²)`.
+///
+/// Built only by [`try_new`](Self::try_new), so every value a
+/// configuration sees has passed its checks.
+///
+/// ```compile_fail
+/// // Fields are private: a NaN `c_f` cannot skip `try_new`.
+/// let f = mrr_control::harmonic_drive::FlexsplineParams { k_f0: 8.3e3, c_f: f64::NAN };
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FlexsplineParams {
-    /// Stiffness at zero torque `K_f0`, N·m/rad.
-    pub k_f0: f64,
-    /// Stiffening coefficient `c_f`, 1/(N·m).
-    pub c_f: f64,
+    k_f0: f64,
+    c_f: f64,
 }
 
+/// Accepted range of the stiffening coefficients `c_f` and `c_w`,
+/// 1/(N·m): wide around the thesis's identified values (0.045 and 83), and
+/// narrow enough that every backend keeps the prepared coefficients
+/// (`c`, `1/c`, in stored units) at full 31-bit precision.
+pub const STIFFENING_RANGE: (f64, f64) = (1e-6, 1e6);
+
+/// Accepted range of the flexspline's largest torsion `π/(2 c_f K_f0)`,
+/// rad. Harmonic drives twist by milliradians (4.2 mrad for the
+/// SHD-17-100); the lower end is 65 steps of the fixed-point torsion unit,
+/// so the inverse of eq. (3.10) keeps a usable domain on every backend.
+pub const MAX_TORSION_RANGE: (f64, f64) = (1e-6, 1.0);
+
 impl FlexsplineParams {
-    /// Validates `K_f0 > 0` and `c_f > 0` (both finite).
+    /// Validates `K_f0 > 0` (N·m/rad) and `c_f` (1/(N·m)) in
+    /// [`STIFFENING_RANGE`], both finite, and the composite: the largest
+    /// torsion `π/(2 c_f K_f0)` (the edge of the inverse's domain) in
+    /// [`MAX_TORSION_RANGE`]. Errors name the parameter (`k_f0`, `c_f`) or
+    /// the combination (`π/(2·c_f·k_f0)`).
     pub fn try_new(k_f0: f64, c_f: f64) -> Result<Self, ParamError> {
-        Ok(FlexsplineParams {
-            k_f0: positive("k_f0", k_f0)?,
-            c_f: positive("c_f", c_f)?,
-        })
+        let k_f0 = positive("k_f0", k_f0)?;
+        let c_f = in_range("c_f", c_f, STIFFENING_RANGE.0, STIFFENING_RANGE.1)?;
+        let p = FlexsplineParams { k_f0, c_f };
+        combination(
+            "π/(2·c_f·k_f0)",
+            p.max_torsion(),
+            MAX_TORSION_RANGE.0,
+            MAX_TORSION_RANGE.1,
+        )?;
+        Ok(p)
+    }
+
+    /// Stiffness at zero torque `K_f0`, N·m/rad.
+    pub fn k_f0(&self) -> f64 {
+        self.k_f0
+    }
+
+    /// Stiffening coefficient `c_f`, 1/(N·m).
+    pub fn c_f(&self) -> f64 {
+        self.c_f
     }
 
     /// Eq. (2.24): local stiffness (N·m/rad) at a flexspline torque (N·m).
@@ -361,21 +442,40 @@ impl<S: Scalar> FlexsplineConfig<S> {
 
 /// Wave-generator compliance of the proposed model, eq. (2.27):
 /// `K_wl = K_w0 e^{c_w |τ_w|}`.
+///
+/// Built only by [`try_new`](Self::try_new).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WaveGeneratorParams {
-    /// Stiffness at zero torque `K_w0`, N·m/rad (wave-generator side).
-    pub k_w0: f64,
-    /// Stiffening coefficient `c_w`, 1/(N·m).
-    pub c_w: f64,
+    k_w0: f64,
+    c_w: f64,
 }
 
 impl WaveGeneratorParams {
-    /// Validates `K_w0 > 0` and `c_w > 0`.
+    /// Validates `K_w0 > 0` (N·m/rad, wave-generator side) and `c_w`
+    /// (1/(N·m)) in [`STIFFENING_RANGE`], both finite; the largest
+    /// wave-generator torsion `1/(c_w K_w0)` must be a finite number.
     pub fn try_new(k_w0: f64, c_w: f64) -> Result<Self, ParamError> {
-        Ok(WaveGeneratorParams {
-            k_w0: positive("k_w0", k_w0)?,
-            c_w: positive("c_w", c_w)?,
-        })
+        let k_w0 = positive("k_w0", k_w0)?;
+        let c_w = in_range("c_w", c_w, STIFFENING_RANGE.0, STIFFENING_RANGE.1)?;
+        combination("1/(c_w·k_w0)", 1.0 / (c_w * k_w0), 0.0, f64::MAX)?;
+        Ok(WaveGeneratorParams { k_w0, c_w })
+    }
+
+    /// Stiffness at zero torque `K_w0`, N·m/rad (wave-generator side).
+    pub fn k_w0(&self) -> f64 {
+        self.k_w0
+    }
+
+    /// Stiffening coefficient `c_w`, 1/(N·m).
+    pub fn c_w(&self) -> f64 {
+        self.c_w
+    }
+
+    /// Largest wave-generator torsion `1/(c_w K_w0)` (rad, input side), the
+    /// limit of eq. (2.29) as `|τ_w| → ∞` (half the hysteresis width of
+    /// eq. 2.36 times `N`).
+    pub fn max_torsion(&self) -> f64 {
+        1.0 / (self.c_w * self.k_w0)
     }
 
     /// Eq. (2.27): local stiffness (N·m/rad) at a wave-generator torque.
@@ -431,29 +531,64 @@ impl<S: Scalar> WaveGeneratorConfig<S> {
 }
 
 /// The proposed harmonic-drive compliance, eq. (2.30).
+///
+/// Built only by [`try_new`](Self::try_new) from validated parts.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HarmonicDriveParams {
-    /// Flexspline stiffness, eq. (2.24)–(2.26).
-    pub flexspline: FlexsplineParams,
-    /// Wave-generator compliance, eq. (2.27)–(2.29).
-    pub wave_generator: WaveGeneratorParams,
-    /// Gear ratio `N` (≥ 1).
-    pub ratio: f64,
+    flexspline: FlexsplineParams,
+    wave_generator: WaveGeneratorParams,
+    ratio: f64,
 }
 
+/// Largest accepted output-side wave-generator torsion `1/(c_w N K_w0)`,
+/// rad (0.145 mrad for the SHD-17-100): as for the flexspline, a harmonic
+/// drive twists by milliradians.
+pub const MAX_WAVE_GENERATOR_TORSION: f64 = 1.0;
+
 impl HarmonicDriveParams {
-    /// Validates the ratio (`N ≥ 1`, finite).
+    /// Validates the ratio (`N ≥ 1`, finite; `ratio`) and the composite:
+    /// the output-side wave-generator torsion `1/(c_w N K_w0)` (rad) at most
+    /// [`MAX_WAVE_GENERATOR_TORSION`]. The parts were validated by their
+    /// own `try_new`.
     pub fn try_new(
         flexspline: FlexsplineParams,
         wave_generator: WaveGeneratorParams,
         ratio: f64,
     ) -> Result<Self, ParamError> {
         let ratio = gear_ratio(ratio)?;
-        Ok(HarmonicDriveParams {
+        let p = HarmonicDriveParams {
             flexspline,
             wave_generator,
             ratio,
-        })
+        };
+        combination(
+            "1/(c_w·ratio·k_w0)",
+            p.output_wave_generator_torsion(),
+            0.0,
+            MAX_WAVE_GENERATOR_TORSION,
+        )?;
+        Ok(p)
+    }
+
+    /// Flexspline stiffness, eq. (2.24)–(2.26).
+    pub fn flexspline(&self) -> FlexsplineParams {
+        self.flexspline
+    }
+
+    /// Wave-generator compliance, eq. (2.27)–(2.29).
+    pub fn wave_generator(&self) -> WaveGeneratorParams {
+        self.wave_generator
+    }
+
+    /// Gear ratio `N` (≥ 1).
+    pub fn ratio(&self) -> f64 {
+        self.ratio
+    }
+
+    /// Largest output-side wave-generator torsion `1/(c_w N K_w0)`, rad:
+    /// the wave-generator term of eq. (2.30) as `|τ_w| → ∞`.
+    pub fn output_wave_generator_torsion(&self) -> f64 {
+        1.0 / (self.wave_generator.c_w * self.ratio * self.wave_generator.k_w0)
     }
 
     /// Eq. (2.30): total output-side torsion (rad) for a flexspline torque
@@ -478,7 +613,14 @@ mod tests {
 
     #[test]
     fn piecewise_is_continuous_at_the_knees_and_odd() {
-        let c = CataloguePiecewise::try_new(8.4e3, 9.4e3, 1.2e4, 3.9, 12.0).unwrap();
+        let c = CataloguePiecewise::try_new(CatalogueCurve {
+            k1: 8.4e3,
+            k2: 9.4e3,
+            k3: 1.2e4,
+            t1: 3.9,
+            t2: 12.0,
+        })
+        .unwrap();
         for t in [3.9, 12.0] {
             let below = c.torsion(t - 1e-9);
             let above = c.torsion(t + 1e-9);
@@ -490,10 +632,34 @@ mod tests {
         assert!((c.torsion(15.0) - (3.9 / 8400.0 + 8.1 / 9400.0 + 3.0 / 12000.0)).abs() < 1e-15);
     }
 
+    /// Huge torques used to overflow the cubic inside Newton's method and
+    /// return NaN; the inverse is now finite and still inverts.
+    #[test]
+    fn cubic_inverse_is_finite_for_huge_torques() {
+        let q = CubicStiffness::try_new(8.0e3, 2.0e9).unwrap();
+        for t in [1e100, 1e250, 1e300, f64::MAX] {
+            let x = q.torsion(t);
+            assert!(x.is_finite() && x > 0.0, "{t}: {x}");
+            let tt = t.min(1e300);
+            assert!(
+                (q.torque(x) - tt).abs() <= 1e-12 * tt,
+                "{t}: {}",
+                q.torque(x)
+            );
+            assert_eq!(q.torsion(-t), -x);
+        }
+    }
+
     #[test]
     fn piecewise_rejects_unordered_knees() {
         assert_eq!(
-            CataloguePiecewise::try_new(1.0, 2.0, 3.0, 5.0, 5.0),
+            CataloguePiecewise::try_new(CatalogueCurve {
+                k1: 1.0,
+                k2: 2.0,
+                k3: 3.0,
+                t1: 5.0,
+                t2: 5.0
+            }),
             Err(ParamError::NotIncreasing {
                 lower: "t1",
                 lower_value: 5.0,
@@ -502,20 +668,124 @@ mod tests {
             })
         );
         assert!(matches!(
-            CataloguePiecewise::try_new(-1.0, 2.0, 3.0, 1.0, 5.0),
+            CataloguePiecewise::try_new(CatalogueCurve {
+                k1: -1.0,
+                k2: 2.0,
+                k3: 3.0,
+                t1: 1.0,
+                t2: 5.0
+            }),
             Err(ParamError::NotPositive { name: "k1", .. })
         ));
     }
 
     #[test]
     fn cubic_passes_through_the_knees() {
-        let c = CataloguePiecewise::try_new(8.4e3, 9.4e3, 1.2e4, 3.9, 12.0).unwrap();
+        let c = CataloguePiecewise::try_new(CatalogueCurve {
+            k1: 8.4e3,
+            k2: 9.4e3,
+            k3: 1.2e4,
+            t1: 3.9,
+            t2: 12.0,
+        })
+        .unwrap();
         let q = CubicStiffness::through_catalogue_knees(&c).unwrap();
         assert!((q.torque(c.torsion_at_t1()) - 3.9).abs() < 1e-9);
         assert!((q.torque(c.torsion_at_t2()) - 12.0).abs() < 1e-9);
         // A softening catalogue (K2 < K1) has no admissible cubic.
-        let soft = CataloguePiecewise::try_new(9.4e3, 8.4e3, 8e3, 3.9, 12.0).unwrap();
+        let soft = CataloguePiecewise::try_new(CatalogueCurve {
+            k1: 9.4e3,
+            k2: 8.4e3,
+            k3: 8e3,
+            t1: 3.9,
+            t2: 12.0,
+        })
+        .unwrap();
         assert!(CubicStiffness::through_catalogue_knees(&soft).is_err());
+    }
+
+    /// The values the issue found accepted (NaN, negative or zero
+    /// stiffness and stiffening coefficients) are rejected, each naming
+    /// the parameter, the value and the rule in its message.
+    #[test]
+    fn bad_drive_parameters_are_rejected_by_name() {
+        extern crate std;
+        use std::string::ToString;
+        let f = |k, c| {
+            FlexsplineParams::try_new(k, c)
+                .map(|_| ())
+                .unwrap_err()
+                .to_string()
+        };
+        let w = |k, c| {
+            WaveGeneratorParams::try_new(k, c)
+                .map(|_| ())
+                .unwrap_err()
+                .to_string()
+        };
+        let cases = [
+            (
+                f(8.3e3, f64::NAN),
+                "parameter `c_f` must be finite, got NaN",
+            ),
+            (f(-8.3e3, 0.045), "parameter `k_f0` must be > 0, got -8300"),
+            (f(0.0, 0.045), "parameter `k_f0` must be > 0, got 0"),
+            (
+                f(8.3e3, -0.045),
+                "parameter `c_f` must lie in [0.000001, 1000000], got -0.045",
+            ),
+            (
+                f(f64::INFINITY, 0.045),
+                "parameter `k_f0` must be finite, got inf",
+            ),
+            (
+                w(f64::NAN, 83.0),
+                "parameter `k_w0` must be finite, got NaN",
+            ),
+            (
+                w(0.83, -83.0),
+                "parameter `c_w` must lie in [0.000001, 1000000], got -83",
+            ),
+            (
+                w(0.83, 0.0),
+                "parameter `c_w` must lie in [0.000001, 1000000], got 0",
+            ),
+        ];
+        for (got, want) in cases {
+            assert_eq!(got, want);
+        }
+        // The composite: a flexspline so stiff that its inverse's domain
+        // π/(2 c_f K_f0) is below a micro-radian (here 1.9e-8 rad).
+        let e = FlexsplineParams::try_new(8.3e7, 1.0).unwrap_err();
+        let domain = core::f64::consts::FRAC_PI_2 / 8.3e7;
+        assert_eq!(
+            e,
+            ParamError::CombinationOutOfRange {
+                name: "π/(2·c_f·k_f0)",
+                value: domain,
+                min: 1e-6,
+                max: 1.0
+            }
+        );
+        // A drive whose wave generator twists by more than a radian on the
+        // output side.
+        let fl = FlexsplineParams::try_new(8.3e3, 0.045).unwrap();
+        let wg = WaveGeneratorParams::try_new(1e-3, 1e-3).unwrap();
+        let e = HarmonicDriveParams::try_new(fl, wg, 2.0).unwrap_err();
+        assert!(
+            matches!(e, ParamError::CombinationOutOfRange { name: "1/(c_w·ratio·k_w0)", value, .. } if value == 1.0 / (1e-3 * 2.0 * 1e-3)),
+            "{e:?}"
+        );
+        let e = HarmonicDriveParams::try_new(
+            fl,
+            WaveGeneratorParams::try_new(0.83, 83.0).unwrap(),
+            0.5,
+        )
+        .unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "parameter `ratio` must lie in [1, inf], got 0.5"
+        );
     }
 
     #[test]
@@ -611,7 +881,7 @@ mod tests {
         /// The piecewise inverse is exact to rounding.
         #[test]
         fn piecewise_round_trip(t in -100.0f64..100.0) {
-            let c = CataloguePiecewise::try_new(8.4e3, 9.4e3, 1.2e4, 3.9, 12.0).unwrap();
+            let c = CataloguePiecewise::try_new(CatalogueCurve { k1: 8.4e3, k2: 9.4e3, k3: 1.2e4, t1: 3.9, t2: 12.0 }).unwrap();
             prop_assert!((c.torque(c.torsion(t)) - t).abs() <= 1e-10 * (1.0 + t.abs()));
         }
 

@@ -118,13 +118,49 @@ pub mod table_3_2 {
 
 /// The Fourier kinematic-error model of eq. (3.7), in SI units, with one
 /// harmonic per output revolution and two per wave-generator revolution.
+///
+/// Built only by [`try_new`](Self::try_new), [`table_3_2`](Self::table_3_2)
+/// or a [`KinematicErrorFit`], so its coefficients are finite and bounded.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct KinematicErrorModel {
-    /// Coefficients `[a0, a_l1, b_l1, a_w1, b_w1, a_w2, b_w2]`, rad.
-    pub coefficients: [f64; 7],
+    coefficients: [f64; 7],
 }
 
+/// The names of the coefficients of eq. (3.7), in the order of
+/// [`KinematicErrorModel::coefficients`].
+pub const COEFFICIENT_NAMES: [&str; 7] = ["a0", "a_l1", "b_l1", "a_w1", "b_w1", "a_w2", "b_w2"];
+
+/// Largest accepted [`KinematicErrorModel::amplitude_bound`], rad (0.57°):
+/// 23 times the largest catalogue kinematic error of Table 3.1 (4.4e-4
+/// rad), and small enough that the fixed-point evaluation keeps the error
+/// bound of the torque estimator's module docs below 15 steps of its
+/// torsion unit.
+pub const MAX_KINEMATIC_ERROR: f64 = 0.01;
+
 impl KinematicErrorModel {
+    /// Validates the coefficients `[a0, a_l1, b_l1, a_w1, b_w1, a_w2,
+    /// b_w2]` (rad): each finite (named as in [`COEFFICIENT_NAMES`]), and
+    /// the largest error they can produce, `|a0| + Σ √(a² + b²)`, at most
+    /// [`MAX_KINEMATIC_ERROR`].
+    pub fn try_new(coefficients: [f64; 7]) -> Result<Self, ParamError> {
+        for (name, &c) in COEFFICIENT_NAMES.iter().zip(&coefficients) {
+            finite(name, c)?;
+        }
+        let m = KinematicErrorModel { coefficients };
+        crate::error::combination(
+            "|a0| + √(a_l1² + b_l1²) + √(a_w1² + b_w1²) + √(a_w2² + b_w2²)",
+            m.amplitude_bound(),
+            0.0,
+            MAX_KINEMATIC_ERROR,
+        )?;
+        Ok(m)
+    }
+
+    /// Coefficients `[a0, a_l1, b_l1, a_w1, b_w1, a_w2, b_w2]`, rad.
+    pub fn coefficients(&self) -> [f64; 7] {
+        self.coefficients
+    }
+
     /// Table 3.2 in SI units: coefficients converted from degrees to rad,
     /// and the harmonics taken as exactly 1 per link revolution and 1, 2 per
     /// motor revolution (the printed `w_l`, `w_w` are fitted estimates of
@@ -306,7 +342,7 @@ impl KinematicErrorFit {
         }
         let mut coefficients = [0.0; 7];
         coefficients.copy_from_slice(x.as_slice());
-        Ok(KinematicErrorModel { coefficients })
+        KinematicErrorModel::try_new(coefficients)
     }
 }
 
@@ -314,6 +350,33 @@ impl KinematicErrorFit {
 mod tests {
     use super::*;
     use proptest::prelude::*;
+
+    /// All-NaN and all-infinite tables (accepted before, and giving a
+    /// constant −64 N·m estimate) are rejected naming the first bad
+    /// coefficient; a finite table too large to be a kinematic error is
+    /// rejected naming the amplitude bound; Table 3.2 is accepted.
+    #[test]
+    fn non_finite_or_huge_tables_are_rejected() {
+        extern crate std;
+        use std::string::ToString;
+        let e = KinematicErrorModel::try_new([f64::NAN; 7]).unwrap_err();
+        assert_eq!(e.to_string(), "parameter `a0` must be finite, got NaN");
+        let mut c = [0.0; 7];
+        c[4] = f64::NEG_INFINITY;
+        let e = KinematicErrorModel::try_new(c).unwrap_err();
+        assert_eq!(e.to_string(), "parameter `b_w1` must be finite, got -inf");
+        // 3-4-5: the first motor harmonic alone has amplitude 0.05 rad.
+        let e = KinematicErrorModel::try_new([0.0, 0.0, 0.0, 0.03, 0.04, 0.0, 0.0]).unwrap_err();
+        match e {
+            ParamError::CombinationOutOfRange { value, max, .. } => {
+                assert!((value - 0.05).abs() < 1e-15);
+                assert_eq!(max, MAX_KINEMATIC_ERROR);
+            }
+            other => panic!("{other:?}"),
+        }
+        let t = KinematicErrorModel::table_3_2();
+        assert_eq!(KinematicErrorModel::try_new(t.coefficients()), Ok(t));
+    }
 
     /// Table 3.1 recomputed from its inputs (eq. 3.1, 3.2) against hand
     /// products, and the printed (truncated) values within their truncation.

@@ -18,15 +18,13 @@
 
 use crate::error::{non_negative, positive, ParamError};
 
-/// Parameters of the two-spring system.
+/// Parameters of the two-spring system; built only by
+/// [`try_new`](Self::try_new).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TwoSpringParams {
-    /// Stiffness of spring (a), `K_a` (N/m or N·m/rad), > 0.
-    pub k_a: f64,
-    /// Stiffness of spring (b), `K_b`, > 0.
-    pub k_b: f64,
-    /// Friction force of the contact behind spring (b), `F_fr` ≥ 0.
-    pub friction: f64,
+    k_a: f64,
+    k_b: f64,
+    friction: f64,
 }
 
 impl TwoSpringParams {
@@ -37,6 +35,21 @@ impl TwoSpringParams {
         let k_b = positive("k_b", k_b)?;
         let friction = non_negative("friction", friction)?;
         Ok(TwoSpringParams { k_a, k_b, friction })
+    }
+
+    /// Stiffness of spring (a), `K_a` (N/m or N·m/rad), > 0.
+    pub fn k_a(&self) -> f64 {
+        self.k_a
+    }
+
+    /// Stiffness of spring (b), `K_b`, > 0.
+    pub fn k_b(&self) -> f64 {
+        self.k_b
+    }
+
+    /// Friction force of the contact behind spring (b), `F_fr` ≥ 0.
+    pub fn friction(&self) -> f64 {
+        self.friction
     }
 
     /// Eq. (2.16) as printed, valid while spring (b) slides (`|F_b − F| =

@@ -45,6 +45,10 @@
 //! are offered by [`q15`](super::q15).
 
 use super::Scalar;
+use crate::control::{
+    ActiveOutput, ControlInput, ModeConfig, ModeOutput, PassiveConfig, PassiveOutput,
+    RobustAdaptiveConfig,
+};
 
 /// Link-side torque: stored in N·m.
 pub const LINK_TORQUE: f64 = 1.0;
@@ -123,6 +127,149 @@ pub fn dequantize<S: Scalar>(stored: S, scale: f64) -> f64 {
 pub fn relative_quantization_error<S: Scalar>(value_si: f64, scale: f64) -> f64 {
     let back = dequantize(quantize::<S>(value_si, scale), scale);
     ((back - value_si) / value_si).abs()
+}
+
+/// Half a step of backend `S` in the stored unit of `scale`, in SI: the
+/// largest error of [`quantize`] for an in-range value (0 for floats,
+/// which round relatively: `RESOLUTION/2` of the value).
+pub fn half_step_si<S: Scalar>(scale: f64) -> f64 {
+    if S::RESOLUTION.to_f64() >= 1e-6 {
+        0.5 * S::RESOLUTION.to_f64() / scale
+    } else {
+        0.0
+    }
+}
+
+// SI at the API boundary: one conversion per boundary type, applying
+// `S::UNITS` (identity on floats), so that user code written once speaks
+// N·m, rad and rad/s on every backend. The stored-unit fields stay public
+// for firmware that wants them.
+
+/// `value_si · scale` for backend `S` like [`quantize`], except that a
+/// NaN or an infinity stays one on the float backends (so the step that
+/// reads it flags it); fixed point, which has neither, saturates ±∞ to
+/// `±MAX` and maps NaN to 0.
+#[inline]
+pub fn quantize_keep_non_finite<S: Scalar>(value_si: f64, scale: f64) -> S {
+    let v = value_si * scale;
+    if v.is_finite() {
+        return S::from_f64(v);
+    }
+    // `MAX + MAX` is +∞ on floats and saturates to MAX on fixed point;
+    // `∞ − ∞` is NaN on floats and 0 on fixed point.
+    let inf = S::MAX.add(S::MAX);
+    if v.is_nan() {
+        inf.sub(inf)
+    } else if v > 0.0 {
+        inf
+    } else {
+        inf.neg()
+    }
+}
+
+impl<S: Scalar> ControlInput<S> {
+    /// The sample for backend `S` from SI values: positions in rad, speeds
+    /// in rad/s, accelerations in rad/s², joint torques in N·m (link side).
+    /// Each field is quantized with its scale of `S::UNITS`
+    /// (angle, speed, speed, link torque) by [`quantize_keep_non_finite`]:
+    /// within half a stored step ([`half_step_si`]) on fixed point, rounded
+    /// to nearest on floats; finite out-of-range values saturate. A NaN or
+    /// infinite value stays one on floats, and the step flags it
+    /// (`invalid_input`); fixed point cannot hold it (NaN becomes 0, ±∞
+    /// saturates), so firmware on fixed point should test
+    /// `si.is_finite()` before converting.
+    pub fn from_si(si: &ControlInput<f64>) -> Self {
+        let u = S::UNITS;
+        let quantize = quantize_keep_non_finite::<S>;
+        ControlInput {
+            desired_position: quantize(si.desired_position, u.angle),
+            desired_velocity: quantize(si.desired_velocity, u.speed),
+            desired_acceleration: quantize(si.desired_acceleration, u.speed),
+            motor_position: quantize(si.motor_position, u.angle),
+            motor_velocity: quantize(si.motor_velocity, u.speed),
+            joint_torque: quantize(si.joint_torque, u.link_torque),
+            desired_joint_torque: quantize(si.desired_joint_torque, u.link_torque),
+            expected_joint_torque: quantize(si.expected_joint_torque, u.link_torque),
+        }
+    }
+
+    /// The SI values this sample stands for (the inverse of
+    /// [`from_si`](Self::from_si), exact).
+    pub fn to_si(&self) -> ControlInput<f64> {
+        let u = S::UNITS;
+        ControlInput {
+            desired_position: dequantize(self.desired_position, u.angle),
+            desired_velocity: dequantize(self.desired_velocity, u.speed),
+            desired_acceleration: dequantize(self.desired_acceleration, u.speed),
+            motor_position: dequantize(self.motor_position, u.angle),
+            motor_velocity: dequantize(self.motor_velocity, u.speed),
+            joint_torque: dequantize(self.joint_torque, u.link_torque),
+            desired_joint_torque: dequantize(self.desired_joint_torque, u.link_torque),
+            expected_joint_torque: dequantize(self.expected_joint_torque, u.link_torque),
+        }
+    }
+}
+
+impl<S: Scalar> ModeOutput<S> {
+    /// [`torque`](Self::torque), the motor torque command, in N·m.
+    pub fn torque_si(&self) -> f64 {
+        dequantize(self.torque, S::UNITS.motor_torque)
+    }
+    /// [`interaction`](Self::interaction), link side, in N·m.
+    pub fn interaction_si(&self) -> f64 {
+        dequantize(self.interaction, S::UNITS.link_torque)
+    }
+    /// [`reference_position`](Self::reference_position) in rad.
+    pub fn reference_position_si(&self) -> f64 {
+        dequantize(self.reference_position, S::UNITS.angle)
+    }
+}
+
+impl<S: Scalar> ActiveOutput<S> {
+    /// [`torque`](Self::torque), the motor torque command, in N·m.
+    pub fn torque_si(&self) -> f64 {
+        dequantize(self.torque, S::UNITS.motor_torque)
+    }
+    /// [`law_torque`](Self::law_torque) in N·m.
+    pub fn law_torque_si(&self) -> f64 {
+        dequantize(self.law_torque, S::UNITS.motor_torque)
+    }
+    /// [`tracking_error`](Self::tracking_error) in rad.
+    pub fn tracking_error_si(&self) -> f64 {
+        dequantize(self.tracking_error, S::UNITS.angle)
+    }
+}
+
+impl<S: Scalar> PassiveOutput<S> {
+    /// [`torque`](Self::torque), the motor torque command, in N·m.
+    pub fn torque_si(&self) -> f64 {
+        dequantize(self.torque, S::UNITS.motor_torque)
+    }
+    /// [`law_torque`](Self::law_torque) in N·m.
+    pub fn law_torque_si(&self) -> f64 {
+        dequantize(self.law_torque, S::UNITS.motor_torque)
+    }
+}
+
+impl<S: Scalar> ModeConfig<S> {
+    /// The motor torque limit `L` in N·m.
+    pub fn torque_limit_si(&self) -> f64 {
+        dequantize(self.torque_limit(), S::UNITS.motor_torque)
+    }
+}
+
+impl<S: Scalar> RobustAdaptiveConfig<S> {
+    /// The motor torque limit in N·m.
+    pub fn torque_limit_si(&self) -> f64 {
+        dequantize(self.torque_limit(), S::UNITS.motor_torque)
+    }
+}
+
+impl<S: Scalar> PassiveConfig<S> {
+    /// The motor torque limit in N·m.
+    pub fn torque_limit_si(&self) -> f64 {
+        dequantize(self.torque_limit(), S::UNITS.motor_torque)
+    }
 }
 
 /// A physical quantity of the thesis, its unit scale and the values the
@@ -240,6 +387,147 @@ mod tests {
                     q.name
                 );
             }
+        }
+    }
+
+    /// One generic user function, written once in SI, gives the same SI
+    /// numbers on f32, f64 and I16F16: the torque limit (188 mN·m; it used
+    /// to read 0.188 on floats and 188 on fixed point), a sample's round
+    /// trip through `from_si` (within half a stored step), the active law
+    /// for a 1 mrad error (it used to read −0.170 vs −170.17), and a torque
+    /// estimate (within its documented `AgreementBound`).
+    #[test]
+    fn one_generic_function_gives_the_same_si_numbers_on_every_backend() {
+        use crate::control::{RobustAdaptiveConfig, RobustAdaptiveParams};
+        use crate::estimation::{TorqueEstimatorConfig, TorqueEstimatorParams};
+        use crate::harmonic_drive::CatalogueData;
+
+        struct Si {
+            limit: f64,
+            round_trip: ControlInput<f64>,
+            law: f64,
+            estimate: f64,
+        }
+        fn user_code<S: Scalar>(x: &ControlInput<f64>, est: &TorqueEstimatorParams) -> Si {
+            let law = RobustAdaptiveConfig::<S>::new(&RobustAdaptiveParams::table_4_1().unwrap());
+            let mut st = law.initial_state();
+            let input = ControlInput::<S>::from_si(x);
+            let out = law.update(&mut st, &input);
+            let cfg = TorqueEstimatorConfig::<S>::new(est);
+            // A link count of 1000 with the motor 12 counts short of rigid.
+            let mn = est.motor_counts_per_rev() as i64 * 100;
+            let rigid = -(1000 * mn / est.link_counts_per_rev() as i64);
+            let mut es = cfg.state(rigid - 12, 0);
+            let e = cfg.update(&mut es, 1000, 0, S::from_f64(0.05 * S::UNITS.motor_torque));
+            Si {
+                limit: law.torque_limit_si(),
+                round_trip: input.to_si(),
+                law: out.torque_si(),
+                estimate: e.torque_si(),
+            }
+        }
+        let x = ControlInput {
+            desired_position: 1.0,
+            desired_velocity: 0.5,
+            desired_acceleration: 2.0,
+            motor_position: 1.001,
+            motor_velocity: 0.5,
+            joint_torque: 0.3,
+            desired_joint_torque: 0.0,
+            expected_joint_torque: 0.1,
+        };
+        let drive = CatalogueData::SHD_17_100.identify().unwrap();
+        let est = TorqueEstimatorParams::try_new(drive, None, 1 << 17, 2000, 60.0).unwrap();
+        let a = user_code::<f64>(&x, &est);
+        assert!((a.limit - 0.188).abs() < 1e-12, "{}", a.limit);
+        assert!(
+            a.law < -0.1 && a.estimate.abs() > 0.1,
+            "{} {}",
+            a.law,
+            a.estimate
+        );
+        for (name, b, bound) in [
+            (
+                "f32",
+                user_code::<f32>(&x, &est),
+                est.agreement_bound::<f32>(),
+            ),
+            (
+                "I16F16",
+                user_code::<I16F16>(&x, &est),
+                est.agreement_bound::<I16F16>(),
+            ),
+        ] {
+            let half_mnm = half_step_si::<I16F16>(MOTOR_TORQUE).max(1e-7 * 0.188);
+            assert!(
+                (b.limit - a.limit).abs() <= half_mnm,
+                "{name} limit {}",
+                b.limit
+            );
+            let rt = |c: &ControlInput<f64>| {
+                [
+                    c.desired_position,
+                    c.desired_velocity,
+                    c.desired_acceleration,
+                    c.motor_position,
+                    c.motor_velocity,
+                    c.joint_torque,
+                    c.desired_joint_torque,
+                    c.expected_joint_torque,
+                ]
+            };
+            for (got, want) in rt(&b.round_trip).iter().zip(rt(&x)) {
+                // Every scale of these fields is 1: half a step is 2⁻¹⁷.
+                let tol = half_step_si::<I16F16>(1.0).max(2f64.powi(-24) * want.abs());
+                assert!((got - want).abs() <= tol, "{name}: {got} vs {want}");
+            }
+            // The active law: 1 % of the limit catches any unit slip (a
+            // factor of 1000); the derived per-backend budget is in the
+            // law's own tests.
+            assert!(
+                (b.law - a.law).abs() <= 0.01 * a.limit,
+                "{name} law {} vs {}",
+                b.law,
+                a.law
+            );
+            // The estimate: within the documented agreement bound.
+            let cfg = TorqueEstimatorConfig::<f64>::new(&est);
+            let mn = est.motor_counts_per_rev() as i64 * 100;
+            let rigid = -(1000 * mn / est.link_counts_per_rev() as i64);
+            let e = cfg.update(&mut cfg.state(rigid - 12, 0), 1000, 0, 0.05);
+            assert_eq!(e.torque, a.estimate);
+            let (lo, hi) = bound.torque_interval(&est, e.flexspline_torsion);
+            assert!(
+                lo <= b.estimate && b.estimate <= hi,
+                "{name} {} not in [{lo}, {hi}]",
+                b.estimate
+            );
+        }
+    }
+
+    /// A NaN or infinite SI value reaches a float step as such (so it is
+    /// flagged), where `quantize` alone would have made it 0 or `MAX`
+    /// silently; fixed point saturates.
+    #[test]
+    fn from_si_keeps_non_finite_values_on_floats() {
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let si = ControlInput {
+                joint_torque: bad,
+                ..Default::default()
+            };
+            let x = ControlInput::<f32>::from_si(&si);
+            assert!(!x.is_finite());
+            assert_eq!(x.joint_torque.is_nan(), bad.is_nan());
+            assert!(!ControlInput::<f64>::from_si(&si).is_finite());
+            let q = ControlInput::<I16F16>::from_si(&si).joint_torque;
+            let want = if bad.is_nan() {
+                I16F16::ZERO
+            } else if bad > 0.0 {
+                I16F16::MAX
+            } else {
+                -I16F16::MAX
+            };
+            assert_eq!(q, want);
         }
     }
 

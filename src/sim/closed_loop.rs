@@ -1263,7 +1263,7 @@ pub fn mode_scenario(
     env: &Environment,
     obstacle: Option<f64>,
 ) -> ModeScenarioResult {
-    use crate::control::{JointMode, ModeConfig, ModeParams, PassiveParams};
+    use crate::control::{JointMode, ModeConfig, ModeParams, ModeSettings, PassiveParams};
     use crate::estimation::collision::CollisionParams;
     let module = fine_motor_encoder(ModuleParams::thesis_joint());
     let mut design = bound_design(1.0);
@@ -1283,17 +1283,17 @@ pub fn mode_scenario(
     let collision = cfg.collision.map(|(th, rel, reaction)| {
         CollisionParams::try_new(th, rel, 3, 50, reaction).expect("valid detector")
     });
-    let params = ModeParams::try_new(
+    let params = ModeParams::try_new(ModeSettings {
         active,
         passive,
-        cfg.enter_passive,
-        cfg.exit_passive,
-        20,
-        100,
-        cfg.rejoin_bandwidth,
-        0.05,
+        enter_passive: cfg.enter_passive,
+        exit_passive: cfg.exit_passive,
+        debounce: 20,
+        dwell: 100,
+        rejoin_bandwidth: cfg.rejoin_bandwidth,
+        bias_time_constant: 0.05,
         collision,
-    )
+    })
     .expect("valid mode parameters");
     let params = match cfg.release {
         Some(rule) => params.with_release(rule).expect("valid release rule"),

@@ -17,7 +17,7 @@ use crate::estimation::torque::{
 };
 use crate::harmonic_drive::kinematic_error::{KinematicErrorFit, KinematicErrorModel};
 use crate::harmonic_drive::{
-    CatalogueData, CataloguePiecewise, CubicStiffness, HarmonicDriveParams,
+    CatalogueCurve, CatalogueData, CataloguePiecewise, CubicStiffness, HarmonicDriveParams,
     WaveGeneratorTorqueConfig, WaveGeneratorTorqueParams, WaveGeneratorTorqueState,
 };
 use crate::scalar::{Scalar, I16F16};
@@ -43,8 +43,14 @@ impl Models {
     /// Identify all three from [`CatalogueData::SHD_17_100`] (and `K3`).
     pub fn shd_17_100() -> Self {
         let d = CatalogueData::SHD_17_100;
-        let piecewise =
-            CataloguePiecewise::try_new(d.k1, d.k2, SHD_17_100_K3, d.t1, d.t2).expect("valid");
+        let piecewise = CataloguePiecewise::try_new(CatalogueCurve {
+            k1: d.k1,
+            k2: d.k2,
+            k3: SHD_17_100_K3,
+            t1: d.t1,
+            t2: d.t2,
+        })
+        .expect("valid");
         Models {
             proposed: d.identify().expect("valid"),
             piecewise,
@@ -177,7 +183,7 @@ fn record(
         measured_torsion: measured_torsion(m, s, 0),
         true_torsion,
         proposed: models.proposed.torsion(tau_f, tau_w),
-        flexspline: models.proposed.flexspline.torsion(tau_f),
+        flexspline: models.proposed.flexspline().torsion(tau_f),
         piecewise: models.piecewise.torsion(tau_f),
         cubic: models.cubic.torsion(tau_f),
         piecewise_input: models.piecewise.torsion(-n * tau_w),
@@ -408,7 +414,7 @@ pub fn locked_output_mesh_friction(
                 measured_torsion: torsion,
                 true_torsion: torsion,
                 proposed: models.proposed.torsion(tau_f, tau_m),
-                flexspline: models.proposed.flexspline.torsion(tau_f),
+                flexspline: models.proposed.flexspline().torsion(tau_f),
                 piecewise: models.piecewise.torsion(tau_f),
                 cubic: models.cubic.torsion(tau_f),
                 piecewise_input: models.piecewise.torsion(-n * tau_m),

@@ -43,8 +43,8 @@
 
 use crate::error::{increasing, positive, ParamError};
 use crate::harmonic_drive::{
-    kinematic_error::KinematicErrorModel, CatalogueData, CataloguePiecewise, CubicStiffness,
-    FlexsplineParams,
+    kinematic_error::KinematicErrorModel, CatalogueCurve, CatalogueData, CataloguePiecewise,
+    CubicStiffness, FlexsplineParams,
 };
 
 /// `K3` of the SHD-17-100 (N·m/rad) assumed by the plant (see the module
@@ -182,7 +182,7 @@ impl FlexsplineBackbone {
     }
 
     fn ck(&self) -> f64 {
-        self.flexspline.c_f * self.flexspline.k_f0
+        self.flexspline.c_f() * self.flexspline.k_f0()
     }
 
     /// Torque (N·m) at torsion `δ` (rad).
@@ -198,7 +198,7 @@ impl FlexsplineBackbone {
 
     fn stiffness_abs(&self, d: f64) -> f64 {
         let tan = libm::tan(self.ck() * d.min(self.limit()));
-        self.flexspline.k_f0 * (1.0 + tan * tan)
+        self.flexspline.k_f0() * (1.0 + tan * tan)
     }
 
     /// Local stiffness `K_f0 (1 + tan²(c_f K_f0 δ))` (N·m/rad), eq. (2.24)
@@ -212,8 +212,8 @@ impl FlexsplineBackbone {
     /// (`x = |δ| − δ_L`).
     pub fn energy(&self, torsion: f64) -> f64 {
         let (d, l) = (torsion.abs(), self.limit());
-        let c = self.flexspline.c_f;
-        let v = |x: f64| -libm::log(libm::cos(self.ck() * x)) / (c * c * self.flexspline.k_f0);
+        let c = self.flexspline.c_f();
+        let v = |x: f64| -libm::log(libm::cos(self.ck() * x)) / (c * c * self.flexspline.k_f0());
         if d <= l {
             v(d)
         } else {
@@ -266,7 +266,13 @@ impl Backbone {
         data: &CatalogueData,
         k3: f64,
     ) -> Result<Self, ParamError> {
-        let piecewise = CataloguePiecewise::try_new(data.k1, data.k2, k3, data.t1, data.t2)?;
+        let piecewise = CataloguePiecewise::try_new(CatalogueCurve {
+            k1: data.k1,
+            k2: data.k2,
+            k3,
+            t1: data.t1,
+            t2: data.t2,
+        })?;
         Ok(match shape {
             BackboneShape::CataloguePiecewise => Backbone::CataloguePiecewise(piecewise),
             BackboneShape::CubicThroughKnees => {
@@ -276,7 +282,7 @@ impl Backbone {
                 Backbone::Tanh(TanhStiffness::through_t2_knee(&piecewise)?)
             }
             BackboneShape::IdentifiedFlexspline => Backbone::Flexspline(FlexsplineBackbone {
-                flexspline: data.identify()?.flexspline,
+                flexspline: data.identify()?.flexspline(),
             }),
         })
     }
@@ -436,7 +442,7 @@ impl DrivePlantParams {
         match &self.kinematic_error {
             None => (0.0, 0.0, 0.0),
             Some(k) => {
-                let c = &k.coefficients;
+                let c = &k.coefficients();
                 let (sl, cl) = libm::sincos(q_l);
                 let (s1, c1) = libm::sincos(-q_m);
                 let (s2, c2) = (2.0 * s1 * c1, c1 * c1 - s1 * s1);
@@ -549,7 +555,13 @@ impl MeshFrictionPlant {
         k3: f64,
         mesh_friction: f64,
     ) -> Result<Self, ParamError> {
-        let catalogue = CataloguePiecewise::try_new(data.k1, data.k2, k3, data.t1, data.t2)?;
+        let catalogue = CataloguePiecewise::try_new(CatalogueCurve {
+            k1: data.k1,
+            k2: data.k2,
+            k3,
+            t1: data.t1,
+            t2: data.t2,
+        })?;
         let mesh_friction = positive("mesh_friction", mesh_friction)?;
         let scale = positive("starting_torque", data.ratio * data.starting_torque)?;
         let plant = MeshFrictionPlant {
@@ -806,7 +818,14 @@ mod tests {
     #[test]
     fn fitted_backbones_meet_their_catalogue_conditions() {
         let c = CatalogueData::SHD_17_100;
-        let pw = CataloguePiecewise::try_new(c.k1, c.k2, SHD_17_100_K3, c.t1, c.t2).unwrap();
+        let pw = CataloguePiecewise::try_new(CatalogueCurve {
+            k1: c.k1,
+            k2: c.k2,
+            k3: SHD_17_100_K3,
+            t1: c.t1,
+            t2: c.t2,
+        })
+        .unwrap();
         let (d1, d2) = (pw.torsion_at_t1(), pw.torsion_at_t2());
         let get = |s| Backbone::from_catalogue(s, &c, SHD_17_100_K3).unwrap();
         let tanh = get(BackboneShape::TanhThroughT2);
@@ -816,7 +835,7 @@ mod tests {
         assert!((cubic.torque(d1) - c.t1).abs() < 1e-9 * c.t2);
         assert!((cubic.torque(d2) - c.t2).abs() < 1e-9 * c.t2);
         let flex = get(BackboneShape::IdentifiedFlexspline);
-        let fs = c.identify().unwrap().flexspline;
+        let fs = c.identify().unwrap().flexspline();
         for t in [-12.0, 0.5, 7.0] {
             assert!((flex.torque(fs.torsion(t)) - t).abs() < 1e-9 * 12.0);
         }

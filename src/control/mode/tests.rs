@@ -3,17 +3,17 @@ use crate::scalar::I16F16;
 use proptest::prelude::*;
 
 fn params(debounce: u16, dwell: u16, collision: Option<CollisionParams>) -> ModeParams {
-    ModeParams::try_new(
-        RobustAdaptiveParams::table_4_1().unwrap(),
-        PassiveParams::table_4_1(2000.0).unwrap(),
-        2.0,
-        1.0,
+    ModeParams::try_new(ModeSettings {
+        active: RobustAdaptiveParams::table_4_1().unwrap(),
+        passive: PassiveParams::table_4_1(2000.0).unwrap(),
+        enter_passive: 2.0,
+        exit_passive: 1.0,
         debounce,
         dwell,
-        10.0,
-        0.1,
+        rejoin_bandwidth: 10.0,
+        bias_time_constant: 0.1,
         collision,
-    )
+    })
     .unwrap()
 }
 
@@ -384,23 +384,85 @@ fn invalid_input_gives_zero_and_keeps_state() {
     assert!(o.invalid_input && o.torque == 0.0 && st == before);
 }
 
+/// The preset is the settings the tests above use, field by field, and
+/// validated parameters give their settings back unchanged.
+#[test]
+fn table_4_1_preset_and_settings_round_trip() {
+    let s = ModeSettings::table_4_1(2000.0).unwrap();
+    assert_eq!(s.active, RobustAdaptiveParams::table_4_1().unwrap());
+    assert_eq!(s.passive, PassiveParams::table_4_1(2000.0).unwrap());
+    assert_eq!(
+        (s.enter_passive, s.exit_passive, s.debounce, s.dwell),
+        (2.0, 1.0, 3, 5)
+    );
+    assert_eq!((s.rejoin_bandwidth, s.bias_time_constant), (10.0, 0.1));
+    assert!(s.collision.is_none());
+    let p = ModeParams::try_new(ModeSettings {
+        debounce: 7,
+        dwell: 11,
+        ..s
+    })
+    .unwrap();
+    let back = p.settings();
+    assert_eq!((back.debounce, back.dwell), (7, 11));
+    assert_eq!(ModeParams::try_new(back), Ok(p));
+    // A zero debounce is named.
+    assert_eq!(
+        ModeParams::try_new(ModeSettings { debounce: 0, ..s }),
+        Err(ParamError::NotPositive {
+            name: "debounce",
+            value: 0.0
+        })
+    );
+}
+
 #[test]
 fn rejects_inverted_thresholds_and_fast_rejoin() {
     let a = RobustAdaptiveParams::table_4_1().unwrap();
     let p = PassiveParams::table_4_1(2000.0).unwrap();
     assert!(matches!(
-        ModeParams::try_new(a, p, 1.0, 2.0, 1, 0, 10.0, 0.1, None),
+        ModeParams::try_new(ModeSettings {
+            active: a,
+            passive: p,
+            enter_passive: 1.0,
+            exit_passive: 2.0,
+            debounce: 1,
+            dwell: 0,
+            rejoin_bandwidth: 10.0,
+            bias_time_constant: 0.1,
+            collision: None
+        }),
         Err(ParamError::NotIncreasing { .. })
     ));
     assert!(matches!(
-        ModeParams::try_new(a, p, 2.0, 1.0, 1, 0, 200.0, 0.1, None),
+        ModeParams::try_new(ModeSettings {
+            active: a,
+            passive: p,
+            enter_passive: 2.0,
+            exit_passive: 1.0,
+            debounce: 1,
+            dwell: 0,
+            rejoin_bandwidth: 200.0,
+            bias_time_constant: 0.1,
+            collision: None
+        }),
         Err(ParamError::OutOfRange {
             name: "rejoin_bandwidth",
             ..
         })
     ));
     assert!(matches!(
-        ModeParams::try_new(a, p, 2.0, 1.0, 1, 0, 10.0, 0.001, None),
+        ModeParams::try_new(ModeSettings {
+            active: a,
+            passive: p,
+            enter_passive: 2.0,
+            exit_passive: 1.0,
+            debounce: 1,
+            dwell: 0,
+            rejoin_bandwidth: 10.0,
+            bias_time_constant: 0.001,
+            collision: None
+        }),
         Err(ParamError::OutOfRange {
             name: "bias_time_constant",
             ..
@@ -571,17 +633,17 @@ fn command_equals_the_two_clamps() {
 #[test]
 fn rejoin_offset_stall_is_within_its_bound() {
     for w in [1.0, 3.0, 10.0, 100.0] {
-        let p = ModeParams::try_new(
-            RobustAdaptiveParams::table_4_1().unwrap(),
-            PassiveParams::table_4_1(2000.0).unwrap(),
-            2.0,
-            1.0,
-            1,
-            0,
-            w,
-            0.1,
-            None,
-        )
+        let p = ModeParams::try_new(ModeSettings {
+            active: RobustAdaptiveParams::table_4_1().unwrap(),
+            passive: PassiveParams::table_4_1(2000.0).unwrap(),
+            enter_passive: 2.0,
+            exit_passive: 1.0,
+            debounce: 1,
+            dwell: 0,
+            rejoin_bandwidth: w,
+            bias_time_constant: 0.1,
+            collision: None,
+        })
         .unwrap();
         fn run<S: Scalar>(p: &ModeParams) -> f64 {
             let cfg = ModeConfig::<S>::new(p);
