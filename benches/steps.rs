@@ -145,7 +145,7 @@ fn mode_params() -> ModeParams {
     .expect("valid mode parameters")
 }
 
-/// The per-joint step: estimate (counter negated, E13) → `τ̂_t = −torque` →
+/// The per-joint step: estimate (counter negated, E2.10) → `τ̂_t = −torque` →
 /// mode manager, along the estimator's readings with a tracking error
 /// sweeping through the boundary layers and expected torques that switch
 /// modes, so every branch runs inside one iteration.

@@ -3,8 +3,8 @@
 //! back-driven experiment (Fig. 2.21–2.22) and the torque-estimation
 //! accuracy table (Table 3.3), and the locked-output and Table 3.3
 //! comparisons repeated on plants built on different elastic backbones
-//! (errata E12). Writes the figure data as CSV under
-//! `target/figures/` and prints a summary.
+//! (errata E2.9). Writes the figure data as CSV under
+//! `$CARGO_TARGET_DIR/figures/` (else `target/figures/`) and prints a summary.
 //!
 //! ```sh
 //! cargo run --release --features sim --example thesis_ch2_3
@@ -15,12 +15,13 @@ use mrr_control::sim::experiments::{
     back_driven, locked_output, torque_estimation, width_at_zero, BackDrivenConfig,
     ComplianceResult, ErrorStats, LockedOutputConfig, Models, TorqueEstimationConfig, ESTIMATORS,
 };
+use mrr_control::sim::experiments::{model_ranking, PlantStructure};
 use mrr_control::sim::transmission::{Backbone, SHD_17_100_K3};
 use mrr_control::sim::BackboneShape;
 use std::fmt::Write as _;
 use std::time::Instant;
 
-fn write_compliance_csv(path: &str, r: &ComplianceResult) -> std::io::Result<()> {
+fn write_compliance_csv(path: std::path::PathBuf, r: &ComplianceResult) -> std::io::Result<()> {
     let mut s = String::from(
         "time_s,tau_w_Nm,tau_f_measured_Nm,tau_f_true_Nm,motor_angle_rad,torsion_measured_rad,torsion_true_rad,proposed_rad,flexspline_only_rad,piecewise_rad,cubic_rad,piecewise_input_rad\n",
     );
@@ -52,13 +53,22 @@ fn row(name: &str, e: &ErrorStats) {
     );
 }
 
+/// `$CARGO_TARGET_DIR/figures` if the variable is set, else `target/figures`.
+fn figures_dir() -> std::path::PathBuf {
+    std::env::var_os("CARGO_TARGET_DIR")
+        .map(std::path::PathBuf::from)
+        .unwrap_or_else(|| std::path::PathBuf::from("target"))
+        .join("figures")
+}
+
 fn main() -> std::io::Result<()> {
-    std::fs::create_dir_all("target/figures")?;
+    let dir = figures_dir();
+    std::fs::create_dir_all(&dir)?;
     let psi = CatalogueData::SHD_17_100.hysteresis_loss;
 
     let t0 = Instant::now();
     let a = locked_output(&LockedOutputConfig::default());
-    write_compliance_csv("target/figures/fig2_17_20_locked_output.csv", &a)?;
+    write_compliance_csv(dir.join("fig2_17_20_locked_output.csv"), &a)?;
     println!("Locked output, sinusoidal motor torque of decreasing amplitude (Fig. 2.17-2.20)");
     println!("  torsion error against the encoder torsion, rad:");
     row("proposed eq. (2.30), tau_f + tau_w", &a.proposed);
@@ -67,7 +77,7 @@ fn main() -> std::io::Result<()> {
     row("cubic eq. (2.10), tau_f", &a.cubic);
     row("piecewise eq. (2.11), -N tau_w", &a.piecewise_input);
     // Diagnostic, not a model of the thesis: eq. (2.30) with the
-    // wave-generator torque's sign reversed (errata E12, E13).
+    // wave-generator torque's sign reversed (errata E2.9, E2.10).
     let m = Models::shd_17_100();
     let flipped = ErrorStats::of(a.samples.iter().map(|s| {
         m.proposed
@@ -101,10 +111,7 @@ fn main() -> std::io::Result<()> {
         slip_elements: 0,
         ..LockedOutputConfig::default()
     });
-    write_compliance_csv(
-        "target/figures/fig2_17_20_locked_output_friction_only.csv",
-        &a0,
-    )?;
+    write_compliance_csv(dir.join("fig2_17_20_locked_output_friction_only.csv"), &a0)?;
     println!("  variant: drive without internal hysteresis (loop from the motor friction only):");
     row("proposed eq. (2.30), tau_f + tau_w", &a0.proposed);
     row("catalogue piecewise eq. (2.11), tau_f", &a0.piecewise);
@@ -125,7 +132,7 @@ fn main() -> std::io::Result<()> {
 
     let t0 = Instant::now();
     let b = back_driven(&BackDrivenConfig::default());
-    write_compliance_csv("target/figures/fig2_21_22_back_driven.csv", &b.compliance)?;
+    write_compliance_csv(dir.join("fig2_21_22_back_driven.csv"), &b.compliance)?;
     println!(
         "\nBack-driven link, motor held (Fig. 2.21-2.22); tau_w from eq. (2.40), tau_fb = 2.0 N·m"
     );
@@ -194,7 +201,7 @@ fn main() -> std::io::Result<()> {
             );
         }
     }
-    std::fs::write("target/figures/table3_3_torque_estimation.csv", csv)?;
+    std::fs::write(dir.join("table3_3_torque_estimation.csv"), csv)?;
     println!("overall:");
     for (j, name) in ESTIMATORS.iter().enumerate() {
         row(name, &c.overall[j]);
@@ -207,18 +214,19 @@ fn main() -> std::io::Result<()> {
     let sat = c.levels.iter().any(|l| l.saturated);
     println!("  largest |I16F16 - f64| (fitted KE): {fx:.2e} N·m; any saturation: {sat}");
     println!("  ({:.1} s)", t0.elapsed().as_secs_f64());
-    backbone_table()?;
-    println!("\nCSV written to target/figures/");
+    backbone_table(&dir)?;
+    ranking_sweep();
+    println!("\nCSV written to {}", dir.display());
     Ok(())
 }
 
 /// The locked-output and Table 3.3 comparisons on every backbone (the
 /// configurations of `tests/thesis_ch2_3.rs`).
-fn backbone_table() -> std::io::Result<()> {
+fn backbone_table(dir: &std::path::Path) -> std::io::Result<()> {
     let t0 = Instant::now();
     let shd = CatalogueData::SHD_17_100;
     let m = Models::shd_17_100();
-    println!("\nModel comparison per plant backbone (errata E12)");
+    println!("\nModel comparison per plant backbone (errata E2.9)");
     println!(
         "  curve gap: largest |model curve - backbone| over |tau_f| <= T2 (rad), no hysteresis"
     );
@@ -292,7 +300,43 @@ fn backbone_table() -> std::io::Result<()> {
             without
         );
     }
-    std::fs::write("target/figures/e12_backbones.csv", csv)?;
+    std::fs::write(dir.join("e12_backbones.csv"), csv)?;
     println!("  ({:.1} s)", t0.elapsed().as_secs_f64());
     Ok(())
+}
+
+/// Errata E2.9: the locked-output ranking over the drive-torque amplitude
+/// and the plant structure (the table `tests/thesis_ch2_3.rs` checks).
+fn ranking_sweep() {
+    let t0 = Instant::now();
+    println!("\nLocked-output RMS torsion error (rad) per plant structure and drive-torque amplitude (errata E2.9)");
+    println!(
+        "  {:<24} {:>6}  {:>9} {:>9} {:>9} {:>9}  (2.30) best?",
+        "plant", "N·A", "(2.30)", "(2.26)", "(2.11)", "(2.10)"
+    );
+    let structures = [
+        PlantStructure::MeshFriction,
+        PlantStructure::Centred(BackboneShape::CataloguePiecewise),
+        PlantStructure::Centred(BackboneShape::IdentifiedFlexspline),
+    ];
+    for s in structures {
+        for a in [3.0, 5.0, 8.0, 10.0, 15.0] {
+            let r = model_ranking(s, a);
+            println!(
+                "  {:<24} {:>6.1}  {:>9.3e} {:>9.3e} {:>9.3e} {:>9.3e}  {}",
+                s.name(),
+                a,
+                r.proposed,
+                r.flexspline,
+                r.piecewise,
+                r.cubic,
+                if r.proposed_beats_classic() {
+                    "yes"
+                } else {
+                    "no"
+                }
+            );
+        }
+    }
+    println!("  ({:.1} s)", t0.elapsed().as_secs_f64());
 }

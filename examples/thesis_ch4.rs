@@ -2,7 +2,7 @@
 //! with and without joint-torque feedback (Fig. 4.2–4.3), the ultimate
 //! bound of Theorem 1 on random cases, the passive mode (Fig. 4.11–4.12),
 //! the payload drop (Fig. 3.8) and the mode manager. Prints the tables and
-//! writes CSV to `target/figures/`.
+//! writes CSV to `$CARGO_TARGET_DIR/figures/` (else `target/figures/`).
 //!
 //! `cargo run --release --features sim --example thesis_ch4`
 
@@ -22,8 +22,17 @@ const FEEDBACKS: [JointTorqueFeedback; 3] = [
     JointTorqueFeedback::Estimated,
 ];
 
+/// `$CARGO_TARGET_DIR/figures` if the variable is set, else `target/figures`.
+fn figures_dir() -> std::path::PathBuf {
+    std::env::var_os("CARGO_TARGET_DIR")
+        .map(std::path::PathBuf::from)
+        .unwrap_or_else(|| std::path::PathBuf::from("target"))
+        .join("figures")
+}
+
 fn main() -> std::io::Result<()> {
-    std::fs::create_dir_all("target/figures")?;
+    let dir = figures_dir();
+    std::fs::create_dir_all(&dir)?;
     let start = std::time::Instant::now();
 
     println!(
@@ -34,7 +43,7 @@ fn main() -> std::io::Result<()> {
     );
     println!("| law | T (ms) | feedback | link max (mrad) | link RMS (mrad) | motor max (rad) | motor RMS (rad) | feedback err RMS (N m) | saturated % |");
     println!("|---|---|---|---|---|---|---|---|---|");
-    let mut csv = std::fs::File::create("target/figures/fig4_3_tracking.csv")?;
+    let mut csv = std::fs::File::create(dir.join("fig4_3_tracking.csv"))?;
     writeln!(csv, "law,T_s,feedback,link_max_rad,link_rms_rad,motor_max_rad,motor_rms_rad,feedback_err_rms_Nm,saturated_fraction")?;
     let mut rows = Vec::new();
     for t in [4e-3, 2.5e-4] {
@@ -79,7 +88,7 @@ fn main() -> std::io::Result<()> {
     let mut u = |a: f64, b: f64| a + (b - a) * rng.uniform();
     let (mut worst_ratio, mut worst_r, mut worst_delta) = (0.0f64, 0.0f64, 0.0f64);
     let (mut rs, mut rbar_max) = (0.0, 0.0f64);
-    let mut csv = std::fs::File::create("target/figures/theorem1_random_cases.csv")?;
+    let mut csv = std::fs::File::create(dir.join("theorem1_random_cases.csv"))?;
     writeln!(csv, "case,max_sliding,radius,sliding_radius,sampling_disturbance,reaching_time,max_feedback_error")?;
     for k in 0..128 {
         let case = BoundCase {
@@ -134,7 +143,7 @@ fn main() -> std::io::Result<()> {
     );
     println!("| T (ms) | I_m K_p | mode | hand torque RMS (N m) | hand torque max (N m) | lag RMS (mrad) | tau_t RMS (N m) |");
     println!("|---|---|---|---|---|---|---|");
-    let mut csv = std::fs::File::create("target/figures/fig4_11_passive.csv")?;
+    let mut csv = std::fs::File::create(dir.join("fig4_11_passive.csv"))?;
     writeln!(
         csv,
         "T_s,Im_Kp,mode,hand_rms_Nm,hand_max_Nm,lag_rms_rad,joint_torque_rms_Nm"
@@ -189,7 +198,7 @@ fn main() -> std::io::Result<()> {
         "estimate error before: RMS {:.3} N m (min {:.3}, max {:.3}); after: RMS {:.3} N m",
         r.error_before.rms, r.error_before.min, r.error_before.max, r.error_after.rms
     );
-    let mut csv = std::fs::File::create("target/figures/fig3_8_payload_drop.csv")?;
+    let mut csv = std::fs::File::create(dir.join("fig3_8_payload_drop.csv"))?;
     writeln!(csv, "t_s,true_torque_Nm,estimate_Nm")?;
     for (t, a, b) in &r.trace {
         writeln!(csv, "{t},{a},{b}")?;
@@ -221,7 +230,7 @@ fn main() -> std::io::Result<()> {
         r.rejoin_tracking_error,
         r.final_link_angle - r.final_desired
     );
-    let mut csv = std::fs::File::create("target/figures/mode_interaction.csv")?;
+    let mut csv = std::fs::File::create(dir.join("mode_interaction.csv"))?;
     writeln!(
         csv,
         "t_s,link_angle_rad,mode,estimate_Nm,true_torque_Nm,motor_torque_Nm"

@@ -1,3 +1,7 @@
+// Link targets of the README's reference-style links when it is read as
+// the crate's front page (the first definition of a label wins, so these
+// take precedence over the README's own file links, which serve GitHub).
+#![doc = "[equations]: crate::docs::equations\n[errata]: crate::docs::errata\n[guide]: crate::docs::guide\n"]
 #![doc = include_str!("../README.md")]
 #![cfg_attr(not(any(feature = "std", test, kani)), no_std)]
 
@@ -9,6 +13,28 @@ pub mod harmonic_drive;
 pub mod scalar;
 #[cfg(feature = "sim")]
 pub mod sim;
+
+/// Reference pages shipped with the crate: the guide from a catalogue sheet
+/// to a running joint, the equation index and the errata of the thesis.
+pub mod docs {
+    /// From a harmonic-drive catalogue sheet to a torque estimator and a
+    /// joint controller on a microcontroller.
+    #[doc = ""]
+    #[doc = include_str!("../docs/GUIDE.md")]
+    pub mod guide {}
+
+    /// Every numbered equation of the thesis and the item implementing it.
+    #[doc = ""]
+    #[doc = "[errata]: crate::docs::errata"]
+    #[doc = ""]
+    #[doc = include_str!("../docs/EQUATIONS.md")]
+    pub mod equations {}
+
+    /// Where the thesis is wrong, the form implemented and the evidence.
+    #[doc = ""]
+    #[doc = include_str!("../docs/ERRATA.md")]
+    pub mod errata {}
+}
 
 pub use error::ParamError;
 pub use scalar::{Scalar, I16F16};

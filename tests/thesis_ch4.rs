@@ -36,7 +36,7 @@ fn tracking_4ms() -> &'static [TrackingResult; 3] {
 /// Fig. 4.3 at the 4 ms tick: without joint-torque feedback (A) the law
 /// must build the load `τ_t/N` from its error terms, and the only term
 /// that can hold it is the integral (limited to 0.1 N·m, while the robust
-/// term switches sign each sample, errata E22); with the F/T sensor (B) or
+/// term switches sign each sample, errata E4.4); with the F/T sensor (B) or
 /// the estimate (C) the load is fed forward and only its error remains.
 /// Expected ordering A > B and A > C for both the maximum and the RMS of
 /// the link and motor errors; the thesis text states no numbers (its
@@ -102,12 +102,12 @@ proptest! {
     /// after every integration step) stays within `r̄(δ)`
     /// ([`sampled_sliding_radius`]): the set of eq. (4.29)–(4.30) widened
     /// by the derived effect of the sampling disturbance `δ` measured on
-    /// the same run. The premises are checked, not assumed: the E22 step
+    /// the same run. The premises are checked, not assumed: the E4.4 step
     /// ratio below 1 (the sampled law stays a boundary-layer law), no
     /// sample at the torque limit (the law is applied), and the feedback
     /// error over each hold interval within `ρ_τt` (eq. 4.14).
     ///
-    /// The bound is the thesis's set `S` (errata E21: the rigorous
+    /// The bound is the thesis's set `S` (errata E4.3: the rigorous
     /// invariant is `guaranteed_sliding_radius`, which is also checked).
     /// The margin `r̄(δ) − r_S` is not a tuned constant: `δ` is measured
     /// per run by evaluating the library's law on the plant's true state
@@ -179,7 +179,7 @@ fn sampled_radius_solves_the_surface_condition() {
     }
 }
 
-/// Fig. 4.3 at a 0.25 ms tick. Errata E22: the Table 4.1 law holds its
+/// Fig. 4.3 at a 0.25 ms tick. Errata E4.4: the Table 4.1 law holds its
 /// boundary layer only for `T < 13.4 µs`; at 0.25 ms the step ratio is
 /// `0.25e-3·(1.7 + 1.368e-3)/1.14e-5 = 37`, and outside the layers the
 /// robust terms alone are `K_r + ρ_F2 + ρ_F3 = 0.190 N·m`, more than the
@@ -223,7 +223,7 @@ fn torque_feedback_is_masked_by_saturation_at_0_25ms() {
 /// motor torque can remove). With the identified friction model the motor
 /// supplies that friction; at `Î_m K_p = 3` (0.25 ms tick, stable: the
 /// motor–drive loop `√(K_p K_d)/N·T = 0.12`) the rotor is also three times
-/// lighter (errata E9: `q̈_m = −K_p τ̂_t/N`). Expected: the RMS hand torque
+/// lighter (errata E4.1: `q̈_m = −K_p τ̂_t/N`). Expected: the RMS hand torque
 /// falls by at least half the reflected Coulomb level, `0.5·N f_c =
 /// 0.5 N·m` (the other half allows for the reversals, where the joint
 /// sticks and the compensation `sat(q̇, ε_q̇)` is off, and for the
@@ -246,7 +246,7 @@ fn passive_mode_reduces_the_interaction_torque() {
         let b = run(m, 2.5e-4, 3.0);
         assert!(a.hand_torque.rms - b.hand_torque.rms >= 0.5, "{a:?} {b:?}");
     }
-    // Î_m K_p = 1: the τ̂_t terms of eq. (4.32) cancel (errata E24), so the
+    // Î_m K_p = 1: the τ̂_t terms of eq. (4.32) cancel (errata E4.6), so the
     // estimate and the sensor give the same loop.
     let e1 = run(BackDriveMode::Estimated, 2.5e-4, 1.0);
     let s1 = run(BackDriveMode::Sensor, 2.5e-4, 1.0);
@@ -271,7 +271,7 @@ fn passive_mode_reduces_the_interaction_torque() {
 /// its half-way level within 5 ms of the truth's (one drive-resonance
 /// half period at most); (iii) the estimate steps the same way but by at
 /// most 0.6 of the truth: the identified model's stiffness near zero torque
-/// is half the catalogue `K1` (errata E12: 4153 against 8400 N·m/rad)
+/// is half the catalogue `K1` (errata E2.9: 4153 against 8400 N·m/rad)
 /// while the simulated drive unloads at least as stiffly as `K1`, so a
 /// load change reads at most `4153/8400 = 0.49` of its size (0.1 margin
 /// for the encoder noise in the means).
@@ -341,7 +341,7 @@ fn mode_manager_switches_bumplessly_and_keeps_the_position() {
 /// 1.6785 s` at `q̇ = 0.05π sin(acos 0.25) = 0.152 rad/s`, so the contact
 /// torque rises at `300·0.152 = 45.6 N·m/s` (+0.3 N·m damping): the true
 /// torque reaches 3 N·m after 59 ms. The estimate reads a change from its
-/// pre-contact level at half the stiffness (errata E12, see
+/// pre-contact level at half the stiffness (errata E2.9, see
 /// `payload_drop_estimate_follows_the_step`), so detection needs the true
 /// torque at up to `3/0.4 = 7.5 N·m`: latency between 59 ms and
 /// `(7.5 − 0.3)/45.6 + 0.3 ms = 158 ms` (estimate error aside). Then:

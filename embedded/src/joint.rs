@@ -4,7 +4,7 @@
 //! switching and collision reaction), with the Table 4.1 joint on the
 //! SHD-17-100 drive (Table 3.2 kinematic error, L = 2¹⁷, M = 2000).
 //!
-//! Sign conventions (errata E13): the ch. 4 motor angle `q_m = N q_l` runs
+//! Sign conventions (errata E2.10): the ch. 4 motor angle `q_m = N q_l` runs
 //! against the estimator's `θ_wi`, so the motor counter is negated for the
 //! estimator; the motor torque `τ_w` of eq. (3.9) is the previous command
 //! (positive driving the link forward in both conventions); the joint

@@ -136,7 +136,7 @@ entry!(est_cordic_i16f16(l: u32, m: u32, t: I16F16) => unsafe { steps::REF_X.ass
 entry!(prepare_est(pos_lo: u32, pos_hi: u32, counter: u32) => unsafe { steps::prepare_est(pos_lo, pos_hi, counter) });
 
 // The per-joint control step: torque estimate (eq. 3.8–3.10) → joint
-// torque `τ̂_t = −torque` (errata E13) → mode manager (robust adaptive law
+// torque `τ̂_t = −torque` (errata E2.10) → mode manager (robust adaptive law
 // eq. 4.19 with adaptation, passive law eq. 4.32, switching, collision
 // reaction). Arguments: link count, motor counter (ch. 4 sense, `q_m =
 // N q_l`; negated for the estimator), desired position, speed and

@@ -15,7 +15,7 @@
 //!
 //! * integral: `z ← clamp(z + K_I T r, ±z_max)`, skipped while the output
 //!   is saturated and `r` would push it further (conditional integration);
-//! * adaptation (Theorem 1, with the hat restored — errata E20):
+//! * adaptation (Theorem 1, with the hat restored — errata E4.2):
 //!   `F̂^c ← Proj(F̂^c − Γ T Yᵀ r)` with `Γ = diag(μ_j)` and `Proj` the
 //!   projection onto the box of [`FrictionBounds`]. For a box, projecting
 //!   is clamping each component; when the true `F^c` is in the box it never

@@ -20,7 +20,7 @@
 //! *Scope.* Eq. (4.28) dissipates only `r`; `V` also holds the integral and
 //! the parameter error, which the proof does not bound. The conclusion needs
 //! them bounded: the library clamps the integral and projects the estimates
-//! (errata E21), and then `|r| ≤ √(r_S² + 2W_max/I_m)` follows
+//! (errata E4.3), and then `|r| ≤ √(r_S² + 2W_max/I_m)` follows
 //! ([`UltimateBound::guaranteed_sliding_radius`]). The bounds also assume the continuous-time law; see
 //! [`UltimateBound::boundary_layer_step_ratio`] for the sampled loop.
 
@@ -48,7 +48,7 @@ pub struct UltimateBound {
     /// (`z = K_I ∫r`, `w_j` the width of the projection box), N·m·rad.
     pub state_range: f64,
     /// The bound on `|r|` that follows rigorously once `r` has entered `S`
-    /// (errata E21): `√(r_S² + 2 W_max/I_m)`, rad/s. `V` decreases while
+    /// (errata E4.3): `√(r_S² + 2 W_max/I_m)`, rad/s. `V` decreases while
     /// `|r| > r_S`, so `½I_m r² + W ≤ ½I_m r_S² + W'` with `W, W' ∈
     /// [0, W_max]`; the thesis's conclusion `|r| → S` needs `W` constant.
     pub guaranteed_sliding_radius: f64,

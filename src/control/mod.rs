@@ -5,7 +5,7 @@
 //!   integral term and joint-torque feedback (active mode).
 //! * [`bound`] — the ultimate-bound calculator of eq. (4.28)–(4.31).
 //! * [`passive`] — friction compensation with torque feedback, eq. (4.32),
-//!   and the free-body behaviour of eq. (4.33) (errata E9).
+//!   and the free-body behaviour of eq. (4.33) (errata E4.1).
 //! * [`mode`] — a mode manager switching active ↔ passive on the
 //!   interaction torque, bumplessly, and reacting to collisions detected by
 //!   [`crate::estimation::collision`].

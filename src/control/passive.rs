@@ -9,7 +9,7 @@
 //! proportional term drives the joint torque toward `τ_td` (0 for a free
 //! joint).
 //!
-//! **Eq. (4.33), corrected (errata E9).** Substituted into eq. (4.2) with
+//! **Eq. (4.33), corrected (errata E4.1).** Substituted into eq. (4.2) with
 //! exact friction compensation, `Î_m = I_m` and `τ̂_t = τ_t`:
 //! `I_m q̈_m = I_m K_p (τ_td − τ̂_t)/N`, i.e. with `τ_td = 0`
 //! `(N/K_p) q̈_m + τ̂_t = 0` — a free body of inertia `N/K_p` at the motor,
@@ -116,7 +116,7 @@ impl PassiveParams {
     }
 
     /// `N/K_p`: the apparent motor-side inertia of eq. (4.33) as corrected
-    /// (errata E9), kg·m²; `∞` for `K_p = 0`.
+    /// (errata E4.1), kg·m²; `∞` for `K_p = 0`.
     pub fn apparent_motor_inertia(&self) -> f64 {
         self.ratio / self.gain
     }
@@ -235,7 +235,7 @@ mod tests {
         PassiveParams::table_4_1(kp).unwrap()
     }
 
-    /// Errata E9: simulate eq. (4.2) under eq. (4.32) with exact friction
+    /// Errata E4.1: simulate eq. (4.2) under eq. (4.32) with exact friction
     /// compensation and `τ_td = 0`; the motor acceleration is
     /// `−K_p τ̂_t / N` (the corrected eq. 4.33), not `−K_p τ̂_t` (printed).
     #[test]

@@ -749,7 +749,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     /// free-running motor counter, and the motor torque command `τ_w` in
     /// stored motor-torque units.
     ///
-    /// **Signs** (errata E13). The counts follow eq. (2.13): the motor
+    /// **Signs** (errata E2.10). The counts follow eq. (2.13): the motor
     /// angle `θ_wi` increases in the direction that, through the gear,
     /// turns the link *backwards* (`θ_w = −N θ_f`, eq. 2.4), so a rigid
     /// motion leaves `Δθ = θ_fo + θ_wi/N` at zero. `τ_w` is the motor torque

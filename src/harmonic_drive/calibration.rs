@@ -30,18 +30,42 @@ fn pitch(ratio: u32) -> Result<f64, ParamError> {
 /// `[0, 2π/N)`, from the link readings at every index met during one
 /// clockwise (`cw`) and one counter-clockwise (`ccw`) link revolution.
 ///
-/// The thesis averages `θ_cw_i + θ_ccw_i − 2 i·360/N` over the `N` indexes:
-/// the two directions carry opposite torsion and backlash, so their mean is
-/// the unloaded index position. As printed it fails when a reading wraps
-/// through 0/360° or when the readings are not numbered from the index at
-/// link angle 0. This implementation uses the circular mean of all `2N`
-/// readings modulo the pitch `P` — identical to the printed formula when
-/// nothing wraps, and independent of numbering and wrap-around.
+/// `cw[i]` and `ccw[i]` must be the link readings (rad) at the *same* motor
+/// index, as in the printed sum, which pairs `θ_cw_i` with `θ_ccw_i`: store
+/// one of the two runs in reverse order of encounter. The first pair may be
+/// any index (the numbering need not start at link angle 0) and the readings
+/// may wrap through 0/2π anywhere.
 ///
-/// Errors: `ratio = 0`; `cw` or `ccw` empty, of different lengths, or
-/// containing a non-finite reading; readings so spread that their circular
-/// mean is undefined (`name = "readings"`).
+/// The thesis averages `θ_cw_i + θ_ccw_i − 2 i·360/N` over the `N` indexes:
+/// the two directions carry opposite torsion and backlash (the *lag*), so
+/// the midpoint of a pair is the unloaded index position. As printed it
+/// fails when a reading wraps through 0/360° or when the readings are not
+/// numbered from the index nearest link angle 0 (errata E2.7). This
+/// implementation
+/// 1. takes the midpoint `m_i` of each pair along the shorter arc,
+///    `m_i = ccw_i + wrap(cw_i − ccw_i)/2` with `wrap` into `(−π, π]`,
+///    and requires `|wrap(cw_i − ccw_i)| < P` (the lag below half a pitch
+///    `P = 2π/N`; at or beyond it a pair is indistinguishable from one
+///    whose midpoint is half a pitch away);
+/// 2. takes the circular mean `m̄` of the `m_i` modulo `P` as a reference;
+/// 3. returns `m̄` plus the arithmetic mean of the deviations
+///    `m_i − m̄`, each reduced into `[−P/2, P/2)`, reduced into `[0, P)`.
+///
+/// Step 3 makes the result the least-squares offset of the midpoints
+/// (the minimiser of `Σ d(m_i, x)²` with `d` the distance modulo `P`, for
+/// scatter well below a pitch) and, when no reading wraps and the numbering
+/// starts at link angle 0, equal to the printed formula up to rounding
+/// (≈ 1e-16 rad), where a circular mean alone would differ from it on
+/// scattered readings. Neither form depends on the sign of the lag.
+///
+/// Errors: `ratio = 0`; `cw` or `ccw` empty, of different lengths
+/// (`name = "ccw.len()"`), or containing a non-finite reading
+/// (`name = "reading"`); a pair at least a pitch apart
+/// (`OutOfRange { name: "cw[i] - ccw[i]", min: −P, max: P }`, the value
+/// being the wrapped difference); midpoints so spread that their circular
+/// mean is undefined (`NotRepresentable { name: "readings" }`).
 pub fn encoder_offset(cw: &[f64], ccw: &[f64], ratio: u32) -> Result<f64, ParamError> {
+    use core::f64::consts::PI;
     let p = pitch(ratio)?;
     if cw.is_empty() || cw.len() != ccw.len() {
         return Err(ParamError::OutOfRange {
@@ -51,24 +75,46 @@ pub fn encoder_offset(cw: &[f64], ccw: &[f64], ratio: u32) -> Result<f64, ParamE
             max: cw.len().max(1) as f64,
         });
     }
+    // Into [-h, h) for a half-width h.
+    let wrap = |x: f64, h: f64| x - 2.0 * h * libm::floor((x + h) / (2.0 * h));
+    // Pass 1: validate, and the circular mean of the midpoints modulo P.
     let (mut s, mut c) = (0.0, 0.0);
-    for &theta in cw.iter().chain(ccw) {
-        let theta = finite("reading", theta)?;
-        let phase = TAU * (theta / p);
+    for (&a, &b) in cw.iter().zip(ccw) {
+        let a = finite("reading", a)?;
+        let b = finite("reading", b)?;
+        let d = wrap(a - b, PI);
+        if d.abs() >= p {
+            return Err(ParamError::OutOfRange {
+                name: "cw[i] - ccw[i]",
+                value: d,
+                min: -p,
+                max: p,
+            });
+        }
+        let phase = TAU * ((b + 0.5 * d) / p);
         let (sp, cp) = libm::sincos(phase);
         s += sp;
         c += cp;
     }
-    let n = (2 * cw.len()) as f64;
-    if libm::hypot(s, c) <= 1e-9 * n {
+    let n = cw.len() as f64;
+    let resultant = libm::hypot(s, c);
+    if resultant <= 1e-9 * n {
         return Err(ParamError::NotRepresentable {
             name: "readings",
-            value: libm::hypot(s, c) / n,
+            value: resultant / n,
         });
     }
-    let mean_phase = libm::atan2(s, c); // (-π, π]
-    let offset = mean_phase / TAU * p;
-    Ok(if offset < 0.0 { offset + p } else { offset })
+    let reference = libm::atan2(s, c) / TAU * p; // (−P/2, P/2]
+                                                 // Pass 2: the arithmetic mean of the deviations from the reference.
+    let mut sum = 0.0;
+    for (&a, &b) in cw.iter().zip(ccw) {
+        let m = b + 0.5 * wrap(a - b, PI);
+        sum += wrap(m - reference, 0.5 * p);
+    }
+    let offset = wrap(reference + sum / n, 0.5 * p);
+    let offset = if offset < 0.0 { offset + p } else { offset };
+    // `offset + p` rounds to `p` for offsets within an ulp below zero.
+    Ok(if offset >= p { 0.0 } else { offset })
 }
 
 /// Eq. (2.39): absolute motor position (link-equivalent rad) after power-on.
@@ -79,7 +125,7 @@ pub fn encoder_offset(cw: &[f64], ccw: &[f64], ratio: u32) -> Result<f64, ParamE
 /// the one nearest to `θ_fo0`:
 /// `θ = offset + P · round((θ_fo0 − offset)/P) + θ_IE`, with `round` to
 /// nearest (`floor(x + ½)`). The printed `int(x + 0.5)` truncates toward zero
-/// and is one index off for negative angles (errata E6).
+/// and is one index off for negative angles (errata E2.6).
 pub fn absolute_motor_position(
     offset: f64,
     link_at_first_index: f64,
@@ -109,40 +155,175 @@ mod tests {
             .sum()
     }
 
+    /// Wraps into `(−π, π]`, as a link encoder reporting signed angles does.
+    fn signed(x: f64) -> f64 {
+        let y = x - TAU * libm::floor((x + core::f64::consts::PI) / TAU);
+        if y == -core::f64::consts::PI {
+            core::f64::consts::PI
+        } else {
+            y
+        }
+    }
+
+    /// Readings of a drive whose indexes sit at `offset + k P`: the cw run
+    /// reads `lag` (in pitches) ahead, the ccw run `lag` behind, plus the
+    /// given noise (in pitches); numbered from index `first`, each reading
+    /// reported in `(−π, π]`.
+    fn readings(
+        n: u32,
+        offset: f64,
+        lag: f64,
+        first: usize,
+        noise: &[f64],
+    ) -> (Vec<f64>, Vec<f64>) {
+        let p = TAU / n as f64;
+        let idx = |i: usize| ((i + first) % n as usize) as f64;
+        let cw = (0..n as usize)
+            .map(|i| signed(offset + idx(i) * p + (lag + noise[i]) * p))
+            .collect();
+        let ccw = (0..n as usize)
+            .map(|i| signed(offset + idx(i) * p - (lag - noise[n as usize + i]) * p))
+            .collect();
+        (cw, ccw)
+    }
+
+    /// An independent least-squares criterion: for a trial offset `x`, each
+    /// pair is charged the squared sum of its two residuals against the
+    /// index `x + kP` that fits it best, `k` searched over all `N` indexes
+    /// and residuals taken on the circle (no midpoint formula involved).
+    fn brute_force_cost(cw: &[f64], ccw: &[f64], x: f64) -> f64 {
+        let n = cw.len();
+        let p = TAU / n as f64;
+        cw.iter()
+            .zip(ccw)
+            .map(|(&a, &b)| {
+                (0..n)
+                    .map(|k| {
+                        let index = x + k as f64 * p;
+                        let r = signed(a - index) + signed(b - index);
+                        r * r
+                    })
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .sum()
+    }
+
+    /// The issue as reported: a lag of 0.26 pitch. Averaging all readings
+    /// on the pitch circle (the former implementation) puts the offset half
+    /// a pitch away, at 0.8 P; pairing the runs gives 0.3 P, as the printed
+    /// formula does.
+    #[test]
+    fn lag_beyond_a_quarter_pitch_keeps_the_offset() {
+        let n = 100;
+        let p = TAU / n as f64;
+        let (cw, ccw) = readings(n, 0.3 * p, 0.26, 0, &[0.0; 200]);
+        let (s, c) = cw.iter().chain(&ccw).fold((0.0, 0.0), |(s, c), &t| {
+            let (sp, cp) = libm::sincos(TAU * t / p);
+            (s + sp, c + cp)
+        });
+        let unpaired = (libm::atan2(s, c) / TAU).rem_euclid(1.0);
+        assert!((unpaired - 0.8).abs() < 1e-9, "unpaired mean {unpaired}");
+        let got = encoder_offset(&cw, &ccw, n).unwrap() / p;
+        assert!((got - 0.3).abs() < 1e-12, "{got}");
+        // The printed sum (no reading wraps for this offset in [0, 2π)).
+        let unsigned = |v: &[f64]| -> Vec<f64> { v.iter().map(|&t| t.rem_euclid(TAU)).collect() };
+        let printed = printed_offset(&unsigned(&cw), &unsigned(&ccw)) / p;
+        assert!((printed - 0.3).abs() < 1e-12, "{printed}");
+    }
+
+    /// Every lag strictly below half a pitch, both signs, in steps of
+    /// 0.001 P: the offset is recovered exactly (noise-free readings).
+    #[test]
+    fn every_lag_below_half_a_pitch() {
+        let n = 100;
+        let p = TAU / n as f64;
+        for step in -499..=499 {
+            let lag = step as f64 * 1e-3;
+            for &frac in &[0.0, 0.3, 0.74, 0.999] {
+                let (cw, ccw) = readings(n, frac * p, lag, 17, &[0.0; 200]);
+                let got = encoder_offset(&cw, &ccw, n).unwrap();
+                let d = (got - frac * p).rem_euclid(p);
+                assert!(
+                    d.min(p - d) < 1e-12,
+                    "lag {lag}, offset {frac}: {}",
+                    got / p
+                );
+            }
+        }
+    }
+
+    /// At or beyond half a pitch a pair cannot be told from one with the
+    /// opposite lag around the index half a pitch away: rejected, naming
+    /// the pair's wrapped difference.
+    #[test]
+    fn lag_of_half_a_pitch_is_rejected() {
+        let n = 100;
+        let p = TAU / n as f64;
+        for lag in [0.5, 0.6, -0.5, -0.7] {
+            let (cw, ccw) = readings(n, 0.3 * p, lag, 0, &[0.0; 200]);
+            match encoder_offset(&cw, &ccw, n) {
+                Err(ParamError::OutOfRange {
+                    name: "cw[i] - ccw[i]",
+                    value,
+                    min,
+                    max,
+                }) => {
+                    assert!((value.abs() - 2.0 * lag.abs() * p).abs() < 1e-9);
+                    assert_eq!((min, max), (-p, p));
+                }
+                other => panic!("lag {lag}: {other:?}"),
+            }
+        }
+    }
+
     proptest! {
-        /// Readings generated from a known offset, ± a direction-dependent
-        /// lag and small noise: the offset is recovered, and it equals the
-        /// printed formula when nothing wraps.
+        #![proptest_config(ProptestConfig::with_cases(48))]
+        /// Noisy readings over the whole lag range, any numbering, wrapped
+        /// into (−π, π]: the result is within the noise of the true offset
+        /// and minimises the brute-force criterion over a grid of 4000
+        /// trial offsets (to the grid's resolution).
         #[test]
-        fn recovers_offset_and_agrees_with_print_without_wrap(
-            n in 20u32..160, frac in 0.05f64..0.95, lag in 0.0f64..0.2, noise in proptest::collection::vec(-0.01f64..0.01, 320),
+        fn minimises_the_circular_residual_over_the_lag_range(
+            n in 2u32..40, frac in 0.0f64..1.0, lag in -0.49f64..0.49, first in 0usize..40,
+            noise in proptest::collection::vec(-0.002f64..0.002, 80),
         ) {
             let p = TAU / n as f64;
-            let offset = frac * p;
-            let cw: Vec<f64> = (0..n as usize).map(|i| offset + i as f64 * p + lag * p + noise[i] * p).collect();
-            let ccw: Vec<f64> = (0..n as usize).map(|i| offset + i as f64 * p - lag * p + noise[160 + i] * p).collect();
+            let (cw, ccw) = readings(n, frac * p, lag, first, &noise);
             let got = encoder_offset(&cw, &ccw, n).unwrap();
-            // Each cw/ccw pair of unit phasors sums to a vector at the mean
-            // of their phases, offset + (n₁ + n₂)/2 (the lags cancel), so
-            // every pair's resultant lies within ±0.01 p of the offset and so
-            // does their sum's direction; 1e-3 p covers rounding.
-            prop_assert!((got - offset).abs() <= 0.011 * p, "{got} vs {offset}");
-            let printed = printed_offset(&cw, &ccw);
-            prop_assert!((got - printed).abs() <= 1e-3 * p, "{got} vs printed {printed}");
+            prop_assert!((0.0..p).contains(&got));
+            // Each midpoint lies within ±0.002 P of the truth, so does
+            // their mean.
+            let d = (got - frac * p).rem_euclid(p);
+            prop_assert!(d.min(p - d) <= 0.0021 * p, "{} vs {frac}", got / p);
+            let at_got = brute_force_cost(&cw, &ccw, got);
+            let grid = (0..4000)
+                .map(|j| brute_force_cost(&cw, &ccw, j as f64 * p / 4000.0))
+                .fold(f64::INFINITY, f64::min);
+            prop_assert!(at_got <= grid * (1.0 + 1e-9) + 1e-24, "{at_got} > {grid}");
+            // And no trial offset half a grid step away does better: `got`
+            // is the minimiser, not merely close to the grid's best.
+            for dx in [-0.5e-4 * p, 0.5e-4 * p, -1e-7 * p, 1e-7 * p] {
+                prop_assert!(at_got <= brute_force_cost(&cw, &ccw, got + dx) * (1.0 + 1e-9) + 1e-24);
+            }
         }
 
-        /// Wrapping every reading into (−π, π] and shuffling the numbering
-        /// does not change the result (the printed formula breaks here).
+        /// Where nothing wraps (readings in [0, 2π), numbered from the index
+        /// nearest 0) the result equals the printed eq. (2.38) to rounding,
+        /// for noisy readings too.
         #[test]
-        fn independent_of_wrap_and_numbering(n in 20u32..160, frac in 0.0f64..1.0, shift in 0usize..160) {
+        fn equals_the_printed_formula_without_wrap(
+            n in 20u32..160, frac in 0.05f64..0.95, lag in -0.45f64..0.45,
+            noise in proptest::collection::vec(-0.01f64..0.01, 320),
+        ) {
             let p = TAU / n as f64;
-            let offset = frac * p;
-            let wrap = |x: f64| x - TAU * libm::floor((x + core::f64::consts::PI) / TAU);
-            let cw: Vec<f64> = (0..n as usize).map(|i| wrap(offset + ((i + shift) % n as usize) as f64 * p)).collect();
-            let ccw: Vec<f64> = cw.iter().rev().copied().collect();
+            let margin = 0.02 + lag.abs();
+            prop_assume!(frac - margin > 0.0 && frac + margin < 1.0);
+            let (cw, ccw) = readings(n, frac * p, lag, 0, &noise);
+            let unsigned = |v: &[f64]| -> Vec<f64> { v.iter().map(|&t| t.rem_euclid(TAU)).collect() };
+            let (cw, ccw) = (unsigned(&cw), unsigned(&ccw));
             let got = encoder_offset(&cw, &ccw, n).unwrap();
-            let d = (got - offset).rem_euclid(p);
-            prop_assert!(d.min(p - d) <= 1e-9 * p);
+            let printed = printed_offset(&cw, &ccw);
+            prop_assert!((got - printed).abs() <= 1e-12 * p, "{got} vs printed {printed}");
         }
 
         /// Eq. (2.39) finds the true index for positive and negative link
@@ -196,9 +377,11 @@ mod tests {
                 ..
             })
         ));
-        // Two readings half a pitch apart have no circular mean.
+        // Two pairs whose midpoints lie half a pitch apart have no circular
+        // mean.
+        let pi = core::f64::consts::PI;
         assert!(matches!(
-            encoder_offset(&[0.0], &[core::f64::consts::PI], 1),
+            encoder_offset(&[0.0, pi], &[0.0, pi], 1),
             Err(ParamError::NotRepresentable { .. })
         ));
         assert!(matches!(

@@ -30,7 +30,7 @@ use crate::scalar::{units::Units, Coef, Scalar};
 ///
 /// The printed eq. (2.11) divides the third piece by `K2` and writes `τ_1`,
 /// `T_f` for `T_1`, `τ_f`; it also leaves the negative torques out. See
-/// errata E2.
+/// errata E2.2.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CataloguePiecewise {
     k1: f64,

@@ -15,7 +15,7 @@
 //!
 //! The thesis's printed SHD-17-100 results (`K_f0 = 8.2e3`, `c_f = 0.012`)
 //! do not follow from its own equations and inputs; the equations give
-//! `K_f0 = 8.336e3 N·m/rad`, `c_f = 0.04494 1/(N·m)` (errata E4).
+//! `K_f0 = 8335.98 N·m/rad`, `c_f = 0.044940 1/(N·m)` (errata E2.3).
 
 use super::compliance::{FlexsplineParams, HarmonicDriveParams, WaveGeneratorParams};
 use crate::error::{gear_ratio, increasing, positive, ParamError};
@@ -144,8 +144,9 @@ mod tests {
 
     /// The SHD-17-100 example recomputed by hand from eq. (2.33)–(2.37):
     /// S² = 15.9² = 252.81, K1 S² − K2 T1² = 2 123 604 − 142 974 = 1 980 630,
-    /// K_f0 = 1 980 630 / 237.6 = 8336.07…, c_f = 2 √(1000 / 1 980 630),
-    /// K_w0 = 0.024 / 0.029, c_w = 1 / 0.012.
+    /// K_f0 = 1 980 630 / 237.6 = 8335.98…, c_f = 2 √(1000 / 1 980 630),
+    /// K_w0 = 0.024 / 0.029, c_w = 1 / 0.012 (eq. 2.37, which solves the
+    /// condition 0.5 Ψ = 1/(c_w N K_w0) of eq. 2.36; errata E2.11, E2.12).
     #[test]
     fn shd17_example_follows_the_equations() {
         let p = CatalogueData::SHD_17_100.identify().unwrap();
@@ -153,7 +154,11 @@ mod tests {
         assert!((p.flexspline().c_f() - 2.0 * (1000.0f64 / 1_980_630.0).sqrt()).abs() < 1e-12);
         assert!((p.wave_generator().k_w0() - 0.024 / 0.029).abs() < 1e-12);
         assert!((p.wave_generator().c_w() - 1.0 / 0.012).abs() < 1e-9);
-        // The thesis prints K_f0 = 8.2e3 and c_f = 0.012 (errata E4): the
+        let w = p.wave_generator();
+        assert!((0.5 * 2.9e-4 - 1.0 / (w.c_w() * 100.0 * w.k_w0())).abs() < 1e-15);
+        // To the two decimals the errata print.
+        assert_eq!(format!("{:.2}", p.flexspline().k_f0()), "8335.98");
+        // The thesis prints K_f0 = 8.2e3 and c_f = 0.012 (errata E2.3): the
         // equations do not give those numbers.
         assert!((p.flexspline().k_f0() - 8.2e3).abs() > 100.0);
         assert!((p.flexspline().c_f() - 0.012).abs() > 0.03);

@@ -10,7 +10,7 @@
 //! $$ \theta_{err} = a_0 + a_{l1}\cos(w_l\theta_{fo}) + b_{l1}\sin(w_l\theta_{fo})
 //!   + \sum_{k=1}^{2} a_{wk}\cos(k w_w\theta_{wi}) + b_{wk}\sin(k w_w\theta_{wi}) $$
 //!
-//! (eq. 3.5 and 3.7 print `θ_wo` in the `b_w1` term; it is `θ_wi`, errata E8).
+//! (eq. 3.5 and 3.7 print `θ_wo` in the `b_w1` term; it is `θ_wi`, errata E3.2).
 //!
 //! **Units of Table 3.2.** The table gives no units. Angles are in degrees:
 //! `w_l = 0.01731` and `w_w = 0.01734` are within 1 % of `π/180`, i.e. one
@@ -18,7 +18,8 @@
 //! degrees too — read as radians, the largest term (`b_l1 = −0.0043`) would
 //! be ten times the catalogue's maximum kinematic error for this drive
 //! (4.4e-4 rad, Table 3.1), whereas in degrees the modelled peak-to-peak
-//! error, 2.1e-4 rad, lies within it (`table_3_2_is_in_degrees` checks both).
+//! error, 3.33e-4 rad, lies within it (`table_3_2_is_in_degrees` checks both;
+//! errata E3.3).
 //!
 //! [`KinematicErrorModel`] stores SI values (rad) with the harmonic counts as
 //! integers per revolution, so the model is exactly periodic;
@@ -72,7 +73,7 @@ const fn row(size: u32, ratio: u32, rated: f64, k2_e4: f64, err_e4: f64) -> Driv
 /// kinematic error); the table's last two columns are computed by
 /// [`DriveSize::kinematic_torque_error`] and
 /// [`DriveSize::relative_torque_error_percent`] (the printed ones are
-/// truncated, errata E7).
+/// truncated, errata E3.1).
 pub const TABLE_3_1: [DriveSize; 16] = [
     row(14, 50, 3.7, 0.37, 4.4),
     row(14, 100, 5.4, 0.44, 4.4),
@@ -427,7 +428,7 @@ mod tests {
                 d.ratio
             );
             // Against the exact torque the deviation reaches 1.23 points
-            // (SHD-40-50: 33.2 % printed as 32 %), errata E7.
+            // (SHD-40-50: 33.2 % printed as 32 %), errata E3.1.
             assert!((re - r).abs() < 1.25);
         }
     }

@@ -13,7 +13,7 @@
 //! stays where it is while `|F − F_b| < F_fr` — is the play operator
 //! `F_b ← clamp(F_b, F − F_fr, F + F_fr)` implemented by
 //! [`TwoSpringState::apply`]; from rest, the printed form would load
-//! spring (b) against the force for `F < F_fr` (errata E11). The play form
+//! spring (b) against the force for `F < F_fr` (errata E2.8). The play form
 //! needs no rate, only the previous `F_b`.
 
 use crate::error::{non_negative, positive, ParamError};

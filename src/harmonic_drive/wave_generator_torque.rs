@@ -10,7 +10,7 @@
 //! * `τ_f + N τ_w(t−1) < −τ_fb` → `τ_w(t) = −(τ_f + τ_fb)/N`
 //! * otherwise                  → `τ_w(t) = τ_w(t−1)`
 //!
-//! The printed conditions of eq. (2.40) are garbled (errata E5); this is the
+//! The printed conditions of eq. (2.40) are garbled (errata E2.5); this is the
 //! intended stateful logic. It is the classic play (backlash) operator of
 //! width `2 τ_fb` acting on `−τ_f / N`: rate independent, so it produces the
 //! hysteresis of Fig. 2.22 without any derivative of a measured signal.
@@ -123,7 +123,7 @@ mod tests {
     }
 
     /// The printed second condition of eq. (2.40) fires inside the stick
-    /// region (errata E5): at balance τ_w = −τ_f/N with τ_f = 1 N·m and
+    /// region (errata E2.5): at balance τ_w = −τ_f/N with τ_f = 1 N·m and
     /// τ_fb = 2 N·m, τ_f − N τ_w = 2 > −τ_fb, so the printed logic would move
     /// τ_w to −(τ_f + τ_fb)/N although the friction can hold it.
     #[test]

@@ -224,7 +224,10 @@ pub trait Scalar:
     /// Boundary-layer saturation of thesis eq. (4.18), `sat(x, y)` with
     /// `x = self`:
     ///
-    /// $$ \mathrm{sat}(x,y)=\begin{cases} x/|x| & |x|>y \\ x/|y| & |x|\le y \end{cases} $$
+    /// ```text
+    /// sat(x, y) = x/|x|   if |x| > y
+    ///            x/|y|   if |x| ≤ y
+    /// ```
     ///
     /// Note the `|y|`: for `y ≤ 0` every `x ≠ 0` is outside the boundary
     /// layer and the result is [`sgn`](Scalar::sgn)`(x)`; `sat(0, y) = 0`.

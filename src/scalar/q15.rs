@@ -274,7 +274,10 @@ const fn sgn_bits(x: i16) -> i16 {
 
 /// Boundary-layer saturation of thesis eq. (4.18) on normalized values:
 ///
-/// $$ \mathrm{sat}(x,y)=\begin{cases} x/|x| & |x|>y \\ x/|y| & |x|\le y \end{cases} $$
+/// ```text
+/// sat(x, y) = x/|x|   if |x| > y
+///            x/|y|   if |x| ≤ y
+/// ```
 ///
 /// Same semantics as [`Scalar::sat`](crate::scalar::Scalar::sat): for
 /// `y ≤ 0` every `x ≠ 0` lies outside the layer and the result is

@@ -15,14 +15,14 @@
 //! its transmission torque `τ_t` is the torque the drive applies to the
 //! link (eq. 4.1), which is what the F/T sensor reads and what
 //! [`ControlInput::joint_torque`] expects. The estimator is fed as errata
-//! E13 prescribes ([`estimator_counts`]: motor counter negated) and returns
+//! E2.10 prescribes ([`estimator_counts`]: motor counter negated) and returns
 //! `−τ_t`, so the feedback is `τ̂_t = −estimate`.
 //!
 //! # Scenarios
 //! * [`active_tracking`] ([`TrackingConfig`]) — §4.4.1, Fig. 4.2–4.3:
 //!   eq. (4.19) with no, sensed or estimated joint torque
 //!   ([`JointTorqueFeedback`]), with Table 4.1's gains or, in the regime
-//!   where the sampled law keeps its boundary layers (errata E22), with
+//!   where the sampled law keeps its boundary layers (errata E4.4), with
 //!   [`bound_design`]'s.
 //! * [`bound_run`] ([`BoundCase`]) — one case of Theorem 1's ultimate bound
 //!   on the sampled loop, with the sampling disturbance measured and the
@@ -256,6 +256,25 @@ pub struct TrackingResult {
     pub saturated_fraction: f64,
     /// Largest |r| the law computed after settling, rad/s.
     pub max_sliding: f64,
+    /// One record per sample (settling included), for plots.
+    pub trace: Vec<TrackingSample>,
+}
+
+/// One sample of a tracking run (true plant quantities unless stated).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TrackingSample {
+    /// Time, s.
+    pub time: f64,
+    /// Desired link angle `q_l^d`, rad.
+    pub desired: f64,
+    /// Link-side error `q_l − q_l^d`, rad.
+    pub link_error: f64,
+    /// Joint torque fed back to the law (0 without feedback), N·m.
+    pub feedback: f64,
+    /// The estimator's joint torque `τ̂_t` (computed in every mode), N·m.
+    pub estimate: f64,
+    /// True transmission torque `τ_t`, N·m.
+    pub joint_torque: f64,
 }
 
 impl ErrorStats {
@@ -303,6 +322,7 @@ pub fn active_tracking(cfg: &TrackingConfig) -> TrackingResult {
     let (mut le, mut me, mut fe) = (Vec::new(), Vec::new(), Vec::new());
     let (mut sat, mut count, mut max_r) = (0usize, 0usize, 0.0f64);
     let total = (cfg.duration / t).round() as usize;
+    let mut trace = Vec::with_capacity(total);
     for k in 0..total {
         let time = k as f64 * t;
         let s = robot.read_sensors();
@@ -325,6 +345,14 @@ pub fn active_tracking(cfg: &TrackingConfig) -> TrackingResult {
             ..Default::default()
         };
         let o = law.update(&mut st, &x);
+        trace.push(TrackingSample {
+            time,
+            desired: qd,
+            link_error: robot.link_angles()[0] - qd,
+            feedback: fb,
+            estimate: tau_est,
+            joint_torque: robot.transmission_torques()[0],
+        });
         if time >= cfg.settle {
             let truth = robot.transmission_torques()[0];
             le.push(robot.link_angles()[0] - qd);
@@ -348,6 +376,7 @@ pub fn active_tracking(cfg: &TrackingConfig) -> TrackingResult {
         feedback_error: ErrorStats::of(fe),
         saturated_fraction: sat as f64 / count.max(1) as f64,
         max_sliding: max_r,
+        trace,
     }
 }
 
@@ -411,7 +440,7 @@ impl BoundCase {
 
 /// The design used by the ultimate-bound check: Table 4.1's structure with
 /// boundary layers wide enough that the sampled law at `T = 50 µs` stays
-/// inside its layers (the step ratio of errata E22 below 1 at the
+/// inside its layers (the step ratio of errata E4.4 below 1 at the
 /// trajectory speeds), and bounds that cover the simulated plant:
 ///
 /// * friction box `b ∈ [0, 1e-4]`, `f_c, f_s ∈ [0, 0.012]` N·m, the
@@ -509,7 +538,7 @@ pub struct BoundRun {
     pub max_feedback_error: f64,
     /// Samples whose command hit the torque limit.
     pub saturated_samples: usize,
-    /// The E22 step ratio at the largest motor speed of the trajectory.
+    /// The E4.4 step ratio at the largest motor speed of the trajectory.
     pub step_ratio: f64,
 }
 
@@ -752,11 +781,28 @@ pub struct BackDriveResult {
     pub lag: ErrorStats,
     /// Transmission torque `τ_t` (what the drive resists with), N·m.
     pub joint_torque: ErrorStats,
+    /// One record per control sample, for plots.
+    pub trace: Vec<BackDriveSample>,
+}
+
+/// One control sample of a back-driving run (true plant quantities).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BackDriveSample {
+    /// Time, s.
+    pub time: f64,
+    /// Hand position `q_h`, rad.
+    pub hand_position: f64,
+    /// Link angle `q_l`, rad.
+    pub link_angle: f64,
+    /// Hand torque on the link, N·m.
+    pub hand_torque: f64,
+    /// Transmission torque `τ_t`, N·m.
+    pub joint_torque: f64,
 }
 
 /// The passive-mode experiment of §4.4.2 (Fig. 4.11–4.12).
 ///
-/// `K_p`: eq. (4.32) gives the motor `q̈_m = −K_p τ̂_t/N` (errata E9),
+/// `K_p`: eq. (4.32) gives the motor `q̈_m = −K_p τ̂_t/N` (errata E4.1),
 /// against `q̈_m = −τ_t/(N I_m)` for a bare rotor, so the torque feedback
 /// makes the joint lighter than its own rotor only for `Î_m K_p > 1`.
 /// Sampled at `T`, the motor–drive loop `q̈_m = −K_p K_d q_m/N²` (drive
@@ -789,6 +835,7 @@ pub fn back_drive(cfg: &BackDriveConfig) -> BackDriveResult {
     let mut last = 0.0;
     let (mut hand, mut lag, mut jt) = (Vec::new(), Vec::new(), Vec::new());
     let total = (cfg.duration / t).round() as usize;
+    let mut trace = Vec::with_capacity(total);
     let w = TAU / cfg.period;
     let hand_at = |time: f64, ql: f64, vl: f64| {
         let (s, c) = libm::sincos(w * time);
@@ -818,10 +865,19 @@ pub fn back_drive(cfg: &BackDriveConfig) -> BackDriveResult {
         };
         last = torque;
         robot.set_motor_torque(&[torque]);
-        for _ in 0..robot.steps_per_period {
+        for j in 0..robot.steps_per_period {
             let tt = robot.time();
             let (ql, vl) = (robot.link_angles()[0], robot.link_speeds()[0]);
             let h = hand_at(tt, ql, vl);
+            if j == 0 {
+                trace.push(BackDriveSample {
+                    time: tt,
+                    hand_position: cfg.amplitude * libm::sin(w * tt),
+                    link_angle: ql,
+                    hand_torque: h,
+                    joint_torque: robot.transmission_torques()[0],
+                });
+            }
             robot.external_torque[0] = h;
             if time >= cfg.settle {
                 hand.push(h);
@@ -836,6 +892,7 @@ pub fn back_drive(cfg: &BackDriveConfig) -> BackDriveResult {
         hand_torque: ErrorStats::of(hand),
         lag: ErrorStats::of(lag),
         joint_torque: ErrorStats::of(jt),
+        trace,
     }
 }
 
@@ -1068,7 +1125,7 @@ pub struct ModeScenarioConfig {
 impl ModeScenarioConfig {
     /// 0.1 ms tick ([`bound_design`]'s law, which the sampled loop holds
     /// smoothly), enter 4 N·m / exit 2 N·m (above the estimator's error of
-    /// about 1 N·m, Table 3.3 and errata E12), `ω = 10 rad/s`, no detector,
+    /// about 1 N·m, Table 3.3 and errata E2.9), `ω = 10 rad/s`, no detector,
     /// `Î_m K_p = 2`.
     pub fn interaction() -> Self {
         ModeScenarioConfig {

@@ -11,7 +11,7 @@
 //! (eq. 2.40) and the estimator [`TorqueEstimatorConfig`] (eq. 3.8–3.10).
 
 use super::mrr::{ModuleParams, Mrr, Sensors};
-use super::transmission::{BackboneShape, DrivePlantParams, SHD_17_100_K3};
+use super::transmission::{BackboneShape, DrivePlantParams, MeshFrictionPlant, SHD_17_100_K3};
 use crate::estimation::torque::{
     TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorState,
 };
@@ -371,6 +371,124 @@ pub fn locked_output(cfg: &LockedOutputConfig) -> ComplianceResult {
     }
     let d = dis.result(&r);
     finish(samples, d)
+}
+
+/// The locked-output experiment of [`locked_output`] (same torque
+/// schedule: `cfg.amplitude`, `frequency`, `duration`, `control_period`,
+/// `record_every`) on the Fig. 2.7 plant [`MeshFrictionPlant`], evaluated
+/// quasi-statically: the motor torque `τ_m` loads the wave generator
+/// (`T = N τ_m`), the mesh friction passes `τ = clamp(τ, T − F, T + F)` to
+/// the locked flexspline, and the encoders read `δ = f(τ) + g_w(T)`
+/// exactly (no rotor dynamics, motor friction, kinematic error or sensor
+/// noise). Records and errors use the chapter-2 signs of [`locked_output`]
+/// (`Δθ = −δ`, `τ_f = −τ`, `τ_w = τ_m`). The dissipation fields are 0.
+pub fn locked_output_mesh_friction(
+    plant: &MeshFrictionPlant,
+    cfg: &LockedOutputConfig,
+) -> ComplianceResult {
+    let models = Models::shd_17_100();
+    let n = plant.ratio;
+    let samples_total = (cfg.duration / cfg.control_period).round() as usize;
+    let mut flex = 0.0;
+    let mut samples = Vec::new();
+    for k in 0..samples_total {
+        let t = k as f64 * cfg.control_period;
+        let tau_m = cfg.amplitude * (1.0 - t / cfg.duration) * (TAU * cfg.frequency * t).sin();
+        let wg = n * tau_m;
+        flex = plant.flexspline_torque(flex, wg);
+        if k % cfg.record_every == 0 {
+            let torsion = -plant.torsion(flex, wg);
+            let tau_f = -flex;
+            samples.push(ComplianceSample {
+                time: t,
+                wave_generator_torque: tau_m,
+                flexspline_torque: tau_f,
+                true_flexspline_torque: tau_f,
+                motor_angle: 0.0,
+                measured_torsion: torsion,
+                true_torsion: torsion,
+                proposed: models.proposed.torsion(tau_f, tau_m),
+                flexspline: models.proposed.flexspline().torsion(tau_f),
+                piecewise: models.piecewise.torsion(tau_f),
+                cubic: models.cubic.torsion(tau_f),
+                piecewise_input: models.piecewise.torsion(-n * tau_m),
+            });
+        }
+    }
+    finish(samples, (0.0, 0.0))
+}
+
+/// The plant structures of the model-ranking sweep (errata E2.9).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PlantStructure {
+    /// One compliance (backbone plus Maxwell-slip loop of width `Ψ`
+    /// centred on it) between motor and link, simulated with the rotor,
+    /// motor friction, kinematic error and sensors ([`locked_output`]).
+    Centred(BackboneShape),
+    /// Fig. 2.7: wave-generator compliance, mesh friction, flexspline
+    /// compliance ([`MeshFrictionPlant::shd_17_100`],
+    /// [`locked_output_mesh_friction`]).
+    MeshFriction,
+}
+
+impl PlantStructure {
+    /// A short label for tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            PlantStructure::Centred(shape) => shape.name(),
+            PlantStructure::MeshFriction => "Fig. 2.7 mesh friction",
+        }
+    }
+}
+
+/// One row of the model-ranking sweep: RMS torsion error (rad) of each
+/// model in the locked-output experiment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RankingRow {
+    /// The plant.
+    pub structure: PlantStructure,
+    /// Initial drive-torque amplitude `N·A` (link side), N·m.
+    pub drive_amplitude: f64,
+    /// Eq. (2.30), the proposed model.
+    pub proposed: f64,
+    /// Eq. (2.26) alone.
+    pub flexspline: f64,
+    /// Eq. (2.11), the catalogue model.
+    pub piecewise: f64,
+    /// Eq. (2.10), the cubic model.
+    pub cubic: f64,
+}
+
+impl RankingRow {
+    /// Whether eq. (2.30) has a smaller RMS error than both classic
+    /// models, (2.11) and (2.10).
+    pub fn proposed_beats_classic(&self) -> bool {
+        self.proposed < self.piecewise && self.proposed < self.cubic
+    }
+}
+
+/// The locked-output model comparison on `structure` with an initial drive
+/// torque amplitude of `drive_amplitude` N·m (motor amplitude
+/// `drive_amplitude/N`), the other settings of [`LockedOutputConfig::default`].
+pub fn model_ranking(structure: PlantStructure, drive_amplitude: f64) -> RankingRow {
+    let cfg = LockedOutputConfig {
+        amplitude: drive_amplitude / CatalogueData::SHD_17_100.ratio,
+        ..LockedOutputConfig::default()
+    };
+    let r = match structure {
+        PlantStructure::Centred(backbone) => locked_output(&LockedOutputConfig { backbone, ..cfg }),
+        PlantStructure::MeshFriction => {
+            locked_output_mesh_friction(&MeshFrictionPlant::shd_17_100(), &cfg)
+        }
+    };
+    RankingRow {
+        structure,
+        drive_amplitude,
+        proposed: r.proposed.rms,
+        flexspline: r.flexspline.rms,
+        piecewise: r.piecewise.rms,
+        cubic: r.cubic.rms,
+    }
 }
 
 /// Configuration of the back-driven experiment (thesis Fig. 2.21–2.22).

@@ -89,7 +89,9 @@ impl BackboneShape {
 
 /// A smooth stiffening curve, torque (N·m) from torsion `δ` (rad):
 ///
-/// $$ \tau(\delta) = K_\infty \delta - (K_\infty - K_0)\, w \tanh(\delta/w) $$
+/// ```text
+/// τ(δ) = K_∞ δ − (K_∞ − K_0) w tanh(δ/w)
+/// ```
 ///
 /// local stiffness `K_∞ − (K_∞ − K_0) sech²(δ/w)`, from `K_0` at zero to
 /// `K_∞` for `|δ| ≫ w`. Not a model of the thesis: a plant shape that
@@ -495,9 +497,180 @@ impl DrivePlantParams {
     }
 }
 
+/// A drive with the structure of thesis Fig. 2.7 / Fig. 2.9: two
+/// compliances in series with the mesh friction acting on the node between
+/// them, all torques and torsions link-side (chapter-4 signs: positive
+/// motor torque, positive torsion `δ`).
+///
+/// * The **wave-generator compliance** carries the motor torque: with the
+///   link-equivalent torque `T = N τ_m` it twists by
+///   `g_w(T) = sgn(T) (Ψ_s/2)(1 − e^{−|T|/T_w})`, the shape of eq. (2.29),
+///   with `T_w = N τ_fs` (eq. 2.37's `c_w = 1/τ_fs` after errata E2.4).
+/// * The **mesh friction** holds the node between the two compliances:
+///   the flexspline torque `τ` follows `T` as a play operator of half
+///   width `F`, `τ ← clamp(τ, T − F, T + F)` (the clamp of errata E2.5).
+/// * The **flexspline compliance** is whatever makes the catalogue-style
+///   test match the catalogue: with the input held and a torque `τ`
+///   cycled on the output, the wave generator carries `τ ∓ F` on the
+///   slipping branches, so the loop's centreline is
+///   `f(τ) + [g_w(τ + F) + g_w(τ − F)]/2` and its width at zero torque
+///   `2 g_w(F)`. Choosing `Ψ_s` so that `2 g_w(F) = Ψ` and
+///   `f(τ) = cat(τ) − [g_w(τ + F) + g_w(τ − F)]/2` (with `cat` the
+///   catalogue curve, eq. 2.11) makes that loop the catalogue's: centred
+///   on eq. (2.11), `Ψ` wide at zero torque, narrowing as the wave
+///   generator stiffens, as Fig. 2.10 draws it.
+///
+/// This is the plant eq. (2.30) is built for (its wave-generator term is
+/// the plant's `g_w` up to `Ψ_s`); it has no rotor, kinematic error or
+/// sensor noise, and is evaluated quasi-statically (see
+/// [`locked_output_mesh_friction`](super::experiments::locked_output_mesh_friction)).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MeshFrictionPlant {
+    /// Gear ratio `N`.
+    pub ratio: f64,
+    /// The catalogue curve the catalogue-style test reproduces.
+    pub catalogue: CataloguePiecewise,
+    /// Mesh friction `F`, link-side N·m.
+    pub mesh_friction: f64,
+    /// Wave-generator torque scale `T_w`, link-side N·m.
+    pub wave_generator_scale: f64,
+    /// Wave-generator saturation torsion `Ψ_s/2`, rad.
+    pub wave_generator_saturation: f64,
+}
+
+impl MeshFrictionPlant {
+    /// The plant for catalogue `data` (with `k3`) and mesh friction `F`
+    /// (N·m, link side); `T_w = N τ_fs`, `Ψ_s/2 = (Ψ/2)/(1 − e^{−F/T_w})`.
+    ///
+    /// Errors: invalid catalogue numbers; `F ≤ 0`; a flexspline curve that
+    /// would not increase (checked on a grid of 0.01 N·m up to `2 T2 + F`).
+    pub fn from_catalogue(
+        data: &CatalogueData,
+        k3: f64,
+        mesh_friction: f64,
+    ) -> Result<Self, ParamError> {
+        let catalogue = CataloguePiecewise::try_new(data.k1, data.k2, k3, data.t1, data.t2)?;
+        let mesh_friction = positive("mesh_friction", mesh_friction)?;
+        let scale = positive("starting_torque", data.ratio * data.starting_torque)?;
+        let plant = MeshFrictionPlant {
+            ratio: data.ratio,
+            catalogue,
+            mesh_friction,
+            wave_generator_scale: scale,
+            wave_generator_saturation: 0.5 * data.hysteresis_loss
+                / (1.0 - libm::exp(-mesh_friction / scale)),
+        };
+        let top = 2.0 * data.t2 + mesh_friction;
+        let mut prev = plant.flexspline_torsion(0.0);
+        for k in 1..=(top / 0.01) as usize {
+            let next = plant.flexspline_torsion(k as f64 * 0.01);
+            if next <= prev {
+                return Err(ParamError::NotRepresentable {
+                    name: "mesh_friction",
+                    value: mesh_friction,
+                });
+            }
+            prev = next;
+        }
+        Ok(plant)
+    }
+
+    /// The SHD-17-100 of §2.4 with the mesh friction equal to the measured
+    /// back-driving torque `τ_fb = 2.0 N·m`.
+    pub fn shd_17_100() -> Self {
+        Self::from_catalogue(&CatalogueData::SHD_17_100, SHD_17_100_K3, 2.0)
+            .expect("catalogue constants are valid")
+    }
+
+    /// Wave-generator torsion `g_w(T)` (rad) at link-equivalent torque `T`.
+    pub fn wave_generator_torsion(&self, torque: f64) -> f64 {
+        let m = self.wave_generator_saturation
+            * (1.0 - libm::exp(-torque.abs() / self.wave_generator_scale));
+        if torque < 0.0 {
+            -m
+        } else {
+            m
+        }
+    }
+
+    /// Flexspline torsion `f(τ)` (rad) at flexspline torque `τ` (N·m).
+    pub fn flexspline_torsion(&self, torque: f64) -> f64 {
+        let f = self.mesh_friction;
+        self.catalogue.torsion(torque)
+            - 0.5
+                * (self.wave_generator_torsion(torque + f)
+                    + self.wave_generator_torsion(torque - f))
+    }
+
+    /// The flexspline torque after the wave generator's torque moves to
+    /// `wave_generator_torque` (link-equivalent, N·m) from a flexspline
+    /// torque `previous`: the mesh friction's play operator.
+    pub fn flexspline_torque(&self, previous: f64, wave_generator_torque: f64) -> f64 {
+        previous.clamp(
+            wave_generator_torque - self.mesh_friction,
+            wave_generator_torque + self.mesh_friction,
+        )
+    }
+
+    /// Total torsion `δ = f(τ) + g_w(T)` (rad).
+    pub fn torsion(&self, flexspline_torque: f64, wave_generator_torque: f64) -> f64 {
+        self.flexspline_torsion(flexspline_torque)
+            + self.wave_generator_torsion(wave_generator_torque)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The catalogue-style test of the Fig. 2.7 plant, run as an
+    /// experiment (input held, output torque cycled ±15 N·m through the
+    /// mesh-friction play, torsion read on the two branches), reproduces
+    /// the catalogue: branch midpoint = eq. (2.11), width at zero = Ψ.
+    #[test]
+    fn mesh_friction_plant_catalogue_test_matches_the_catalogue() {
+        let p = MeshFrictionPlant::shd_17_100();
+        let data = CatalogueData::SHD_17_100;
+        // Output torque cycled 0 → 15 → −15 → 15 in 0.01 N·m steps; the
+        // wave generator torque is the play of the output torque.
+        let mut wg = 0.0;
+        let mut up = Vec::new();
+        let mut down = Vec::new();
+        let steps = 1500;
+        let path = (0..=steps)
+            .map(|k| k as f64 * 0.01)
+            .chain((0..=2 * steps).map(|k| 15.0 - k as f64 * 0.01))
+            .chain((0..=2 * steps).map(|k| -15.0 + k as f64 * 0.01));
+        for (j, tau) in path.enumerate() {
+            wg = p.flexspline_torque(wg, tau); // same play, roles swapped
+            let torsion = p.flexspline_torsion(tau) + p.wave_generator_torsion(wg);
+            if j > steps && j <= 3 * steps + 1 {
+                down.push((tau, torsion));
+            } else if j > 3 * steps + 1 {
+                up.push((tau, torsion));
+            }
+        }
+        // Both branches slip everywhere 2F = 4 N·m or more from the turns.
+        for t in [-10.0, -5.0, -1.0, 0.0, 2.0, 3.9, 8.0, 10.0] {
+            let at = |v: &[(f64, f64)]| {
+                v.iter()
+                    .min_by(|a, b| (a.0 - t).abs().total_cmp(&(b.0 - t).abs()))
+                    .unwrap()
+                    .1
+            };
+            let (lo, hi) = (at(&up), at(&down));
+            let mid = 0.5 * (lo + hi);
+            assert!((mid - p.catalogue.torsion(t)).abs() < 1e-12, "{t}: {mid}");
+            if t == 0.0 {
+                assert!(
+                    (hi - lo - data.hysteresis_loss).abs() < 1e-12,
+                    "{}",
+                    hi - lo
+                );
+            }
+            assert!(hi - lo > 0.0 && hi - lo <= data.hysteresis_loss * (1.0 + 1e-12));
+        }
+    }
 
     /// The loop of the plant's compliance, driven quasi-statically by the
     /// torsion, has width Ψ at zero torque on every backbone: once every

@@ -130,7 +130,7 @@ proptest! {
         prop_assert!((got - want).abs() <= 1e-12 * (1.0 + want.abs()), "{got} vs {want}");
     }
 
-    /// Theorem 1 with the hat restored (errata E20): one adaptation step
+    /// Theorem 1 with the hat restored (errata E4.2): one adaptation step
     /// ΔF̂ = −Γ T Yᵀ r makes the adaptation term of V̇ (eq. 4.21),
     /// `−(ΔF̂/T)ᵀ Γ⁻¹ F̃`, equal to `+r Y F̃`, cancelling the parametric term
     /// `−r Y F̃` that eq. (4.16) puts into eq. (4.22).

@@ -1,0 +1,1264 @@
+//! The thesis's ch. 2–4 figures regenerated from the library and its
+//! simulator, as SVG files plus an `index.html` to open in a browser.
+//! Each figure carries one line: what the thesis reports, and what this run
+//! gets (numbers computed here).
+//!
+//! ```sh
+//! cargo run --release --features sim --example thesis_report            # full runs (~20 s)
+//! cargo run --release --features sim --example thesis_report -- --quick # shorter runs (CI)
+//! cargo run --release --features sim --example thesis_report -- --out DIR
+//! ```
+//!
+//! Output: `DIR`, else `$CARGO_TARGET_DIR/figures`, else `target/figures`.
+//!
+//! Every curve comes from a library call (the models of
+//! [`mrr_control::harmonic_drive`], the experiments of
+//! [`mrr_control::sim`]); this file only runs them and draws.
+//!
+//! To add figures (the wrist and door opening of ch. 5–6), write a
+//! `fn(&mut Report) -> Result<Figure, Error>` and list it in [`CHAPTERS`].
+
+use mrr_control::harmonic_drive::kinematic_error::KinematicErrorModel;
+use mrr_control::harmonic_drive::CatalogueData;
+use mrr_control::sim::closed_loop::{
+    active_tracking, back_drive, interaction_scenario, payload_drop, BackDriveConfig,
+    BackDriveMode, BackDriveResult, JointTorqueFeedback, ModeScenarioConfig, PayloadDropConfig,
+    TrackingConfig, TrackingResult,
+};
+use mrr_control::sim::experiments::{
+    back_driven, locked_output, torque_estimation, width_at_zero, BackDrivenConfig,
+    BackDrivenResult, ComplianceResult, ComplianceSample, ErrorStats, LockedOutputConfig, Models,
+    TorqueEstimationConfig, TorqueEstimationResult, ESTIMATORS,
+};
+use plotters::prelude::*;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// Errors of a report run (I/O or drawing), as text.
+pub type Error = Box<dyn std::error::Error>;
+
+/// One rendered figure.
+#[derive(Debug, Clone)]
+pub struct Figure {
+    /// File name of the SVG inside the output directory.
+    pub file: String,
+    /// Thesis figure number(s) and title.
+    pub title: String,
+    /// What the thesis reports.
+    pub thesis: String,
+    /// What this run gets.
+    pub ours: String,
+}
+
+/// A figure generator.
+pub type FigureFn = fn(&mut Report) -> Result<Figure, Error>;
+
+/// The figures, by chapter. Ch. 5–6 (the wrist's workspace and α/β,
+/// Fig. 5.7–5.8, 5.10–5.11; wrist active/passive control, Fig. 6.10–6.11,
+/// 6.14–6.17; door opening, Fig. 6.19–6.20) go in a fourth entry.
+pub const CHAPTERS: &[(&str, &[FigureFn])] = &[
+    (
+        "Chapter 2: harmonic-drive compliance",
+        &[
+            fig2_11, fig2_12, fig2_17, fig2_18, fig2_19, fig2_20, fig2_21, fig2_22,
+        ],
+    ),
+    (
+        "Chapter 3: joint torque estimation",
+        &[fig3_1, fig3_2, fig3_3, fig3_6, fig3_7, fig3_8, fig3_9],
+    ),
+    (
+        "Chapter 4: multiple-mode joint control",
+        &[fig4_2, fig4_3, fig4_11, fig4_12],
+    ),
+];
+
+/// Run options.
+#[derive(Debug, Clone)]
+pub struct Options {
+    /// Shorter simulations (for CI).
+    pub quick: bool,
+    /// Output directory.
+    pub out: PathBuf,
+}
+
+/// The output directory: `$CARGO_TARGET_DIR/figures` if the variable is
+/// set, else `target/figures`.
+pub fn default_figures_dir() -> PathBuf {
+    std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from("target"))
+        .join("figures")
+}
+
+/// The simulations shared between figures, run once on first use.
+pub struct Report {
+    opts: Options,
+    locked: Option<ComplianceResult>,
+    back_driven: Option<BackDrivenResult>,
+    estimation: Option<TorqueEstimationResult>,
+    tracking: Option<Vec<TrackingResult>>,
+    passive: Option<Vec<BackDriveResult>>,
+    smooth: Option<TrackingResult>,
+}
+
+impl Report {
+    fn new(opts: Options) -> Self {
+        Report {
+            opts,
+            locked: None,
+            back_driven: None,
+            estimation: None,
+            tracking: None,
+            passive: None,
+            smooth: None,
+        }
+    }
+
+    fn locked(&mut self) -> &ComplianceResult {
+        let quick = self.opts.quick;
+        self.locked.get_or_insert_with(|| {
+            locked_output(&LockedOutputConfig {
+                duration: if quick { 6.0 } else { 20.0 },
+                ..LockedOutputConfig::default()
+            })
+        })
+    }
+
+    fn back_driven(&mut self) -> &BackDrivenResult {
+        let quick = self.opts.quick;
+        self.back_driven.get_or_insert_with(|| {
+            back_driven(&BackDrivenConfig {
+                duration: if quick { 8.0 } else { 20.0 },
+                ..BackDrivenConfig::default()
+            })
+        })
+    }
+
+    fn estimation(&mut self) -> &TorqueEstimationResult {
+        let quick = self.opts.quick;
+        self.estimation.get_or_insert_with(|| {
+            let mut c = TorqueEstimationConfig::default();
+            if quick {
+                c.duration = 1.5;
+                c.calibration_speed = 2.0;
+            }
+            torque_estimation(&c)
+        })
+    }
+
+    /// Table 4.1's law at 4 ms with feedback A (none), B (F/T sensor),
+    /// C (estimate).
+    fn tracking(&mut self) -> &[TrackingResult] {
+        let quick = self.opts.quick;
+        self.tracking.get_or_insert_with(|| {
+            [
+                JointTorqueFeedback::None,
+                JointTorqueFeedback::Sensor,
+                JointTorqueFeedback::Estimated,
+            ]
+            .into_iter()
+            .map(|fb| {
+                let mut c = TrackingConfig::table_4_1(fb, 4e-3);
+                if quick {
+                    c.duration = 4.0;
+                    c.settle = 1.0;
+                }
+                active_tracking(&c)
+            })
+            .collect()
+        })
+    }
+
+    /// The smooth regime (layers the sampled law holds, 0.1 ms) with the
+    /// estimated torque fed back.
+    fn smooth(&mut self) -> &TrackingResult {
+        let quick = self.opts.quick;
+        self.smooth.get_or_insert_with(|| {
+            let mut c = TrackingConfig::smooth(JointTorqueFeedback::Estimated);
+            if quick {
+                c.duration = 4.0;
+                c.settle = 1.0;
+            }
+            active_tracking(&c)
+        })
+    }
+
+    /// Eq. (4.32) at 4 ms: A uncompensated, B estimate, C F/T sensor.
+    fn passive(&mut self) -> &[BackDriveResult] {
+        let quick = self.opts.quick;
+        self.passive.get_or_insert_with(|| {
+            [
+                BackDriveMode::Uncompensated,
+                BackDriveMode::Estimated,
+                BackDriveMode::Sensor,
+            ]
+            .into_iter()
+            .map(|m| {
+                let mut c = BackDriveConfig::new(m);
+                if quick {
+                    c.duration = 4.0;
+                    c.settle = 1.0;
+                }
+                back_drive(&c)
+            })
+            .collect()
+        })
+    }
+}
+
+// ---------------------------------------------------------------- drawing
+
+/// One curve (or point cloud) of a chart.
+struct Series {
+    label: String,
+    color: RGBColor,
+    points: Vec<(f64, f64)>,
+    dots: bool,
+}
+
+fn line(label: &str, color: RGBColor, points: Vec<(f64, f64)>) -> Series {
+    Series {
+        label: label.to_string(),
+        color,
+        points: thin(points, 2500),
+        dots: false,
+    }
+}
+
+fn dots(label: &str, color: RGBColor, points: Vec<(f64, f64)>) -> Series {
+    Series {
+        label: label.to_string(),
+        color,
+        points: thin(points, 1500),
+        dots: true,
+    }
+}
+
+/// Keep at most about `max` points (every k-th), so the SVGs stay small.
+fn thin(points: Vec<(f64, f64)>, max: usize) -> Vec<(f64, f64)> {
+    let step = points.len().div_ceil(max).max(1);
+    points
+        .into_iter()
+        .enumerate()
+        .filter(|(i, _)| i % step == 0)
+        .map(|(_, p)| p)
+        .filter(|(x, y)| x.is_finite() && y.is_finite())
+        .collect()
+}
+
+const BLUE_: RGBColor = RGBColor(31, 119, 180);
+const ORANGE: RGBColor = RGBColor(255, 127, 14);
+const GREEN_: RGBColor = RGBColor(44, 160, 44);
+const RED_: RGBColor = RGBColor(214, 39, 40);
+const GREY: RGBColor = RGBColor(120, 120, 120);
+
+/// A chart: title, axis labels, series, and vertical markers `(x, text)`
+/// (area labels A/B/C).
+struct Chart<'a> {
+    title: &'a str,
+    x: &'a str,
+    y: &'a str,
+    series: Vec<Series>,
+    markers: Vec<(f64, String)>,
+}
+
+fn draw(path: &Path, c: &Chart) -> Result<(), Error> {
+    let all = c.series.iter().flat_map(|s| s.points.iter());
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for &(x, y) in all {
+        x0 = x0.min(x);
+        x1 = x1.max(x);
+        y0 = y0.min(y);
+        y1 = y1.max(y);
+    }
+    if x0 > x1 {
+        return Err(format!("{}: no data", c.title).into());
+    }
+    let pad = |a: f64, b: f64| {
+        let d = (b - a).abs().max(1e-12 * a.abs().max(1.0));
+        (a - 0.05 * d, b + 0.05 * d)
+    };
+    let (x0, x1) = pad(x0, x1);
+    // Room above the data for the legend.
+    let (y0, y1) = pad(y0, y1 + 0.25 * (y1 - y0).abs().max(1e-12));
+    let root = SVGBackend::new(path, (820, 460)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(c.title, ("sans-serif", 18))
+        .margin(12)
+        .x_label_area_size(44)
+        .y_label_area_size(72)
+        .build_cartesian_2d(x0..x1, y0..y1)?;
+    chart
+        .configure_mesh()
+        .x_desc(c.x)
+        .y_desc(c.y)
+        .light_line_style(WHITE.mix(0.0))
+        .draw()?;
+    for &(x, ref text) in &c.markers {
+        chart.draw_series(LineSeries::new(
+            vec![(x, y0), (x, y1)],
+            GREY.stroke_width(1),
+        ))?;
+        chart.draw_series(std::iter::once(Text::new(
+            text.clone(),
+            (x, y1 - 0.04 * (y1 - y0)),
+            ("sans-serif", 14).into_font().color(&BLACK),
+        )))?;
+    }
+    for s in &c.series {
+        let color = s.color;
+        if s.dots {
+            chart
+                .draw_series(
+                    s.points
+                        .iter()
+                        .map(move |&p| Circle::new(p, 3, color.filled())),
+                )?
+                .label(s.label.clone())
+                .legend(move |(x, y)| Circle::new((x + 10, y), 3, color.filled()));
+        } else {
+            chart
+                .draw_series(LineSeries::new(s.points.clone(), color.stroke_width(1)))?
+                .label(s.label.clone())
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                });
+        }
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .draw()?;
+    root.present()?;
+    Ok(())
+}
+
+fn figure(
+    dir: &Path,
+    file: &str,
+    title: &str,
+    chart: Chart,
+    thesis: String,
+    ours: String,
+) -> Result<Figure, Error> {
+    draw(&dir.join(file), &chart)?;
+    Ok(Figure {
+        file: file.to_string(),
+        title: title.to_string(),
+        thesis,
+        ours,
+    })
+}
+
+fn max_abs(e: &ErrorStats) -> f64 {
+    e.max.abs().max(e.min.abs())
+}
+
+/// Torques from 0 to `T2` and `−T2`, N·m.
+fn torque_grid(t2: f64, n: usize) -> Vec<f64> {
+    (0..=n)
+        .map(|i| -1.2 * t2 + 2.4 * t2 * i as f64 / n as f64)
+        .collect()
+}
+
+// ---------------------------------------------------------------- chapter 2
+
+fn fig2_11(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let d = CatalogueData::SHD_17_100;
+    let m = Models::shd_17_100();
+    let taus = torque_grid(d.t2, 480);
+    let proposed: Vec<_> = taus
+        .iter()
+        .map(|&t| (t, m.proposed.flexspline().local_stiffness(t) * 1e-3))
+        .collect();
+    let piecewise: Vec<_> = taus
+        .iter()
+        .map(|&t| (t, m.piecewise.local_stiffness(t) * 1e-3))
+        .collect();
+    let cubic: Vec<_> = taus
+        .iter()
+        .map(|&t| (t, m.cubic.local_stiffness(m.cubic.torsion(t)) * 1e-3))
+        .collect();
+    let k = |t: f64| m.proposed.flexspline().local_stiffness(t) * 1e-3;
+    figure(
+        &dir,
+        "fig2_11_local_stiffness.svg",
+        "Fig. 2.11: local elastic coefficient",
+        Chart {
+            title: "Fig. 2.11  local stiffness dτ/dΔθ of the three models (SHD-17-100)",
+            x: "flexspline torque τ_f (N·m)",
+            y: "local stiffness (kN·m/rad)",
+            series: vec![
+                line("proposed, eq. (2.26)", BLUE_, proposed),
+                line("catalogue piecewise, eq. (2.11)", ORANGE, piecewise),
+                line("cubic, eq. (2.10)", GREEN_, cubic),
+            ],
+            markers: vec![],
+        },
+        "the proposed model's stiffness matches the piecewise and cubic models \
+         (catalogue K1 = 8.4, K2 = 9.4 kN·m/rad)"
+            .into(),
+        format!(
+            "proposed K(0) = {:.2}, K(T1) = {:.2}, K(T2) = {:.2} kN·m/rad against K1 = {:.1}, K2 = {:.1}",
+            k(0.0),
+            k(d.t1),
+            k(d.t2),
+            d.k1 * 1e-3,
+            d.k2 * 1e-3
+        ),
+    )
+}
+
+fn fig2_12(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let d = CatalogueData::SHD_17_100;
+    let m = Models::shd_17_100();
+    let taus = torque_grid(d.t2, 480);
+    let curve = |f: &dyn Fn(f64) -> f64| -> Vec<(f64, f64)> {
+        taus.iter().map(|&t| (f(t) * 1e3, t)).collect()
+    };
+    let mut gap = 0.0f64;
+    for &t in taus.iter().filter(|t| t.abs() <= d.t2) {
+        gap = gap.max((m.proposed.flexspline().torsion(t) - m.piecewise.torsion(t)).abs());
+    }
+    figure(
+        &dir,
+        "fig2_12_stiffness_curves.svg",
+        "Fig. 2.12: stiffness curves",
+        Chart {
+            title: "Fig. 2.12  torque–torsion curves (SHD-17-100)",
+            x: "torsion Δθ (mrad)",
+            y: "torque (N·m)",
+            series: vec![
+                line(
+                    "proposed, eq. (2.26)",
+                    BLUE_,
+                    curve(&|t| m.proposed.flexspline().torsion(t)),
+                ),
+                line(
+                    "catalogue piecewise, eq. (2.11)",
+                    ORANGE,
+                    curve(&|t| m.piecewise.torsion(t)),
+                ),
+                line("cubic, eq. (2.10)", GREEN_, curve(&|t| m.cubic.torsion(t))),
+            ],
+            markers: vec![],
+        },
+        "the three stiffness curves agree over the rated range".into(),
+        format!(
+            "largest |proposed − piecewise| torsion over |τ| ≤ T2 = {} N·m: {:.1} µrad \
+             (torsion at T2: {:.3} mrad)",
+            d.t2,
+            gap * 1e6,
+            m.piecewise.torsion(d.t2) * 1e3
+        ),
+    )
+}
+
+fn fig2_17(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let a = r.locked();
+    let pts: Vec<_> = a
+        .samples
+        .iter()
+        .map(|s| (s.time, s.wave_generator_torque * 100.0))
+        .collect();
+    let peak = pts.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
+    let end = pts.last().map_or(0.0, |p| p.0);
+    figure(
+        &dir,
+        "fig2_17_input_torque.svg",
+        "Fig. 2.17: motor-side input torque",
+        Chart {
+            title: "Fig. 2.17  motor torque command, output locked",
+            x: "time (s)",
+            y: "motor torque τ_w (N·cm)",
+            series: vec![line("τ_w", BLUE_, pts)],
+            markers: vec![],
+        },
+        "a sinusoidal motor torque of decreasing amplitude drives the locked drive".into(),
+        format!("0.5 Hz sinusoid, peak {peak:.1} N·cm decreasing to 0 over {end:.0} s"),
+    )
+}
+
+fn fig2_18(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let psi = CatalogueData::SHD_17_100.hysteresis_loss;
+    let a = r.locked();
+    let to = a.samples.last().map_or(0.0, |s| s.time).min(6.0);
+    let w_plant = width_at_zero(
+        &a.samples,
+        |s| -s.wave_generator_torque,
+        |s| s.measured_torsion,
+        0.0,
+        to,
+    );
+    let w_model = width_at_zero(
+        &a.samples,
+        |s| -s.wave_generator_torque,
+        |s| s.proposed,
+        0.0,
+        to,
+    );
+    let meas: Vec<_> = a
+        .samples
+        .iter()
+        .map(|s| (-s.wave_generator_torque * 100.0, s.measured_torsion * 1e3))
+        .collect();
+    let model: Vec<_> = a
+        .samples
+        .iter()
+        .map(|s| (-s.wave_generator_torque * 100.0, s.proposed * 1e3))
+        .collect();
+    figure(
+        &dir,
+        "fig2_18_hysteresis.svg",
+        "Fig. 2.18: input torque versus output torsion",
+        Chart {
+            title: "Fig. 2.18  torsion versus motor torque (hysteresis loop)",
+            x: "input torque −τ_w (N·cm)",
+            y: "torsion Δθ (mrad)",
+            series: vec![
+                dots("simulated encoders", GREY, meas),
+                line("proposed model, eq. (2.30)", RED_, model),
+            ],
+            markers: vec![],
+        },
+        format!(
+            "the measured loop and the model's agree; catalogue hysteresis loss Ψ = {:.1e} rad",
+            psi
+        ),
+        format!(
+            "loop width at zero torque (first {to:.0} s): plant {:.2e} rad, model {:.2e} rad",
+            w_plant, w_model
+        ),
+    )
+}
+
+fn fig2_19(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let a = r.locked();
+    let err = |f: fn(&ComplianceSample) -> f64| -> Vec<(f64, f64)> {
+        a.samples
+            .iter()
+            .map(|s| (s.time, (f(s) - s.measured_torsion) * 1e3))
+            .collect()
+    };
+    let ours = format!(
+        "error range: proposed {:+.2e} … {:+.2e} rad, piecewise {:+.2e} … {:+.2e} rad (RMS {:.2e} vs {:.2e})",
+        a.proposed.min, a.proposed.max, a.piecewise.min, a.piecewise.max, a.proposed.rms, a.piecewise.rms
+    );
+    figure(
+        &dir,
+        "fig2_19_error_time.svg",
+        "Fig. 2.19: estimation error versus time",
+        Chart {
+            title: "Fig. 2.19  torsion error (model − encoders) versus time",
+            x: "time (s)",
+            y: "torsion error (mrad)",
+            series: vec![
+                line("piecewise, eq. (2.11)", ORANGE, err(|s| s.piecewise)),
+                line("proposed, eq. (2.30)", BLUE_, err(|s| s.proposed)),
+            ],
+            markers: vec![],
+        },
+        "error reduced from ±2.3e-4 rad (eq. 2.11) to ±1.7e-4 rad (eq. 2.30)".into(),
+        ours,
+    )
+}
+
+fn fig2_20(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let a = r.locked();
+    let err = |f: fn(&ComplianceSample) -> f64| -> Vec<(f64, f64)> {
+        a.samples
+            .iter()
+            .map(|s| (s.motor_angle, (f(s) - s.measured_torsion) * 1e3))
+            .collect()
+    };
+    let (lo, hi) = a.samples.iter().fold((f64::MAX, f64::MIN), |(l, h), s| {
+        (l.min(s.motor_angle), h.max(s.motor_angle))
+    });
+    let gap = |f: fn(&ComplianceSample) -> f64| {
+        width_at_zero(
+            &a.samples,
+            |s| -s.wave_generator_torque,
+            |s| f(s) - s.measured_torsion,
+            0.0,
+            f64::MAX,
+        )
+        .abs()
+    };
+    figure(
+        &dir,
+        "fig2_20_error_motor.svg",
+        "Fig. 2.20: estimation error versus motor position",
+        Chart {
+            title: "Fig. 2.20  torsion error versus motor position",
+            x: "motor angle (rad)",
+            y: "torsion error (mrad)",
+            series: vec![
+                dots("piecewise, eq. (2.11)", ORANGE, err(|s| s.piecewise)),
+                dots("proposed, eq. (2.30)", BLUE_, err(|s| s.proposed)),
+            ],
+            markers: vec![],
+        },
+        "two similar curves (kinematic error); the proposed model narrows the gap between \
+         them (hysteresis)"
+            .into(),
+        format!(
+            "motor swings over {:.2} rad; gap between the loading and unloading branches at zero \
+             torque: piecewise {:.2e} rad, proposed {:.2e} rad",
+            hi - lo,
+            gap(|s| s.piecewise),
+            gap(|s| s.proposed)
+        ),
+    )
+}
+
+fn fig2_21(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let b = r.back_driven();
+    let pts: Vec<_> = b
+        .compliance
+        .samples
+        .iter()
+        .map(|s| (s.time, s.flexspline_torque))
+        .collect();
+    let peak = pts.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
+    figure(
+        &dir,
+        "fig2_21_external_torque.svg",
+        "Fig. 2.21: external torque on the output side",
+        Chart {
+            title: "Fig. 2.21  output-side torque, motor held",
+            x: "time (s)",
+            y: "flexspline torque τ_f (N·m)",
+            series: vec![line("τ_f (torque sensor)", BLUE_, pts)],
+            markers: vec![],
+        },
+        "a bidirectional external torque of decreasing amplitude back-drives the link".into(),
+        format!("measured flexspline torque peaks at {peak:.1} N·m"),
+    )
+}
+
+fn fig2_22(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let b = r.back_driven();
+    let c = &b.compliance;
+    let meas: Vec<_> = c
+        .samples
+        .iter()
+        .map(|s| (s.measured_torsion * 1e3, s.flexspline_torque))
+        .collect();
+    let model: Vec<_> = c
+        .samples
+        .iter()
+        .map(|s| (s.proposed * 1e3, s.flexspline_torque))
+        .collect();
+    figure(
+        &dir,
+        "fig2_22_back_driven.svg",
+        "Fig. 2.22: output torque versus output torsion (back-driven)",
+        Chart {
+            title: "Fig. 2.22  output torque versus torsion, back-driven",
+            x: "torsion Δθ (mrad)",
+            y: "flexspline torque τ_f (N·m)",
+            series: vec![
+                dots("simulated encoders", GREY, meas),
+                line("eq. (2.30), τ_w from eq. (2.40)", RED_, model),
+            ],
+            markers: vec![],
+        },
+        "the torsion predicted by eq. (2.30) with τ_w from eq. (2.40) agrees with the measured one"
+            .into(),
+        format!(
+            "torsion error RMS: eq. (2.30) {:.2e} rad, piecewise eq. (2.11) {:.2e} rad, cubic {:.2e} rad",
+            c.proposed.rms, c.piecewise.rms, c.cubic.rms
+        ),
+    )
+}
+
+// ---------------------------------------------------------------- chapter 3
+
+const RATIO: f64 = 100.0;
+
+/// The link-side part of a kinematic-error model (`a0`, `a_l1`, `b_l1`).
+fn link_part(m: &KinematicErrorModel) -> KinematicErrorModel {
+    let c = m.coefficients();
+    // A part of a valid model is valid (its amplitude bound is smaller).
+    KinematicErrorModel::try_new([c[0], c[1], c[2], 0.0, 0.0, 0.0, 0.0])
+        .expect("a part of a valid model is valid")
+}
+
+/// The motor-side part (`a_w1`, `b_w1`, `a_w2`, `b_w2`).
+fn motor_part(m: &KinematicErrorModel) -> KinematicErrorModel {
+    let c = m.coefficients();
+    KinematicErrorModel::try_new([0.0, 0.0, 0.0, c[3], c[4], c[5], c[6]])
+        .expect("a part of a valid model is valid")
+}
+
+/// Link angles over one output revolution, rad.
+fn revolution(n: usize) -> impl Iterator<Item = f64> {
+    (0..=n).map(move |i| std::f64::consts::TAU * i as f64 / n as f64)
+}
+
+fn fig3_1(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let truth = KinematicErrorModel::table_3_2();
+    let fitted = r.estimation().fitted_kinematic_error;
+    let deg = 180.0 / std::f64::consts::PI;
+    let total: Vec<_> = revolution(20_000)
+        .map(|q| (q * deg, truth.evaluate(q, RATIO * q) * 1e6))
+        .collect();
+    let fit: Vec<_> = revolution(720)
+        .map(|q| (q * deg, link_part(&fitted).evaluate(q, 0.0) * 1e6))
+        .collect();
+    let amp = |m: &KinematicErrorModel| m.phase_form().amplitudes[0];
+    figure(
+        &dir,
+        "fig3_1_ke_link.svg",
+        "Fig. 3.1: kinematic error versus link position",
+        Chart {
+            title: "Fig. 3.1  kinematic error over one output revolution",
+            x: "link angle θ_fo (deg)",
+            y: "kinematic error (µrad)",
+            series: vec![
+                line("simulated drive (Table 3.2)", GREY, total),
+                line("fitted link harmonic, eq. (3.3)", RED_, fit),
+            ],
+            markers: vec![],
+        },
+        format!(
+            "a once-per-output-revolution harmonic of amplitude {:.1} µrad (Table 3.2)",
+            amp(&truth) * 1e6
+        ),
+        format!(
+            "fitted from two calibration revolutions: amplitude {:.1} µrad",
+            amp(&fitted) * 1e6
+        ),
+    )
+}
+
+fn fig3_2(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let truth = KinematicErrorModel::table_3_2();
+    let fitted = r.estimation().fitted_kinematic_error;
+    let deg = 180.0 / std::f64::consts::PI;
+    let tau = std::f64::consts::TAU;
+    let residual: Vec<_> = revolution(4000)
+        .map(|q| {
+            let qm = RATIO * q;
+            (
+                qm.rem_euclid(tau) * deg,
+                (truth.evaluate(q, qm) - link_part(&truth).evaluate(q, 0.0)) * 1e6,
+            )
+        })
+        .collect();
+    let fit: Vec<_> = revolution(720)
+        .map(|qm| (qm * deg, motor_part(&fitted).evaluate(0.0, qm) * 1e6))
+        .collect();
+    let mut worst = 0.0f64;
+    for qm in revolution(720) {
+        worst = worst.max(
+            (motor_part(&fitted).evaluate(0.0, qm) - motor_part(&truth).evaluate(0.0, qm)).abs(),
+        );
+    }
+    figure(
+        &dir,
+        "fig3_2_ke_motor.svg",
+        "Fig. 3.2: kinematic error versus motor position",
+        Chart {
+            title: "Fig. 3.2  residual kinematic error over one motor revolution",
+            x: "motor angle θ_wi mod 360° (deg)",
+            y: "residual error (µrad)",
+            series: vec![
+                dots("simulated drive minus link harmonic", GREY, residual),
+                line("fitted motor harmonics, eq. (3.5)", RED_, fit),
+            ],
+            markers: vec![],
+        },
+        "the residual repeats once per motor revolution with two harmonics (eq. 3.5)".into(),
+        format!(
+            "largest |fitted − Table 3.2| motor-side part: {:.1} µrad",
+            worst * 1e6
+        ),
+    )
+}
+
+fn fig3_3(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let truth = KinematicErrorModel::table_3_2();
+    let fitted = r.estimation().fitted_kinematic_error;
+    let deg = 180.0 / std::f64::consts::PI;
+    let grid: Vec<f64> = revolution(20_000).collect();
+    let t: Vec<_> = grid
+        .iter()
+        .map(|&q| (q * deg, truth.evaluate(q, RATIO * q) * 1e6))
+        .collect();
+    let f: Vec<_> = grid
+        .iter()
+        .map(|&q| (q * deg, fitted.evaluate(q, RATIO * q) * 1e6))
+        .collect();
+    let worst = t
+        .iter()
+        .zip(&f)
+        .map(|(a, b)| (a.1 - b.1).abs())
+        .fold(0.0, f64::max);
+    let d = CatalogueData::SHD_17_100;
+    figure(
+        &dir,
+        "fig3_3_ke_model.svg",
+        "Fig. 3.3: modelled kinematic error",
+        Chart {
+            title: "Fig. 3.3  kinematic error model, eq. (3.7)",
+            x: "link angle θ_fo (deg)",
+            y: "kinematic error (µrad)",
+            series: vec![
+                line("Table 3.2 (simulated drive)", GREY, t),
+                line("fitted, eq. (3.7)", RED_, f),
+            ],
+            markers: vec![],
+        },
+        "eq. (3.7) with Table 3.2; without it the torque error would reach K2·θ_err \
+         (eq. 3.1, Table 3.1: 4.1 N·m for this size)"
+            .into(),
+        format!(
+            "Table 3.2 bound {:.1} µrad (K2·bound = {:.2} N·m); largest |fitted − Table 3.2| {:.1} µrad",
+            truth.amplitude_bound() * 1e6,
+            truth.amplitude_bound() * d.k2,
+            worst
+        ),
+    )
+}
+
+fn fig3_6(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let chattering = r.tracking()[2].feedback_error;
+    let c = r.smooth().clone();
+    let truth: Vec<_> = c.trace.iter().map(|s| (s.time, s.joint_torque)).collect();
+    let est: Vec<_> = c.trace.iter().map(|s| (s.time, s.estimate)).collect();
+    figure(
+        &dir,
+        "fig3_6_estimation_slow.svg",
+        "Fig. 3.6: estimated versus measured torque, slow changes",
+        Chart {
+            title: "Fig. 3.6  joint torque while tracking a slow raised cosine (0.1 ms tick)",
+            x: "time (s)",
+            y: "joint torque τ_t (N·m)",
+            series: vec![
+                line("true τ_t (F/T sensor)", GREY, truth),
+                line("estimate, eq. (3.8)–(3.10)", RED_, est),
+            ],
+            markers: vec![],
+        },
+        "estimation error around 1 N·m, comparable with the F/T sensor".into(),
+        format!(
+            "estimate − true τ_t after settling, with layers the sampled law holds (0.1 ms): \
+             RMS {:.2} N·m, max |·| {:.2} N·m; with Table 4.1 at 4 ms, where the law chatters: \
+             RMS {:.2} N·m, max |·| {:.2} N·m",
+            c.feedback_error.rms,
+            max_abs(&c.feedback_error),
+            chattering.rms,
+            max_abs(&chattering)
+        ),
+    )
+}
+
+fn fig3_7(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let s = interaction_scenario(&ModeScenarioConfig::interaction());
+    let truth: Vec<_> = s.trace.iter().map(|x| (x.time, x.joint_torque)).collect();
+    let est: Vec<_> = s.trace.iter().map(|x| (x.time, x.estimate)).collect();
+    let e = ErrorStats::of(s.trace.iter().map(|x| x.estimate - x.joint_torque));
+    let peak = s
+        .trace
+        .iter()
+        .map(|x| x.joint_torque.abs())
+        .fold(0.0, f64::max);
+    figure(
+        &dir,
+        "fig3_7_estimation_fast.svg",
+        "Fig. 3.7: estimated versus measured torque, fast changes",
+        Chart {
+            title: "Fig. 3.7  joint torque while a hand pushes the joint and lets go",
+            x: "time (s)",
+            y: "joint torque τ_t (N·m)",
+            series: vec![line("true τ_t", GREY, truth), line("estimate", RED_, est)],
+            markers: vec![],
+        },
+        "the estimate follows torque applied by hand; error around 1 N·m".into(),
+        format!(
+            "true torque up to {peak:.1} N·m; estimate − true: RMS {:.2} N·m, max |·| {:.2} N·m",
+            e.rms,
+            max_abs(&e)
+        ),
+    )
+}
+
+fn fig3_8(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let p = payload_drop(&PayloadDropConfig::default());
+    let truth: Vec<_> = p.trace.iter().map(|x| (x.0, x.1)).collect();
+    let est: Vec<_> = p.trace.iter().map(|x| (x.0, x.2)).collect();
+    figure(
+        &dir,
+        "fig3_8_payload_drop.svg",
+        "Fig. 3.8: torque estimation when the payload is cut",
+        Chart {
+            title: "Fig. 3.8  1 kg at 0.4 m cut at t = 1 s",
+            x: "time (s)",
+            y: "joint torque τ_t (N·m)",
+            series: vec![line("true τ_t", GREY, truth), line("estimate", RED_, est)],
+            markers: vec![],
+        },
+        "the estimate has a relatively good dynamic response to the sudden change".into(),
+        format!(
+            "step {:.2} N·m (true {:.2}); half-way after {:.1} ms (true {:.1} ms); \
+             error after settling RMS {:.2} N·m",
+            p.estimate.after - p.estimate.before,
+            p.truth.after - p.truth.before,
+            p.estimate.half_time * 1e3,
+            p.truth.half_time * 1e3,
+            p.error_after.rms
+        ),
+    )
+}
+
+fn fig3_9(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    // Table 3.3 as printed: motor torque (N·cm), max and min error (N·m).
+    const TABLE_3_3: [(f64, f64, f64); 7] = [
+        (0.0, 0.3, -0.5),
+        (3.0, 0.2, -1.2),
+        (-3.0, 0.6, -1.1),
+        (5.0, 0.8, -1.2),
+        (-5.0, 0.7, -1.3),
+        (10.0, 1.0, -0.9),
+        (-10.0, 0.6, -2.3),
+    ];
+    let c = r.estimation();
+    let j = ESTIMATORS
+        .iter()
+        .position(|e| *e == "f64, KE fitted")
+        .ok_or("estimator missing")?;
+    let by_torque = |f: fn(&ErrorStats) -> f64| -> Vec<(f64, f64)> {
+        let mut v: Vec<_> = c
+            .levels
+            .iter()
+            .map(|l| (l.motor_torque * 100.0, f(&l.errors[j])))
+            .collect();
+        v.sort_by(|a, b| a.0.total_cmp(&b.0));
+        v
+    };
+    let (ours_max, ours_min) = (by_torque(|e| e.max), by_torque(|e| e.min));
+    let overall = c.overall[j];
+    let worst_thesis = TABLE_3_3
+        .iter()
+        .map(|t| t.1.abs().max(t.2.abs()))
+        .fold(0.0, f64::max);
+    figure(
+        &dir,
+        "fig3_9_table3_3.svg",
+        "Fig. 3.9 / Table 3.3: estimation error at different motor torques",
+        Chart {
+            title: "Table 3.3  largest and smallest estimation error per motor torque",
+            x: "motor torque (N·cm)",
+            y: "estimate − true (N·m)",
+            series: vec![
+                dots(
+                    "thesis max",
+                    ORANGE,
+                    TABLE_3_3.iter().map(|t| (t.0, t.1)).collect(),
+                ),
+                dots(
+                    "thesis min",
+                    RED_,
+                    TABLE_3_3.iter().map(|t| (t.0, t.2)).collect(),
+                ),
+                line("simulated max (f64, KE fitted)", BLUE_, ours_max),
+                line("simulated min", GREEN_, ours_min),
+            ],
+            markers: vec![],
+        },
+        format!("errors within −2.3 … +1.0 N·m (largest |·| {worst_thesis:.1} N·m)"),
+        format!(
+            "errors within {:+.2} … {:+.2} N·m, RMS {:.2} N·m over all levels",
+            overall.min, overall.max, overall.rms
+        ),
+    )
+}
+
+// ---------------------------------------------------------------- chapter 4
+
+fn fig4_2(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let c = r.tracking()[0].clone();
+    let pts: Vec<_> = c.trace.iter().map(|s| (s.time, s.desired)).collect();
+    let peak = pts.iter().map(|p| p.1).fold(0.0, f64::max);
+    figure(
+        &dir,
+        "fig4_2_desired.svg",
+        "Fig. 4.2: desired trajectory, active mode",
+        Chart {
+            title: "Fig. 4.2  desired link trajectory",
+            x: "time (s)",
+            y: "q_l^d (rad)",
+            series: vec![line("q_l^d = 0.25 (1 − cos 2πt/4 s)", BLUE_, pts)],
+            markers: vec![],
+        },
+        "a smooth periodic link trajectory".into(),
+        format!("raised cosine, 4 s period, peak {peak:.2} rad"),
+    )
+}
+
+/// Three runs laid end to end, labelled A, B, C.
+fn abc<T>(
+    runs: &[T],
+    duration: impl Fn(&T) -> f64,
+    labels: [&str; 3],
+) -> (Vec<f64>, Vec<(f64, String)>) {
+    let mut offsets = Vec::new();
+    let mut markers = Vec::new();
+    let mut t0 = 0.0;
+    for (run, label) in runs.iter().zip(labels) {
+        offsets.push(t0);
+        markers.push((t0, label.to_string()));
+        t0 += duration(run);
+    }
+    (offsets, markers)
+}
+
+fn fig4_3(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let runs = r.tracking().to_vec();
+    let (off, markers) = abc(
+        &runs,
+        |x| x.trace.last().map_or(0.0, |s| s.time),
+        ["A: no JTF", "B: JTF, F/T sensor", "C: JTF, estimate"],
+    );
+    let pts: Vec<_> = runs
+        .iter()
+        .zip(&off)
+        .flat_map(|(x, o)| {
+            x.trace
+                .iter()
+                .map(move |s| (o + s.time, s.link_error * 1e3))
+        })
+        .collect();
+    let ours = runs
+        .iter()
+        .zip(["A", "B", "C"])
+        .map(|(x, l)| format!("{l} {:.2}", x.link_error.rms * 1e3))
+        .collect::<Vec<_>>()
+        .join(", ");
+    figure(
+        &dir,
+        "fig4_3_tracking.svg",
+        "Fig. 4.3: active mode, link position error A/B/C",
+        Chart {
+            title: "Fig. 4.3  link-side position error, eq. (4.19), Table 4.1, T = 4 ms",
+            x: "time (s), three runs end to end",
+            y: "q_l − q_l^d (mrad)",
+            series: vec![line("link error", BLUE_, pts)],
+            markers,
+        },
+        "area A (no joint-torque feedback) has the largest error; with feedback from the \
+         F/T sensor (B) or the estimate (C) it is smaller"
+            .into(),
+        format!("link error RMS after settling (mrad): {ours}"),
+    )
+}
+
+fn fig4_11(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let runs = r.passive().to_vec();
+    let (off, markers) = abc(
+        &runs,
+        |x| x.trace.last().map_or(0.0, |s| s.time),
+        ["A: no compensation", "B: estimate", "C: F/T sensor"],
+    );
+    let pts: Vec<_> = runs
+        .iter()
+        .zip(&off)
+        .flat_map(|(x, o)| x.trace.iter().map(move |s| (o + s.time, s.hand_torque)))
+        .collect();
+    let ours = runs
+        .iter()
+        .zip(["A", "B", "C"])
+        .map(|(x, l)| format!("{l} {:.2}", x.hand_torque.rms))
+        .collect::<Vec<_>>()
+        .join(", ");
+    figure(
+        &dir,
+        "fig4_11_passive.svg",
+        "Fig. 4.11: passive mode, torque needed to back-drive",
+        Chart {
+            title: "Fig. 4.11  hand torque back-driving the joint, eq. (4.32), T = 4 ms",
+            x: "time (s), three runs end to end",
+            y: "hand torque (N·m)",
+            series: vec![line("hand torque", BLUE_, pts)],
+            markers,
+        },
+        "back-driving without torque feedback (A) takes more torque than with eq. (4.32) on \
+         the estimate (B) or the F/T sensor (C)"
+            .into(),
+        format!("hand torque RMS (N·m): {ours}"),
+    )
+}
+
+fn fig4_12(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let runs = r.passive().to_vec();
+    let (off, markers) = abc(
+        &runs,
+        |x| x.trace.last().map_or(0.0, |s| s.time),
+        ["A", "B", "C"],
+    );
+    let link: Vec<_> = runs
+        .iter()
+        .zip(&off)
+        .flat_map(|(x, o)| x.trace.iter().map(move |s| (o + s.time, s.link_angle)))
+        .collect();
+    let hand: Vec<_> = runs
+        .iter()
+        .zip(&off)
+        .flat_map(|(x, o)| x.trace.iter().map(move |s| (o + s.time, s.hand_position)))
+        .collect();
+    let ours = runs
+        .iter()
+        .zip(["A", "B", "C"])
+        .map(|(x, l)| format!("{l} {:.1}", x.lag.rms * 1e3))
+        .collect::<Vec<_>>()
+        .join(", ");
+    figure(
+        &dir,
+        "fig4_12_passive_position.svg",
+        "Fig. 4.12: joint position in passive mode",
+        Chart {
+            title: "Fig. 4.12  link angle while back-driven",
+            x: "time (s), three runs end to end",
+            y: "angle (rad)",
+            series: vec![line("hand q_h", GREY, hand), line("link q_l", BLUE_, link)],
+            markers,
+        },
+        "the joint follows the hand".into(),
+        format!("link lag behind the hand, RMS (mrad): {ours}"),
+    )
+}
+
+// ---------------------------------------------------------------- index
+
+fn escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+fn index_html(chapters: &[(&str, Vec<Figure>)], quick: bool) -> String {
+    let mut h = String::from(
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\"/>\n\
+         <title>mrr-control: thesis figures</title>\n<style>\n\
+         body{font-family:sans-serif;max-width:900px;margin:auto;padding:1em;color:#222}\n\
+         figure{margin:2em 0;border-top:1px solid #ccc;padding-top:1em}\n\
+         img{max-width:100%}\nfigcaption{font-size:0.95em}\n\
+         .thesis{color:#555}\n</style>\n</head>\n<body>\n\
+         <h1>H. Zhang (2013), ch. 2–4, regenerated by mrr-control</h1>\n",
+    );
+    let _ = writeln!(
+        h,
+        "<p>Every curve is computed by the library and its simulator \
+         (<code>examples/thesis_report.rs</code>){}. \
+         The thesis's figures are photographs of lab measurements; the line under each \
+         figure compares what the thesis reports with what this run gets.</p>",
+        if quick {
+            ", in the shortened <code>--quick</code> mode"
+        } else {
+            ""
+        }
+    );
+    h.push_str("<ul>\n");
+    for (chapter, figs) in chapters {
+        for f in figs {
+            let _ = writeln!(
+                h,
+                "<li><a href=\"#{}\">{}</a> <small>({})</small></li>",
+                escape(&f.file),
+                escape(&f.title),
+                escape(chapter)
+            );
+        }
+    }
+    h.push_str("</ul>\n");
+    for (chapter, figs) in chapters {
+        let _ = writeln!(h, "<h2>{}</h2>", escape(chapter));
+        for f in figs {
+            let _ = writeln!(
+                h,
+                "<figure id=\"{id}\">\n<a href=\"{id}\"><img src=\"{id}\" alt=\"{t}\"/></a>\n\
+                 <figcaption><b>{t}.</b> <span class=\"thesis\">Thesis: {th}.</span> \
+                 Here: {o}.</figcaption>\n</figure>",
+                id = escape(&f.file),
+                t = escape(&f.title),
+                th = escape(&f.thesis),
+                o = escape(&f.ours)
+            );
+        }
+    }
+    h.push_str("</body>\n</html>\n");
+    h
+}
+
+/// Render every figure of [`CHAPTERS`] and the index into `opts.out`;
+/// returns the figures in order.
+pub fn run(opts: &Options) -> Result<Vec<Figure>, Error> {
+    std::fs::create_dir_all(&opts.out)?;
+    let mut report = Report::new(opts.clone());
+    let mut chapters = Vec::new();
+    for (name, figs) in CHAPTERS {
+        let mut done = Vec::new();
+        for f in figs.iter() {
+            done.push(f(&mut report)?);
+        }
+        chapters.push((*name, done));
+    }
+    std::fs::write(
+        opts.out.join("index.html"),
+        index_html(&chapters, opts.quick),
+    )?;
+    Ok(chapters.into_iter().flat_map(|(_, f)| f).collect())
+}
+
+#[allow(dead_code)]
+fn main() -> Result<(), Error> {
+    let mut args = std::env::args().skip(1);
+    let mut opts = Options {
+        quick: false,
+        out: default_figures_dir(),
+    };
+    while let Some(a) = args.next() {
+        match a.as_str() {
+            "--quick" => opts.quick = true,
+            "--out" => opts.out = PathBuf::from(args.next().ok_or("--out needs a directory")?),
+            other => return Err(format!("unknown argument {other:?} (--quick, --out DIR)").into()),
+        }
+    }
+    let start = std::time::Instant::now();
+    let figures = run(&opts)?;
+    for f in &figures {
+        println!("{}\n  thesis: {}\n  here:   {}", f.title, f.thesis, f.ours);
+    }
+    println!(
+        "\n{} figures in {:.1} s; open {}",
+        figures.len(),
+        start.elapsed().as_secs_f64(),
+        opts.out.join("index.html").display()
+    );
+    Ok(())
+}
