@@ -171,6 +171,10 @@ pub struct TorqueEstimatorParams {
     max_torque: f64,
 }
 
+/// Smallest accepted `max_torque`, N·m: 65 steps of the fixed-point
+/// link-torque unit, so that no backend rounds the limit to 0.
+pub const MIN_TORQUE_LIMIT: f64 = 1e-3;
+
 /// Largest accepted `max_torque`, N·m (representable by every backend with
 /// room for the sums of the step).
 pub const MAX_TORQUE_LIMIT: f64 = 30_000.0;
@@ -189,8 +193,8 @@ impl TorqueEstimatorParams {
     ///   ([`ParamError::NotInteger`]);
     /// * `link_counts_per_rev` `L` and `motor_counts_per_rev` `M` (after
     ///   quadrature decoding): at least 1;
-    /// * `max_torque`: finite, in `(0, 30 000]` N·m
-    ///   ([`MAX_TORQUE_LIMIT`]);
+    /// * `max_torque`: finite, in `[0.001, 30 000]` N·m
+    ///   ([`MIN_TORQUE_LIMIT`], [`MAX_TORQUE_LIMIT`]);
     /// * the product `L·M·N` (named as such,
     ///   [`ParamError::CombinationOutOfRange`]): at most `2⁴⁶`
     ///   ([`MAX_COUNTS_PER_OUTPUT_REV`]), and small enough that 2³¹ counts of
@@ -216,11 +220,11 @@ impl TorqueEstimatorParams {
             }
         }
         let max_torque = positive("max_torque", max_torque)?;
-        if max_torque > MAX_TORQUE_LIMIT {
+        if !(MIN_TORQUE_LIMIT..=MAX_TORQUE_LIMIT).contains(&max_torque) {
             return Err(ParamError::OutOfRange {
                 name: "max_torque",
                 value: max_torque,
-                min: 0.0,
+                min: MIN_TORQUE_LIMIT,
                 max: MAX_TORQUE_LIMIT,
             });
         }
@@ -334,7 +338,8 @@ impl TorqueEstimatorParams {
 
 /// How far the estimate of a backend may lie from the `f64` estimate for
 /// the same readings on the count path ([`TorqueEstimatorConfig::update`];
-/// the motor torque quantized to the backend's unit): the backend's
+/// the motor torque quantized to the backend's unit, and inside its range:
+/// `|τ_w| < 32.7 N·m` on `I16F16`): the backend's
 /// flexspline torsion `Δθ_f` within [`torsion`](Self::torsion) of the `f64`
 /// one, and its torque inside
 /// [`torque_interval`](Self::torque_interval). From

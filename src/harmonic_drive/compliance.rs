@@ -171,15 +171,29 @@ impl CubicStiffness {
     /// the linear guess; the function is increasing and convex for
     /// `Δθ > 0`, so Newton from `τ/a1` (which over-estimates) decreases
     /// monotonically to the root.
+    ///
+    /// Both `τ/a1` and `∛(τ/a3)` over-estimate the root; Newton starts from
+    /// the smaller, so the cubic never overflows for `|τ| ≤ 1e300` N·m
+    /// (larger torques are taken as 1e300; a non-finite torque gives 0).
     pub fn torsion(&self, torque: f64) -> f64 {
         if !torque.is_finite() {
             return 0.0;
         }
-        let t = torque.abs();
+        let t = torque.abs().min(1e300);
         let mut x = t / self.a1;
+        if self.a3 > 0.0 {
+            x = x.min(libm::cbrt(t / self.a3));
+        }
+        if !x.is_finite() {
+            // Only for a1 and a3 so small that the torsion exceeds f64.
+            return f64::MAX.copysign(torque);
+        }
         for _ in 0..60 {
             let f = self.torque(x) - t;
             let step = f / self.local_stiffness(x);
+            if !step.is_finite() {
+                break;
+            }
             x -= step;
             if step.abs() <= 1e-17 * x.abs() {
                 break;
@@ -575,6 +589,24 @@ mod tests {
         // Hand values: 3.9/8400 and 3.9/8400 + 8.1/9400 + 3/12000.
         assert!((c.torsion(3.9) - 3.9 / 8400.0).abs() < 1e-15);
         assert!((c.torsion(15.0) - (3.9 / 8400.0 + 8.1 / 9400.0 + 3.0 / 12000.0)).abs() < 1e-15);
+    }
+
+    /// Huge torques used to overflow the cubic inside Newton's method and
+    /// return NaN; the inverse is now finite and still inverts.
+    #[test]
+    fn cubic_inverse_is_finite_for_huge_torques() {
+        let q = CubicStiffness::try_new(8.0e3, 2.0e9).unwrap();
+        for t in [1e100, 1e250, 1e300, f64::MAX] {
+            let x = q.torsion(t);
+            assert!(x.is_finite() && x > 0.0, "{t}: {x}");
+            let tt = t.min(1e300);
+            assert!(
+                (q.torque(x) - tt).abs() <= 1e-12 * tt,
+                "{t}: {}",
+                q.torque(x)
+            );
+            assert_eq!(q.torsion(-t), -x);
+        }
     }
 
     #[test]

@@ -80,8 +80,16 @@ impl<S: Scalar> WaveGeneratorTorqueConfig<S> {
     /// Written on the motor side as `x = −τ_f/N`: stick while
     /// `|x − τ_w(t−1)| ≤ τ_fb/N`, otherwise `τ_w` follows `x` at the edge of
     /// the play — the same three cases as the module docs.
+    ///
+    /// A NaN or infinite flexspline torque (floats) leaves the state
+    /// unchanged and returns it, so a bad sample never poisons the state.
     #[inline]
     pub fn update(&self, state: &mut WaveGeneratorTorqueState<S>, flexspline_torque: S) -> S {
+        // `v − v` is 0 exactly for a finite float; fixed point has no
+        // non-finite values (folded at compile time).
+        if S::RESOLUTION.to_f64() < 1e-6 && flexspline_torque.sub(flexspline_torque) != S::ZERO {
+            return state.torque;
+        }
         let x = flexspline_torque.mul_coef(&self.motor_per_link).neg();
         let lo = x.sub(self.half_width);
         let hi = x.add(self.half_width);
@@ -95,6 +103,22 @@ mod tests {
     use super::*;
     use crate::scalar::I16F16;
     use proptest::prelude::*;
+
+    /// A NaN or infinite torque used to turn the state into NaN or ±∞ for
+    /// good; now it is skipped and the state stays finite.
+    #[test]
+    fn non_finite_torque_leaves_the_state_unchanged() {
+        let p = WaveGeneratorTorqueParams::try_new(2.0, 100.0).unwrap();
+        let c = WaveGeneratorTorqueConfig::<f32>::new(&p);
+        let mut st = WaveGeneratorTorqueState::default();
+        let before = c.update(&mut st, 10.0);
+        for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+            assert_eq!(c.update(&mut st, bad), before);
+            assert_eq!(st.torque, before);
+        }
+        // And the play goes on from there.
+        assert_eq!(c.update(&mut st, -10.0), 0.08);
+    }
 
     /// The cases of eq. (2.40) as written in the module docs, in f64.
     fn reference(prev: f64, tf: f64, tfb: f64, n: f64) -> f64 {

@@ -145,16 +145,42 @@ pub fn half_step_si<S: Scalar>(scale: f64) -> f64 {
 // N·m, rad and rad/s on every backend. The stored-unit fields stay public
 // for firmware that wants them.
 
+/// `value_si · scale` for backend `S` like [`quantize`], except that a
+/// NaN or an infinity stays one on the float backends (so the step that
+/// reads it flags it); fixed point, which has neither, saturates ±∞ to
+/// `±MAX` and maps NaN to 0.
+#[inline]
+pub fn quantize_keep_non_finite<S: Scalar>(value_si: f64, scale: f64) -> S {
+    let v = value_si * scale;
+    if v.is_finite() {
+        return S::from_f64(v);
+    }
+    // `MAX + MAX` is +∞ on floats and saturates to MAX on fixed point;
+    // `∞ − ∞` is NaN on floats and 0 on fixed point.
+    let inf = S::MAX.add(S::MAX);
+    if v.is_nan() {
+        inf.sub(inf)
+    } else if v > 0.0 {
+        inf
+    } else {
+        inf.neg()
+    }
+}
+
 impl<S: Scalar> ControlInput<S> {
     /// The sample for backend `S` from SI values: positions in rad, speeds
     /// in rad/s, accelerations in rad/s², joint torques in N·m (link side).
-    /// Each field is [`quantize`]d with its scale of `S::UNITS`
-    /// (angle, speed, speed, link torque): within half a stored step
-    /// ([`half_step_si`]) on fixed point, rounded to nearest on floats;
-    /// out-of-range values saturate, NaN stays NaN on floats (and is
-    /// flagged by the steps) and becomes 0 on fixed point.
+    /// Each field is quantized with its scale of `S::UNITS`
+    /// (angle, speed, speed, link torque) by [`quantize_keep_non_finite`]:
+    /// within half a stored step ([`half_step_si`]) on fixed point, rounded
+    /// to nearest on floats; finite out-of-range values saturate. A NaN or
+    /// infinite value stays one on floats, and the step flags it
+    /// (`invalid_input`); fixed point cannot hold it (NaN becomes 0, ±∞
+    /// saturates), so firmware on fixed point should test
+    /// `si.is_finite()` before converting.
     pub fn from_si(si: &ControlInput<f64>) -> Self {
         let u = S::UNITS;
+        let quantize = quantize_keep_non_finite::<S>;
         ControlInput {
             desired_position: quantize(si.desired_position, u.angle),
             desired_velocity: quantize(si.desired_velocity, u.speed),
@@ -476,6 +502,32 @@ mod tests {
                 "{name} {} not in [{lo}, {hi}]",
                 b.estimate
             );
+        }
+    }
+
+    /// A NaN or infinite SI value reaches a float step as such (so it is
+    /// flagged), where `quantize` alone would have made it 0 or `MAX`
+    /// silently; fixed point saturates.
+    #[test]
+    fn from_si_keeps_non_finite_values_on_floats() {
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let si = ControlInput {
+                joint_torque: bad,
+                ..Default::default()
+            };
+            let x = ControlInput::<f32>::from_si(&si);
+            assert!(!x.is_finite());
+            assert_eq!(x.joint_torque.is_nan(), bad.is_nan());
+            assert!(!ControlInput::<f64>::from_si(&si).is_finite());
+            let q = ControlInput::<I16F16>::from_si(&si).joint_torque;
+            let want = if bad.is_nan() {
+                I16F16::ZERO
+            } else if bad > 0.0 {
+                I16F16::MAX
+            } else {
+                -I16F16::MAX
+            };
+            assert_eq!(q, want);
         }
     }
 
