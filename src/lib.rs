@@ -10,6 +10,7 @@ pub mod error;
 pub mod estimation;
 pub mod friction;
 pub mod harmonic_drive;
+pub mod joint;
 pub mod scalar;
 #[cfg(feature = "sim")]
 pub mod sim;
@@ -37,6 +38,9 @@ pub mod docs {
 }
 
 pub use error::ParamError;
+pub use joint::{
+    JointConfig, JointOutput, JointParams, JointReadings, JointSettings, JointState, JointTarget,
+};
 pub use scalar::{Scalar, I16F16};
 
 /// Verification properties (see `proofs/mod.rs`), compiled for the test,

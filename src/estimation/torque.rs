@@ -302,15 +302,15 @@ impl TorqueEstimatorParams {
             let angle = q / 2.0 / (f.c_f() * f.k_f0()) * t;
             AgreementBound {
                 torsion: 2.0 * (q / 2.0 + wave + kin + angle) / t,
-                torque_relative: 2.0 * 2f64.powi(-29),
+                torque_relative: 2.0 * (1.0 / 536_870_912.0),
                 torque_absolute: 2.0 * (q / f.c_f() + q),
             }
         } else if S::NAME == "f32" {
-            let u = 2f64.powi(-24);
+            let u = 1.0 / 16_777_216.0;
             AgreementBound {
                 torsion: 2.0
                     * (8.0 * u * self.torsion_range() + 8.0 * u * wg + (30.0 * u + e_theta) * ke),
-                torque_relative: 2.0 * 2f64.powi(-20),
+                torque_relative: 2.0 * (1.0 / 1_048_576.0),
                 torque_absolute: 1e-30,
             }
         } else {
@@ -459,6 +459,15 @@ pub struct TorqueEstimatorState {
     last_counter: u32,
 }
 
+impl TorqueEstimatorState {
+    /// The last raw motor counter given to
+    /// [`TorqueEstimatorConfig::update`] (or to
+    /// [`TorqueEstimatorConfig::state`]), in the estimator's sign.
+    pub fn last_counter(&self) -> u32 {
+        self.last_counter
+    }
+}
+
 /// One torque estimate.
 ///
 /// Every field is finite on every backend, whatever the readings: a bad
@@ -577,6 +586,14 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             motor_in_turn: (p % self.m as i64) as u32,
             last_counter: counter,
         }
+    }
+
+    /// The motor position the state tracks, in motor counts within one
+    /// output revolution, `[0, M·N)`, in the estimator's sign (`θ_wi`;
+    /// the chapter-4 `q_m` runs the other way, errata E2.10). Times
+    /// `2π/M` it is `θ_wi` modulo `2πN` rad.
+    pub fn motor_position_counts(&self, st: &TorqueEstimatorState) -> u64 {
+        st.motor_turn as u64 * self.m as u64 + st.motor_in_turn as u64
     }
 
     /// Advance the motor position by the counter change since the last call
