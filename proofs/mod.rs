@@ -27,3 +27,4 @@ pub mod kernels_i16f16;
 pub mod kernels_q15;
 pub mod kernels_turn;
 pub mod sat_sgn;
+pub mod wrist_ik;

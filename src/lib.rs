@@ -14,6 +14,7 @@ pub mod joint;
 pub mod scalar;
 #[cfg(feature = "sim")]
 pub mod sim;
+pub mod wrist;
 
 /// Reference pages shipped with the crate: the guide from a catalogue sheet
 /// to a running joint, the equation index and the errata of the thesis.

@@ -1,0 +1,421 @@
+//! The wrist's inverse-kinematics branch selection (thesis eq. 5.13–5.15),
+//! for the thesis's wrist (`φ = 16°`), written once and run by every
+//! engine.
+//!
+//! | property | I16F16 | f32 | f64 |
+//! |---|---|---|---|
+//! | `branch_and_round_trip` — at a reachable `(δ, γ)`: not flagged, no NaN, the selected branch (`θ4 ≥ 0`, `θ1 + θ3 ∈ [−π − ε, ε]`) and `FK(IK(δ, γ)) = (δ, γ)` within [`round_trip_bound`] | Kani entry (not run here); exhaustive (256 × 256 grid, and every code within 64 LSB of the straight pose) | exhaustive (same grid); random | random |
+//! | `continuity_step` — for two reachable poses `Δ = |Δδ| + |Δγ|` apart with bends `≥ β_min`, each motor angle moves (mod 2π) by at most [`continuity_modulus`] | exhaustive (grid neighbours) | exhaustive; random | random |
+//!
+//! **The grid.** Code `c = 256 i + j` (16 bits) is the pose
+//! `δ = −2φ + i·h`, `γ = −2φ + j·h`, `h = 4φ/255`: the bounding square of
+//! the workspace, of which 79 % (51,756 of 65,536 points in f32) is
+//! reachable. Measured (release, `cargo test --release --lib -- --ignored
+//! exhaustive_wrist --nocapture`): round trip ≤ 0.25 of the bound on
+//! I16F16 (24 LSB = 3.7e-4 rad), 0.016 on f32 (1.5 units = 3.6e-7 rad);
+//! continuity ≤ 0.57 (I16F16) and 0.64 (f32) of the modulus.
+//!
+//! **The round-trip bound** is a first-order error budget in units `q` of
+//! the backend's absolute angle resolution (`I16F16`: `2⁻¹⁶`; `f32`:
+//! `2⁻²²`, the ulp at π; `f64`: `2⁻⁵¹`), not an interval proof: the
+//! forward map evaluates about 40 rounded products and 7 kernels (each
+//! ≤ 2 q, their proven bounds) on terms of magnitude ≤ 1, and its `atan2`
+//! arguments have unit norm, so the angles it returns are within ~30 q;
+//! the inverse's errors reach the pose through `J` (`‖J‖ ≤ 1.4`), where
+//! the direction errors (`∝ q / sin β`) meet the self-motion column
+//! difference `J·(1, −1)ᵀ ∝ sin β`. Allowing a factor two over the sum:
+//! [`ROUND_TRIP_UNITS`]` = 96` units. Near the boundary the check excludes
+//! poses within [`BOUNDARY_MARGIN_UNITS`] units of bend of the edge, where
+//! the backend's workspace test may flag a reachable pose (its
+//! `sin(β/2) > sin φ` comparison is rounded).
+//!
+//! **The continuity modulus** (derived in [`continuity_modulus`]): the
+//! motor angles are `θ1 = π + az(z_h) − ψ`, `θ3 = −π + az(r_h) − ψ` with
+//! `z_h = (Sδ Cγ, −Sγ)` and `r_h = (Sδ, Cδ Sγ)`, both of length `sin β`
+//! and 1-Lipschitz in each of `δ, γ`; the angle between two vectors is at
+//! most `(π/√2)·|a − b| / min(|a|, |b|)`; and `ψ = atan2(Cφ s, √(1−s²))`
+//! with `s = sin(β/2)/Sφ` moves by at most `Δ(asin s)/Cφ`, where
+//! `Δs ≤ Δ/(2Sφ)` and `Δ asin s ≤ min(Δs/√(1 − s_max²), π√(Δs/2))`.
+
+use super::engine::Verdict;
+use crate::scalar::Scalar;
+use crate::wrist::{Inverse, PitchYaw, WristConfig, WristParams};
+use core::f64::consts::PI;
+
+/// Grid points per axis (the code is 16 bits: 256 × 256).
+pub const GRID: u32 = 256;
+/// The round-trip bound in units of [`angle_unit`].
+pub const ROUND_TRIP_UNITS: f64 = 96.0;
+/// Poses within this many units of bend from the workspace edge are
+/// outside the property (the rounded workspace test may flag them).
+pub const BOUNDARY_MARGIN_UNITS: f64 = 64.0;
+/// The smallest bend (rad) at which continuity is checked: the direction
+/// of the bend is undefined at the straight pose.
+pub const CONTINUITY_MIN_BEND: f64 = 0.05;
+
+/// The backend's absolute angle resolution `q` (rad).
+pub fn angle_unit<S: Scalar>() -> f64 {
+    match S::NAME {
+        "I16F16" => 1.0 / 65536.0,
+        "f32" => libm::exp2(-22.0),
+        _ => libm::exp2(-51.0),
+    }
+}
+
+/// The thesis's wrist.
+pub fn wrist() -> WristParams {
+    WristParams::thesis()
+}
+
+/// The grid pose of code `c` (only its low 16 bits are used), in rad.
+pub fn grid_pose(p: &WristParams, code: u32) -> (f64, f64) {
+    let (i, j) = ((code >> 8) & 0xff, code & 0xff);
+    let lim = p.max_bend();
+    let h = 2.0 * lim / (GRID - 1) as f64;
+    (-lim + i as f64 * h, -lim + j as f64 * h)
+}
+
+/// Bend `acos(cos δ cos γ)` (rad), in f64 by the half-angle form.
+pub fn bend(d: f64, g: f64) -> f64 {
+    let s = libm::sqrt(libm::sin(d / 2.0).powi(2) + libm::cos(d) * libm::sin(g / 2.0).powi(2));
+    2.0 * libm::asin(s.min(1.0))
+}
+
+/// Whether the pose (as the backend holds it) is inside the property's
+/// domain: `|δ|, |γ| ≤ π/2` and bend `≤ 2φ − margin`.
+pub fn in_domain<S: Scalar>(p: &WristParams, d: S, g: S) -> bool {
+    let (df, gf) = (d.to_f64(), g.to_f64());
+    !df.is_nan()
+        && !gf.is_nan()
+        && df.abs() <= PI / 2.0
+        && gf.abs() <= PI / 2.0
+        && bend(df, gf) <= p.max_bend() - BOUNDARY_MARGIN_UNITS * angle_unit::<S>()
+}
+
+/// The round-trip bound for backend `S` (rad).
+pub fn round_trip_bound<S: Scalar>() -> f64 {
+    ROUND_TRIP_UNITS * angle_unit::<S>()
+}
+
+/// `ε = atan(sin²φ / cos 2φ)`: how far `θ1 + θ3` may leave `[−π, 0]`.
+pub fn branch_slack(p: &WristParams) -> f64 {
+    let s = libm::sin(p.phi());
+    libm::atan(s * s / libm::cos(2.0 * p.phi()))
+}
+
+/// The property at one pose, for the computed inverse `r`.
+pub fn branch_and_round_trip_of<S: Scalar>(
+    cfg: &WristConfig<S>,
+    p: &WristParams,
+    d: S,
+    g: S,
+    r: &Inverse<S>,
+) -> Verdict {
+    if !in_domain(p, d, g) {
+        // Outside: only no NaN.
+        return Verdict::logical(!r.motors.theta1.is_nan() && !r.motors.theta3.is_nan());
+    }
+    let q = angle_unit::<S>();
+    let (t1, t3) = (r.motors.theta1.to_f64(), r.motors.theta3.to_f64());
+    let no_nan = !t1.is_nan() && !t3.is_nan();
+    let not_flagged = !r.saturated;
+    // The selected branch: θ4 ≥ 0 (re-evaluated by the forward map), and
+    // the continuous representative of θ1 + θ3.
+    let f = cfg.forward(r.motors);
+    let eps = branch_slack(p);
+    let u = t1 + t3;
+    let branch = f.theta4.to_f64() >= -ROUND_TRIP_UNITS * q
+        && u >= -PI - eps - 8.0 * q
+        && u <= eps + 8.0 * q
+        && t1.abs() <= PI + 2.0 * q;
+    let err = (f.pose.delta.to_f64() - d.to_f64())
+        .abs()
+        .max((f.pose.gamma.to_f64() - g.to_f64()).abs());
+    Verdict::bounded(err / round_trip_bound::<S>(), 1.0)
+        .and(Verdict::logical(no_nan && not_flagged && branch))
+}
+
+/// [`branch_and_round_trip_of`] with the inverse computed here.
+pub fn branch_and_round_trip<S: Scalar>(
+    cfg: &WristConfig<S>,
+    p: &WristParams,
+    d: S,
+    g: S,
+) -> Verdict {
+    let r = cfg.inverse(PitchYaw { delta: d, gamma: g });
+    branch_and_round_trip_of(cfg, p, d, g, &r)
+}
+
+/// The derived bound on the motion of each motor angle (rad, mod 2π)
+/// between two poses `delta_sum = |Δδ| + |Δγ|` apart whose bends are at
+/// least `min_bend` and whose `sin(β/2)/sin φ` is at most `s_max`; see
+/// the module docs.
+pub fn continuity_modulus(p: &WristParams, delta_sum: f64, min_bend: f64, s_max: f64) -> f64 {
+    let (sp, cp) = (libm::sin(p.phi()), libm::cos(p.phi()));
+    let direction = PI / core::f64::consts::SQRT_2 * delta_sum / libm::sin(min_bend);
+    let ds = delta_sum / (2.0 * sp);
+    let s_max = s_max.min(1.0);
+    let lip = if s_max < 1.0 {
+        ds / libm::sqrt(1.0 - s_max * s_max)
+    } else {
+        f64::INFINITY
+    };
+    let holder = PI * libm::sqrt(ds / 2.0);
+    direction + lip.min(holder) / cp
+}
+
+/// Wrapped distance of two angles (rad).
+fn ang_dist(a: f64, b: f64) -> f64 {
+    let d = (a - b).rem_euclid(2.0 * PI);
+    d.min(2.0 * PI - d)
+}
+
+/// Continuity between two poses `a`, `b` and their computed inverses.
+pub fn continuity_step_of<S: Scalar>(
+    p: &WristParams,
+    a: (S, S),
+    ra: &Inverse<S>,
+    b: (S, S),
+    rb: &Inverse<S>,
+) -> Verdict {
+    if !in_domain(p, a.0, a.1) || !in_domain(p, b.0, b.1) {
+        return Verdict::logical(true);
+    }
+    let (ad, ag, bd, bg) = (a.0.to_f64(), a.1.to_f64(), b.0.to_f64(), b.1.to_f64());
+    let (ba, bb) = (bend(ad, ag), bend(bd, bg));
+    let min_bend = ba.min(bb);
+    if min_bend < CONTINUITY_MIN_BEND {
+        return Verdict::logical(true);
+    }
+    let sp = libm::sin(p.phi());
+    let s_max = (libm::sin(ba.max(bb) / 2.0) / sp).min(1.0);
+    let delta_sum = (ad - bd).abs() + (ag - bg).abs();
+    // Each endpoint's own rounding (round-trip units through ‖J⁻¹‖, which
+    // the direction term dominates; 4× the budget is ample).
+    let slack = 4.0 * round_trip_bound::<S>() / libm::sin(min_bend);
+    let bound = continuity_modulus(p, delta_sum, min_bend, s_max) + slack;
+    let m1 = ang_dist(ra.motors.theta1.to_f64(), rb.motors.theta1.to_f64());
+    let m3 = ang_dist(ra.motors.theta3.to_f64(), rb.motors.theta3.to_f64());
+    Verdict::bounded(m1.max(m3) / bound, 1.0)
+}
+
+/// [`continuity_step_of`] with both inverses computed here.
+pub fn continuity_step<S: Scalar>(
+    cfg: &WristConfig<S>,
+    p: &WristParams,
+    a: (S, S),
+    b: (S, S),
+) -> Verdict {
+    let ra = cfg.inverse(PitchYaw {
+        delta: a.0,
+        gamma: a.1,
+    });
+    let rb = cfg.inverse(PitchYaw {
+        delta: b.0,
+        gamma: b.1,
+    });
+    continuity_step_of(p, a, &ra, b, &rb)
+}
+
+#[cfg(kani)]
+mod kani_entries {
+    use super::*;
+    use crate::scalar::I16F16;
+
+    /// The branch property at every point of the 16-bit grid, I16F16.
+    #[kani::proof]
+    fn kani_wrist_ik_branch_i16f16() {
+        let p = wrist();
+        // Configuration built outside the solver's choices.
+        let cfg = WristConfig::<I16F16>::new(&p);
+        let code: u16 = kani::any();
+        let (d, g) = grid_pose(&p, code as u32);
+        let (d, g) = (I16F16::from_f64(d), I16F16::from_f64(g));
+        assert!(branch_and_round_trip(&cfg, &p, d, g).holds);
+    }
+
+    /// Continuity between a grid point and its `γ` neighbour, I16F16.
+    #[kani::proof]
+    fn kani_wrist_ik_continuity_i16f16() {
+        let p = wrist();
+        let cfg = WristConfig::<I16F16>::new(&p);
+        let code: u16 = kani::any();
+        // Precondition: the neighbour is on the same grid row.
+        kani::assume(code & 0xff != 0xff);
+        let a = grid_pose(&p, code as u32);
+        let b = grid_pose(&p, code as u32 + 1);
+        let q = |x: f64| I16F16::from_f64(x);
+        assert!(continuity_step(&cfg, &p, (q(a.0), q(a.1)), (q(b.0), q(b.1))).holds);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::super::engine::exhaustive_u32;
+    use super::*;
+    use crate::scalar::I16F16;
+    use proptest::prelude::*;
+    use std::println;
+    use std::vec::Vec;
+
+    fn exhaustive_grid<S: Scalar>(name: &str) {
+        let p = wrist();
+        let cfg = WristConfig::<S>::new(&p);
+        let pose = |c: u32| {
+            let (d, g) = grid_pose(&p, c);
+            (S::from_f64(d), S::from_f64(g))
+        };
+        // Engine 2 on the per-point property.
+        let r = exhaustive_u32(0, GRID * GRID - 1, |c| {
+            let (d, g) = pose(c);
+            branch_and_round_trip(&cfg, &p, d, g)
+        });
+        let reachable = (0..GRID * GRID)
+            .filter(|&c| {
+                let (d, g) = pose(c);
+                in_domain(&p, d, g)
+            })
+            .count();
+        println!(
+            "PROOF property=wrist-ik-branch+round-trip backend={name} domain=256x256 grid of [-2phi,2phi]^2 ({reachable} in the workspace) bound={ROUND_TRIP_UNITS} units max_err={:.3} of bound at={} checked={} engine=exhaustive",
+            r.max_error, r.argmax, r.checked
+        );
+        assert_eq!(r.failures, 0, "first failure at code {:?}", r.first_failure);
+        // Continuity between grid neighbours along δ and γ.
+        let inv: Vec<_> = (0..GRID * GRID)
+            .map(|c| {
+                let (d, g) = pose(c);
+                cfg.inverse(PitchYaw { delta: d, gamma: g })
+            })
+            .collect();
+        let mut worst = Verdict::logical(true);
+        let mut pairs = 0u32;
+        for c in 0..GRID * GRID {
+            for n in [c + 1, c + GRID] {
+                if n >= GRID * GRID || (n == c + 1 && c % GRID == GRID - 1) {
+                    continue;
+                }
+                let v =
+                    continuity_step_of(&p, pose(c), &inv[c as usize], pose(n), &inv[n as usize]);
+                assert!(
+                    v.holds,
+                    "continuity fails between codes {c} and {n}: {}",
+                    v.error
+                );
+                worst = worst.and(v);
+                pairs += 1;
+            }
+        }
+        println!(
+            "PROOF property=wrist-ik-continuity backend={name} domain=grid neighbours with bend >= {CONTINUITY_MIN_BEND} rad max_err={:.3} of modulus checked={pairs} engine=exhaustive",
+            worst.error
+        );
+    }
+
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_wrist_ik_i16f16() {
+        exhaustive_grid::<I16F16>("I16F16");
+    }
+
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_wrist_ik_f32() {
+        exhaustive_grid::<f32>("f32");
+    }
+
+    /// Every I16F16 pose within 64 LSB of the straight pose (129 × 129
+    /// codes, the 0/0 point of the printed formulas and its neighbours).
+    #[test]
+    fn wrist_ik_near_the_straight_pose_i16f16() {
+        let p = wrist();
+        let cfg = WristConfig::<I16F16>::new(&p);
+        let mut worst: f64 = 0.0;
+        for i in -64i32..=64 {
+            for j in -64i32..=64 {
+                let (d, g) = (I16F16::from_bits(i), I16F16::from_bits(j));
+                let v = branch_and_round_trip(&cfg, &p, d, g);
+                assert!(v.holds, "({i}, {j}) LSB: {}", v.error);
+                worst = worst.max(v.error);
+            }
+        }
+        println!("near straight, I16F16: max {worst:.3} of the round-trip bound");
+    }
+
+    /// The property can fail: a wrong branch (θ4 < 0, the motors of the
+    /// other preimage) is caught, and so is a motor jump.
+    #[test]
+    fn the_property_rejects_the_other_branch_and_a_jump() {
+        let p = wrist();
+        let cfg = WristConfig::<f64>::new(&p);
+        let (d, g) = (0.2, -0.1);
+        let mut r = cfg.inverse(PitchYaw { delta: d, gamma: g });
+        assert!(branch_and_round_trip_of(&cfg, &p, d, g, &r).holds);
+        // The other preimage: found by searching the motor torus for the
+        // pose with θ4 < 0.
+        let mut best = (f64::MAX, 0.0, 0.0);
+        for i in 0..400 {
+            for j in 0..400 {
+                let t1 = -PI + 2.0 * PI * i as f64 / 400.0;
+                let t3 = -PI + 2.0 * PI * j as f64 / 400.0;
+                let f = cfg.forward(crate::wrist::MotorAngles {
+                    theta1: t1,
+                    theta3: t3,
+                });
+                let e = (f.pose.delta - d).abs() + (f.pose.gamma - g).abs();
+                if f.theta4 < 0.0 && e < best.0 {
+                    best = (e, t1, t3);
+                }
+            }
+        }
+        assert!(best.0 < 0.05);
+        r.motors = crate::wrist::MotorAngles {
+            theta1: best.1,
+            theta3: best.2,
+        };
+        assert!(!branch_and_round_trip_of(&cfg, &p, d, g, &r).holds);
+        // A jump of 0.5 rad in θ1 between neighbours is caught.
+        let a = (0.2, 0.1);
+        let b = (0.2, 0.1 + 2.0 * p.max_bend() / 255.0);
+        let ra = cfg.inverse(PitchYaw {
+            delta: a.0,
+            gamma: a.1,
+        });
+        let mut rb = cfg.inverse(PitchYaw {
+            delta: b.0,
+            gamma: b.1,
+        });
+        assert!(continuity_step_of(&p, a, &ra, b, &rb).holds);
+        rb.motors.theta1 += 0.5;
+        assert!(!continuity_step_of(&p, a, &ra, b, &rb).holds);
+    }
+
+    proptest! {
+        #[test]
+        fn wrist_ik_branch_f64(bend in 0.0f64..0.56, tau in -PI..PI, step in 1e-6f64..0.02, dir in -PI..PI) {
+            let p = wrist();
+            let cfg = WristConfig::<f64>::new(&p);
+            // A pose of the given bend and direction of the output axis.
+            let z = [libm::sin(bend) * libm::cos(tau), libm::sin(bend) * libm::sin(tau), libm::cos(bend)];
+            let d = libm::atan2(z[0], z[2]);
+            let g = libm::atan2(-z[1], libm::hypot(z[0], z[2]));
+            let v = branch_and_round_trip(&cfg, &p, d, g);
+            prop_assert!(v.holds, "{} at {} {}", v.error, d, g);
+            let b = (d + step * libm::cos(dir), g + step * libm::sin(dir));
+            prop_assert!(continuity_step(&cfg, &p, (d, g), b).holds);
+        }
+
+        #[test]
+        fn wrist_ik_branch_f32(bend in 0.0f64..0.55, tau in -PI..PI, step in 1e-4f64..0.02, dir in -PI..PI) {
+            let p = wrist();
+            let cfg = WristConfig::<f32>::new(&p);
+            let z = [libm::sin(bend) * libm::cos(tau), libm::sin(bend) * libm::sin(tau), libm::cos(bend)];
+            let d = libm::atan2(z[0], z[2]) as f32;
+            let g = libm::atan2(-z[1], libm::hypot(z[0], z[2])) as f32;
+            prop_assert!(branch_and_round_trip(&cfg, &p, d, g).holds);
+            let b = ((d as f64 + step * libm::cos(dir)) as f32, (g as f64 + step * libm::sin(dir)) as f32);
+            prop_assert!(continuity_step(&cfg, &p, (d, g), b).holds);
+        }
+    }
+}

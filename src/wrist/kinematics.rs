@@ -1,0 +1,1088 @@
+//! Forward and inverse kinematics of the DAUJ wrist, thesis §5.2–5.3,
+//! eq. (5.4)–(5.15).
+//!
+//! # Frames and conventions
+//!
+//! Motor 1 turns the lower semi-sphere by `θ1` about the base `z` axis; the
+//! upper semi-sphere turns by `θ3` about the output `z` axis; the internal
+//! oblique joint (axis inclined by `φ`) turns by `θ4`. The output
+//! orientation is, eq. (5.4) in the product order of the matrices printed
+//! in eq. (5.5) (errata E5.1):
+//!
+//! $$ R(\theta_1,\theta_4,\theta_3) = R_z(\theta_1)R_x(\varphi)R_z(\theta_4)R_x(-\varphi)R_z(\theta_3). $$
+//!
+//! The outer universal joint makes it `R = R_y(δ)R_x(γ)`, eq. (5.6)–(5.7):
+//! pitch `δ` about the base `y` axis, then yaw `γ` about the new `x` axis,
+//! both in rad. The straight pose is `δ = γ = 0`; it is reached for every
+//! `θ1 = −θ3` (a circle of motor positions), e.g. the thesis's
+//! `θ1 = θ3 = 0` and `θ1 = 1, θ3 = −1`.
+//!
+//! # The inclination `φ`
+//!
+//! The thesis never states `φ`. The only number that depends on it is the
+//! branch test of §5.2: at `θ1 = 1, θ3 = −1` the other root of eq. (5.10)
+//! gives `δ = −2.6681`, `γ = 2.8342`. Solving each of these for `φ` (the
+//! root is monotone in `φ`) gives the intervals `[15.9973°, 16.0006°]` and
+//! `[15.9964°, 16.0014°]` (the 4-digit rounding of the print); both contain
+//! exactly one round value, `φ = 16°` ([`WristParams::THESIS_PHI_DEG`];
+//! test `tests::phi_is_recovered_from_the_printed_branch_test`). The
+//! product order of the first line of eq. (5.4) gives the same numbers with
+//! both signs flipped.
+//!
+//! # Forward kinematics, eq. (5.8)–(5.12)
+//!
+//! `R = R_y(δ)R_x(γ)` holds exactly when `t21 = 0` (the first column of
+//! `R_y R_x` has no `y` component, and any rotation whose first column has
+//! none is such a product), which is the constraint eq. (5.8). Written as
+//! `A cos θ4 + B sin θ4 = C`, eq. (5.9), it has the two roots of
+//! eq. (5.10), `θ4 = a ± acos(C/b)`. The physical one is
+//! `θ4 = a − acos(C/b)`, eq. (5.12), **for every motor position**, not only
+//! at the test point:
+//!
+//! * `|C/b| ≤ tan²φ < 1` for `φ < 45°` (`C = −C1 S3 Sφ²`, `b ≥ Cφ²`;
+//!   `tests::constraint_roots_never_merge`), so the two roots never merge
+//!   and each is a continuous function on the motor torus;
+//! * on either root `t11 = cos δ` and `t33 = cos δ cos γ ≥ cos 2φ > 0`, so
+//!   `cos δ` never changes sign along a root: it has the sign it has at the
+//!   test point, where the `−` root is the straight pose (`cos δ = 1`) and
+//!   the `+` root has `cos δ < 0` (a universal joint turned past 90°, not a
+//!   pose of the wrist).
+//!
+//! Then `δ = atan2(−t31, t11)`, `γ = atan2(−t23, t22)`, eq. (5.11).
+//!
+//! # Inverse kinematics, eq. (5.13)–(5.15)
+//!
+//! With `β` the bend of the output axis (`cos β = cos δ cos γ`), eq. (5.13)
+//! reads `sin(θ4/2) = sin(β/2)/sin φ`: the workspace is `β ≤ 2φ`. The
+//! library evaluates it in that half-angle form, with
+//! `sin²(β/2) = sin²(δ/2) + cos δ sin²(γ/2)`, which has no cancellation
+//! near the straight pose (the printed `acos((CδCγ − Cφ²)/Sφ²)` loses half
+//! the digits there). The branch `θ4 ≥ 0` of eq. (5.14) is taken. From the
+//! third column and row of `R` (derivation in
+//! `docs/derivations/wrist_fk.py`), with `ψ = atan2(Cφ sin(θ4/2), cos(θ4/2))`:
+//!
+//! $$ \theta_1 = \pi + \operatorname{atan2}(-S_\gamma, C_\gamma S_\delta) - \psi,\qquad
+//!    \theta_3 = -\pi + \operatorname{atan2}(C_\delta S_\gamma, S_\delta) - \psi, $$
+//!
+//! which is eq. (5.14) divided by `2 sin(θ4/2) sin φ` (the printed
+//! `C_1` has `C_δ` for `S_δ`, errata E5.4). It divides nothing by zero:
+//! at the straight pose the direction of the bend is undefined — the
+//! mechanism is singular there (see [`super::jacobian`]) — and
+//! [`WristConfig::inverse`] returns the representative `θ1 = θ3 = 0`;
+//! [`IkState`] keeps the previous motor positions instead.
+//!
+//! The continuity fix, eq. (5.15): on the selected branch
+//! `u = θ1 + θ3 ∈ [−π − ε, ε]`, `ε = atan(sin²φ/cos 2φ)`. The library returns `θ1 ∈ (−π, π]` and
+//! `θ3 = u − θ1` with `u` evaluated as the continuous
+//! `atan2(−2 S_δ S_γ sin²(β/2), C_γ S_δ² + C_δ S_γ²) − 2ψ`, which is the
+//! printed rule `θ3 ← θ3 + 2μπ` with the threshold moved to where the
+//! branch lives (errata E5.5). `θ1` itself must jump by `2π` somewhere: it
+//! winds once around the straight pose. [`IkState`] unwraps both motors
+//! to the nearest multiple of `2π` of their previous value.
+
+use crate::error::{finite, ParamError};
+use crate::scalar::Scalar;
+
+/// Parameters of the DAUJ wrist: the inclination `φ` of the internal
+/// oblique joint (rad).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WristParams {
+    phi: f64,
+}
+
+impl WristParams {
+    /// The inclination that reproduces the thesis's own numbers of §5.2,
+    /// in degrees (see the module docs).
+    pub const THESIS_PHI_DEG: f64 = 16.0;
+
+    /// Validate `φ` (rad): finite and in `[1°, 30°]`. Below 45° the two
+    /// roots of eq. (5.10) never merge (`|C/b| ≤ tan²φ < 1`); below 30° the
+    /// Jacobian's denominator `D = Sδ Sφ S1 + Cδ Cφ ≥ cos 3φ` stays positive
+    /// (see [`super::jacobian`]). Above 1° the workspace is wider than the
+    /// `I16F16` resolution by four orders of magnitude.
+    pub fn try_new(phi: f64) -> Result<Self, ParamError> {
+        let phi = finite("phi", phi)?;
+        let (min, max) = (1f64.to_radians(), 30f64.to_radians());
+        if !(min..=max).contains(&phi) {
+            return Err(ParamError::OutOfRange {
+                name: "phi",
+                value: phi,
+                min,
+                max,
+            });
+        }
+        Ok(WristParams { phi })
+    }
+
+    /// The thesis's wrist, `φ = 16°`.
+    pub fn thesis() -> Self {
+        WristParams {
+            phi: Self::THESIS_PHI_DEG.to_radians(),
+        }
+    }
+
+    /// The inclination `φ` (rad).
+    pub fn phi(&self) -> f64 {
+        self.phi
+    }
+
+    /// The largest bend of the output axis, `2φ` (rad): the workspace is
+    /// `acos(cos δ cos γ) ≤ 2φ`.
+    pub fn max_bend(&self) -> f64 {
+        2.0 * self.phi
+    }
+
+    /// Whether `(δ, γ)` (rad) is reachable: `|δ|, |γ| ≤ π/2` and
+    /// `cos δ cos γ ≥ cos 2φ`.
+    pub fn is_reachable(&self, delta: f64, gamma: f64) -> bool {
+        let h = core::f64::consts::FRAC_PI_2;
+        delta.abs() <= h
+            && gamma.abs() <= h
+            && libm::cos(delta) * libm::cos(gamma) >= libm::cos(2.0 * self.phi)
+    }
+}
+
+impl Default for WristParams {
+    fn default() -> Self {
+        Self::thesis()
+    }
+}
+
+/// Motor-side angles (rad): `θ1` of motor 1 (lower semi-sphere) and `θ3`
+/// of the upper semi-sphere driven by motor 2 (eq. 5.1 relates it to the
+/// motor-2 shaft angle `θ2`). Zero at the thesis's initial status.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct MotorAngles<S> {
+    /// `θ1` (rad), positive about the base `z` axis.
+    pub theta1: S,
+    /// `θ3` (rad), positive about the output `z` axis.
+    pub theta3: S,
+}
+
+/// Output angles of the outer universal joint (rad), eq. (5.6).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PitchYaw<S> {
+    /// Pitch `δ` (rad) about the base `y` axis.
+    pub delta: S,
+    /// Yaw `γ` (rad) about the `x` axis after the pitch.
+    pub gamma: S,
+}
+
+/// Result of [`WristConfig::forward`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Forward<S> {
+    /// The output angles, `|δ|, |γ| ≤ 2φ` (up to the backend's rounding).
+    pub pose: PitchYaw<S>,
+    /// The oblique joint angle `θ4 ∈ (−π, π]` (rad) of the physical root,
+    /// eq. (5.12).
+    pub theta4: S,
+}
+
+/// Result of [`WristConfig::inverse`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Inverse<S> {
+    /// The motor angles: `θ1 ∈ (−π, π]`, `θ1 + θ3 ∈ [−π − ε, ε]` with
+    /// `ε = atan(sin²φ/cos 2φ)`, 0.09 for `φ = 16°` (rad, up to
+    /// rounding).
+    pub motors: MotorAngles<S>,
+    /// The oblique joint angle `θ4 ∈ [0, π]` (rad), eq. (5.13).
+    pub theta4: S,
+    /// The pose the motors reach: the input, or its projection onto the
+    /// workspace boundary when `saturated`.
+    pub pose: PitchYaw<S>,
+    /// The input was outside the workspace (`|δ|` or `|γ| > π/2`, a bend
+    /// above `2φ`, or NaN, which is read as 0): `pose` is the nearest
+    /// reachable pose in the same bend direction.
+    pub saturated: bool,
+    /// The pose is the straight pose (bend below the backend's
+    /// resolution): the motor angles are the representative
+    /// `θ1 = θ3 = 0` of the circle `θ1 + θ3 = 0` that reaches it.
+    pub straight: bool,
+}
+
+/// A pose outside the workspace, as rejected by
+/// [`WristConfig::try_inverse`]. Angles in rad.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Unreachable {
+    /// The requested pitch (rad).
+    pub delta: f64,
+    /// The requested yaw (rad).
+    pub gamma: f64,
+    /// Its bend `acos(cos δ cos γ)` (rad).
+    pub bend: f64,
+    /// The largest bend, `2φ` (rad).
+    pub max_bend: f64,
+}
+
+impl core::fmt::Display for Unreachable {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(
+            f,
+            "wrist pose (delta = {}, gamma = {}) rad is unreachable: bend {} rad exceeds 2 phi = {} rad (or |delta|, |gamma| > pi/2)",
+            self.delta, self.gamma, self.bend, self.max_bend
+        )
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for Unreachable {}
+
+/// The wrist kinematics quantized for backend `S`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WristConfig<S> {
+    pub(crate) sin_phi: S,
+    pub(crate) cos_phi: S,
+    pub(crate) sin_phi_sq: S,
+    pub(crate) cos_phi_sq: S,
+    pub(crate) tan_phi: S,
+    pub(crate) sin_max_bend: S,
+    pub(crate) cos_max_bend: S,
+    phi: f64,
+}
+
+/// `2π` on backend `S`.
+#[inline]
+pub(crate) fn two_pi<S: Scalar>() -> S {
+    S::PI.add(S::PI)
+}
+
+/// `x` wrapped to `(−π, π]`, for `|x| < 3π`.
+#[inline]
+pub(crate) fn wrap<S: Scalar>(x: S) -> S {
+    if x > S::PI {
+        x.sub(two_pi())
+    } else if x <= S::PI.neg() {
+        x.add(two_pi())
+    } else {
+        x
+    }
+}
+
+/// NaN and infinities read as 0 (floats; a no-op on fixed point).
+#[inline]
+pub(crate) fn denan<S: Scalar>(x: S) -> S {
+    if x.is_nan() || x.abs() > S::MAX {
+        S::ZERO
+    } else {
+        x
+    }
+}
+
+#[inline]
+pub(crate) fn sq<S: Scalar>(x: S) -> S {
+    x.mul(x)
+}
+
+/// `√(a² + b²)` without squaring small values (scaled by the larger
+/// magnitude), so fixed point keeps its resolution for tiny vectors.
+#[inline]
+pub(crate) fn hypot<S: Scalar>(a: S, b: S) -> S {
+    let (a, b) = (a.abs(), b.abs());
+    let (m, n) = if a >= b { (a, b) } else { (b, a) };
+    if m <= S::ZERO {
+        return S::ZERO;
+    }
+    let r = n.div(m);
+    m.mul(S::ONE.add(sq(r)).sqrt())
+}
+
+impl<S: Scalar> WristConfig<S> {
+    /// Quantize validated parameters.
+    pub fn new(p: &WristParams) -> Self {
+        let phi = p.phi;
+        WristConfig {
+            sin_phi: S::from_f64(libm::sin(phi)),
+            cos_phi: S::from_f64(libm::cos(phi)),
+            sin_phi_sq: S::from_f64(libm::sin(phi) * libm::sin(phi)),
+            cos_phi_sq: S::from_f64(libm::cos(phi) * libm::cos(phi)),
+            tan_phi: S::from_f64(libm::tan(phi)),
+            sin_max_bend: S::from_f64(libm::sin(2.0 * phi)),
+            cos_max_bend: S::from_f64(libm::cos(2.0 * phi)),
+            phi,
+        }
+    }
+
+    /// The inclination `φ` (rad) this configuration was built from.
+    pub fn phi(&self) -> f64 {
+        self.phi
+    }
+
+    /// Forward kinematics, eq. (5.8)–(5.12): motor angles (rad, any value;
+    /// NaN and infinities are read as 0) to the pose and the oblique joint angle. Every
+    /// motor position is a pose of the wrist: there is no error case.
+    pub fn forward(&self, m: MotorAngles<S>) -> Forward<S> {
+        let (s1, c1) = denan(m.theta1).sin_cos();
+        let (s3, c3) = denan(m.theta3).sin_cos();
+        let (cp, sp, cp2, sp2) = (self.cos_phi, self.sin_phi, self.cos_phi_sq, self.sin_phi_sq);
+        // Eq. (5.9): A cos θ4 + B sin θ4 = C.
+        let a_coef = s1.mul(c3).add(c1.mul(s3).mul(cp2));
+        let c13 = c1.mul(c3).sub(s1.mul(s3));
+        let b_coef = cp.mul(c13);
+        let c_coef = c1.mul(s3).mul(sp2).neg();
+        // Eq. (5.10) and the physical root, eq. (5.12), repeated as (5.18).
+        let b = hypot(a_coef, b_coef);
+        let a = b_coef.atan2(a_coef);
+        let theta4 = wrap(a.sub(c_coef.div(b).acos()));
+        let (s4, c4) = theta4.sin_cos();
+        let v = S::ONE.sub(c4);
+        // Entries of eq. (5.5) (t11 with the term the print drops, E5.2).
+        let t11 = c1
+            .mul(c4)
+            .mul(c3)
+            .sub(s1.mul(s4).mul(c3).mul(cp))
+            .sub(c1.mul(s4).mul(s3).mul(cp))
+            .sub(s1.mul(c4).mul(s3).mul(cp2))
+            .sub(s1.mul(s3).mul(sp2));
+        let t31 = sp.mul(s4.mul(c3).sub(v.mul(cp).mul(s3)));
+        let t22 = c1
+            .mul(c4)
+            .mul(c3)
+            .mul(cp2)
+            .add(c1.mul(c3).mul(sp2))
+            .sub(s1.mul(c4).mul(s3))
+            .sub(c1.mul(s4).mul(s3).mul(cp))
+            .sub(s1.mul(s4).mul(c3).mul(cp));
+        let t23 = sp.mul(c1.mul(v).mul(cp).add(s1.mul(s4))).neg();
+        // Eq. (5.11).
+        Forward {
+            pose: PitchYaw {
+                delta: t31.neg().atan2(t11),
+                gamma: t23.neg().atan2(t22),
+            },
+            theta4,
+        }
+    }
+
+    /// Inverse kinematics, eq. (5.13)–(5.15), saturating: a pose outside
+    /// the workspace is replaced by the reachable pose of the same bend
+    /// direction on its boundary, and flagged. Never NaN.
+    pub fn inverse(&self, target: PitchYaw<S>) -> Inverse<S> {
+        let half_pi = S::FRAC_PI_2;
+        let d0 = denan(target.delta);
+        let g0 = denan(target.gamma);
+        let nan = target.delta.is_nan() || target.gamma.is_nan();
+        let mut d = d0.clamp(half_pi.neg(), half_pi);
+        let mut g = g0.clamp(half_pi.neg(), half_pi);
+        let mut saturated = nan || d != d0 || g != g0;
+        let (mut sd, mut cd) = d.sin_cos();
+        let (mut sg, mut cg) = g.sin_cos();
+        let two = S::ONE.add(S::ONE);
+        let half = S::ONE.div(two);
+        // sin(β/2) = |(sin(δ/2), √cos δ · sin(γ/2))|, eq. (5.13) in half
+        // angles (a norm, not a difference of cosines: exact near the
+        // straight pose on every backend).
+        let mut half_bend = hypot(d.mul(half).sin(), cd.sqrt().mul(g.mul(half).sin()));
+        if half_bend > self.sin_phi {
+            // Outside: the boundary pose with the same output-axis
+            // azimuth, z = (sin 2φ·n, cos 2φ).
+            saturated = true;
+            let (zx, zy) = (sd.mul(cg), sg.neg());
+            let n = hypot(zx, zy);
+            let (ux, uy) = if n > S::ZERO {
+                (zx.div(n), zy.div(n))
+            } else {
+                (S::ONE, S::ZERO)
+            };
+            let (bx, by, bz) = (
+                ux.mul(self.sin_max_bend),
+                uy.mul(self.sin_max_bend),
+                self.cos_max_bend,
+            );
+            d = bx.atan2(bz);
+            g = by.neg().atan2(hypot(bx, bz));
+            (sd, cd) = d.sin_cos();
+            (sg, cg) = g.sin_cos();
+            half_bend = self.sin_phi;
+        }
+        let half_bend_sq = sq(half_bend);
+        let pose = PitchYaw { delta: d, gamma: g };
+        // sin(θ4/2) ∈ [0, 1], cos(θ4/2) ≥ 0.
+        let sh = half_bend.div(self.sin_phi).min(S::ONE);
+        let ch = S::ONE.sub(sq(sh)).sqrt();
+        let theta4 = two.mul(sh.atan2(ch));
+        if sh == S::ZERO {
+            return Inverse {
+                motors: MotorAngles::default(),
+                theta4: S::ZERO,
+                pose,
+                saturated,
+                straight: true,
+            };
+        }
+        let psi = self.cos_phi.mul(sh).atan2(ch);
+        // Eq. (5.14), divided by 2 sin(θ4/2) sin φ.
+        let az_z = sg.neg().atan2(cg.mul(sd));
+        let theta1 = wrap(S::PI.add(az_z).sub(psi));
+        // Eq. (5.15): u = θ1 + θ3 continuous on the branch, in [−π − ε, ε].
+        let eps = two
+            .mul(sd)
+            .mul(sg)
+            .mul(half_bend_sq)
+            .neg()
+            .atan2(cg.mul(sq(sd)).add(cd.mul(sq(sg))));
+        let u = eps.sub(two.mul(psi));
+        Inverse {
+            motors: MotorAngles {
+                theta1,
+                theta3: u.sub(theta1),
+            },
+            theta4,
+            pose,
+            saturated,
+            straight: false,
+        }
+    }
+
+    /// Inverse kinematics that rejects an unreachable pose with a typed
+    /// error instead of saturating (tolerance: 4 resolution steps of the
+    /// backend on `sin²(β/2)`, so the boundary itself is accepted).
+    pub fn try_inverse(&self, target: PitchYaw<S>) -> Result<Inverse<S>, Unreachable> {
+        let (d, g) = (target.delta.to_f64(), target.gamma.to_f64());
+        let h = core::f64::consts::FRAC_PI_2;
+        let (sdh, sgh) = (libm::sin(d / 2.0), libm::sin(g / 2.0));
+        let hb = sdh * sdh + libm::cos(d) * sgh * sgh;
+        let tol = 4.0 * S::RESOLUTION.to_f64();
+        if d.is_nan()
+            || g.is_nan()
+            || d.abs() > h
+            || g.abs() > h
+            || hb > self.sin_phi_sq.to_f64() + tol
+        {
+            return Err(Unreachable {
+                delta: d,
+                gamma: g,
+                bend: libm::acos((libm::cos(d) * libm::cos(g)).clamp(-1.0, 1.0)),
+                max_bend: 2.0 * self.phi,
+            });
+        }
+        let mut r = self.inverse(target);
+        r.saturated = false;
+        r.pose = target;
+        Ok(r)
+    }
+}
+
+/// The motor positions of the previous sample, for an inverse kinematics
+/// that is continuous in time (eq. 5.15 generalized): each motor is
+/// unwrapped to the multiple of `2π` nearest its previous value, and at the
+/// straight pose the motors stay where they are on the circle
+/// `θ1 + θ3 = 0`.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct IkState<S> {
+    /// The last motor angles returned (rad); start from the measured ones.
+    pub motors: MotorAngles<S>,
+}
+
+impl<S: Scalar> IkState<S> {
+    /// Start from measured motor angles (rad).
+    pub fn new(motors: MotorAngles<S>) -> Self {
+        IkState { motors }
+    }
+}
+
+impl<S: Scalar> WristConfig<S> {
+    /// Inverse kinematics continuous in time: [`WristConfig::inverse`],
+    /// then each motor angle moved by a multiple of `2π` to the nearest of
+    /// the previous sample's (`state`), which it updates. At the straight
+    /// pose `θ1` keeps its previous value and `θ3 = −θ1` (mod `2π`).
+    /// Motor angles accumulate turns; on `I16F16` they saturate after
+    /// about 5,000 turns.
+    pub fn update(&self, state: &mut IkState<S>, target: PitchYaw<S>) -> Inverse<S> {
+        let mut r = self.inverse(target);
+        let prev = state.motors;
+        let (p1, p3) = (denan(prev.theta1), denan(prev.theta3));
+        let (n1, n3) = if r.straight {
+            (p1, p1.neg())
+        } else {
+            (r.motors.theta1, r.motors.theta3)
+        };
+        // Nearest representative: p + wrap(n − p), with n − p reduced
+        // below 3π first.
+        let near = |p: S, n: S| {
+            let mut diff = n.sub(p);
+            let tp = two_pi::<S>();
+            let k = diff.div(tp);
+            // |diff| may be large after many turns: remove whole turns,
+            // then reduce exactly through (sin, cos).
+            let turns = S::from_f64(libm::round(k.to_f64()));
+            diff = diff.sub(turns.mul(tp));
+            let (s, c) = diff.sin_cos();
+            p.add(s.atan2(c))
+        };
+        r.motors = MotorAngles {
+            theta1: near(p1, n1),
+            theta3: near(p3, n3),
+        };
+        state.motors = r.motors;
+        r
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    extern crate std;
+    use super::*;
+    use crate::scalar::I16F16;
+    use core::f64::consts::PI;
+    use proptest::prelude::*;
+
+    /// Rotation matrices built from their definitions (the reference).
+    pub(crate) type Mat = [[f64; 3]; 3];
+    pub(crate) fn mul(a: &Mat, b: &Mat) -> Mat {
+        let mut c = [[0.0; 3]; 3];
+        for i in 0..3 {
+            for j in 0..3 {
+                c[i][j] = (0..3).map(|k| a[i][k] * b[k][j]).sum();
+            }
+        }
+        c
+    }
+    pub(crate) fn rz(a: f64) -> Mat {
+        let (s, c) = a.sin_cos();
+        [[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]
+    }
+    pub(crate) fn rx(a: f64) -> Mat {
+        let (s, c) = a.sin_cos();
+        [[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]]
+    }
+    pub(crate) fn ry(a: f64) -> Mat {
+        let (s, c) = a.sin_cos();
+        [[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]]
+    }
+    /// Eq. (5.4) in the order of the matrices of eq. (5.5).
+    pub(crate) fn chain(phi: f64, t1: f64, t4: f64, t3: f64) -> Mat {
+        mul(
+            &mul(&mul(&mul(&rz(t1), &rx(phi)), &rz(t4)), &rx(-phi)),
+            &rz(t3),
+        )
+    }
+    /// Eq. (5.6).
+    pub(crate) fn pitch_yaw(d: f64, g: f64) -> Mat {
+        mul(&ry(d), &rx(g))
+    }
+    pub(crate) fn dist(a: &Mat, b: &Mat) -> f64 {
+        let mut m: f64 = 0.0;
+        for i in 0..3 {
+            for j in 0..3 {
+                m = m.max((a[i][j] - b[i][j]).abs());
+            }
+        }
+        m
+    }
+
+    /// Both roots of eq. (5.10) by an independent route: a dense scan of
+    /// `t21(θ4)` for sign changes, refined by bisection.
+    fn roots_by_scan(phi: f64, t1: f64, t3: f64) -> std::vec::Vec<f64> {
+        let f = |t4: f64| chain(phi, t1, t4, t3)[1][0];
+        let n = 2000;
+        let mut out = std::vec::Vec::new();
+        for k in 0..n {
+            let (mut lo, mut hi) = (
+                -PI + 2.0 * PI * k as f64 / n as f64,
+                -PI + 2.0 * PI * (k + 1) as f64 / n as f64,
+            );
+            if f(lo) == 0.0 {
+                out.push(lo);
+                continue;
+            }
+            if f(lo) * f(hi) < 0.0 {
+                for _ in 0..60 {
+                    let m = 0.5 * (lo + hi);
+                    if f(lo) * f(m) <= 0.0 {
+                        hi = m
+                    } else {
+                        lo = m
+                    }
+                }
+                out.push(0.5 * (lo + hi));
+            }
+        }
+        out
+    }
+
+    fn ang_dist(a: f64, b: f64) -> f64 {
+        let d = (a - b).rem_euclid(2.0 * PI);
+        d.min(2.0 * PI - d)
+    }
+
+    /// The other root of eq. (5.10) at the branch-test point, by scan.
+    fn other_root_pose(phi: f64) -> (f64, f64) {
+        let roots = roots_by_scan(phi, 1.0, -1.0);
+        let r = roots
+            .iter()
+            .copied()
+            .find(|&t| ang_dist(t, 0.0) > 1e-6)
+            .unwrap();
+        let m = chain(phi, 1.0, r, -1.0);
+        ((-m[2][0]).atan2(m[0][0]), (-m[1][2]).atan2(m[1][1]))
+    }
+
+    #[test]
+    fn phi_is_recovered_from_the_printed_branch_test() {
+        // Solve δ(φ) = −2.6681 ± 5e-5 and γ(φ) = 2.8342 ± 5e-5 for φ by
+        // bisection on [10°, 25°] (both monotone there), independent of
+        // the library's FK: the root comes from a scan of t21.
+        let solve = |idx: usize, target: f64| {
+            let (mut lo, mut hi) = (10f64.to_radians(), 25f64.to_radians());
+            let val = |p: f64| {
+                let (d, g) = other_root_pose(p);
+                if idx == 0 {
+                    d
+                } else {
+                    g
+                }
+            };
+            let s = (val(lo) - target).signum();
+            for _ in 0..50 {
+                let m = 0.5 * (lo + hi);
+                if (val(m) - target).signum() == s {
+                    lo = m
+                } else {
+                    hi = m
+                }
+            }
+            0.5 * (lo + hi)
+        };
+        let mut lo_all = f64::MIN;
+        let mut hi_all = f64::MAX;
+        for (idx, t) in [(0usize, -2.6681), (1, 2.8342)] {
+            let a = solve(idx, t - 5e-5).to_degrees();
+            let b = solve(idx, t + 5e-5).to_degrees();
+            let (l, h) = (a.min(b), a.max(b));
+            std::println!("printed value {t}: phi in [{l:.4}°, {h:.4}°]");
+            lo_all = lo_all.max(l);
+            hi_all = hi_all.min(h);
+        }
+        assert!(lo_all < hi_all, "the two printed numbers disagree on phi");
+        assert!(lo_all <= 16.0 && 16.0 <= hi_all, "[{lo_all}, {hi_all}]");
+        assert!(hi_all - lo_all < 0.01);
+        // And the library's φ = 16° reproduces both numbers to 4 digits.
+        let (d, g) = other_root_pose(WristParams::thesis().phi());
+        assert_eq!(libm::round(d * 1e4) / 1e4, -2.6681);
+        assert_eq!(libm::round(g * 1e4) / 1e4, 2.8342);
+    }
+
+    #[test]
+    fn product_order_of_the_printed_matrices_matches_the_printed_entries() {
+        // Entries of eq. (5.5) that print correctly (t21, t31, t22, t32,
+        // t13, t23), against both product orders of eq. (5.4).
+        let phi = 0.3;
+        let (cp, sp) = (phi.cos(), phi.sin());
+        let mut worst = [0.0f64; 2];
+        for &(t1, t4, t3) in &[(0.3, 1.1, -0.7), (2.0, -0.4, 1.3), (-1.2, 2.5, 0.2)] {
+            let (s1, c1, s3, c3, s4, c4) = (
+                f64::sin(t1),
+                f64::cos(t1),
+                f64::sin(t3),
+                f64::cos(t3),
+                f64::sin(t4),
+                f64::cos(t4),
+            );
+            let printed = [
+                (
+                    (1, 0),
+                    s1 * c4 * c3 + c1 * s4 * c3 * cp - s1 * s4 * s3 * cp
+                        + c1 * c4 * s3 * cp * cp
+                        + c1 * s3 * sp * sp,
+                ),
+                ((2, 0), -s3 * cp * sp + s4 * c3 * sp + c4 * s3 * sp * cp),
+                (
+                    (1, 1),
+                    c1 * c4 * c3 * cp * cp + c1 * c3 * sp * sp
+                        - s1 * c4 * s3
+                        - c1 * s4 * s3 * cp
+                        - s1 * s4 * c3 * cp,
+                ),
+                ((2, 1), -s4 * s3 * sp - c3 * cp * sp + c4 * c3 * sp * cp),
+                ((0, 2), s1 * cp * sp - c1 * s4 * sp - s1 * c4 * cp * sp),
+                ((1, 2), c1 * c4 * cp * sp - s1 * s4 * sp - c1 * cp * sp),
+            ];
+            let as_printed = chain(phi, t1, t4, t3);
+            let first_line = mul(
+                &mul(&mul(&mul(&rz(t1), &rx(-phi)), &rz(t4)), &rx(phi)),
+                &rz(t3),
+            );
+            for ((i, j), v) in printed {
+                worst[0] = worst[0].max((as_printed[i][j] - v).abs());
+                worst[1] = worst[1].max((first_line[i][j] - v).abs());
+            }
+            // t11 as printed lacks −S1 S3 Sφ² (E5.2); eq. (5.11) has it.
+            let t11_511 = c1 * c4 * c3
+                - s1 * s4 * c3 * cp
+                - c1 * s4 * s3 * cp
+                - s1 * c4 * s3 * cp * cp
+                - s1 * s3 * sp * sp;
+            assert!((as_printed[0][0] - t11_511).abs() < 1e-14);
+            assert!((as_printed[0][0] - (t11_511 + s1 * s3 * sp * sp)).abs() > 1e-3);
+        }
+        assert!(worst[0] < 1e-14, "{worst:?}");
+        assert!(worst[1] > 0.1, "{worst:?}");
+    }
+
+    #[test]
+    fn constraint_roots_never_merge() {
+        // |C/b| ≤ tan²φ and b ≥ cos²φ over a dense motor grid, for
+        // several φ; and the physical root is the `−` one and the only
+        // one with cos δ > 0 (roots found by scan, not by eq. 5.10).
+        for deg in [1.0f64, 10.0, 16.0, 30.0, 40.0] {
+            let phi = deg.to_radians();
+            let (cp, sp) = (phi.cos(), phi.sin());
+            let n = 90;
+            for i in 0..n {
+                for j in 0..n {
+                    let t1 = -PI + 2.0 * PI * i as f64 / n as f64 + 1e-3;
+                    let t3 = -PI + 2.0 * PI * j as f64 / n as f64 + 2e-3;
+                    let a = t1.sin() * t3.cos() + t1.cos() * t3.sin() * cp * cp;
+                    let bb = cp * (t1 + t3).cos();
+                    let c = -t1.cos() * t3.sin() * sp * sp;
+                    let b = a.hypot(bb);
+                    assert!(b >= cp * cp * (1.0 - 1e-12), "b {b} at {t1} {t3}");
+                    assert!((c / b).abs() <= (sp / cp).powi(2) + 1e-12);
+                    if i % 9 == 0 && j % 9 == 0 {
+                        let roots = roots_by_scan(phi, t1, t3);
+                        assert_eq!(roots.len(), 2, "{deg}° {t1} {t3}");
+                        let phys: std::vec::Vec<_> = roots
+                            .iter()
+                            .filter(|&&r| chain(phi, t1, r, t3)[0][0] > 0.0)
+                            .collect();
+                        assert_eq!(phys.len(), 1);
+                        let minus = bb.atan2(a) - (c / b).acos();
+                        assert!(ang_dist(*phys[0], minus) < 1e-9, "{deg}° {t1} {t3}");
+                    }
+                }
+            }
+        }
+    }
+
+    /// FK against the rotation-matrix identity: the chain with the
+    /// returned θ4 equals R_y(δ)R_x(γ), and t33 = cos δ cos γ.
+    #[test]
+    fn forward_satisfies_the_closure_identity() {
+        let cfg = WristConfig::<f64>::new(&WristParams::thesis());
+        let phi = cfg.phi();
+        let mut worst: f64 = 0.0;
+        let n = 64;
+        for i in 0..n {
+            for j in 0..n {
+                let t1 = -4.0 + 8.0 * i as f64 / n as f64;
+                let t3 = -4.0 + 8.0 * j as f64 / n as f64;
+                let f = cfg.forward(MotorAngles {
+                    theta1: t1,
+                    theta3: t3,
+                });
+                let r = chain(phi, t1, f.theta4, t3);
+                let p = pitch_yaw(f.pose.delta, f.pose.gamma);
+                worst = worst.max(dist(&r, &p));
+                // Orthogonality of the reference product.
+                let rt = [
+                    [r[0][0], r[1][0], r[2][0]],
+                    [r[0][1], r[1][1], r[2][1]],
+                    [r[0][2], r[1][2], r[2][2]],
+                ];
+                let id = mul(&r, &rt);
+                for (k, row) in id.iter().enumerate() {
+                    for (l, v) in row.iter().enumerate() {
+                        assert!((v - if k == l { 1.0 } else { 0.0 }).abs() < 1e-14);
+                    }
+                }
+                assert!(f.pose.delta.abs() <= 2.0 * phi + 1e-12);
+                assert!(f.pose.gamma.abs() <= 2.0 * phi + 1e-12);
+            }
+        }
+        assert!(worst < 1e-14, "{worst}");
+    }
+
+    #[test]
+    fn params_reject_bad_inclinations_naming_them() {
+        assert!(WristParams::try_new(16f64.to_radians()).is_ok());
+        for bad in [0.0, -0.1, 35f64.to_radians(), 1.0] {
+            assert!(matches!(
+                WristParams::try_new(bad),
+                Err(ParamError::OutOfRange { name: "phi", .. })
+            ));
+        }
+        assert!(matches!(
+            WristParams::try_new(f64::NAN),
+            Err(ParamError::NotFinite { name: "phi", .. })
+        ));
+    }
+
+    #[test]
+    fn forward_reproduces_the_straight_poses_of_the_thesis() {
+        let cfg = WristConfig::<f64>::new(&WristParams::thesis());
+        for (t1, t3) in [(0.0, 0.0), (1.0, -1.0), (-2.5, 2.5)] {
+            let f = cfg.forward(MotorAngles {
+                theta1: t1,
+                theta3: t3,
+            });
+            assert!(f.pose.delta.abs() < 1e-15 && f.pose.gamma.abs() < 1e-15);
+            assert!(f.theta4.abs() < 1e-15);
+        }
+    }
+
+    /// Round trip FK(IK(x)) = x over the workspace (a polar grid reaching
+    /// the boundary and the straight pose), on f64.
+    #[test]
+    fn inverse_round_trips_over_the_workspace_f64() {
+        let p = WristParams::thesis();
+        let cfg = WristConfig::<f64>::new(&p);
+        let mut worst: f64 = 0.0;
+        for i in 0..=60 {
+            for j in 0..=60 {
+                let d = -0.6 + 1.2 * i as f64 / 60.0;
+                let g = -0.6 + 1.2 * j as f64 / 60.0;
+                if !p.is_reachable(d, g) {
+                    let r = cfg.inverse(PitchYaw { delta: d, gamma: g });
+                    assert!(r.saturated);
+                    assert!(cfg.try_inverse(PitchYaw { delta: d, gamma: g }).is_err());
+                    continue;
+                }
+                let r = cfg.try_inverse(PitchYaw { delta: d, gamma: g }).unwrap();
+                assert!(!r.saturated);
+                let u = r.motors.theta1 + r.motors.theta3;
+                assert!((-PI - 0.1..=0.1).contains(&u), "{u}");
+                let f = cfg.forward(r.motors);
+                worst = worst.max((f.pose.delta - d).abs().max((f.pose.gamma - g).abs()));
+                assert!((f.theta4 - r.theta4).abs() < 1e-7, "{d} {g}");
+            }
+        }
+        assert!(worst < 1e-12, "{worst}");
+    }
+
+    #[test]
+    fn inverse_is_exact_and_smooth_at_and_near_the_straight_pose() {
+        let cfg = WristConfig::<f64>::new(&WristParams::thesis());
+        let r = cfg.inverse(PitchYaw::default());
+        assert!(r.straight && !r.saturated);
+        assert_eq!(r.motors, MotorAngles::default());
+        // Near it: for bends from 1e-12 to 1e-3 rad in 16 directions the
+        // round trip error is below 1e-15 rad + 1e-12 of the bend, and
+        // the motor angles converge to (π − τ, τ − π) (bend direction τ)
+        // — the circle of straight-pose solutions.
+        for k in 0..16 {
+            let tau = 2.0 * PI * k as f64 / 16.0 + 0.1;
+            for e in [1e-12, 1e-9, 1e-6, 1e-3] {
+                let (d, g) = (e * tau.cos(), e * tau.sin());
+                let r = cfg.inverse(PitchYaw { delta: d, gamma: g });
+                assert!(!r.straight);
+                let f = cfg.forward(r.motors);
+                let err = (f.pose.delta - d).abs().max((f.pose.gamma - g).abs());
+                assert!(err <= 1e-15 + 1e-9 * e, "{e} {tau} {err}");
+                assert!(ang_dist(r.motors.theta1, PI - tau) < 10.0 * e + 1e-9);
+                assert!(ang_dist(r.motors.theta3, tau - PI) < 10.0 * e + 1e-9);
+            }
+        }
+    }
+
+    #[test]
+    fn printed_inverse_has_a_typo_and_its_continuity_threshold_is_misplaced() {
+        // Eq. (5.14) as printed (C_δ in the cosine of θ1) misses the
+        // target; with S_δ it round-trips; eq. (5.15)'s μ rule as printed
+        // cuts the branch in its middle (u = −π/2), the library's does not.
+        let p = WristParams::thesis();
+        let cfg = WristConfig::<f64>::new(&p);
+        let (cp, sp) = (p.phi().cos(), p.phi().sin());
+        let printed = |d: f64, g: f64, typo: bool| {
+            let (sd, cd, sg, cg) = (d.sin(), d.cos(), g.sin(), g.cos());
+            let c4 = ((cd * cg - cp * cp) / (sp * sp)).clamp(-1.0, 1.0);
+            let t4 = c4.acos();
+            let (s4, c4) = t4.sin_cos();
+            let t1 = ((1.0 - c4) * cp * sp * cg * sd + s4 * sp * sg)
+                .atan2((1.0 - c4) * cp * sp * sg - cg * if typo { cd } else { sd } * s4 * sp);
+            let t3 = ((1.0 - c4) * cp * sp * sd - cd * sg * s4 * sp)
+                .atan2(-(1.0 - c4) * cp * sp * sg * cd - s4 * sd * sp);
+            (t1, t3)
+        };
+        let mut worst_typo: f64 = 0.0;
+        let mut worst_fixed: f64 = 0.0;
+        let mut u_printed_rule = std::vec::Vec::new();
+        for i in 0..=40 {
+            for j in 0..=40 {
+                let d = -0.55 + 1.1 * i as f64 / 40.0;
+                let g = -0.55 + 1.1 * j as f64 / 40.0;
+                if !p.is_reachable(d, g) || (d == 0.0 && g == 0.0) {
+                    continue;
+                }
+                for typo in [true, false] {
+                    let (t1, t3) = printed(d, g, typo);
+                    let f = cfg.forward(MotorAngles {
+                        theta1: t1,
+                        theta3: t3,
+                    });
+                    let e = (f.pose.delta - d).abs().max((f.pose.gamma - g).abs());
+                    if typo {
+                        worst_typo = worst_typo.max(e)
+                    } else {
+                        worst_fixed = worst_fixed.max(e);
+                        let mut t3m = t3;
+                        if t1 + t3 < -PI / 2.0 {
+                            t3m += 2.0 * PI;
+                        }
+                        u_printed_rule.push(t1 + t3m);
+                        // Same motors as the library, mod 2π.
+                        let r = cfg.inverse(PitchYaw { delta: d, gamma: g });
+                        assert!(ang_dist(r.motors.theta1, t1) < 1e-9);
+                        assert!(ang_dist(r.motors.theta3, t3) < 1e-9);
+                    }
+                }
+            }
+        }
+        std::println!(
+            "printed (5.14) round trip: {worst_typo:.3} rad; with S_delta: {worst_fixed:.1e}"
+        );
+        assert!(worst_typo > 0.1);
+        assert!(worst_fixed < 1e-12);
+        // The printed rule leaves u on both sides of a 2π gap.
+        let lo = u_printed_rule.iter().any(|&u| u < 0.1);
+        let hi = u_printed_rule.iter().any(|&u| u > PI);
+        assert!(lo && hi);
+    }
+
+    #[test]
+    fn saturation_projects_onto_the_boundary_and_nan_is_flagged() {
+        let p = WristParams::thesis();
+        let cfg = WristConfig::<f64>::new(&p);
+        for (d, g) in [
+            (0.8, 0.0),
+            (0.5, 0.5),
+            (-3.0, 0.2),
+            (0.0, -1.4),
+            (f64::NAN, 0.1),
+            (1e300, -1e300),
+        ] {
+            let r = cfg.inverse(PitchYaw { delta: d, gamma: g });
+            assert!(r.saturated, "{d} {g}");
+            let f = cfg.forward(r.motors);
+            assert!((f.pose.delta - r.pose.delta).abs() < 1e-12);
+            assert!((f.pose.gamma - r.pose.gamma).abs() < 1e-12);
+            let bend = (r.pose.delta.cos() * r.pose.gamma.cos()).acos();
+            assert!(bend <= p.max_bend() + 1e-9, "{bend}");
+            assert!(r.motors.theta1.is_finite() && r.motors.theta3.is_finite());
+        }
+        // Same azimuth of the output axis for an in-range direction.
+        let r = cfg.inverse(PitchYaw {
+            delta: 0.5,
+            gamma: 0.5,
+        });
+        let az = |d: f64, g: f64| (-g.sin()).atan2(d.sin() * g.cos());
+        assert!((az(0.5, 0.5) - az(r.pose.delta, r.pose.gamma)).abs() < 1e-12);
+        let e = cfg
+            .try_inverse(PitchYaw {
+                delta: 0.5,
+                gamma: 0.5,
+            })
+            .unwrap_err();
+        assert!(e.bend > e.max_bend);
+    }
+
+    #[test]
+    fn tracker_is_continuous_through_the_cut_and_the_straight_pose() {
+        let cfg = WristConfig::<f64>::new(&WristParams::thesis());
+        let mut st = IkState::new(MotorAngles::default());
+        // A circle of radius 0.3 around the straight pose, twice, then a
+        // line through the straight pose: motor steps stay small.
+        let mut prev = st.motors;
+        let mut max_step: f64 = 0.0;
+        for k in 0..=2000 {
+            let t = 4.0 * PI * k as f64 / 2000.0;
+            let r = cfg.update(
+                &mut st,
+                PitchYaw {
+                    delta: 0.3 * t.cos(),
+                    gamma: 0.3 * t.sin(),
+                },
+            );
+            if k > 0 {
+                max_step = max_step.max((r.motors.theta1 - prev.theta1).abs());
+                max_step = max_step.max((r.motors.theta3 - prev.theta3).abs());
+            }
+            prev = r.motors;
+        }
+        assert!(max_step < 0.05, "{max_step}");
+        // Two loops around the straight pose: θ1 wound by ∓4π.
+        assert!(
+            (prev.theta1
+                - cfg
+                    .inverse(PitchYaw {
+                        delta: 0.3,
+                        gamma: 0.0
+                    })
+                    .motors
+                    .theta1)
+                .abs()
+                > 12.0
+        );
+        let before = st.motors;
+        let r = cfg.update(&mut st, PitchYaw::default());
+        assert!(r.straight);
+        assert_eq!(r.motors.theta1, before.theta1);
+        let sum = r.motors.theta1 + r.motors.theta3;
+        let turns = (sum / (2.0 * PI)).round();
+        assert!((sum - turns * 2.0 * PI).abs() < 1e-9, "{sum}");
+        assert!((r.motors.theta3 - before.theta3).abs() <= PI + 0.1);
+    }
+
+    #[test]
+    fn backends_agree_with_f64() {
+        let p = WristParams::thesis();
+        let c64 = WristConfig::<f64>::new(&p);
+        let c32 = WristConfig::<f32>::new(&p);
+        let cfx = WristConfig::<I16F16>::new(&p);
+        let mut worst = [0.0f64; 2];
+        for i in 0..=24 {
+            for j in 0..=24 {
+                let d = -0.55 + 1.1 * i as f64 / 24.0;
+                let g = -0.55 + 1.1 * j as f64 / 24.0;
+                if !p.is_reachable(d, g) {
+                    continue;
+                }
+                let r32 = c32.inverse(PitchYaw {
+                    delta: d as f32,
+                    gamma: g as f32,
+                });
+                let f32_ = c32.forward(r32.motors);
+                let rfx = cfx.inverse(PitchYaw {
+                    delta: I16F16::from_f64(d),
+                    gamma: I16F16::from_f64(g),
+                });
+                let ffx = cfx.forward(rfx.motors);
+                let e32 = (f32_.pose.delta as f64 - d)
+                    .abs()
+                    .max((f32_.pose.gamma as f64 - g).abs());
+                let efx = (ffx.pose.delta.to_f64() - d)
+                    .abs()
+                    .max((ffx.pose.gamma.to_f64() - g).abs());
+                worst[0] = worst[0].max(e32);
+                worst[1] = worst[1].max(efx);
+                let r64 = c64.inverse(PitchYaw { delta: d, gamma: g });
+                if d.hypot(g) > 0.05 {
+                    assert!(ang_dist(r64.motors.theta1, r32.motors.theta1 as f64) < 1e-4);
+                }
+            }
+        }
+        std::println!(
+            "round trip f32 {:.2e} rad, I16F16 {:.2e} rad",
+            worst[0],
+            worst[1]
+        );
+        assert!(worst[0] < 2e-5 && worst[1] < 1e-3, "{worst:?}");
+    }
+
+    proptest! {
+        #[test]
+        fn forward_inverse_forward_is_the_identity(t1 in -10.0f64..10.0, t3 in -10.0f64..10.0) {
+            // FK then IK returns the same motor angles mod 2π (up to the
+            // straight-pose circle).
+            let cfg = WristConfig::<f64>::new(&WristParams::thesis());
+            let f = cfg.forward(MotorAngles { theta1: t1, theta3: t3 });
+            prop_assume!(f.theta4 > 0.0);
+            let r = cfg.inverse(f.pose);
+            let bend = (f.pose.delta.cos() * f.pose.gamma.cos()).clamp(-1.0, 1.0).acos();
+            prop_assume!(bend > 1e-6 && bend < cfg.phi() * 2.0 - 1e-6);
+            // Near the straight pose the direction is conditioned by 1/bend.
+            let tol = 1e-12 / bend + 1e-12;
+            prop_assert!(ang_dist(r.motors.theta1, t1) < tol, "{} {}", r.motors.theta1, t1);
+            prop_assert!(ang_dist(r.motors.theta3, t3) < tol);
+        }
+    }
+}
