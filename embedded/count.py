@@ -1,15 +1,20 @@
 #!/usr/bin/env python3
-"""Instruction counts of mrr-control's steps on Cortex-M4F and Cortex-M0+.
+"""Instruction counts and static bounds of mrr-control's steps on Cortex-M4F
+and Cortex-M0+.
 
 Builds the firmware crate of this directory for `thumbv7em-none-eabihf`
-(Cortex-M4F, f32) and `thumbv6m-none-eabi` (Cortex-M0+, I16F16), loads each
-ELF into the unicorn CPU emulator, calls every entry of `all_steps()` over
-its list of worst-case argument vectors, and counts the executed
-instructions. It prints one table (step x core x backend: worst-case
-instructions, estimated cycles, share of the 4 ms budget, ratio to the
-libm/cordic reference) and exits non-zero when a budget of a `Step` row is
-exceeded. Adding a step is one `Step(...)` line in `all_steps()` (and one
-`entry!` line in `src/main.rs`).
+(Cortex-M4F, f32) and `thumbv6m-none-eabi` (Cortex-M0+, I16F16), as two
+images (the default entries, and the `variants` feature's), computes each
+entry's static worst-case bound from the ELF (`wcet.py`), loads each ELF
+into the unicorn CPU emulator, calls every entry of `all_steps()` over its
+list of argument vectors (plus the search's `found_vectors.json`), and
+counts the executed instructions. It prints one table (step x core x
+backend: bound, largest observed count, bound / observed, the bound's
+cycles and shares of the 4 ms tick, the libm/cordic reference) and exits
+non-zero when a budget of a `Step` row is exceeded by its bound, when an
+observed count exceeds its bound, or when a loop bound or the coverage of
+the analysed graph is contradicted by the emulator. Adding a step is one
+`Step(...)` line in `all_steps()` (and one `entry!` line in `src/main.rs`).
 
 Counting. The table counts per translation block: every instruction of an
 executed block counts once, which includes the condition-failed
@@ -33,10 +38,13 @@ single-cycle multiplier (MULS = 1 cycle; the small-multiplier option takes
 32). Shares of the 4 ms tick use cycles x 2 for wait states and model error.
 
 Usage: count.py [--profile release|release-s] [--quick] [--qemu] [--selftest]
-                [--bitcheck N] [--no-build] [--report-only]
+                [--bitcheck N] [--no-build] [--report-only] [--main-only] [--only LABEL]
 """
 
 import argparse
+import shutil
+import json
+import math
 import os
 import random
 import struct
@@ -54,6 +62,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 
 # The 4 ms servo tick of the thesis's controller (TMS320F2812 at 150 MHz).
 TICK_CYCLES = 600_000
+TICK_S = 0.004
 # Wait states and model error: every share is computed from cycles x 2.
 SAFETY_FACTOR = 2
 # A 6-joint arm runs one per-joint step per joint in each tick.
@@ -224,6 +233,7 @@ class Firmware:
 
     def __init__(self, core, path):
         self.core = core
+        self.path = path
         with open(path, "rb") as fh:
             elf = ELFFile(fh)
             self.syms = {}
@@ -249,6 +259,12 @@ class Firmware:
         uc.hook_add(UC_HOOK_BLOCK, self._block_hook)
         self.code_hook = None
         self.counting = False
+        # Loop and coverage tracking for the static bound's checks (see
+        # `track`): loop header -> addresses of its latches' last
+        # instructions; most back-edge traversals per entry seen; the
+        # translation-block starts executed while tracking.
+        self.tracking = False
+        self.loop_heads, self.loop_iter, self.loop_max, self.tb_starts = {}, {}, {}, set()
         if core.key == "M4F":
             # CPACR: enable CP10/CP11 (the FPU), as the reset handler does.
             uc.reg_write(A.UC_ARM_REG_C1_C0_2, 0xF << 20)
@@ -291,15 +307,15 @@ class Firmware:
         key = (addr, size)
         b = self.blocks.get(key)
         if b is None:
-            a, n, cyc, last = addr, 0, 0, None
+            a, n, cyc, last, last_addr = addr, 0, 0, None, addr
             while a < addr + size:
                 sz, mn, op, _ = self.decode(a)
                 n += 1
                 cyc += self.core.cycles(mn, op, False)
-                last = (mn, op)
+                last, last_addr = (mn, op), a
                 a += sz
             extra = self.core.cycles(*last, True) - self.core.cycles(*last, False)
-            b = (n, cyc, addr + size, extra)
+            b = (n, cyc, addr + size, extra, last_addr)
             self.blocks[key] = b
         return b
 
@@ -307,9 +323,21 @@ class Firmware:
         if not self.counting or self.mode != "block":
             return
         if self.prev_block is not None:
-            _, _, end, extra = self.prev_block
+            _, _, end, extra, _ = self.prev_block
             if addr != end:
                 self.cycles += extra  # the block's last instruction branched
+        if self.tracking:
+            self.tb_starts.add(addr)
+            latches = self.loop_heads.get(addr)
+            if latches is not None:
+                # a jump back from a latch is one more iteration of the
+                # current entry; any other arrival is a new entry
+                if self.prev_block is not None and self.prev_block[4] in latches:
+                    k = self.loop_iter[addr] = self.loop_iter.get(addr, 0) + 1
+                    if k > self.loop_max.get(addr, 0):
+                        self.loop_max[addr] = k
+                else:
+                    self.loop_iter[addr] = 0
         b = self.block_info(addr, size)
         self.n += b[0]
         self.cycles += b[1]
@@ -367,6 +395,7 @@ class Firmware:
         self.counting, self.limit = count, limit
         self.n = self.cycles = self.failed = 0
         self.prev, self.it_left, self.panicked, self.prev_block = None, 0, False, None
+        self.loop_iter = {}
         entry = self.syms[name]
         try:
             uc.emu_start(entry | 1, RETURN, count=0 if count else limit)
@@ -570,6 +599,10 @@ class Step:
     max_insns: int = None  # required worst case
     max_arm_share: float = None  # required ARM_JOINTS x cycles x 2 / tick
     per_joint: bool = False  # a step that runs once per joint (6-joint column)
+    ratio_range: float = None  # ratio over the vectors with |first argument| <= this only
+    image: str = "main"  # "variants": the second image (src/main.rs)
+    prep_mask: int = 0  # or-ed into word 3 of `prepare_joint`'s arguments: which states to warm up
+    note: str = None  # printed in the budget column (e.g. "informative")
 
 
 def kernel_steps():
@@ -599,9 +632,19 @@ def kernel_steps():
     # The 5x requirement applies where a kernel replaces libm's tanf, sinf
     # or cosf (thesis eq. 3.10 and 3.7 and every trig of the later steps).
     replaces = {"tan", "sin", "cos", "sin_cos"}
+    # Over the arguments a control loop passes (|x| <= pi; for tan its own
+    # domain |x| < pi/2) the ratio is what a user gains; libm's slow
+    # reduction of huge arguments (1e13 and beyond) is not. These rows get
+    # 400 more arguments spread over that range, and their ratio (and its
+    # >= 5 budget) is taken over the in-range arguments only.
+    ctl_rng = random.Random(0xC0DE)
     for k, v in f.items():
+        rr = None
+        if k in replaces:
+            rr = TAN_EDGE if k == "tan" else math.pi
+            v = v + [[f32w(ctl_rng.uniform(-rr, rr))] for _ in range(400)]
         steps.append(Step(f"kernel {k}", "M4F", "f32", f"k_{k}_f32", f"libm_{k}_f32", v,
-                          min_ratio=5.0 if k in replaces else None))
+                          min_ratio=5.0 if k in replaces else None, ratio_range=rr))
     for k, v in x.items():
         steps.append(Step(f"kernel {k}", "M0+", "I16F16", f"k_{k}_i16f16", f"cordic_{k}_i16f16", v))
     # The binary-angle cosine of the estimator's kinematic error: every
@@ -618,13 +661,92 @@ def kernel_steps():
     return steps
 
 
+# Vectors found by the counter-guided search (`search.py`, offline),
+# replayed by every run: {"CORE ENTRY": [{"pre": [...], "args": [...],
+# "count": n}, ...]}.
+FOUND_PATH = os.path.join(HERE, "found_vectors.json")
+
+
+def found_vectors(core, entries):
+    """The stored search results for `entries` on `core`, as vectors."""
+    if not os.path.exists(FOUND_PATH):
+        return []
+    with open(FOUND_PATH) as fh:
+        data = json.load(fh)
+    out = []
+    for e in entries:
+        for v in data.get(f"{core} {e}", []):
+            out.append((list(v["pre"]), list(v["args"])) if v.get("pre") is not None else list(v["args"]))
+    return out
+
+
+# Masks of `prepare_joint` (bits 8-11 of its scenario word): the mode
+# states to warm up, f32 Stop / Passive, I16F16 Stop / Passive.
+MASK = {("f32", "stop"): 1 << 8, ("f32", "passive"): 2 << 8, ("x", "stop"): 4 << 8, ("x", "passive"): 8 << 8}
+# The joint configurations a user chooses between: (entry infix, label,
+# collision reaction, kinematic-error model).
+JOINT_CONFIGS = [
+    ("", "joint step", "stop"),
+    ("passive_", "joint step, reaction Passive", "passive"),
+    ("noke_", "joint step, no kinematic error", "stop"),
+    ("passive_noke_", "joint step, Passive, no kin. error", "passive"),
+]
+
+
+def joint_steps(quick=False):
+    """Every joint configuration on both cores (budgets asserted on every
+    one), the f32 step on the M0+ (soft float, informative), and the
+    stand-alone laws. The default configuration gets all 900 readings and
+    its libm / cordic reference; the others every third reading. All get
+    the search's vectors of every configuration of their backend."""
+    steps = []
+    for backend, core, vecs, dec, xs in (("f32", "M4F", JOINT_F32, f32_of, "f32"),
+                                         ("I16F16", "M0+", JOINT_X, x_of, "i16f16")):
+        key = "f32" if backend == "f32" else "x"
+        budget = dict(max_insns=800) if core == "M4F" else dict(max_insns=4000, max_arm_share=0.12)
+        found = found_vectors(core, [f"joint_{i}{xs}" for i, _, _ in JOINT_CONFIGS])
+        for infix, label, reaction in JOINT_CONFIGS:
+            own = vecs if not infix else vecs[::3]
+            ref = (f"joint_libm_f32" if backend == "f32" else "joint_cordic_i16f16") if not infix else None
+            steps.append(Step(label, core, backend, f"joint_{infix}{xs}", ref, own + found, prepare="prepare_joint",
+                              per_joint=True, decode=lambda o, d=dec: d(o[0]), prep_mask=MASK[(key, reaction)],
+                              image="variants" if infix else "main", **budget))
+    # f32 on the M0+: soft float (compiler_builtins), no budget.
+    steps.append(Step("joint step (soft float)", "M0+", "f32", "joint_f32", None, JOINT_F32[::9] + found_vectors("M0+", ["joint_f32"]),
+                      prepare="prepare_joint", per_joint=True, prep_mask=MASK[("f32", "stop")], note="informative"))
+    for backend, core, vecs, xs, key in (("f32", "M4F", JOINT_F32, "f32", "f32"), ("I16F16", "M0+", JOINT_X, "i16f16", "x")):
+        law = [(pre, args[2:]) for pre, args in vecs[::3]]
+        steps.append(Step("active law", core, backend, f"active_{xs}", None, law, prepare="prepare_joint",
+                          per_joint=True, prep_mask=MASK[(key, "stop")], image="variants"))
+        steps.append(Step("passive law", core, backend, f"passive_{xs}", None, [args for _, args in law], per_joint=True,
+                          image="variants"))
+    return steps
+
+
+def radians_vectors(f, torque):
+    rng = random.Random(0x4AD)
+    out = [[f(a), f(b), f(t)] for a in (0.0, 1.0, -3.1, 3.2) for b in (0.0, 100.0, -314.0, 400.0) for t in (0.0, torque, -torque)]
+    out += [[f(rng.uniform(-4, 4)), f(rng.uniform(-400, 400)), f(rng.uniform(-torque, torque))] for _ in range(200)]
+    return out
+
+
+def wrist_steps(quick=False):
+    """Hook for the wrist step (ch. 5-6): one `Step` row per core, with its
+    `entry!` in src/main.rs. Empty until the wrist step exists."""
+    return []
+
+
 def all_steps(quick=False):
     steps = kernel_steps()
     steps += [
         Step("torque estimation", "M4F", "f32", "est_f32", "est_libm_f32", est_vectors(EST_T_F32, lambda: f32w(RNG.uniform(-2, 2))), prepare="prepare_est", per_joint=True, decode=lambda o: f32_of(o[0])),
         Step("torque estimation", "M0+", "I16F16", "est_i16f16", "est_cordic_i16f16", est_vectors(EST_T_X, lambda: xw(RNG.uniform(-2000, 2000))), prepare="prepare_est", per_joint=True, decode=lambda o: x_of(o[0])),
-        Step("joint step", "M4F", "f32", "joint_f32", "joint_libm_f32", JOINT_F32, prepare="prepare_joint", per_joint=True, max_insns=800, decode=lambda o: f32_of(o[0])),
-        Step("joint step", "M0+", "I16F16", "joint_i16f16", "joint_cordic_i16f16", JOINT_X, prepare="prepare_joint", per_joint=True, max_insns=4000, max_arm_share=0.12, decode=lambda o: x_of(o[0])),
+        Step("update_radians", "M4F", "f32", "est_radians_f32", None, radians_vectors(f32w, 2.0) + [[0x7FC00000, 0, 0], [f32w(1e30), f32w(-1e30), 0]], per_joint=True, image="variants"),
+        Step("update_radians", "M0+", "I16F16", "est_radians_i16f16", None, radians_vectors(xw, 2000.0) + [[0x7FFFFFFF, 0x80000000, 0x7FFFFFFF]], per_joint=True, image="variants"),
+    ]
+    steps += joint_steps(quick)
+    steps += wrist_steps(quick)
+    steps += [
         Step("mulhi (split)", "M0+", "u32", "mulhi_split_u32", "mulhi_u64_u32",
              [[0, 0], [0xFFFFFFFF, 0xFFFFFFFF], [0x12345678, 0x9ABCDEF0]]),
     ]
@@ -635,11 +757,23 @@ def all_steps(quick=False):
 
 
 # ------------------------------------------------------------------- driver
-def build(core, profile, target_dir):
+def elf_path(core, profile, target_dir, image="main"):
+    base = os.path.join(target_dir, core.triple, profile, "mrr-control-embedded")
+    return base if image == "main" else base + "-" + image
+
+
+def build(core, profile, target_dir, image="main"):
+    """Builds one image: `main` (the default entries) or `variants` (the
+    `variants` feature, copied beside the main image)."""
     cmd = ["cargo", "build", "--quiet", "--profile", profile, "--target", core.triple]
+    if image != "main":
+        cmd += ["--features", image]
     env = dict(os.environ, CARGO_TARGET_DIR=target_dir)
     subprocess.run(cmd, cwd=HERE, env=env, check=True)
-    return os.path.join(target_dir, core.triple, profile, "mrr-control-embedded")
+    path = elf_path(core, profile, target_dir)
+    if image != "main":
+        shutil.copyfile(path, elf_path(core, profile, target_dir, image))
+    return elf_path(core, profile, target_dir, image)
 
 
 @dataclass
@@ -652,113 +786,202 @@ class Result:
     bad: list = field(default_factory=list)  # (args, status)
 
 
-def measure(fw, entry, vectors, prepare):
+def measure(fw, entry, vectors, prepare, bound=None, mask=0):
+    """Every vector through `entry`; with a static `bound`, also records the
+    loop iterations and executed blocks its checks need."""
     r = Result()
-    r.outputs = []
+    r.outputs, r.counts = [], []
     counts = []
-    for v in vectors:
-        pre, args = v if isinstance(v, tuple) else (None, v)
-        if pre is not None:
-            fw.call(prepare, pre, limit=2_000_000)
-        n, cyc, out, status = fw.call(entry, args, count=True)
-        r.outputs.append(out)
-        if status != "ok":
-            r.bad.append((args, status))
-            continue
-        counts.append(n)
-        if n > r.insns:
-            r.insns, r.worst_args, r.failed_it = n, args, fw.failed
-        r.cycles = max(r.cycles, cyc)
+    if bound is not None:
+        fw.loop_heads = {h: set(lat) for (_, h, lat, _, _) in bound.loops}
+        fw.loop_max, fw.tb_starts, fw.tracking = {}, set(), True
+    try:
+        for v in vectors:
+            pre, args = v if isinstance(v, tuple) else (None, v)
+            if pre is not None and prepare is not None:
+                if mask:
+                    pre = pre[:3] + [pre[3] | mask] + pre[4:]
+                st = fw.call(prepare, pre, limit=5_000_000)[3]
+                if st != "ok":
+                    r.bad.append((pre, f"prepare: {st}"))
+                    continue
+            n, cyc, out, status = fw.call(entry, args, count=True)
+            r.outputs.append(out)
+            r.counts.append(n if status == "ok" else None)
+            if status != "ok":
+                r.bad.append((args, status))
+                continue
+            counts.append(n)
+            if n > r.insns:
+                r.insns, r.worst_args, r.failed_it = n, args, fw.failed
+            r.cycles = max(r.cycles, cyc)
+    finally:
+        fw.tracking = False
+    if bound is not None:
+        r.loop_max, r.tb_starts = dict(fw.loop_max), set(fw.tb_starts)
     counts.sort()
     r.median = counts[len(counts) // 2] if counts else 0
     return r
 
 
+def bound_checks(s, bound, own):
+    """Failures of the static bound against the emulator: an observed count
+    or cycle estimate above the bound, a loop iterating more often than its
+    bound, or executed code the analysis never saw (an incomplete CFG)."""
+    out = []
+    if own.insns > bound.insns:
+        out.append(f"{s.label} {s.core}: observed {own.insns} > static bound {bound.insns} instructions")
+    if own.cycles > bound.cycles:
+        out.append(f"{s.label} {s.core}: observed {own.cycles} > static bound {bound.cycles} cycles")
+    for (fname, h, _, nb, how) in bound.loops:
+        seen = own.loop_max.get(h, 0)
+        if seen > nb:
+            out.append(f"{s.label} {s.core}: loop at {h:#x} ({how}) jumped back {seen} times per entry > bound {nb}")
+    outside = sorted(a for a in own.tb_starts if a not in bound.addrs and a != RETURN)
+    if outside:
+        out.append(f"{s.label} {s.core}: executed code outside the analysed graph at {', '.join(hex(a) for a in outside[:5])}")
+    return out
+
+
+def in_range(words, limit, backend):
+    x = f32_of(words[0]) if backend == "f32" else x_of(words[0])
+    return x == x and abs(x) <= limit
+
+
 def run(args):
+    import wcet
+
     target_dir = os.environ.get("CARGO_TARGET_DIR", os.path.join(HERE, "target"))
-    fws = {}
-    for key, core in CORES.items():
-        path = build(core, args.profile, target_dir) if not args.no_build else os.path.join(
-            target_dir, core.triple, args.profile, "mrr-control-embedded")
-        fws[key] = Firmware(core, path)
+    fws, progs = {}, {}
     steps = all_steps(args.quick)
     if args.only:
         steps = [s for s in steps if args.only in s.label]
-    base = {k: fws[k].call("io_overhead", [0], count=True)[0] for k in fws}
+    if args.main_only:
+        steps = [s for s in steps if s.image == "main"]
+    # The variants image first: both share the output path, and the main
+    # image must be the one left there (QEMU, profile.py, the bit check).
+    for image in ("variants", "main"):
+        if image != "main" and not any(s.image == image for s in steps):
+            continue
+        for key, core in CORES.items():
+            path = build(core, args.profile, target_dir, image) if not args.no_build else elf_path(
+                core, args.profile, target_dir, image)
+            fws[key, image] = Firmware(core, path)
+            progs[key, image] = wcet.Program(path, core.cycles)
+    base = {k: fws[k, "main"].call("io_overhead", [0], count=True)[0] for k in CORES}
     rows, failures = [], []
     for s in steps:
-        fw = fws[s.core]
-        own = measure(fw, s.entry, s.vectors, s.prepare)
-        ref = measure(fw, s.reference, s.vectors, s.prepare) if s.reference else None
-        rows.append((s, own, ref))
+        fw = fws[s.core, s.image]
+        bound = None
+        try:
+            bound = progs[s.core, s.image].bound(fw.syms[s.entry])
+        except wcet.WcetError as e:
+            failures.append(f"{s.label} {s.core}: no static bound: {e}")
+        own = measure(fw, s.entry, s.vectors, s.prepare, bound, s.prep_mask)
+        ref = measure(fw, s.reference, s.vectors, s.prepare, mask=s.prep_mask) if s.reference else None
+        if bound is not None:
+            failures += bound_checks(s, bound, own)
+        ratio = None
+        if ref and s.ratio_range:
+            sel = [i for i, v in enumerate(s.vectors) if in_range(v, s.ratio_range, s.backend)]
+            oc = [own.counts[i] for i in sel if own.counts[i] is not None]
+            rc = [ref.counts[i] for i in sel if ref.counts[i] is not None]
+            ratio = max(rc) / max(oc) if oc and rc else None
+            own.range_n, own.range_own, own.range_ref = len(sel), max(oc or [0]), max(rc or [0])
+        elif ref and own.insns:
+            ratio = ref.insns / own.insns
+        own.ratio = ratio
+        rows.append((s, own, ref, bound))
         if own.bad:
             failures.append(f"{s.label} {s.core}: {len(own.bad)} vectors failed, e.g. {own.bad[0]}")
-        ratio = ref.insns / own.insns if ref and own.insns else None
         if s.min_ratio and (ratio is None or ratio < s.min_ratio):
-            failures.append(f"{s.label} {s.core} {s.backend}: reference/own = {ratio:.2f} < {s.min_ratio}")
-        if s.max_insns and own.insns > s.max_insns:
-            failures.append(f"{s.label} {s.core} {s.backend}: {own.insns} > {s.max_insns} instructions")
-        arm = ARM_JOINTS * own.cycles * SAFETY_FACTOR / TICK_CYCLES
-        if s.max_arm_share and arm > s.max_arm_share:
-            failures.append(f"{s.label} {s.core} {s.backend}: {ARM_JOINTS} joints use {arm:.1%} > {s.max_arm_share:.0%} of the tick")
+            failures.append(f"{s.label} {s.core} {s.backend}: reference/own = {ratio} < {s.min_ratio}")
+        if s.max_insns and (bound is None or bound.insns > s.max_insns):
+            failures.append(f"BUDGET {s.label} {s.core} {s.backend}: static bound "
+                            f"{bound.insns if bound else '-'} > {s.max_insns} instructions")
+        if s.max_arm_share:
+            arm = ARM_JOINTS * bound.cycles * SAFETY_FACTOR / TICK_CYCLES if bound else float("inf")
+            if arm > s.max_arm_share:
+                failures.append(f"BUDGET {s.label} {s.core} {s.backend}: {ARM_JOINTS} joints use {arm:.1%} "
+                                f"> {s.max_arm_share:.0%} of the tick (static bound)")
     print_table(rows, base, args.profile)
-    return failures, fws
+    return failures, {k: fw for (k, image), fw in fws.items() if image == "main"}
+
+
+def share(cycles, clock_hz=150e6, joints=1):
+    """Share of the 4 ms tick: joints x cycles x 2 / (4 ms x clock)."""
+    return joints * cycles * SAFETY_FACTOR / (TICK_S * clock_hz)
 
 
 def print_table(rows, base, profile):
-    print(f"\nWorst-case instructions per call, profile `{profile}` (emulated cores, zero wait states;")
-    print(f"share = cycles x {SAFETY_FACTOR} / {TICK_CYCLES:,} cycles of the 4 ms tick; ratio = reference / own worst-case "
-          "instructions)\n")
-    hdr = ("step", "core", "backend", "instr", "cycles", "share 4 ms", f"{ARM_JOINTS} joints", "reference",
-           "ref instr", "ref cycles", "ref share", "ratio", "budget")
+    print(f"\nInstructions per call, profile `{profile}` (emulated cores, zero wait states). bound = static "
+          "worst-case bound of the ELF (wcet.py: longest path, loops bounded, callees inlined); observed = "
+          "largest count over the argument vectors; cycles = the bound's cycle estimate; share = cycles x "
+          f"{SAFETY_FACTOR} / cycles of the 4 ms tick at 150 MHz ({TICK_CYCLES:,}), and for per-joint steps "
+          f"{ARM_JOINTS} joints at 150 MHz and at 48 MHz ({int(TICK_S * 48e6):,} cycles); ref = the libm / cordic "
+          "version's largest observed count; ratio = ref / own observed (kernels replacing libm: over the "
+          "control range only, see below)\n")
+    hdr = ("step", "core", "backend", "bound", "observed", "bound/obs", "cycles", "share 4 ms",
+           f"{ARM_JOINTS} joints 150 MHz", f"{ARM_JOINTS} joints 48 MHz", "ref observed", "ratio", "budget")
     print("| " + " | ".join(hdr) + " |")
-    print("|" + "|".join(["---"] * 3 + ["---:"] * 4 + ["---"] + ["---:"] * 4 + ["---"]) + "|")
-    for s, own, ref in rows:
-        share = own.cycles * SAFETY_FACTOR / TICK_CYCLES * 100
-        arm = f"{ARM_JOINTS * share:.2f} %" if s.per_joint else "-"
-        if ref is None:
-            rname, ri, rc, ratio, rs = "-", "-", "-", "-", "-"
+    print("|" + "|".join(["---"] * 3 + ["---:"] * 9 + ["---"]) + "|")
+    for s, own, ref, bound in rows:
+        if bound is not None:
+            bi, bc = f"{bound.insns:,}", f"{bound.cycles:,}"
+            loose = f"{bound.insns / own.insns:.2f}" if own.insns else "-"
+            sh = f"{share(bound.cycles) * 100:.3f} %"
+            a150 = f"{share(bound.cycles, 150e6, ARM_JOINTS) * 100:.2f} %" if s.per_joint else "-"
+            a48 = f"{share(bound.cycles, 48e6, ARM_JOINTS) * 100:.2f} %" if s.per_joint else "-"
         else:
-            rname = s.reference.split("_")[0] if s.reference.startswith(("libm", "cordic")) else s.reference
-            if s.reference.startswith("est_"):
-                rname = "libm" if "libm" in s.reference else "cordic"
-            if s.reference.startswith("mulhi"):
-                rname = "u64 product"
+            bi = bc = loose = sh = a150 = a48 = "none"
+        if ref is None:
+            ri, ratio = "-", "-"
+        else:
             ri = f"{ref.insns:,}"
-            rc = f"{ref.cycles:,}"
-            rs = f"{ref.cycles * SAFETY_FACTOR / TICK_CYCLES * 100:.3f} %"
-            if s.per_joint:
-                rs += f" ({ARM_JOINTS * ref.cycles * SAFETY_FACTOR / TICK_CYCLES * 100:.1f} % x{ARM_JOINTS})"
-            ratio = f"{ref.insns / own.insns:.1f}x" if own.insns else "-"
+            ratio = f"{own.ratio:.1f}x" if own.ratio else "-"
             if ref.bad:
                 ri = f"> {MAX_INSNS:,} at {len(ref.bad)} of {len(s.vectors)}"
-                rc = rs = "-"
-                ratio = f"> {MAX_INSNS / own.insns:.0f}x"
+                if not s.ratio_range:
+                    ratio = f"> {MAX_INSNS / own.insns:.0f}x"
+            if s.ratio_range:
+                ri = f"{own.range_ref:,} ({ri} all)"
+                ratio += f" (abs(x) <= {s.ratio_range:.4g})"
         budget = []
         if s.min_ratio:
             budget.append(f"ratio >= {s.min_ratio:g}")
         if s.max_insns:
-            budget.append(f"<= {s.max_insns:,} instr" + ("" if own.insns <= s.max_insns else " EXCEEDED"))
+            ok = bound is not None and bound.insns <= s.max_insns
+            budget.append(f"bound <= {s.max_insns:,} instr" + ("" if ok else " EXCEEDS"))
         if s.max_arm_share:
-            budget.append(f"{ARM_JOINTS} joints <= {s.max_arm_share:.0%}")
-        print(f"| {s.label} | {s.core} | {s.backend} | {own.insns:,} | {own.cycles:,} | {share:.3f} % | {arm} | {rname} "
-              f"| {ri} | {rc} | {rs} | {ratio} | {', '.join(budget) or '-'} |")
-    print("\nWorst-case argument words (hex), and the median over the argument vectors (which are weighted"
-          " towards domain edges, where some references return early):")
-    for s, own, ref in rows:
+            ok = bound is not None and share(bound.cycles, 150e6, ARM_JOINTS) <= s.max_arm_share
+            budget.append(f"{ARM_JOINTS} joints <= {s.max_arm_share:.0%} at 150 MHz" + ("" if ok else " EXCEEDS"))
+        if s.note:
+            budget.append(s.note)
+        print(f"| {s.label} | {s.core} | {s.backend} | {bi} | {own.insns:,} | {loose} | {bc} | {sh} | {a150} | {a48} "
+              f"| {ri} | {ratio} | {', '.join(budget) or '-'} |")
+    print("\nObserved worst-case argument words (hex), medians, and what the bound covers:")
+    for s, own, ref, bound in rows:
         w = " ".join(f"{a:08x}" for a in own.worst_args or [])
-        line = f"  {s.label} {s.core}: own worst at [{w}], median {own.median:,}"
+        line = f"  {s.label} {s.core} ({s.entry}): observed worst at [{w}] over {len(s.vectors)} vectors, median {own.median:,}"
+        if bound is not None:
+            lp = sorted({(h, nb, how) for (_, h, _, nb, how) in bound.loops})
+            line += (f"; bound over {len(bound.functions)} functions, {len(bound.addrs)} instructions, "
+                     f"{len(lp)} loops" + "".join(f" [{h:#x}: <= {nb} back edges, {how}, seen {own.loop_max.get(h, 0)}]" for h, nb, how in lp)
+                     + (f", {bound.panic_sites} panic call sites excluded" if bound.panic_sites else ""))
         if ref:
             rw = " ".join(f"{a:08x}" for a in ref.worst_args or [])
             line += f"; reference worst at [{rw}], median {ref.median:,}"
+            if s.ratio_range:
+                line += (f"; over the {own.range_n} vectors with |x| <= {s.ratio_range:.4g}: own {own.range_own}, "
+                         f"reference {own.range_ref}; over all vectors reference/own = {ref.insns / own.insns:.1f}x")
             if s.decode:
                 diffs = [abs(s.decode(a) - s.decode(b)) for a, b in zip(own.outputs, ref.outputs) if a and b]
                 flags = sum(1 for a, b in zip(own.outputs, ref.outputs) if a and b and a[2] != b[2])
                 line += f"; max |own - reference| result {max(diffs):.4g}, flags differ at {flags} of {len(diffs)}"
-            if s.entry.startswith("joint"):
-                line += "; paths reached: " + joint_coverage(own.outputs)
             if ref.bad:
                 line += f"; reference did not return within {MAX_INSNS:,} instructions at {len(ref.bad)} vectors, e.g. [{ref.bad[0][0][0]:08x}] ({ref.bad[0][1]})"
+        if s.entry.startswith("joint"):
+            line += "; paths reached: " + joint_coverage(own.outputs)
         print(line)
     print(f"\nCall overhead included in every row (load one argument, store one result, return): "
           + ", ".join(f"{k} {v} instr" for k, v in base.items()))
@@ -826,8 +1049,11 @@ def qemu_check(fws, target_dir, profile):
     """Runs the firmware's `crosscheck` sequence in QEMU (one instruction
     per translation block, every block logged) and in unicorn with the
     IT-block correction; the two counts must agree. QEMU 7.2 has no board
-    with a Cortex-M0+ and this memory map, and Armv6-M has no IT blocks:
-    there the per-block and per-instruction counts are compared only."""
+    with a Cortex-M0+ and this memory map: the thumbv6m image runs on the
+    Cortex-M3 of `mps2-an385`, which executes the Armv6-M instructions of
+    the image with the same semantics, so the executed instruction streams
+    (and counts) must agree with unicorn's Cortex-M0 model as well. Both
+    sequences end with joint steps."""
     import shutil
     import tempfile
     exe = shutil.which("qemu-system-arm")
@@ -835,13 +1061,14 @@ def qemu_check(fws, target_dir, profile):
     for key, fw in fws.items():
         elf = os.path.join(target_dir, fw.core.triple, profile, "mrr-control-embedded")
         whole = whole_sequence(fw.core, elf)
-        if key != "M4F" or exe is None:
+        if exe is None:
             results.append((key, None, None, None, whole))
             continue
+        board = "mps2-an386" if key == "M4F" else "mps2-an385"
         start, end = fw.syms["crosscheck_start"] & ~1, fw.syms["crosscheck_end"] & ~1
         with tempfile.TemporaryDirectory() as d:
             log = os.path.join(d, "trace.log")
-            subprocess.run([exe, "-M", "mps2-an386", "-nographic", "-kernel", elf, "-semihosting-config",
+            subprocess.run([exe, "-M", board, "-nographic", "-kernel", elf, "-semihosting-config",
                             "enable=on,target=native", "-singlestep", "-d", "exec,nochain", "-D", log],
                            check=True, timeout=120, stdin=subprocess.DEVNULL)
             pcs = []
@@ -899,7 +1126,11 @@ def main():
     p.add_argument("--quick", action="store_true", help="a twelfth of the argument vectors")
     p.add_argument("--only", metavar="LABEL", help="only the rows whose label contains LABEL")
     p.add_argument("--no-build", action="store_true")
+    p.add_argument("--main-only", action="store_true", help="only the rows of the main image (no variants build)")
     p.add_argument("--report-only", action="store_true", help="print the table; do not fail on a budget")
+    p.add_argument("--budgets-unmet-ok", action="store_true",
+                   help="report budgets exceeded by their static bound as NOT MET without failing; "
+                        "every soundness check (observed <= bound, loops, coverage, QEMU, bit identity) still fails")
     p.add_argument("--qemu", action="store_true", help="cross-check the IT-block accounting against QEMU")
     p.add_argument("--bitcheck", type=int, default=0, metavar="N",
                    help="compare N random inputs per I16F16 kernel: thumbv6m build vs host build")
@@ -916,7 +1147,8 @@ def main():
             ok = q == n and whole[0] == whole[1]
             line = f"Counter cross-check {key}: "
             if q is not None:
-                line += f"QEMU -d exec {q} instructions, unicorn + IT correction {n} (hooked alone {raw}); "
+                board = "mps2-an386, Cortex-M4" if key == "M4F" else "mps2-an385, Cortex-M3 running the Armv6-M image"
+                line += f"QEMU ({board}) -d exec {q} instructions, unicorn + IT correction {n} (hooked alone {raw}); "
             line += f"whole sequence per instruction {whole[0]}, per block {whole[1]}: {'agree' if ok else 'DISAGREE'}"
             print(line)
             if not ok:
@@ -929,6 +1161,15 @@ def main():
         if mism:
             failures.append(f"{len(mism)} I16F16 results differ between thumbv6m and host")
     print(f"\ncount.py done in {time.time() - t0:.0f} s")
+    unmet = [f for f in failures if f.startswith("BUDGET ")]
+    if unmet and args.budgets_unmet_ok and not args.report_only:
+        print("\nBUDGETS NOT MET ON THE STATIC BOUND (not signed off; reported, not failed):")
+        for f in unmet:
+            print("  " + f[len("BUDGET "):])
+        failures = [f for f in failures if not f.startswith("BUDGET ")]
+        if not failures:
+            print("every soundness check passed; budgets above are not met")
+            return
     if failures and args.report_only:
         print("\nbudgets not met (report only): " + "; ".join(failures))
         return

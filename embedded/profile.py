@@ -32,10 +32,10 @@ def main():
     step = next(s for s in count.all_steps() if args.entry in (s.entry, s.reference))
     core = count.CORES[step.core]
     target_dir = os.environ.get("CARGO_TARGET_DIR", os.path.join(count.HERE, "target"))
-    elf = (os.path.join(target_dir, core.triple, "release-lines", "mrr-control-embedded") if args.no_build
-           else count.build(core, "release-lines", target_dir))
+    elf = (count.elf_path(core, "release-lines", target_dir, step.image) if args.no_build
+           else count.build(core, "release-lines", target_dir, step.image))
     fw = count.Firmware(core, elf)
-    res = count.measure(fw, args.entry, step.vectors, step.prepare)
+    res = count.measure(fw, args.entry, step.vectors, step.prepare, mask=step.prep_mask)
     print(f"{args.entry}: worst {res.insns} instructions (median {res.median}) over {len(step.vectors)} vectors")
     if args.all:
         vectors = step.vectors
@@ -52,8 +52,10 @@ def main():
     try:
         for v in vectors:
             pre, a = v if isinstance(v, tuple) else (None, v)
-            if pre is not None:
-                fw.call(step.prepare, pre, limit=2_000_000)
+            if pre is not None and step.prepare:
+                if step.prep_mask:
+                    pre = pre[:3] + [pre[3] | step.prep_mask] + pre[4:]
+                fw.call(step.prepare, pre, limit=5_000_000)
             fw.call(args.entry, a, count=True)
     finally:
         fw.uc.hook_del(h)

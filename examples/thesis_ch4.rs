@@ -103,6 +103,7 @@ fn main() -> std::io::Result<()> {
             error_fraction: u(0.0, 0.9),
             error_square_period: if k % 2 == 0 { 0.0 } else { u(0.02, 0.5) },
             seed: k,
+            estimated_feedback: false,
         };
         let r = bound_run(&case, 0.3);
         worst_ratio = worst_ratio.max(r.max_sliding / r.radius);
@@ -135,6 +136,50 @@ fn main() -> std::io::Result<()> {
             r.max_sliding,
             r.radius,
             r.max_sliding > r.radius
+        );
+    }
+
+    println!("\nAssumption 5 (eq. 4.14): the estimator's error in the ch. 3-4 loops");
+    let survey = mrr_control::sim::experiments::estimator_error_survey();
+    for c in &survey {
+        println!(
+            "  {:<58} max |error| {:>6.3} N m",
+            c.scenario,
+            c.error.max_abs()
+        );
+    }
+    let d = mrr_control::control::RobustAdaptiveDesign::table_4_1();
+    println!("| rho_tau (N m) | r_S (rad/s) | link |e| bound (rad) | K_r (N m) | law applied (K_r < 0.188) |");
+    println!("|---|---|---|---|---|");
+    for rho in [1.0, 4.0, 25.354] {
+        let (b, kr, ok) = mrr_control::control::UltimateBound::for_torque_error(&d, rho);
+        println!(
+            "| {rho} | {:.3} | {:.3e} | {kr:.3} | {ok} |",
+            b.sliding_radius, b.link_tracking_error
+        );
+    }
+
+    println!("\nPassive joint (eq. 4.32-4.33) under the back-driving hand (200 N m/rad, 5 N m s/rad), link 0.0432 kg m^2");
+    println!("| T (ms) | I_m K_p | J (kg m^2) | w_n (rad/s) | zeta | decay (1/s) | max |z| | sampled decay (1/s) |");
+    println!("|---|---|---|---|---|---|---|---|");
+    let hand = mrr_control::control::HandContact {
+        stiffness: 200.0,
+        damping: 5.0,
+        link_inertia: 0.64 * 0.45 * 0.45 / 3.0,
+    };
+    for (t, imkp) in [(4e-3, 0.2), (2.5e-4, 1.0), (2.5e-4, 3.0)] {
+        let c = mrr_control::control::PassiveParams::table_4_1(imkp / 1.14e-5)
+            .and_then(|p| p.characteristics(&hand, t))
+            .map_err(|e| std::io::Error::other(format!("{e:?}")))?;
+        println!(
+            "| {} | {imkp} | {:.4} | {:.2} | {:.3} | {:.2} | {:.5} | {:.2} |",
+            t * 1e3,
+            c.apparent_inertia,
+            c.natural_frequency,
+            c.damping_ratio,
+            c.decay_rate,
+            c.spectral_radius,
+            c.discrete_decay_rate
         );
     }
 
@@ -212,6 +257,12 @@ fn main() -> std::io::Result<()> {
         .map(|e| format!("{:.3} s -> {:?}", e.time, e.to))
         .collect();
     println!("switches: {}", times.join(", "));
+    let mut old = ModeScenarioConfig::interaction();
+    old.release = Some(mrr_control::control::ReleaseRule::torque_only(20));
+    println!(
+        "the same with the torque-only release rule: {} switches",
+        interaction_scenario(&old).switches.len()
+    );
     let jump = r.switches.iter().map(|e| e.torque_jump).fold(0.0, f64::max);
     let off = r
         .switches

@@ -227,7 +227,7 @@ pub struct JointConfig<S> {
 /// The joint's state: the estimator's, the mode manager's, and the motor
 /// position and speed meter's.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct JointState<S> {
+pub struct JointState<S: Scalar> {
     estimator: TorqueEstimatorState,
     mode: ModeState<S>,
     /// Motor position, counts, chapter-4 sign.

@@ -141,3 +141,19 @@ impl<S: Put + Copy> Put for mrr_control::control::ModeOutput<S> {
             .put(out);
     }
 }
+impl<S: Put + Copy> Put for mrr_control::control::ActiveOutput<S> {
+    #[inline(always)]
+    fn put(self, out: &mut Out) {
+        self.torque.put(out);
+        self.law_torque.put(out);
+        (self.saturated as u32 | (self.invalid_input as u32) << 1).put(out);
+    }
+}
+impl<S: Put + Copy> Put for mrr_control::control::PassiveOutput<S> {
+    #[inline(always)]
+    fn put(self, out: &mut Out) {
+        self.torque.put(out);
+        self.law_torque.put(out);
+        (self.saturated as u32 | (self.invalid_input as u32) << 1).put(out);
+    }
+}

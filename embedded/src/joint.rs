@@ -12,9 +12,11 @@
 
 use core::mem::MaybeUninit;
 use fixed::types::I16F16;
+#[cfg(feature = "variants")]
+use mrr_control::control::{ActiveOutput, PassiveOutput};
 use mrr_control::control::{
-    ControlInput, ModeConfig, ModeOutput, ModeParams, ModeSettings, ModeState, PassiveParams,
-    RobustAdaptiveParams,
+    ControlInput, ModeConfig, ModeOutput, ModeParams, ModeSettings, ModeState, PassiveConfig,
+    PassiveParams, RobustAdaptiveParams, RobustAdaptiveState,
 };
 use mrr_control::estimation::collision::{CollisionParams, CollisionReaction};
 use mrr_control::estimation::torque::{
@@ -35,8 +37,9 @@ fn ok<T, E>(r: Result<T, E>) -> T {
 /// passive above 2 N·m interaction and back below 1 N·m, debounce 3
 /// samples, dwell 5 samples, rejoin bandwidth 10 rad/s, bias time constant
 /// 0.1 s; collisions above 4 N·m for 2 samples (released below 3 N·m for
-/// 2 samples) stop the joint.
-pub fn mode_params() -> ModeParams {
+/// 2 samples) stop the joint (`reaction` Stop) or make it passive
+/// (`reaction` Passive).
+pub fn mode_params(reaction: CollisionReaction) -> ModeParams {
     ok(ModeParams::try_new(ModeSettings {
         active: ok(RobustAdaptiveParams::table_4_1()),
         passive: ok(PassiveParams::table_4_1(2000.0)),
@@ -46,39 +49,69 @@ pub fn mode_params() -> ModeParams {
         dwell: 5,
         rejoin_bandwidth: 10.0,
         bias_time_constant: 0.1,
-        collision: Some(ok(CollisionParams::try_new(
-            4.0,
-            3.0,
-            2,
-            2,
-            CollisionReaction::Stop,
-        ))),
+        collision: Some(ok(CollisionParams::try_new(4.0, 3.0, 2, 2, reaction))),
     }))
 }
 
-static mut EST_F32: MaybeUninit<TorqueEstimatorConfig<f32>> = MaybeUninit::uninit();
-static mut EST_X: MaybeUninit<TorqueEstimatorConfig<I16F16>> = MaybeUninit::uninit();
+// The configurations a user chooses between: estimators with
+// ([`KE`]) and without ([`NO_KE`]) the kinematic-error model, mode managers
+// whose collision reaction is Stop ([`STOP`]) or Passive ([`PASSIVE`]).
+/// Estimator with the Table 3.2 kinematic error.
+pub const KE: usize = 0;
+/// Estimator without a kinematic-error model.
+#[cfg(feature = "variants")]
+pub const NO_KE: usize = 1;
+/// Collision reaction Stop (hold the position).
+pub const STOP: usize = 0;
+/// Collision reaction Passive (switch to the passive law).
+pub const PASSIVE: usize = 1;
+
+static mut EST_F32: MaybeUninit<[TorqueEstimatorConfig<f32>; 2]> = MaybeUninit::uninit();
+static mut EST_X: MaybeUninit<[TorqueEstimatorConfig<I16F16>; 2]> = MaybeUninit::uninit();
 static mut REF_F32: MaybeUninit<RefEstimator<f32>> = MaybeUninit::uninit();
 static mut REF_X: MaybeUninit<RefEstimator<I16F16>> = MaybeUninit::uninit();
-static mut MODE_F32: MaybeUninit<ModeConfig<f32>> = MaybeUninit::uninit();
-static mut MODE_X: MaybeUninit<ModeConfig<I16F16>> = MaybeUninit::uninit();
+static mut MODE_F32: MaybeUninit<[ModeConfig<f32>; 2]> = MaybeUninit::uninit();
+static mut MODE_X: MaybeUninit<[ModeConfig<I16F16>; 2]> = MaybeUninit::uninit();
+static mut PASSIVE_F32: MaybeUninit<PassiveConfig<f32>> = MaybeUninit::uninit();
+static mut PASSIVE_X: MaybeUninit<PassiveConfig<I16F16>> = MaybeUninit::uninit();
 static mut EST_ST: MaybeUninit<TorqueEstimatorState> = MaybeUninit::uninit();
 static mut REF_ST: MaybeUninit<RefState> = MaybeUninit::uninit();
-static mut ST_F32: MaybeUninit<ModeState<f32>> = MaybeUninit::uninit();
-static mut ST_X: MaybeUninit<ModeState<I16F16>> = MaybeUninit::uninit();
+static mut ST_F32: MaybeUninit<[ModeState<f32>; 2]> = MaybeUninit::uninit();
+static mut ST_X: MaybeUninit<[ModeState<I16F16>; 2]> = MaybeUninit::uninit();
+/// States of the stand-alone active law (copied from the warmed-up Stop
+/// manager's active law by [`prepare`]).
+static mut ACT_F32: MaybeUninit<RobustAdaptiveState<f32>> = MaybeUninit::uninit();
+static mut ACT_X: MaybeUninit<RobustAdaptiveState<I16F16>> = MaybeUninit::uninit();
 /// Desired joint torque of the passive law (a free joint: 0), read
 /// volatile so the step does not specialise on it.
 static mut DESIRED_TORQUE: [u32; 2] = [0; 2];
 
 /// Builds the configurations (not counted).
-pub unsafe fn init(p: &TorqueEstimatorParams) {
-    let mp = mode_params();
-    EST_F32.write(TorqueEstimatorConfig::new(p));
-    EST_X.write(TorqueEstimatorConfig::new(p));
+/// `p` carries the kinematic-error model, `p_no_ke` is the same drive
+/// and encoders without it.
+pub unsafe fn init(p: &TorqueEstimatorParams, p_no_ke: &TorqueEstimatorParams) {
+    let stop = mode_params(CollisionReaction::Stop);
+    let passive = mode_params(CollisionReaction::Passive);
+    EST_F32.write([
+        TorqueEstimatorConfig::new(p),
+        TorqueEstimatorConfig::new(p_no_ke),
+    ]);
+    EST_X.write([
+        TorqueEstimatorConfig::new(p),
+        TorqueEstimatorConfig::new(p_no_ke),
+    ]);
     REF_F32.write(RefEstimator::new(p));
     REF_X.write(RefEstimator::new(p));
-    MODE_F32.write(ModeConfig::new(&mp));
-    MODE_X.write(ModeConfig::new(&mp));
+    MODE_F32.write([ModeConfig::new(&stop), ModeConfig::new(&passive)]);
+    MODE_X.write([ModeConfig::new(&stop), ModeConfig::new(&passive)]);
+    let (mf, mx) = (MODE_F32.assume_init_ref(), MODE_X.assume_init_ref());
+    ST_F32.write([mf[STOP].initial_state(), mf[PASSIVE].initial_state()]);
+    ST_X.write([mx[STOP].initial_state(), mx[PASSIVE].initial_state()]);
+    ACT_F32.write(*mf[STOP].initial_state().active_state());
+    ACT_X.write(*mx[STOP].initial_state().active_state());
+    let pp = ok(PassiveParams::table_4_1(2000.0));
+    PASSIVE_F32.write(PassiveConfig::new(&pp));
+    PASSIVE_X.write(PassiveConfig::new(&pp));
 }
 
 /// A small deterministic generator for the warm-up samples.
@@ -180,10 +213,28 @@ pub unsafe fn prepare(lo: u32, hi: u32, counter: u32, scenario: u32, seed: u32) 
     // as in the step.
     let pos = ((hi as u64) << 32 | lo as u64) as i64;
     let (pos, counter) = (pos.wrapping_neg(), counter.wrapping_neg());
-    EST_ST.write(EST_F32.assume_init_ref().state(pos, counter));
+    EST_ST.write(EST_F32.assume_init_ref()[KE].state(pos, counter));
     REF_ST.write(REF_F32.assume_init_ref().state(pos, counter));
-    ST_F32.write(warm_up(MODE_F32.assume_init_ref(), scenario, seed));
-    ST_X.write(warm_up(MODE_X.assume_init_ref(), scenario, seed));
+    // Bits 8-11 of `scenario` select the states to warm up (f32 Stop, f32
+    // Passive, I16F16 Stop, I16F16 Passive; none set: all), so that a row
+    // does not pay for the others (soft-float warm-ups on the M0+).
+    let mask = match (scenario >> 8) & 0xF {
+        0 => 0xF,
+        m => m,
+    };
+    let scenario = scenario & 0xFF;
+    let (mf, mx) = (MODE_F32.assume_init_ref(), MODE_X.assume_init_ref());
+    let (sf, sx) = (ST_F32.assume_init_mut(), ST_X.assume_init_mut());
+    for r in [STOP, PASSIVE] {
+        if mask & (1 << r) != 0 {
+            sf[r] = warm_up(&mf[r], scenario, seed);
+        }
+        if mask & (4 << r) != 0 {
+            sx[r] = warm_up(&mx[r], scenario, seed);
+        }
+    }
+    ACT_F32.write(*sf[STOP].active_state());
+    ACT_X.write(*sx[STOP].active_state());
     0
 }
 
@@ -218,17 +269,22 @@ unsafe fn desired(i: usize) -> u32 {
         .read_volatile()
 }
 
+/// The per-joint step of configuration (`E` estimator, `R` reaction).
 #[inline(always)]
-pub unsafe fn step_f32(l: u32, m: u32, a: [f32; 6]) -> ModeOutput<f32> {
-    let st = ST_F32.assume_init_mut();
-    let e = EST_F32.assume_init_ref().update(
+pub unsafe fn step_f32<const E: usize, const R: usize>(
+    l: u32,
+    m: u32,
+    a: [f32; 6],
+) -> ModeOutput<f32> {
+    let st = &mut ST_F32.assume_init_mut()[R];
+    let e = EST_F32.assume_init_ref()[E].update(
         EST_ST.assume_init_mut(),
         l,
         m.wrapping_neg(),
         st.last_torque(),
     );
     control(
-        MODE_F32.assume_init_ref(),
+        &MODE_F32.assume_init_ref()[R],
         st,
         e.torque,
         f32::from_bits(desired(0)),
@@ -236,17 +292,22 @@ pub unsafe fn step_f32(l: u32, m: u32, a: [f32; 6]) -> ModeOutput<f32> {
     )
 }
 
+/// The per-joint step of configuration (`E` estimator, `R` reaction).
 #[inline(always)]
-pub unsafe fn step_x(l: u32, m: u32, a: [I16F16; 6]) -> ModeOutput<I16F16> {
-    let st = ST_X.assume_init_mut();
-    let e = EST_X.assume_init_ref().update(
+pub unsafe fn step_x<const E: usize, const R: usize>(
+    l: u32,
+    m: u32,
+    a: [I16F16; 6],
+) -> ModeOutput<I16F16> {
+    let st = &mut ST_X.assume_init_mut()[R];
+    let e = EST_X.assume_init_ref()[E].update(
         EST_ST.assume_init_mut(),
         l,
         m.wrapping_neg(),
         st.last_torque(),
     );
     control(
-        MODE_X.assume_init_ref(),
+        &MODE_X.assume_init_ref()[R],
         st,
         e.torque,
         I16F16::from_bits(desired(1) as i32),
@@ -254,9 +315,63 @@ pub unsafe fn step_x(l: u32, m: u32, a: [I16F16; 6]) -> ModeOutput<I16F16> {
     )
 }
 
+/// The stand-alone sample of the active and passive laws: `a` = desired
+/// position, speed, acceleration, measured position, speed, joint torque.
+#[cfg(feature = "variants")]
+#[inline(always)]
+fn sample_of<S: Scalar>(a: [S; 6], td: S) -> ControlInput<S> {
+    ControlInput {
+        desired_position: a[0],
+        desired_velocity: a[1],
+        desired_acceleration: a[2],
+        motor_position: a[3],
+        motor_velocity: a[4],
+        joint_torque: a[5],
+        desired_joint_torque: td,
+        expected_joint_torque: S::ZERO,
+    }
+}
+
+/// The robust adaptive law of eq. (4.19) with its adaptation, alone (the
+/// Stop manager's active law and state).
+#[cfg(feature = "variants")]
+#[inline(always)]
+pub unsafe fn active_f32(a: [f32; 6]) -> ActiveOutput<f32> {
+    let x = sample_of(a, f32::from_bits(desired(0)));
+    MODE_F32.assume_init_ref()[STOP]
+        .active()
+        .update(ACT_F32.assume_init_mut(), &x)
+}
+
+/// As [`active_f32`], I16F16.
+#[cfg(feature = "variants")]
+#[inline(always)]
+pub unsafe fn active_x(a: [I16F16; 6]) -> ActiveOutput<I16F16> {
+    let x = sample_of(a, I16F16::from_bits(desired(1) as i32));
+    MODE_X.assume_init_ref()[STOP]
+        .active()
+        .update(ACT_X.assume_init_mut(), &x)
+}
+
+/// The passive law of eq. (4.32) alone (Table 4.1, gain 2000).
+#[cfg(feature = "variants")]
+#[inline(always)]
+pub unsafe fn passive_f32(a: [f32; 6]) -> PassiveOutput<f32> {
+    let x = sample_of(a, f32::from_bits(desired(0)));
+    PASSIVE_F32.assume_init_ref().update(&x)
+}
+
+/// As [`passive_f32`], I16F16.
+#[cfg(feature = "variants")]
+#[inline(always)]
+pub unsafe fn passive_x(a: [I16F16; 6]) -> PassiveOutput<I16F16> {
+    let x = sample_of(a, I16F16::from_bits(desired(1) as i32));
+    PASSIVE_X.assume_init_ref().update(&x)
+}
+
 #[inline(always)]
 pub unsafe fn step_libm_f32(l: u32, m: u32, a: [f32; 6]) -> ModeOutput<f32> {
-    let st = ST_F32.assume_init_mut();
+    let st = &mut ST_F32.assume_init_mut()[STOP];
     let e = REF_F32.assume_init_ref().update::<Libm>(
         REF_ST.assume_init_mut(),
         l,
@@ -264,7 +379,7 @@ pub unsafe fn step_libm_f32(l: u32, m: u32, a: [f32; 6]) -> ModeOutput<f32> {
         st.last_torque(),
     );
     control(
-        MODE_F32.assume_init_ref(),
+        &MODE_F32.assume_init_ref()[STOP],
         st,
         e.torque,
         f32::from_bits(desired(0)),
@@ -274,7 +389,7 @@ pub unsafe fn step_libm_f32(l: u32, m: u32, a: [f32; 6]) -> ModeOutput<f32> {
 
 #[inline(always)]
 pub unsafe fn step_cordic_x(l: u32, m: u32, a: [I16F16; 6]) -> ModeOutput<I16F16> {
-    let st = ST_X.assume_init_mut();
+    let st = &mut ST_X.assume_init_mut()[STOP];
     let e = REF_X.assume_init_ref().update::<Cordic>(
         REF_ST.assume_init_mut(),
         l,
@@ -282,7 +397,7 @@ pub unsafe fn step_cordic_x(l: u32, m: u32, a: [I16F16; 6]) -> ModeOutput<I16F16
         st.last_torque(),
     );
     control(
-        MODE_X.assume_init_ref(),
+        &MODE_X.assume_init_ref()[STOP],
         st,
         e.torque,
         I16F16::from_bits(desired(1) as i32),

@@ -145,8 +145,53 @@ entry!(prepare_est(pos_lo: u32, pos_hi: u32, counter: u32) => unsafe { steps::pr
 // `prepare_joint` sets the estimator state and drives the mode state into
 // one of the scenarios of `joint::warm_up`. The reference variants replace
 // the estimator's `sin_cos`, `exp`, `tan` by libm / cordic.
-entry!(joint_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, q: f32, v: f32, te: f32) => unsafe { joint::step_f32(l, m, [qd, vd, ad, q, v, te]) });
-entry!(joint_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, te: I16F16) => unsafe { joint::step_x(l, m, [qd, vd, ad, q, v, te]) });
+entry!(joint_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, q: f32, v: f32, te: f32) => unsafe { joint::step_f32::<{ joint::KE }, { joint::STOP }>(l, m, [qd, vd, ad, q, v, te]) });
+entry!(joint_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, te: I16F16) => unsafe { joint::step_x::<{ joint::KE }, { joint::STOP }>(l, m, [qd, vd, ad, q, v, te]) });
+// The entries below are built only with the `variants` feature, into a
+// second image: each added caller of a library function changes LLVM's
+// inlining decisions, and the image above must stay the firmware a user of
+// the default joint configuration builds. In the second image functions
+// shared by several of these entries are called rather than inlined, so
+// its counts are, if anything, high.
+// The other configurations a user can choose: collision reaction Passive,
+// and no kinematic-error model (same readings, same prepare).
+#[cfg(feature = "variants")]
+entry!(joint_passive_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, q: f32, v: f32, te: f32) => unsafe { joint::step_f32::<{ joint::KE }, { joint::PASSIVE }>(l, m, [qd, vd, ad, q, v, te]) });
+#[cfg(feature = "variants")]
+entry!(joint_noke_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, q: f32, v: f32, te: f32) => unsafe { joint::step_f32::<{ joint::NO_KE }, { joint::STOP }>(l, m, [qd, vd, ad, q, v, te]) });
+#[cfg(feature = "variants")]
+entry!(joint_passive_noke_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, q: f32, v: f32, te: f32) => unsafe { joint::step_f32::<{ joint::NO_KE }, { joint::PASSIVE }>(l, m, [qd, vd, ad, q, v, te]) });
+#[cfg(feature = "variants")]
+entry!(joint_passive_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, te: I16F16) => unsafe { joint::step_x::<{ joint::KE }, { joint::PASSIVE }>(l, m, [qd, vd, ad, q, v, te]) });
+#[cfg(feature = "variants")]
+entry!(joint_noke_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, te: I16F16) => unsafe { joint::step_x::<{ joint::NO_KE }, { joint::STOP }>(l, m, [qd, vd, ad, q, v, te]) });
+#[cfg(feature = "variants")]
+entry!(joint_passive_noke_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, te: I16F16) => unsafe { joint::step_x::<{ joint::NO_KE }, { joint::PASSIVE }>(l, m, [qd, vd, ad, q, v, te]) });
+
+// The stand-alone laws (arguments: desired position, speed, acceleration,
+// measured position, speed, joint torque; `prepare_joint` sets the active
+// law's state): the robust adaptive law with adaptation, eq. (4.19), and
+// the passive law, eq. (4.32).
+#[cfg(feature = "variants")]
+entry!(active_f32(qd: f32, vd: f32, ad: f32, q: f32, v: f32, tau: f32) => unsafe { joint::active_f32([qd, vd, ad, q, v, tau]) });
+#[cfg(feature = "variants")]
+entry!(active_i16f16(qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, tau: I16F16) => unsafe { joint::active_x([qd, vd, ad, q, v, tau]) });
+#[cfg(feature = "variants")]
+entry!(passive_f32(qd: f32, vd: f32, ad: f32, q: f32, v: f32, tau: f32) => unsafe { joint::passive_f32([qd, vd, ad, q, v, tau]) });
+#[cfg(feature = "variants")]
+entry!(passive_i16f16(qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, tau: I16F16) => unsafe { joint::passive_x([qd, vd, ad, q, v, tau]) });
+
+// The estimate from angles (`update_radians`, eq. 2.13 from radians; with
+// the kinematic-error model): link angle, motor angle (stored angle units),
+// motor torque.
+#[cfg(feature = "variants")]
+entry!(est_radians_f32(l: f32, m: f32, t: f32) => unsafe { steps::EST_F32.assume_init_ref().update_radians(l, m, t) });
+#[cfg(feature = "variants")]
+entry!(est_radians_i16f16(l: I16F16, m: I16F16, t: I16F16) => unsafe { steps::EST_X.assume_init_ref().update_radians(l, m, t) });
+
+// Hook for the wrist step (ch. 5-6): one `entry!` line per backend here,
+// its configuration built in `init`, and a `Step` row in count.py's
+// `wrist_steps()`.
 entry!(joint_libm_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, q: f32, v: f32, te: f32) => unsafe { joint::step_libm_f32(l, m, [qd, vd, ad, q, v, te]) });
 entry!(joint_cordic_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, te: I16F16) => unsafe { joint::step_cordic_x(l, m, [qd, vd, ad, q, v, te]) });
 entry!(prepare_joint(pos_lo: u32, pos_hi: u32, counter: u32, scenario: u32, seed: u32) => unsafe { joint::prepare(pos_lo, pos_hi, counter, scenario, seed) });
@@ -161,14 +206,20 @@ mod steps {
 
     /// SHD-17-100 with the Table 3.2 kinematic error, a 17-bit link encoder
     /// and a 2000-count motor encoder, ±60 N·m output limit.
-    pub fn params() -> TorqueEstimatorParams {
+    /// `with_kinematic_error: false`: the same drive and encoders without
+    /// the model.
+    pub fn params(with_kinematic_error: bool) -> TorqueEstimatorParams {
         let drive = match CatalogueData::SHD_17_100.identify() {
             Ok(d) => d,
             Err(_) => crate::firmware_panic(),
         };
         match TorqueEstimatorParams::try_new(
             drive,
-            Some(KinematicErrorModel::table_3_2()),
+            if with_kinematic_error {
+                Some(KinematicErrorModel::table_3_2())
+            } else {
+                None
+            },
             1 << 17,
             2000,
             60.0,
@@ -188,12 +239,12 @@ mod steps {
     pub static mut REF_ST: MaybeUninit<RefState> = MaybeUninit::uninit();
 
     pub unsafe fn init() {
-        let p = params();
+        let p = params(true);
         EST_F32.write(TorqueEstimatorConfig::new(&p));
         EST_X.write(TorqueEstimatorConfig::new(&p));
         REF_F32.write(RefEstimator::new(&p));
         REF_X.write(RefEstimator::new(&p));
-        crate::joint::init(&p);
+        crate::joint::init(&p, &params(false));
     }
 
     /// Motor position (i64 from two words) and counter for every estimator
@@ -384,34 +435,103 @@ mod target {
         };
     }
 
-    type Case = (extern "C" fn(), [u32; 3]);
+    type Case = (extern "C" fn(), [u32; 8]);
+    /// Pads an argument list to the eight words of a case.
+    const fn w<const N: usize>(a: [u32; N]) -> [u32; 8] {
+        let mut out = [0; 8];
+        let mut i = 0;
+        while i < N {
+            out[i] = a[i];
+            i += 1;
+        }
+        out
+    }
     /// IT-heavy f32 kernels (M4F) and the I16F16 kernels (M0+) at inputs
-    /// that take different branches.
+    /// that take different branches, then the joint step on both cores
+    /// (its state set by `prepare_joint`, scenario 1 with only the
+    /// backend's Stop state warmed up; an in-range reading and a link count
+    /// out of range with a counter jump).
     #[cfg(target_abi = "eabihf")]
-    static CROSSCHECK: [Case; 12] = [
-        (k_atan_f32, [0x3f00_0000, 0, 0]),
-        (k_atan_f32, [0xc2c8_0000, 0, 0]),
-        (k_tan_f32, [0x3fc9_0fda, 0, 0]),
-        (k_tan_f32, [0xbf40_0000, 0, 0]),
-        (k_sin_cos_f32, [0x4479_8000, 0, 0]),
-        (k_atan2_f32, [0xbf80_0000, 0xc000_0000, 0]),
-        (k_exp_f32, [0xc2c0_0000, 0, 0]),
-        (k_sqrt_f32, [0x0000_0003, 0, 0]),
-        (k_acos_f32, [0xbf7f_0000, 0, 0]),
-        (libm_tan_f32, [0x4479_8000, 0, 0]),
-        (est_f32, [1000, 5, 0x3e4c_cccd]),
-        (est_f32, [0xffff_ffff, 0x7fff_ffff, 0xbf80_0000]),
+    static CROSSCHECK: [Case; 16] = [
+        (k_atan_f32, w([0x3f00_0000, 0, 0])),
+        (k_atan_f32, w([0xc2c8_0000, 0, 0])),
+        (k_tan_f32, w([0x3fc9_0fda, 0, 0])),
+        (k_tan_f32, w([0xbf40_0000, 0, 0])),
+        (k_sin_cos_f32, w([0x4479_8000, 0, 0])),
+        (k_atan2_f32, w([0xbf80_0000, 0xc000_0000, 0])),
+        (k_exp_f32, w([0xc2c0_0000, 0, 0])),
+        (k_sqrt_f32, w([0x0000_0003, 0, 0])),
+        (k_acos_f32, w([0xbf7f_0000, 0, 0])),
+        (libm_tan_f32, w([0x4479_8000, 0, 0])),
+        (est_f32, w([1000, 5, 0x3e4c_cccd])),
+        (est_f32, w([0xffff_ffff, 0x7fff_ffff, 0xbf80_0000])),
+        (prepare_joint, w([0xffff_fc18, 0xffff_ffff, 5, 0x101, 7])),
+        (
+            joint_f32,
+            [
+                1000,
+                5,
+                0x3f80_0000,
+                0x4000_0000,
+                0x42c8_0000,
+                0x3f80_20c5,
+                0x4020_0000,
+                0x3f00_0000,
+            ],
+        ),
+        (prepare_joint, w([0x3b9a_c9ff, 0, 0x1234_5678, 0x103, 99])),
+        (
+            joint_f32,
+            [
+                0xffff_ffff,
+                0x7fff_ffff,
+                0xc1f0_0000,
+                0x4248_0000,
+                0x46ea_6000,
+                0xc1ef_ffff,
+                0x4120_0000,
+                0xc0a0_0000,
+            ],
+        ),
     ];
     #[cfg(not(target_abi = "eabihf"))]
-    static CROSSCHECK: [Case; 8] = [
-        (k_atan_i16f16, [0x0001_8000, 0, 0]),
-        (k_tan_i16f16, [0x0001_9000, 0, 0]),
-        (k_sin_cos_i16f16, [0x0100_0000, 0, 0]),
-        (k_atan2_i16f16, [0xffff_0000, 0xfffe_0000, 0]),
-        (k_exp_i16f16, [0xfffc_0000, 0, 0]),
-        (k_sqrt_i16f16, [0x0000_0003, 0, 0]),
-        (est_i16f16, [1000, 5, 0x0000_c000]),
-        (est_i16f16, [0xffff_ffff, 0x7fff_ffff, 0xfc18_0000]),
+    static CROSSCHECK: [Case; 12] = [
+        (k_atan_i16f16, w([0x0001_8000, 0, 0])),
+        (k_tan_i16f16, w([0x0001_9000, 0, 0])),
+        (k_sin_cos_i16f16, w([0x0100_0000, 0, 0])),
+        (k_atan2_i16f16, w([0xffff_0000, 0xfffe_0000, 0])),
+        (k_exp_i16f16, w([0xfffc_0000, 0, 0])),
+        (k_sqrt_i16f16, w([0x0000_0003, 0, 0])),
+        (est_i16f16, w([1000, 5, 0x0000_c000])),
+        (est_i16f16, w([0xffff_ffff, 0x7fff_ffff, 0xfc18_0000])),
+        (prepare_joint, w([0xffff_fc18, 0xffff_ffff, 5, 0x401, 7])),
+        (
+            joint_i16f16,
+            [
+                1000,
+                5,
+                0x0001_0000,
+                0x0002_0000,
+                0x0064_0000,
+                0x0001_0042,
+                0x0002_8000,
+                0x0000_8000,
+            ],
+        ),
+        (prepare_joint, w([0x3b9a_c9ff, 0, 0x1234_5678, 0x403, 99])),
+        (
+            joint_i16f16,
+            [
+                0xffff_ffff,
+                0x7fff_ffff,
+                0xffe2_0000,
+                0x0032_0000,
+                0x7530_0000,
+                0xffe2_0001,
+                0x000a_0000,
+                0xfffb_0000,
+            ],
+        ),
     ];
 
     /// Semihosting `SYS_EXIT` (`ADP_Stopped_ApplicationExit` for status 0).

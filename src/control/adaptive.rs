@@ -41,7 +41,7 @@
 //! prepared [`Coef`] (on fixed point, a factor whose value the backend
 //! holds exactly uses the backend's own, bit-identical product).
 
-use super::{clamp_or_keep, clamp_or_keep_symmetric, ControlInput};
+use super::{clamp_or_keep_symmetric, ControlInput};
 use crate::error::{non_negative, positive, ParamError};
 use crate::friction::{
     mul_unit, parameter_scales, regressor_scales, FrictionBounds, FrictionConfig, FrictionParams,
@@ -340,7 +340,8 @@ pub struct RobustAdaptiveConfig<S> {
     /// `ρ_Fj / ε_Fj` from stored `Y_j` to stored motor torque per stored
     /// `r Y_j`: the parametric robust term inside its layer.
     rho_slope: [Coef; 4],
-    /// `μ_j T` from stored `r Y_j` to stored `F_j`.
+    /// `−μ_j T` from stored `r Y_j` to stored `F_j` (the step
+    /// `F̂_j ← F̂_j − μ_j T r Y_j`).
     adapt: [Coef; 4],
     lower: [S; 4],
     upper: [S; 4],
@@ -351,24 +352,60 @@ pub struct RobustAdaptiveConfig<S> {
 }
 
 /// The adapted state: `F̂^c` (stored parameter units, see
-/// [`crate::friction`]) and the integral torque `z = K_I ∫ r dt` (stored
-/// motor-torque units).
+/// [`crate::friction`]) with its sub-resolution residual, and the integral
+/// torque `z = K_I ∫ r dt` (stored motor-torque units).
 ///
-/// *Fixed-point resolution of the adaptation.* One step changes `F̂_j` by
-/// `μ_j T r Y_j` in stored units, and a change below half an LSB (2⁻¹⁷) is
-/// lost. With Table 4.1's `μ = 0.1`, `T = 4 ms` on `I16F16` this is
-/// `|r Y_j| ≥ 1.9e-5` (SI) for `b̂, f̂_c, f̂_s` — always met outside
-/// standstill — but `|r Y_4| ≥ 0.019 N·m·rad³/s³` for the Stribeck shape
-/// `f̂_τ`, while `|Y_4| ≤ f̂_s/(e f̂_τ)` (2.2e-3 N·m·rad²/s² for the example
-/// estimate): `f̂_τ` adapts only for `|r| ≳ 9 rad/s`, i.e. it is
-/// effectively fixed at its initial value on `I16F16`. Float backends adapt
-/// all four.
+/// # Resolution of the slow integrators
+/// One step changes `F̂_j` by `μ_j T r Y_j`. Rounded to the backend at every
+/// sample, a step below half an LSB would be lost: on `I16F16` with Table
+/// 4.1's `μ = 0.1`, `T = 4 ms` that is `|r Y_4| < 0.019 N·m·rad³/s³` for
+/// the Stribeck shape `f̂_τ` (stored in s²/rad², step `4e-7·r·Y_4` in
+/// stored units with `Y_4` in mN·m·rad²/s²), while `|Y_4| ≤ f̂_s/(e f̂_τ)`
+/// (`≤ 4.4e-3 N·m·rad²/s²` in the Table 4.1 box at `f̂_τ ≥ 1`): `f̂_τ` would
+/// only move for `|r| ≳ 4 rad/s`. The estimates are therefore advanced by
+/// [`Scalar::integrate`], which carries what rounding leaves in
+/// [`friction_residual`](Self::friction_residual): on `I16F16` a Q16.48
+/// accumulator (resolution `2⁻⁴⁸ ≈ 3.6e-15` stored units), so every
+/// non-zero `r Y_j` product moves it (the smallest, one LSB of
+/// `r Y_4` times `4e-7`, is `6e-12`, `1.7e3` accumulator steps). The same
+/// holds at Table 6.1's gains (`μ = 0.1`, `T = 4 ms`: the same
+/// coefficients). `f64` keeps its value as the accumulator (a step is
+/// lost only below `2⁻⁵³` of the value: `rY_4 ≲ 1e-12` at `f̂_τ ≈ 1`).
+/// A plain `f32` sum would lose every step below `2⁻²⁴` of the value
+/// (`|r Y_4| < 1.5e-4` at `f̂_τ ≈ 1`, `< 6e-4` at `f̂_τ = 4`): in the
+/// test scenario a plain `f32` `f̂_τ` started at 4 never moves
+/// (`plain_f32_sum_loses_the_stribeck_shape_adaptation`), so `f32` carries
+/// the rounding error of each sum as its residual (a compensated sum).
+/// All three backends are compared against `f64` within a derived bound by
+/// `adaptation_trajectories_agree_across_backends`.
+///
+/// The integral `z` is not a slow integrator in this sense: its step
+/// `K_I T r` is `40·r` stored (Table 4.1 and 6.1: `K_I = 10`, `T = 4 ms`,
+/// mN·m per rad/s), so the smallest non-zero `r` (one LSB) moves `z` by 40
+/// LSB: nothing is lost (checked by `slow_integrators_move_at_table_gains`).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RobustAdaptiveState<S> {
+pub struct RobustAdaptiveState<S: Scalar> {
     /// `F̂^c = [b̂, f̂_c, f̂_s, f̂_τ]`, stored units; always inside the box.
     pub friction: [S; 4],
+    /// What rounding `F̂^c` to the backend left over
+    /// ([`Scalar::Residual`]); the default after setting `friction` by
+    /// hand.
+    pub friction_residual: [S::Residual; 4],
     /// `z = K_I ∫ r dt`, stored motor torque; `|z| ≤ integral_limit`.
     pub integral: S,
+}
+
+impl<S: Scalar> RobustAdaptiveState<S> {
+    /// A state with estimates `friction` (stored units, inside the
+    /// projection box) and integral `integral` (stored motor torque), and
+    /// no residual.
+    pub fn new(friction: [S; 4], integral: S) -> Self {
+        RobustAdaptiveState {
+            friction,
+            friction_residual: Default::default(),
+            integral,
+        }
+    }
 }
 
 /// One step of the active law.
@@ -419,7 +456,7 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
             eps_f[j] = S::from_f64(d.eps_f[j] * ry_scale);
             rho_param[j] = Coef::new(rho[j] * mt / ys[j]);
             rho_slope[j] = Coef::new(rho[j] * mt / ys[j] / eps_f[j].to_f64());
-            adapt[j] = Coef::new(d.adaptation_gain[j] * d.sample_period * ps[j] / ry_scale);
+            adapt[j] = Coef::new(-d.adaptation_gain[j] * d.sample_period * ps[j] / ry_scale);
         }
         let lo = d.friction_bounds.min();
         let hi = d.friction_bounds.max();
@@ -463,10 +500,7 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
 
     /// The initial state: `F̂^c(0)` of the design, `z = 0`.
     pub fn initial_state(&self) -> RobustAdaptiveState<S> {
-        RobustAdaptiveState {
-            friction: self.initial,
-            integral: S::ZERO,
-        }
+        RobustAdaptiveState::new(self.initial, S::ZERO)
     }
 
     /// The validated parameters this configuration was built from.
@@ -637,8 +671,13 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
             st.integral = clamp_or_keep_symmetric(z, st.integral, self.integral_limit);
         }
         for j in 0..4 {
-            let f = st.friction[j].sub(t.ry[j].mul_coef(&self.adapt[j]));
-            st.friction[j] = clamp_or_keep(f, st.friction[j], self.lower[j], self.upper[j]);
+            (st.friction[j], st.friction_residual[j]) = st.friction[j].integrate(
+                st.friction_residual[j],
+                t.ry[j],
+                &self.adapt[j],
+                self.lower[j],
+                self.upper[j],
+            );
         }
     }
 

@@ -33,8 +33,12 @@ pub use adaptive::{
     RobustAdaptiveState, UncertaintyBounds,
 };
 pub use bound::UltimateBound;
-pub use mode::{JointMode, ModeConfig, ModeOutput, ModeParams, ModeSettings, ModeState};
-pub use passive::{PassiveConfig, PassiveOutput, PassiveParams};
+pub use mode::{
+    JointMode, ModeConfig, ModeOutput, ModeParams, ModeSettings, ModeState, ReleaseRule,
+};
+pub use passive::{
+    HandContact, PassiveCharacteristics, PassiveConfig, PassiveOutput, PassiveParams, Pole,
+};
 
 /// One control sample of one joint, in stored units of `S::UNITS`.
 ///
@@ -124,6 +128,11 @@ fn keep_number<S: Scalar>(new: S, old: S) -> S {
 /// `keep_number(new, old).clamp(lo, hi)` (test below), with two
 /// comparisons on the common path instead of three (a NaN fails both
 /// `new >= lo` and `new < lo`).
+///
+/// Kept as the reference of the symmetric form (the adapted estimates are
+/// clamped by [`Scalar::integrate`], whose float form is this function of
+/// `self + x·c`, checked in `float_integrate_is_clamp_or_keep`).
+#[cfg(test)]
 #[inline]
 pub(crate) fn clamp_or_keep<S: Scalar>(new: S, old: S, lo: S, hi: S) -> S {
     if new >= lo {
@@ -253,6 +262,48 @@ mod tests {
                 ] {
                     let want = Scalar::clamp(keep_number(new, old), lo, hi);
                     assert_eq!(clamp_or_keep(new, old, lo, hi), want);
+                }
+            }
+        }
+    }
+
+    /// The float form of `Scalar::integrate` is `clamp_or_keep` of the
+    /// sum (with a unit coefficient the step is `x` exactly), with residual
+    /// 0 whenever the sum was clamped or NaN, on the special values (as
+    /// numbers: `−0.0` may come out as `+0.0`).
+    #[test]
+    fn float_integrate_is_clamp_or_keep() {
+        let vals = [
+            f32::NAN,
+            f32::NEG_INFINITY,
+            -3.0,
+            -1.0,
+            -0.5,
+            -0.0,
+            0.0,
+            0.5,
+            1.0,
+            3.0,
+            f32::INFINITY,
+        ];
+        let one = crate::scalar::Coef::new(1.0);
+        for &x in &vals {
+            for &old in &vals[1..] {
+                for (lo, hi) in [(-1.0f32, 1.0f32), (0.0, 0.0), (-0.0, 2.0), (0.5, 1.0)] {
+                    let old = Scalar::clamp(old, lo, hi);
+                    let want = clamp_or_keep(old + x, old, lo, hi);
+                    let (got, res) = old.integrate(0.0, x, &one, lo, hi);
+                    // Equal as numbers (the residual's `+0.0` may turn a
+                    // `−0.0` sum into `+0.0`).
+                    assert!(got == want, "{x} {old} {lo} {hi}: {got} vs {want}");
+                    if !(old + x >= lo && old + x <= hi) {
+                        assert_eq!(res, 0.0);
+                    }
+                    let (got64, ()) =
+                        (old as f64).integrate((), x as f64, &one, lo as f64, hi as f64);
+                    let want64 =
+                        clamp_or_keep(old as f64 + x as f64, old as f64, lo as f64, hi as f64);
+                    assert_eq!(got64.to_bits(), want64.to_bits());
                 }
             }
         }

@@ -14,23 +14,40 @@
 //!
 //! # Switching rules
 //! With the interaction torque `τ_i = τ̂_t − τ_expected` (link side):
-//! Active → Passive when `|τ_i| > enter` and Passive → Active when
-//! `|τ_i| < exit` (`exit < enter`: hysteresis), each only after the
-//! condition held for `debounce` consecutive samples and the current mode
-//! lasted at least `dwell` samples. A collision onset switches at once to
-//! its reaction's mode and latches it until
-//! [`ModeConfig::acknowledge_collision`]; after that, Hold returns to
-//! Active (debounced) and Passive follows the torque rules.
+//! * Active → Passive when `|τ_i| > enter` for `debounce` consecutive
+//!   samples;
+//! * Passive → Active when `|τ_i| < exit` (`exit < enter`: hysteresis)
+//!   **and** the motor is at rest, `|q̇_m| ≤ v_rest`, for `n_release ≥
+//!   debounce` consecutive samples (the [`ReleaseRule`]);
 //!
-//! **Limitation.** The Passive → Active rule looks at the interaction torque
-//! only, and a joint being guided by hand in passive mode has a small
-//! interaction torque by design (that is what eq. 4.32 is for). In the
-//! simulated guidance scenario (`sim::closed_loop::interaction_scenario`) an
-//! `exit` of 2 N·m gave 38 switches in 2 s and 1 N·m still 4 near the end of
-//! the guidance. Choose `exit` well below the torque a guiding hand applies
-//! and a `dwell` longer than a pause in the guidance; a rule that also
-//! requires the joint to be at rest would tell a released joint from a
-//! guided one.
+//! each only once the current mode lasted at least `dwell` samples. A
+//! collision onset switches at once to its reaction's mode and latches it
+//! until [`ModeConfig::acknowledge_collision`]; after that, Hold returns to
+//! Active (debounced) and Passive follows the rules above.
+//!
+//! *Why the release rule.* Under eq. (4.32)–(4.33) the passive joint is a
+//! free body of apparent inertia `K_p⁻¹` driven by the interaction torque:
+//! a hand that guides it needs only the small torque that accelerates that
+//! inertia, so a small `|τ_i|` does not tell a released joint from a
+//! guided one. The torque-only rule then returns to Active in the middle of
+//! the guidance; Active starts rejoining the desired trajectory, the hand
+//! resists, `|τ_i|` exceeds `enter`, and the joint cycles. In the simulated
+//! guidance scenario (`sim::closed_loop::interaction_scenario`, exit 2 N·m)
+//! the torque-only rule gave 36 switches between 0.88 s and 3.0 s (an
+//! earlier build 38). What a guided joint does and a released one does not
+//! is *move*: requiring `|q̇_m| ≤ v_rest` blocks the return while the hand
+//! leads, and holding that for longer than the hand's pauses blocks it
+//! while the hand holds still (the same scenario with the rule of
+//! `ModeScenarioConfig::interaction`: 2 switches; test
+//! `hand_guidance_does_not_cycle_the_modes`). `v_rest` must exceed the
+//! speed jitter of the released passive joint (the estimator's error acts
+//! on the small apparent inertia: up to 5.1 rad/s motor side in that
+//! scenario; see [`super::passive`] for the loop's characteristics) and
+//! stay below the guiding speeds; `exit` must exceed the estimator's error
+//! (Assumption 5), or the hold is interrupted and the joint stays Passive.
+//! [`ModeParams::try_new`] installs the torque-only rule
+//! ([`ReleaseRule::torque_only`]) so that existing configurations keep
+//! their behaviour; [`ModeParams::with_release`] sets another.
 //!
 //! # Bumpless transfer, and the bound on the torque jump
 //! `τ_before` is the previous command (what the motor is being driven
@@ -62,6 +79,20 @@
 //!
 //! [`ModeConfig::switch_jump_bound`] returns this bound; the property test
 //! `switching_is_bumpless` checks it over random states.
+//!
+//! # Fixed-point resolution of the manager's slow states
+//! The adapted friction estimates carry a sub-LSB residual
+//! ([`crate::scalar::Scalar::integrate`]); the manager's own states do not,
+//! and on `I16F16` they stop where their increments round to zero:
+//! * the rejoin offset when `|ȯ T|` and `|acc T|` are both below ½ LSB, so
+//!   `|o| < (1 + 2ω) 2⁻¹⁷/(ω² T)` rad (motor side): 4.0e-4 rad at
+//!   `ω = 10 rad/s`, 5.7e-3 rad at `ω = 1 rad/s` with `T = 4 ms` (below
+//!   one count of the thesis's 0.01° link encoder at the link for `N =
+//!   100`; the bound grows as `1/ω²`, so choose `ω` accordingly). Test
+//!   `rejoin_offset_stall_is_within_its_bound`.
+//! * the bias when `|b| T/T_b < ½ LSB`, i.e. `|b| < T_b/(2T)` LSB of motor
+//!   torque: 12.5 LSB = 1.9e-7 N·m for `T_b = 0.1 s` at 4 ms, a
+//!   millionth of the 0.188 N·m limit.
 //!
 //! The measured position is never overwritten: the manager's position
 //! state (offset or hold point) is defined relative to the measured
@@ -129,6 +160,19 @@ pub struct ModeParams {
     rejoin_bandwidth: f64,
     bias_time_constant: f64,
     collision: Option<CollisionParams>,
+    /// The Passive → Active release rule ([`ModeParams::with_release`]).
+    release: ReleaseRule,
+}
+
+/// The Passive → Active release rule: besides `|τ_i| < exit`, the motor
+/// speed must be at rest, `|q̇_m| ≤ speed`, and both must hold for
+/// `samples` consecutive samples (at least the manager's `debounce`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ReleaseRule {
+    /// Motor-side rest speed, rad/s (`> 0`).
+    pub speed: f64,
+    /// Consecutive samples the release condition must hold (`≥ debounce`).
+    pub samples: u16,
 }
 
 /// The settings of the mode manager by name, for [`ModeParams::try_new`]:
@@ -277,6 +321,7 @@ impl ModeParams {
                 max: f64::INFINITY,
             });
         }
+        let release = ReleaseRule::torque_only(debounce);
         Ok(ModeParams {
             active,
             passive,
@@ -287,6 +332,7 @@ impl ModeParams {
             rejoin_bandwidth,
             bias_time_constant,
             collision,
+            release,
         })
     }
 
@@ -302,6 +348,51 @@ impl ModeParams {
             rejoin_bandwidth: self.rejoin_bandwidth,
             bias_time_constant: self.bias_time_constant,
             collision: self.collision,
+        }
+    }
+
+    /// Replace the Passive → Active release rule (module docs,
+    /// "Switching rules"). Validate: `speed > 0` rad/s (motor side, at
+    /// most `30 000` so that it is representable on every backend) and
+    /// `samples ≥ debounce`.
+    pub fn with_release(mut self, rule: ReleaseRule) -> Result<Self, ParamError> {
+        let v = positive("release_speed", rule.speed)?;
+        if v > 30_000.0 {
+            return Err(ParamError::OutOfRange {
+                name: "release_speed",
+                value: v,
+                min: 0.0,
+                max: 30_000.0,
+            });
+        }
+        if rule.samples < self.debounce {
+            return Err(ParamError::OutOfRange {
+                name: "release_samples",
+                value: rule.samples as f64,
+                min: self.debounce as f64,
+                max: u16::MAX as f64,
+            });
+        }
+        self.release = rule;
+        Ok(self)
+    }
+
+    /// The Passive → Active release rule in force.
+    pub fn release(&self) -> ReleaseRule {
+        self.release
+    }
+}
+
+impl ReleaseRule {
+    /// The rule [`ModeParams::try_new`] installs: the torque-only rule
+    /// (no speed condition — the largest admissible rest speed, 30 000
+    /// rad/s — and the manager's `debounce`). It keeps the behaviour of
+    /// a manager built without a release rule; a joint that may be guided
+    /// by hand needs [`ModeParams::with_release`] (module docs).
+    pub fn torque_only(debounce: u16) -> Self {
+        ReleaseRule {
+            speed: 30_000.0,
+            samples: debounce,
         }
     }
 }
@@ -321,6 +412,10 @@ pub struct ModeConfig<S> {
     exit_passive: S,
     debounce: u16,
     dwell: u16,
+    /// Passive → Active: motor rest speed (stored speed) and the samples
+    /// the release condition must hold.
+    release_speed: S,
+    release_samples: u16,
     /// `2ω`, speed → speed/s.
     two_omega: Gain<S>,
     /// `ω²`, angle → speed/s.
@@ -336,7 +431,7 @@ pub struct ModeConfig<S> {
 
 /// The manager's state.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ModeState<S> {
+pub struct ModeState<S: Scalar> {
     mode: JointMode,
     active: RobustAdaptiveState<S>,
     offset: S,
@@ -419,6 +514,8 @@ impl<S: Scalar> ModeConfig<S> {
             exit_passive: S::from_f64(p.exit_passive * u.link_torque),
             debounce: p.debounce,
             dwell: p.dwell,
+            release_speed: S::from_f64(p.release.speed * u.speed),
+            release_samples: p.release.samples,
             two_omega: Gain::new(2.0 * w),
             omega_sq: Gain::new(w * w * u.speed / u.angle),
             step_rate: Coef::new(t),
@@ -568,7 +665,7 @@ impl<S: Scalar> ModeConfig<S> {
     }
 
     /// The mode the rules ask for at this sample (before debounce).
-    fn wanted(&self, st: &ModeState<S>, interaction: S) -> JointMode {
+    fn wanted(&self, st: &ModeState<S>, interaction: S, speed: S) -> JointMode {
         let mag = interaction.abs();
         match st.mode {
             JointMode::Active => {
@@ -579,7 +676,7 @@ impl<S: Scalar> ModeConfig<S> {
                 }
             }
             JointMode::Passive => {
-                if !st.latched && mag < self.exit_passive {
+                if !st.latched && mag < self.exit_passive && speed.abs() <= self.release_speed {
                     JointMode::Active
                 } else {
                     JointMode::Passive
@@ -630,7 +727,7 @@ impl<S: Scalar> ModeConfig<S> {
                 reference_position: x.motor_position,
             };
         }
-        let mut target = self.wanted(st, interaction);
+        let mut target = self.wanted(st, interaction, x.motor_velocity);
         let mut immediate = false;
         if let Some(c) = &self.collision {
             let o = c.update(&mut st.collision, x.joint_torque, x.expected_joint_torque);
@@ -649,7 +746,13 @@ impl<S: Scalar> ModeConfig<S> {
         let mut switched = false;
         if target != st.mode {
             st.run = st.run.saturating_add(1);
-            if immediate || (st.run >= self.debounce && st.in_mode > self.dwell) {
+            // Passive → Active waits for the release rule's hold.
+            let needed = if st.mode == JointMode::Passive {
+                self.release_samples
+            } else {
+                self.debounce
+            };
+            if immediate || (st.run >= needed && st.in_mode > self.dwell) {
                 self.seed(st, target, x);
                 switched = true;
             }

@@ -142,6 +142,307 @@ impl PassiveParams {
     }
 }
 
+/// A hand (or any spring–damper environment) holding the link of a
+/// passive joint, link side: `τ_h = −K_h (q_l − q_h) − B_h (q̇_l − q̇_h)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HandContact {
+    /// Stiffness `K_h ≥ 0`, N·m/rad.
+    pub stiffness: f64,
+    /// Damping `B_h ≥ 0`, N·m·s/rad.
+    pub damping: f64,
+    /// Link inertia `I_l ≥ 0` about the joint axis, kg·m².
+    pub link_inertia: f64,
+}
+
+/// A complex number `re + i·im` (a pole).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pole {
+    /// Real part (1/s for a continuous pole; dimensionless for a discrete
+    /// one).
+    pub re: f64,
+    /// Imaginary part, same unit.
+    pub im: f64,
+}
+
+impl Pole {
+    /// `|p|`.
+    pub fn magnitude(&self) -> f64 {
+        libm::hypot(self.re, self.im)
+    }
+}
+
+/// The passive joint of eq. (4.32)–(4.33) under a [`HandContact`]: what a
+/// user tuning `K_p` feels. From [`PassiveParams::characteristics`].
+///
+/// **Continuous model** (exact friction compensation, `τ̂_t = τ_t`, rigid
+/// transmission, the rotor inertia equal to its estimate `Î_m`):
+/// eq. (4.2) with (4.32) gives `τ_t = −(N/K_p) q̈_m` (errata E4.1), the
+/// link `I_l q̈_l = τ_t + τ_h` and `q_m = N q_l`, so
+///
+/// $$ J \ddot q_l + B_h \dot q_l + K_h q_l = K_h q_h + B_h \dot q_h,
+///    \qquad J = I_l + N^2/K_p, $$
+///
+/// with `ω_n = √(K_h/J)`, `ζ = B_h/(2√(K_h J))` and poles
+/// `s = (−B_h ± √(B_h² − 4 J K_h))/(2J)`.
+///
+/// **Sampled model** (period `T`): the law is evaluated at `t_k` on the
+/// joint torque measured just before the new command is applied, and held
+/// (zero-order hold). With `J₀ = I_l + N² I_m` and the link-side motor
+/// torque `u = N τ_m`, the plant between samples is
+/// `J₀ q̈_l = u_{k} − K_h q_l − B_h q̇_l`, the measured torque
+/// `τ_t,k = (I_l u_{k−1} + N² I_m (K_h q_k + B_h q̇_k))/J₀` (eliminating
+/// `q̈` from the motor and link equations) and the law
+/// `u_k = (1 − Î_m K_p) τ_t,k`. On the state `(q_k, q̇_k, u_{k−1})` this is
+/// `z_{k+1} = M z_k` with the `3×3` matrix `M` built from the exact
+/// discretization `(Φ, Γ)` of the plant; the discrete poles are the
+/// eigenvalues of `M`. As `T → 0` two of them tend to `e^{sT}` of the
+/// continuous poles and the third (the torque loop) to
+/// `(1 − Î_m K_p) I_l/J₀`; the loop is unstable when a pole leaves the unit
+/// circle, which happens for large `K_p` (`|1 − Î_m K_p| I_l/J₀ > 1`, at
+/// any period: on the thesis joint with its bare link, `Î_m K_p > 4.64`,
+/// test `sampled_torque_loop_limits_the_gain`) or for a stiff hand at a
+/// long period.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PassiveCharacteristics {
+    /// Apparent link-side inertia `J = I_l + N²/K_p`, kg·m².
+    pub apparent_inertia: f64,
+    /// `ω_n = √(K_h/J)`, rad/s (0 without stiffness).
+    pub natural_frequency: f64,
+    /// `ζ = B_h/(2√(K_h J))` (`∞` without stiffness and with damping,
+    /// 0 with neither).
+    pub damping_ratio: f64,
+    /// `−max Re s` over the continuous poles, 1/s: the slowest mode decays
+    /// as `e^{−σ t}` (0 for a free joint, `K_h = 0`).
+    pub decay_rate: f64,
+    /// The continuous poles `s₁, s₂`, 1/s.
+    pub continuous_poles: [Pole; 2],
+    /// The discrete poles of the sampled loop (eigenvalues of `M`).
+    pub discrete_poles: [Pole; 3],
+    /// `max |z|` over the discrete poles: the slowest mode shrinks by this
+    /// factor per sample (stable below 1).
+    pub spectral_radius: f64,
+    /// `−ln(max |z|)/T`, 1/s: the sampled loop's decay rate (negative when
+    /// unstable).
+    pub discrete_decay_rate: f64,
+}
+
+impl PassiveParams {
+    /// The closed-loop characteristics of the passive joint (eq.
+    /// 4.32–4.33) held by `hand`, continuous and sampled at
+    /// `sample_period` (see [`PassiveCharacteristics`] for the models).
+    /// Errors: `K_p = 0` (no finite apparent inertia), a negative or
+    /// non-finite hand parameter, or `T` outside `(0, 1]` s.
+    pub fn characteristics(
+        &self,
+        hand: &HandContact,
+        sample_period: f64,
+    ) -> Result<PassiveCharacteristics, ParamError> {
+        positive("gain", self.gain)?;
+        let kh = crate::error::non_negative("stiffness", hand.stiffness)?;
+        let bh = crate::error::non_negative("damping", hand.damping)?;
+        let il = crate::error::non_negative("link_inertia", hand.link_inertia)?;
+        let t = positive("sample_period", sample_period)?;
+        if t > 1.0 {
+            return Err(ParamError::OutOfRange {
+                name: "sample_period",
+                value: t,
+                min: 0.0,
+                max: 1.0,
+            });
+        }
+        let n = self.ratio;
+        let c = self.rotor_inertia * self.gain;
+        let j = il + n * n / self.gain;
+        let (wn, zeta) = if kh > 0.0 {
+            (libm::sqrt(kh / j), bh / (2.0 * libm::sqrt(kh * j)))
+        } else if bh > 0.0 {
+            (0.0, f64::INFINITY)
+        } else {
+            (0.0, 0.0)
+        };
+        let disc = bh * bh - 4.0 * j * kh;
+        let continuous_poles = if disc >= 0.0 {
+            let r = libm::sqrt(disc);
+            [
+                Pole {
+                    re: (-bh + r) / (2.0 * j),
+                    im: 0.0,
+                },
+                Pole {
+                    re: (-bh - r) / (2.0 * j),
+                    im: 0.0,
+                },
+            ]
+        } else {
+            let w = libm::sqrt(-disc) / (2.0 * j);
+            [
+                Pole {
+                    re: -bh / (2.0 * j),
+                    im: w,
+                },
+                Pole {
+                    re: -bh / (2.0 * j),
+                    im: -w,
+                },
+            ]
+        };
+        let decay_rate = -f64::max(continuous_poles[0].re, continuous_poles[1].re);
+        // Sampled loop.
+        let j0 = il + n * n * self.rotor_inertia;
+        // exp([[A, B], [0, 0]] T) = [[Φ, Γ], [0, 1]].
+        let aug = [
+            [0.0, t, 0.0],
+            [-kh / j0 * t, -bh / j0 * t, t / j0],
+            [0.0, 0.0, 0.0],
+        ];
+        let e = expm3(aug);
+        let g = [
+            (1.0 - c) * n * n * self.rotor_inertia * kh / j0,
+            (1.0 - c) * n * n * self.rotor_inertia * bh / j0,
+            (1.0 - c) * il / j0,
+        ];
+        let mut m = [[0.0; 3]; 3];
+        for r in 0..2 {
+            for col in 0..3 {
+                let phi = if col < 2 { e[r][col] } else { 0.0 };
+                m[r][col] = phi + e[r][2] * g[col];
+            }
+        }
+        m[2] = g;
+        let discrete_poles = eigenvalues3(&m);
+        let spectral_radius = discrete_poles
+            .iter()
+            .map(Pole::magnitude)
+            .fold(0.0, f64::max);
+        Ok(PassiveCharacteristics {
+            apparent_inertia: j,
+            natural_frequency: wn,
+            damping_ratio: zeta,
+            decay_rate,
+            continuous_poles,
+            discrete_poles,
+            spectral_radius,
+            discrete_decay_rate: -libm::log(spectral_radius) / t,
+        })
+    }
+}
+
+/// `e^A` of a 3×3 matrix: scaling (to a norm below ½), a 20-term Taylor
+/// series, and squaring back (relative error near `f64` roundoff for the
+/// norms met here).
+fn expm3(a: [[f64; 3]; 3]) -> [[f64; 3]; 3] {
+    let norm = a
+        .iter()
+        .map(|r| r.iter().map(|v| v.abs()).sum::<f64>())
+        .fold(0.0, f64::max);
+    let mut squarings = 0;
+    let mut scale = 1.0;
+    while norm * scale > 0.5 && squarings < 60 {
+        scale *= 0.5;
+        squarings += 1;
+    }
+    let mut x = [[0.0; 3]; 3];
+    for (xr, ar) in x.iter_mut().zip(a.iter()) {
+        for (xv, av) in xr.iter_mut().zip(ar.iter()) {
+            *xv = av * scale;
+        }
+    }
+    let mut sum = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let mut term = sum;
+    for k in 1..=20 {
+        term = mul3(&term, &x);
+        for row in term.iter_mut() {
+            for v in row.iter_mut() {
+                *v /= k as f64;
+            }
+        }
+        for (sr, tr) in sum.iter_mut().zip(term.iter()) {
+            for (sv, tv) in sr.iter_mut().zip(tr.iter()) {
+                *sv += tv;
+            }
+        }
+    }
+    for _ in 0..squarings {
+        sum = mul3(&sum, &sum);
+    }
+    sum
+}
+
+fn mul3(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
+    let mut c = [[0.0; 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            c[i][j] = (0..3).map(|k| a[i][k] * b[k][j]).sum();
+        }
+    }
+    c
+}
+
+/// Eigenvalues of a 3×3 real matrix: its characteristic polynomial
+/// `λ³ + a λ² + b λ + c`, one real root by bisection on a bracket that
+/// contains every root (Cauchy's bound), polished by Newton steps, then
+/// the remaining quadratic of the deflation.
+fn eigenvalues3(m: &[[f64; 3]; 3]) -> [Pole; 3] {
+    let tr = m[0][0] + m[1][1] + m[2][2];
+    let minors = m[0][0] * m[1][1] - m[0][1] * m[1][0] + m[0][0] * m[2][2] - m[0][2] * m[2][0]
+        + m[1][1] * m[2][2]
+        - m[1][2] * m[2][1];
+    let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+        - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    let (a, b, c) = (-tr, minors, -det);
+    let p = |x: f64| ((x + a) * x + b) * x + c;
+    let bound = 1.0 + a.abs().max(b.abs()).max(c.abs());
+    let (mut lo, mut hi) = (-bound, bound);
+    // p(−bound) < 0 < p(bound): a monic cubic.
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if p(mid) > 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    let mut r = 0.5 * (lo + hi);
+    for _ in 0..3 {
+        let d = (3.0 * r + 2.0 * a) * r + b;
+        if d != 0.0 {
+            let next = r - p(r) / d;
+            if next.is_finite() && p(next).abs() < p(r).abs() {
+                r = next;
+            }
+        }
+    }
+    // λ³ + aλ² + bλ + c = (λ − r)(λ² + (a + r)λ + (b + r(a + r))).
+    let qb = a + r;
+    let qc = b + r * qb;
+    let disc = qb * qb - 4.0 * qc;
+    let (p1, p2) = if disc >= 0.0 {
+        let s = libm::sqrt(disc);
+        // The larger root without cancellation, the other from the product.
+        let big = if qb >= 0.0 {
+            -(qb + s) / 2.0
+        } else {
+            (-qb + s) / 2.0
+        };
+        let small = if big != 0.0 { qc / big } else { 0.0 };
+        (Pole { re: big, im: 0.0 }, Pole { re: small, im: 0.0 })
+    } else {
+        let w = libm::sqrt(-disc) / 2.0;
+        (
+            Pole {
+                re: -qb / 2.0,
+                im: w,
+            },
+            Pole {
+                re: -qb / 2.0,
+                im: -w,
+            },
+        )
+    };
+    [Pole { re: r, im: 0.0 }, p1, p2]
+}
+
 /// Eq. (4.32) quantized for backend `S`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PassiveConfig<S> {
@@ -303,6 +604,246 @@ mod tests {
                 ..
             })
         ));
+    }
+
+    /// Roots of a complex-coefficient-free monic polynomial
+    /// `xⁿ + c[0] xⁿ⁻¹ + … + c[n−1]` by the Durand–Kerner (Weierstrass)
+    /// iteration, as `(re, im)` pairs: an independent root finder.
+    fn durand_kerner(c: &[f64]) -> std::vec::Vec<(f64, f64)> {
+        type C = (f64, f64);
+        let mul = |a: C, b: C| (a.0 * b.0 - a.1 * b.1, a.0 * b.1 + a.1 * b.0);
+        let sub = |a: C, b: C| (a.0 - b.0, a.1 - b.1);
+        let div = |a: C, b: C| {
+            let d = b.0 * b.0 + b.1 * b.1;
+            ((a.0 * b.0 + a.1 * b.1) / d, (a.1 * b.0 - a.0 * b.1) / d)
+        };
+        let n = c.len();
+        let eval = |x: C| {
+            let mut v: C = (1.0, 0.0);
+            for &k in c {
+                v = mul(v, x);
+                v.0 += k;
+            }
+            v
+        };
+        let scale = 1.0 + c.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let mut z: std::vec::Vec<C> = (0..n)
+            .map(|k| {
+                let a = 0.4 + core::f64::consts::TAU * k as f64 / n as f64;
+                (scale * 0.5 * a.cos(), scale * 0.5 * a.sin())
+            })
+            .collect();
+        for _ in 0..2000 {
+            for i in 0..n {
+                let mut den: C = (1.0, 0.0);
+                for j in 0..n {
+                    if j != i {
+                        den = mul(den, sub(z[i], z[j]));
+                    }
+                }
+                z[i] = sub(z[i], div(eval(z[i]), den));
+            }
+        }
+        z
+    }
+
+    /// The distance from each computed pole to the nearest reference root.
+    fn match_roots(poles: &[Pole], roots: &[(f64, f64)]) -> f64 {
+        poles
+            .iter()
+            .map(|p| {
+                roots
+                    .iter()
+                    .map(|r| libm::hypot(p.re - r.0, p.im - r.1))
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .fold(0.0, f64::max)
+    }
+
+    fn frictionless(i_m: f64, kp: f64, n: f64) -> PassiveParams {
+        let f = FrictionParams::try_new(0.0, 0.0, 0.0, 1.0).unwrap();
+        PassiveParams::try_new(i_m, kp, n, 0.01, f, 16.0).unwrap()
+    }
+
+    /// The sampled passive loop simulated from its physical description,
+    /// independently of `characteristics`: the rigid joint
+    /// `J₀ q̈_l = N τ_m + τ_h` (RK4, 2000 steps per period), the joint torque
+    /// measured before each command as `τ_t = I_l q̈_l − τ_h` with the held
+    /// torque, and the command from the library's own law (eq. 4.32,
+    /// `PassiveConfig<f64>`, frictionless). Its one-period map on
+    /// `(q, q̇, N τ_m,prev)` (linear: columns from unit states) has a
+    /// characteristic polynomial whose roots (Durand–Kerner) must be the
+    /// discrete poles. Tolerance 1e-6: RK4's error over a period is
+    /// `≲ 2000·(ω h)⁵/120` with `ω h ≤ 0.01` here (`< 2e-10`), the
+    /// Durand–Kerner and bisection roots are near roundoff for these
+    /// simple roots, and the margin covers the conditioning of the roots.
+    #[test]
+    fn discrete_poles_match_a_simulated_period_map() {
+        let cases = [
+            // (I_m, K_p, N, K_h, B_h, I_l, T)
+            (1.14e-5, 2.0 / 1.14e-5, 100.0, 200.0, 5.0, 0.05, 1e-4),
+            (1.14e-5, 0.5 / 1.14e-5, 100.0, 200.0, 5.0, 0.2, 4e-3),
+            (1.14e-5, 2000.0, 100.0, 50.0, 0.5, 0.02, 4e-3),
+            (1.05e-6, 3.0 / 1.05e-6, 531.0, 1000.0, 2.0, 0.01, 4e-3),
+        ];
+        for (i_m, kp, n, kh, bh, il, t) in cases {
+            let p = frictionless(i_m, kp, n);
+            let hand = HandContact {
+                stiffness: kh,
+                damping: bh,
+                link_inertia: il,
+            };
+            let ch = p.characteristics(&hand, t).unwrap();
+            let cfg = PassiveConfig::<f64>::new(&p);
+            let j0 = il + n * n * i_m;
+            let period = |z: [f64; 3]| -> [f64; 3] {
+                let (mut q, mut v, u_prev) = (z[0], z[1], z[2]);
+                let tau_h = -kh * q - bh * v;
+                let qdd = (u_prev + tau_h) / j0;
+                let tau_t = il * qdd - tau_h;
+                let x = ControlInput {
+                    joint_torque: tau_t,
+                    ..Default::default()
+                };
+                let u = n * cfg.update(&x).torque;
+                let f = |q: f64, v: f64| (v, (u - kh * q - bh * v) / j0);
+                let h = t / 2000.0;
+                for _ in 0..2000 {
+                    let k1 = f(q, v);
+                    let k2 = f(q + 0.5 * h * k1.0, v + 0.5 * h * k1.1);
+                    let k3 = f(q + 0.5 * h * k2.0, v + 0.5 * h * k2.1);
+                    let k4 = f(q + h * k3.0, v + h * k3.1);
+                    q += h / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0);
+                    v += h / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1);
+                }
+                [q, v, u]
+            };
+            // Unit states of comparable size (1 mrad, 1 mrad/s, 1 mN·m).
+            let scales = [1e-3, 1e-3, 1e-3];
+            let mut m = [[0.0; 3]; 3];
+            for col in 0..3 {
+                let mut z = [0.0; 3];
+                z[col] = scales[col];
+                let y = period(z);
+                for row in 0..3 {
+                    m[row][col] = y[row] / scales[col];
+                }
+            }
+            let tr = m[0][0] + m[1][1] + m[2][2];
+            let minors = m[0][0] * m[1][1] - m[0][1] * m[1][0] + m[0][0] * m[2][2]
+                - m[0][2] * m[2][0]
+                + m[1][1] * m[2][2]
+                - m[1][2] * m[2][1];
+            let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+                - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+                + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+            let roots = durand_kerner(&[-tr, minors, -det]);
+            let err = match_roots(&ch.discrete_poles, &roots);
+            std::println!(
+                "K_p Î_m = {:.2}, K_h = {kh}, I_l = {il}, T = {t}: J = {:.4}, ω_n = {:.2}, ζ = {:.3}, σ = {:.2}, |z|max = {:.5}, σ_d = {:.2}; pole error {err:.1e}",
+                kp * i_m, ch.apparent_inertia, ch.natural_frequency, ch.damping_ratio, ch.decay_rate, ch.spectral_radius, ch.discrete_decay_rate
+            );
+            assert!(err <= 1e-6, "{err}: {:?} vs {roots:?}", ch.discrete_poles);
+        }
+    }
+
+    /// The continuous characteristics against the roots of
+    /// `J s² + B_h s + K_h` (Durand–Kerner), with `J = I_l + N²/K_p`
+    /// recomputed, `ω_n² = s₁ s₂` and `2ζω_n = −(s₁ + s₂)`; and as `T → 0`
+    /// the sampled loop's two slow poles tend to `e^{sT}`, so its decay
+    /// rate tends to the continuous one (within 1 % at `T = 1 µs`).
+    #[test]
+    fn continuous_characteristics_match_the_characteristic_roots() {
+        for (kp, kh, bh, il) in [
+            (2000.0, 200.0, 5.0, 0.05),
+            (5000.0, 50.0, 40.0, 0.01),
+            (1e4, 1000.0, 1.0, 0.0),
+        ] {
+            let p = frictionless(1.14e-5, kp, 100.0);
+            let hand = HandContact {
+                stiffness: kh,
+                damping: bh,
+                link_inertia: il,
+            };
+            let ch = p.characteristics(&hand, 1e-6).unwrap();
+            let j = il + 1e4 / kp;
+            assert!((ch.apparent_inertia - j).abs() <= 1e-12 * j);
+            let roots = durand_kerner(&[bh / j, kh / j]);
+            let err = match_roots(&ch.continuous_poles, &roots);
+            let mag = roots
+                .iter()
+                .map(|r| libm::hypot(r.0, r.1))
+                .fold(0.0, f64::max);
+            assert!(err <= 1e-9 * mag, "{err}");
+            let (s1, s2) = (roots[0], roots[1]);
+            let prod = s1.0 * s2.0 - s1.1 * s2.1;
+            assert!((ch.natural_frequency.powi(2) - prod).abs() <= 1e-9 * prod);
+            let sum = -(s1.0 + s2.0);
+            assert!((2.0 * ch.damping_ratio * ch.natural_frequency - sum).abs() <= 1e-9 * sum);
+            let slowest = roots.iter().map(|r| -r.0).fold(f64::INFINITY, f64::min);
+            assert!((ch.decay_rate - slowest).abs() <= 1e-9 * slowest);
+            assert!(
+                (ch.discrete_decay_rate - ch.decay_rate).abs() <= 0.01 * ch.decay_rate,
+                "{} vs {}",
+                ch.discrete_decay_rate,
+                ch.decay_rate
+            );
+        }
+        let p = frictionless(1.14e-5, 2000.0, 100.0);
+        let bad = HandContact {
+            stiffness: -1.0,
+            damping: 0.0,
+            link_inertia: 0.0,
+        };
+        assert!(matches!(
+            p.characteristics(&bad, 1e-3),
+            Err(ParamError::Negative {
+                name: "stiffness",
+                ..
+            })
+        ));
+        let free = HandContact {
+            stiffness: 0.0,
+            damping: 0.0,
+            link_inertia: 0.0,
+        };
+        assert!(matches!(
+            p.characteristics(&free, 0.0),
+            Err(ParamError::NotPositive {
+                name: "sample_period",
+                ..
+            })
+        ));
+        assert!(matches!(
+            frictionless(1.14e-5, 0.0, 100.0).characteristics(&free, 1e-3),
+            Err(ParamError::NotPositive { name: "gain", .. })
+        ));
+    }
+
+    /// The sampled torque loop's pole `(1 − Î_m K_p) I_l/J₀` limits the
+    /// gain whatever the period: on the thesis joint with its bare link
+    /// (`I_l = 0.64·0.45²/3 = 0.0432 kg·m²`, `J₀ = I_l + N² I_m = 0.1572`)
+    /// the loop is unstable for `Î_m K_p > 1 + J₀/I_l = 4.64`, at 1 ms and
+    /// at 10 µs alike (hand 200 N·m/rad, 5 N·m·s/rad).
+    #[test]
+    fn sampled_torque_loop_limits_the_gain() {
+        let il = 0.64 * 0.45 * 0.45 / 3.0;
+        let j0 = il + 1e4 * 1.14e-5;
+        let limit = 1.0 + j0 / il;
+        assert!((limit - 4.64).abs() < 0.01, "{limit}");
+        let hand = HandContact {
+            stiffness: 200.0,
+            damping: 5.0,
+            link_inertia: il,
+        };
+        for t in [1e-3, 1e-5] {
+            for (c, stable) in [(0.95 * limit, true), (1.05 * limit, false)] {
+                let ch = frictionless(1.14e-5, c / 1.14e-5, 100.0)
+                    .characteristics(&hand, t)
+                    .unwrap();
+                assert_eq!(ch.spectral_radius < 1.0, stable, "c = {c}, T = {t}: {ch:?}");
+            }
+        }
     }
 
     struct RobustFriction;

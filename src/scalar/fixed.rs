@@ -276,6 +276,36 @@ impl Scalar for I16F16 {
     fn mul_coef(self, c: &super::Coef) -> Self {
         I16F16::from_bits(c.scale_i32(self.to_bits()))
     }
+    type Residual = i32;
+    #[inline]
+    fn integrate(self, residual: i32, x: Self, c: &super::Coef, lo: Self, hi: Self) -> (Self, i32) {
+        // The Q16.48 sum; its saturation at the i64 range is the I16F16
+        // range.
+        let total = ((self.to_bits() as i64) << 32)
+            .saturating_add(residual as i64)
+            .saturating_add(c.scale_wide(x.to_bits(), 32));
+        // Round to nearest (ties up): the high word, plus one when the low
+        // word is at least ½ LSB; the residual is then the low word read
+        // as signed (`low − 2³²` in the second case).
+        let high = (total >> 32) as i32;
+        let low = total as u32 as i32;
+        let (v, rest) = if low < 0 {
+            match high.checked_add(1) {
+                Some(h) => (h, low),
+                None => (i32::MAX, i32::MAX),
+            }
+        } else {
+            (high, low)
+        };
+        let v = I16F16::from_bits(v);
+        if v > hi || (v == hi && rest > 0) {
+            (hi, 0)
+        } else if v < lo || (v == lo && rest < 0) {
+            (lo, 0)
+        } else {
+            (v, rest)
+        }
+    }
     #[inline]
     fn add(self, rhs: Self) -> Self {
         self.saturating_add(rhs)

@@ -80,6 +80,43 @@ pub trait Scalar:
     /// coefficient's full 31-bit precision, rounded to nearest, saturating.
     fn mul_coef(self, c: &Coef) -> Self;
 
+    /// The part of a slowly integrated value below this backend's
+    /// resolution, carried between samples by
+    /// [`integrate`](Scalar::integrate): on `I16F16` an `i32` in units of
+    /// `2⁻³²` LSB (`2⁻⁴⁸`), so that value and residual together are a
+    /// Q16.48 number, `value·2³² + residual`, with
+    /// `residual ∈ [−2³¹, 2³¹)` (the value is the nearest `I16F16`); on
+    /// `f32` the rounding error of the last sum (a compensated sum, about
+    /// 48 significant bits together); on `f64` nothing (`()`).
+    /// The default (`0`/`()`) is the residual of a freshly set value.
+    type Residual: Copy + PartialEq + Debug + Default + Send + Sync + 'static;
+
+    /// One step of a slow integrator (adapted parameters): the value
+    /// `v = self + residual` advanced by `x·c` and kept within `[lo, hi]`
+    /// (`lo ≤ hi` assumed), returned as the new value (the one a law reads)
+    /// and residual. A clamped sum has residual 0; a NaN step (floats)
+    /// keeps `self`, clamped.
+    ///
+    /// * `I16F16`: `x·c` is rounded to `2⁻⁴⁸` (the coefficient's 31-bit
+    ///   mantissa) and added to the Q16.48 value `self·2³² + residual`
+    ///   (saturating); the new value is that sum rounded to nearest
+    ///   `I16F16`, the residual what rounding left. So an increment far
+    ///   below one LSB (Table 4.1's `f̂_τ` step, `≈ 4e-7·r·Y₄` stored) is
+    ///   kept and accumulates instead of being rounded away at every
+    ///   sample. The Q16.48 value never leaves the box.
+    /// * `f32`: a compensated (Fast2Sum) sum of `x·c` into the value, the
+    ///   rounding error carried as the residual: steps down to about
+    ///   `2⁻⁴⁸` of the value accumulate.
+    /// * `f64`: `self + x·c`; a step is lost only below `2⁻⁵³` of the value.
+    fn integrate(
+        self,
+        residual: Self::Residual,
+        x: Self,
+        c: &Coef,
+        lo: Self,
+        hi: Self,
+    ) -> (Self, Self::Residual);
+
     /// `self + rhs` (fixed: saturating).
     fn add(self, rhs: Self) -> Self;
     /// `self - rhs` (fixed: saturating).
@@ -545,6 +582,41 @@ impl Coef {
         fixed::round_shift_sat(hi, lo, c.round, c.rs)
     }
 
+    /// `round(x · c · 2^extra)` (ties up) saturated to `i64`: the
+    /// increment of a Q16.48 accumulator for `extra = 32` and `x` the bits
+    /// of an `I16F16` ([`Scalar::integrate`]). The product `x·mult` is
+    /// exact (`|x·mult| ≤ 2⁶²`; [`fixed::signed_wide_mul`] when the
+    /// mantissa fits an `i32`, which keeps `__aeabi_lmul` off Armv6-M).
+    #[inline]
+    pub(crate) fn scale_wide(&self, x: i32, extra: i32) -> i64 {
+        let v = match self.signed {
+            Some(c) => {
+                let (hi, lo) = fixed::signed_wide_mul(x, c.m);
+                ((hi as i64) << 32) | lo as i64
+            }
+            None => x as i64 * self.mult,
+        };
+        let sh = self.shift - extra;
+        if sh > 0 {
+            if sh >= 63 {
+                // |v| ≤ 2⁶²: |v/2^sh| ≤ ½, rounded (ties up) to 1 only
+                // for v = 2⁶², sh = 63.
+                return (sh == 63 && v == 1 << 62) as i64;
+            }
+            (v + (1i64 << (sh - 1))) >> sh
+        } else if v == 0 {
+            0
+        } else if -sh >= 63 || v.unsigned_abs() > (i64::MAX as u64 >> -sh) {
+            if v > 0 {
+                i64::MAX
+            } else {
+                i64::MIN
+            }
+        } else {
+            v << -sh
+        }
+    }
+
     /// The straightforward 64-bit form of [`scale_int`](Self::scale_int),
     /// the reference of its tests.
     #[cfg(test)]
@@ -839,6 +911,118 @@ mod tests {
             let bound = 0.5 / 65536.0 + exact.abs() * 2f64.powi(-30);
             proptest::prop_assert!((got - exact).abs() <= bound, "{got} vs {exact}");
         }
+    }
+
+    /// `round(x·c·2^extra)` in exact (`i128`) arithmetic, saturated.
+    fn scale_wide_reference(c: &Coef, x: i32, extra: i32) -> i64 {
+        let p = x as i128 * c.mult as i128;
+        let sh = c.shift - extra;
+        let r = if sh > 0 {
+            if sh >= 126 {
+                0
+            } else {
+                (p + (1i128 << (sh - 1))) >> sh
+            }
+        } else if -sh >= 64 {
+            if p > 0 {
+                i128::MAX
+            } else if p < 0 {
+                i128::MIN
+            } else {
+                0
+            }
+        } else {
+            p << -sh
+        };
+        r.clamp(i64::MIN as i128, i64::MAX as i128) as i64
+    }
+
+    /// [`Scalar::integrate`] on `I16F16` in exact arithmetic: the Q16.48
+    /// sum (saturated), rounded to nearest with ties up, clamped (residual
+    /// 0 when the Q16.48 value leaves the box).
+    fn integrate_reference(
+        v: I16F16,
+        res: i32,
+        x: I16F16,
+        c: &Coef,
+        lo: I16F16,
+        hi: I16F16,
+    ) -> (I16F16, i32) {
+        let total = ((v.to_bits() as i128) << 32)
+            + res as i128
+            + scale_wide_reference(c, x.to_bits(), 32) as i128;
+        let total = total.clamp(i64::MIN as i128, i64::MAX as i128);
+        let (l, h) = ((lo.to_bits() as i128) << 32, (hi.to_bits() as i128) << 32);
+        if total > h {
+            return (hi, 0);
+        }
+        if total < l {
+            return (lo, 0);
+        }
+        let q = (total + (1i128 << 31)) >> 32;
+        (I16F16::from_bits(q as i32), (total - (q << 32)) as i32)
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn scale_wide_is_the_exact_rounded_product(
+            x in proptest::prelude::any::<i32>(),
+            mant in 1.0f64..2.0,
+            exp in -60i32..40,
+            neg: bool,
+            extra in 0i32..48,
+        ) {
+            let v = mant * 2f64.powi(exp) * if neg { -1.0 } else { 1.0 };
+            let c = Coef::new(v);
+            proptest::prop_assert_eq!(c.scale_wide(x, extra), scale_wide_reference(&c, x, extra));
+        }
+
+        #[test]
+        fn fixed_integrate_is_the_exact_rounded_q16_48_sum(
+            v in -2_000_000i32..2_000_000,
+            res in proptest::prelude::any::<i32>(),
+            x in proptest::prelude::any::<i32>(),
+            mant in 1.0f64..2.0,
+            exp in -50i32..4,
+            neg: bool,
+            lo in -3_000_000i32..0,
+            width in 0i32..6_000_000,
+        ) {
+            let c = Coef::new(mant * 2f64.powi(exp) * if neg { -1.0 } else { 1.0 });
+            let (lo, hi) = (I16F16::from_bits(lo), I16F16::from_bits(lo.saturating_add(width)));
+            let v = Scalar::clamp(I16F16::from_bits(v), lo, hi);
+            let x = I16F16::from_bits(x);
+            let got = v.integrate(res, x, &c, lo, hi);
+            let want = integrate_reference(v, res, x, &c, lo, hi);
+            proptest::prop_assert_eq!(got, want);
+        }
+    }
+
+    /// A step of a tenth of an LSB moves the Q16.48 value at every sample
+    /// and the `I16F16` value after five; the saturated ends hold.
+    #[test]
+    fn fixed_integrate_accumulates_sub_lsb_steps() {
+        let c = Coef::new(0.1);
+        let (lo, hi) = (I16F16::MIN, I16F16::MAX);
+        let (mut v, mut res) = (I16F16::ZERO, 0i32);
+        let one = I16F16::from_bits(1);
+        let mut moved_at = None;
+        for k in 1..=20 {
+            (v, res) = v.integrate(res, one, &c, lo, hi);
+            if moved_at.is_none() && v != I16F16::ZERO {
+                moved_at = Some(k);
+            }
+        }
+        assert_eq!(moved_at, Some(5));
+        assert_eq!(v.to_bits(), 2);
+        assert_eq!(
+            I16F16::MAX.integrate(0, I16F16::MAX, &Coef::new(1.0), lo, hi),
+            (I16F16::MAX, 0)
+        );
+        assert_eq!(
+            I16F16::MIN.integrate(0, I16F16::MIN, &Coef::new(1.0), lo, hi),
+            (I16F16::MIN, 0)
+        );
     }
 
     #[test]

@@ -26,6 +26,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod closed_loop;
+pub mod door;
 pub mod experiments;
 pub mod friction;
 pub mod integrator;

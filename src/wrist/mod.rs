@@ -1,6 +1,18 @@
-//! The compact DAUJ wrist (double active universal joint), thesis ch. 5:
+//! The compact DAUJ wrist (double active universal joint), thesis ch. 5–6:
 //! universal-joint transmission, forward and inverse kinematics, the α/β
-//! (polar) description, differential kinematics and the force mapping.
+//! (polar) description, differential kinematics and the force mapping
+//! (ch. 5); sensing and control (ch. 6):
+//!
+//! * [`ft_sensor`] — the F/T sensor chain: gauge amplifier (eq. 6.34),
+//!   decoupling matrix (eq. 6.35) and the interaction torques about the
+//!   wrist axes (eq. 6.3).
+//! * [`active`] — the robust adaptive law of both wrist motors (eq.
+//!   6.12–6.15, Theorem 2), the arm-motion coupling (eq. 6.4, 6.9–6.10),
+//!   Table 6.1 and the ultimate bound (eq. 6.24–6.27).
+//! * [`admittance`] — the passive mode by the admittance law (eq.
+//!   6.28–6.33) in task space, with its discrete-time stability range.
+//! * [`modes`] — active ↔ passive switching of the wrist's task-space
+//!   reference, bumpless.
 //!
 //! Angles are in rad, torques in any one unit (the maps are linear in
 //! torque and dimensionless). Conventions and the corrections to the
@@ -33,10 +45,14 @@
 //! assert!(cfg.inverse(PitchYaw { delta: 0.5, gamma: 0.5 }).saturated);
 //! ```
 
+pub mod active;
+pub mod admittance;
 pub mod alpha_beta;
 pub mod figures;
+pub mod ft_sensor;
 pub mod jacobian;
 pub mod kinematics;
+pub mod modes;
 pub mod ujoint;
 
 pub use alpha_beta::AlphaBeta;

@@ -159,6 +159,118 @@ fn hysteresis_debounce_and_dwell() {
     assert_eq!(o.mode, JointMode::Active);
 }
 
+/// The release rule on every backend: a Passive joint below `exit` but
+/// moving faster than `v_rest` stays Passive however long; at rest it
+/// returns after exactly `n_release` consecutive samples, and a single
+/// moving sample restarts the count. The torque-only rule (the default)
+/// returns after `debounce` samples whatever the speed.
+#[test]
+fn release_rule_requires_rest_for_its_samples() {
+    fn run<S: Scalar>() {
+        let rule = ReleaseRule {
+            speed: 1.0,
+            samples: 7,
+        };
+        let p = params(3, 0, None);
+        assert_eq!(p.release(), ReleaseRule::torque_only(3));
+        let cfg = ModeConfig::<S>::new(&p.with_release(rule).unwrap());
+        let at = |tau: f64, speed: f64| {
+            quantize::<S>(&ControlInput {
+                joint_torque: tau,
+                motor_velocity: speed,
+                desired_velocity: speed,
+                ..Default::default()
+            })
+        };
+        let mut st = cfg.initial_state();
+        for _ in 0..3 {
+            cfg.update(&mut st, &at(5.0, 0.0));
+        }
+        assert_eq!(st.mode(), JointMode::Passive);
+        // Guided: small torque, moving.
+        for _ in 0..500 {
+            assert_eq!(cfg.update(&mut st, &at(0.1, 3.0)).mode, JointMode::Passive);
+        }
+        // At rest for 6 samples, one moving sample, then at rest again.
+        for _ in 0..6 {
+            assert_eq!(cfg.update(&mut st, &at(0.1, 0.5)).mode, JointMode::Passive);
+        }
+        assert_eq!(cfg.update(&mut st, &at(0.1, -1.5)).mode, JointMode::Passive);
+        let mut k = 0;
+        while cfg.update(&mut st, &at(0.1, -0.5)).mode == JointMode::Passive {
+            k += 1;
+            assert!(k < 100);
+        }
+        assert_eq!(k + 1, 7, "{}", S::NAME);
+        // The default rule: back after `debounce` samples while moving.
+        let cfg = ModeConfig::<S>::new(&p);
+        let mut st = cfg.initial_state();
+        for _ in 0..3 {
+            cfg.update(&mut st, &at(5.0, 0.0));
+        }
+        let mut k = 0;
+        while cfg.update(&mut st, &at(0.1, 3.0)).mode == JointMode::Passive {
+            k += 1;
+            assert!(k < 100);
+        }
+        assert_eq!(k + 1, 3);
+    }
+    run::<f32>();
+    run::<f64>();
+    run::<I16F16>();
+}
+
+#[test]
+fn release_rule_is_validated() {
+    let p = params(5, 0, None);
+    assert!(matches!(
+        p.with_release(ReleaseRule {
+            speed: 0.0,
+            samples: 10
+        }),
+        Err(ParamError::NotPositive {
+            name: "release_speed",
+            ..
+        })
+    ));
+    assert!(matches!(
+        p.with_release(ReleaseRule {
+            speed: f64::NAN,
+            samples: 10
+        }),
+        Err(ParamError::NotFinite {
+            name: "release_speed",
+            ..
+        })
+    ));
+    assert!(matches!(
+        p.with_release(ReleaseRule {
+            speed: 4e4,
+            samples: 10
+        }),
+        Err(ParamError::OutOfRange {
+            name: "release_speed",
+            ..
+        })
+    ));
+    assert!(matches!(
+        p.with_release(ReleaseRule {
+            speed: 1.0,
+            samples: 4
+        }),
+        Err(ParamError::OutOfRange {
+            name: "release_samples",
+            ..
+        })
+    ));
+    assert!(p
+        .with_release(ReleaseRule {
+            speed: 1.0,
+            samples: 5
+        })
+        .is_ok());
+}
+
 #[test]
 fn collision_stop_holds_the_position_until_acknowledged() {
     let col = CollisionParams::try_new(3.0, 1.0, 2, 2, CollisionReaction::Stop).unwrap();
@@ -509,4 +621,47 @@ fn command_equals_the_two_clamps() {
     vq.extend(vq.clone().iter().map(|v| v.neg()));
     vq.push(I16F16::from_bits(i32::MIN));
     check(&q, &vq);
+}
+
+/// The rejoin offset on `I16F16` stops where both of its increments round
+/// to zero: `|ȯ T| < ½ LSB` and `|acc T| < ½ LSB` with
+/// `acc = −2ω ȯ − ω² o`, so `|o| < (1 + 2ω) 2⁻¹⁷/(ω² T)` (the bound
+/// checked here, 20 000 samples at 4 ms after a 0.5 rad offset). At
+/// `ω = 1 rad/s` that is 5.7e-3 rad motor side (5.7e-5 rad at the link
+/// for `N = 100`, a third of the 0.01° link encoder's count); `f64` rejoins
+/// exactly (below 1e-9 rad).
+#[test]
+fn rejoin_offset_stall_is_within_its_bound() {
+    for w in [1.0, 3.0, 10.0, 100.0] {
+        let p = ModeParams::try_new(ModeSettings {
+            active: RobustAdaptiveParams::table_4_1().unwrap(),
+            passive: PassiveParams::table_4_1(2000.0).unwrap(),
+            enter_passive: 2.0,
+            exit_passive: 1.0,
+            debounce: 1,
+            dwell: 0,
+            rejoin_bandwidth: w,
+            bias_time_constant: 0.1,
+            collision: None,
+        })
+        .unwrap();
+        fn run<S: Scalar>(p: &ModeParams) -> f64 {
+            let cfg = ModeConfig::<S>::new(p);
+            let mut st = cfg.initial_state();
+            step(&cfg, &mut st, 3.0);
+            let x = quantize::<S>(&ControlInput {
+                motor_position: 0.5,
+                ..Default::default()
+            });
+            cfg.update(&mut st, &x);
+            for _ in 0..20_000 {
+                cfg.update(&mut st, &x);
+            }
+            st.rejoin_offset().0.to_f64()
+        }
+        let stall = run::<I16F16>(&p);
+        let bound = (1.0 + 2.0 * w) * 2f64.powi(-17) / (w * w * 0.004);
+        assert!(stall.abs() <= bound, "ω = {w}: {stall} > {bound}");
+        assert!(run::<f64>(&p).abs() < 1e-9);
+    }
 }

@@ -1,0 +1,557 @@
+//! Active ↔ passive switching of the wrist, bumpless, in task space.
+//!
+//! The wrist runs one position loop in both modes — the robust adaptive law
+//! of [`super::active`] on the joint references of the task-space reference
+//! `x_r = (δ_r, γ_r)` (through the ch. 5 inverse kinematics, the caller's
+//! step) — and the mode only chooses where `x_r` comes from:
+//!
+//! * [`WristMode::Active`] — the desired trajectory `x_d(t)` plus a rejoin
+//!   offset `o` that decays as a critically damped second-order system of
+//!   bandwidth `ω`: `ö = −2ω ȯ − ω² o`;
+//! * [`WristMode::Passive`] — the admittance law of
+//!   [`super::admittance`] (eq. 6.32), driven by the measured interaction
+//!   torque.
+//!
+//! This is the joint mode manager's scheme ([`crate::control::mode`]:
+//! rejoin offset, hysteresis, debounce, dwell) generalised to the wrist's
+//! two task axes, with one simplification that the shared position loop
+//! allows: the reference is *continuous across a switch* — entering
+//! Passive seeds the admittance state with the current reference, entering
+//! Active seeds `o = x_r − x_d`, `ȯ = ẋ_r − ẋ_d` — so the law's state
+//! (integral, adapted friction) carries over and the command has no jump
+//! beyond one ordinary sample of reference motion. The wrist's position is
+//! never re-initialised from anything but its own reference, so it is
+//! never lost.
+//!
+//! # Switching rules (Remark 6, automated)
+//! With `|τ| = max(|τ_δ|, |τ_γ|)` (N·m, eq. 6.3):
+//! * Active → Passive when `|τ| > enter` for `debounce` consecutive
+//!   samples;
+//! * Passive → Active when `|τ| < exit` **and** the passive reference
+//!   moves slower than `rest_speed` on both axes, for `debounce`
+//!   consecutive samples;
+//!
+//! each only after the current mode has lasted `dwell` samples. The rest
+//! condition is what keeps a guided wrist passive: while a hand or a door
+//! moves it, the admittance law is by design keeping `|τ|` small, so a
+//! torque-only exit rule would re-enter Active in mid-motion, be loaded
+//! again, and cycle (the weakness of the joint manager's torque-only rule,
+//! [`crate::control::mode`]). A request in the input
+//! ([`WristModeInput::request`]) switches at once (the manual switching of
+//! the thesis's experiments).
+
+// Two- and six-element arrays indexed in parallel (axes, rows): index loops
+// read better than zipped iterators here.
+#![allow(clippy::needless_range_loop)]
+
+use super::admittance::{AdmittanceConfig, AdmittanceParams, AdmittanceState};
+use crate::error::{increasing, positive, ParamError};
+use crate::scalar::{Coef, Scalar};
+
+/// The wrist's operating mode.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum WristMode {
+    /// Position control on the desired task trajectory (eq. 6.15).
+    Active,
+    /// Admittance (eq. 6.32) with `τ_d = 0`.
+    Passive,
+}
+
+/// Validated parameters of the wrist mode manager, SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WristModeParams {
+    admittance: AdmittanceParams,
+    enter_passive: f64,
+    exit_passive: f64,
+    rest_speed: f64,
+    debounce: u16,
+    dwell: u16,
+    rejoin_bandwidth: f64,
+}
+
+impl WristModeParams {
+    /// Validate: `0 < exit_passive < enter_passive ≤ 1000` N·m;
+    /// `rest_speed > 0` rad/s; `debounce ≥ 1`; a rejoin bandwidth `ω > 0`
+    /// rad/s with `ω T ≤ 0.5` (`T` the admittance law's period: the
+    /// discrete filter is then stable and not oscillatory).
+    pub fn try_new(
+        admittance: AdmittanceParams,
+        enter_passive: f64,
+        exit_passive: f64,
+        rest_speed: f64,
+        debounce: u16,
+        dwell: u16,
+        rejoin_bandwidth: f64,
+    ) -> Result<Self, ParamError> {
+        positive("exit_passive", exit_passive)?;
+        positive("enter_passive", enter_passive)?;
+        increasing(
+            ("exit_passive", exit_passive),
+            ("enter_passive", enter_passive),
+        )?;
+        if enter_passive > 1e3 {
+            return Err(ParamError::OutOfRange {
+                name: "enter_passive",
+                value: enter_passive,
+                min: 0.0,
+                max: 1e3,
+            });
+        }
+        positive("rest_speed", rest_speed)?;
+        if debounce == 0 {
+            return Err(ParamError::NotPositive {
+                name: "debounce",
+                value: 0.0,
+            });
+        }
+        positive("rejoin_bandwidth", rejoin_bandwidth)?;
+        let max_w = 0.5 / admittance.sample_period();
+        if rejoin_bandwidth > max_w {
+            return Err(ParamError::OutOfRange {
+                name: "rejoin_bandwidth",
+                value: rejoin_bandwidth,
+                min: 0.0,
+                max: max_w,
+            });
+        }
+        Ok(WristModeParams {
+            admittance,
+            enter_passive,
+            exit_passive,
+            rest_speed,
+            debounce,
+            dwell,
+            rejoin_bandwidth,
+        })
+    }
+
+    /// The admittance parameters.
+    pub fn admittance(&self) -> &AdmittanceParams {
+        &self.admittance
+    }
+}
+
+/// The manager quantized for backend `S`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WristModeConfig<S> {
+    admittance: AdmittanceConfig<S>,
+    enter: S,
+    exit: S,
+    rest: S,
+    debounce: u16,
+    dwell: u16,
+    /// `1 − 2ωT` (speed → speed).
+    rate_keep: Coef,
+    /// `ω² T`, angle → speed.
+    rate_pull: Coef,
+    /// `T`, speed → angle.
+    step: Coef,
+    /// `1/T`, angle → speed.
+    inv_step: Coef,
+    limits: [S; 2],
+}
+
+/// The manager's state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WristModeState<S> {
+    mode: WristMode,
+    admittance: AdmittanceState<S>,
+    offset: [S; 2],
+    offset_rate: [S; 2],
+    reference: [S; 2],
+    in_mode: u16,
+    run: u16,
+}
+
+impl<S: Scalar> WristModeState<S> {
+    /// The current mode.
+    pub fn mode(&self) -> WristMode {
+        self.mode
+    }
+    /// The last reference `x_r`, stored rad.
+    pub fn reference(&self) -> [S; 2] {
+        self.reference
+    }
+}
+
+/// One sample of the manager's input (stored units: rad, rad/s, N·m).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct WristModeInput<S> {
+    /// Desired task pose `x_d = [δ_d, γ_d]` of the active mode, rad.
+    pub desired: [S; 2],
+    /// Its rate `ẋ_d`, rad/s.
+    pub desired_rate: [S; 2],
+    /// Measured interaction torques `[τ_δ, τ_γ]` (eq. 6.3), N·m,
+    /// environment on wrist.
+    pub interaction: [S; 2],
+    /// `Some(mode)` to switch now (manual switching); `None` for the
+    /// automatic rules.
+    pub request: Option<WristMode>,
+}
+
+/// One step of the manager.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WristModeOutput<S> {
+    /// The mode after this sample.
+    pub mode: WristMode,
+    /// The reference `x_r = [δ_r, γ_r]` for the position loop, rad (map it
+    /// through the IK to joint references).
+    pub reference: [S; 2],
+    /// Its rate, rad/s.
+    pub reference_rate: [S; 2],
+    /// The mode changed at this sample.
+    pub switched: bool,
+    /// The admittance law or the workspace limited the reference.
+    pub saturated: bool,
+    /// An input was NaN or infinite: the reference was held.
+    pub invalid_input: bool,
+}
+
+impl<S: Scalar> WristModeConfig<S> {
+    /// Quantize validated parameters once.
+    pub fn new(p: &WristModeParams) -> Self {
+        let u = S::UNITS;
+        let t = p.admittance.sample_period();
+        let w = p.rejoin_bandwidth;
+        let lim = p.admittance.limits();
+        WristModeConfig {
+            admittance: AdmittanceConfig::new(&p.admittance),
+            enter: S::from_f64(p.enter_passive * u.link_torque),
+            exit: S::from_f64(p.exit_passive * u.link_torque),
+            rest: S::from_f64(p.rest_speed * u.speed),
+            debounce: p.debounce,
+            dwell: p.dwell,
+            rate_keep: Coef::new(1.0 - 2.0 * w * t),
+            rate_pull: Coef::new(w * w * t * u.speed / u.angle),
+            step: Coef::new(t * u.angle / u.speed),
+            inv_step: Coef::new(u.speed / (t * u.angle)),
+            limits: [S::from_f64(lim[0] * u.angle), S::from_f64(lim[1] * u.angle)],
+        }
+    }
+
+    /// A state in `mode` whose reference is `pose` (the measured task
+    /// pose at start-up, rad), at rest.
+    pub fn initial_state(&self, mode: WristMode, pose: [S; 2]) -> WristModeState<S> {
+        let adm = self.admittance.state_at(pose);
+        WristModeState {
+            mode,
+            admittance: adm,
+            offset: [S::ZERO; 2],
+            offset_rate: [S::ZERO; 2],
+            reference: adm.reference,
+            in_mode: 0,
+            run: 0,
+        }
+    }
+
+    fn enter(&self, st: &mut WristModeState<S>, mode: WristMode, x: &WristModeInput<S>) {
+        match mode {
+            WristMode::Passive => st.admittance = self.admittance.state_at(st.reference),
+            WristMode::Active => {
+                for i in 0..2 {
+                    // While passive the offset-rate slot holds the
+                    // admittance rate: ȯ = ẋ_r − ẋ_d.
+                    st.offset[i] = st.reference[i].sub(x.desired[i]);
+                    st.offset_rate[i] = st.offset_rate[i].sub(x.desired_rate[i]);
+                }
+            }
+        }
+        st.mode = mode;
+        st.in_mode = 0;
+        st.run = 0;
+    }
+
+    /// One sample: decide the mode (rules in the module docs), then
+    /// advance the reference of the mode. Never panics; a non-finite input
+    /// holds the reference, flagged.
+    pub fn update(&self, st: &mut WristModeState<S>, x: &WristModeInput<S>) -> WristModeOutput<S> {
+        let d = |v: S| v.sub(v);
+        let mut probe = S::ZERO;
+        for v in x
+            .desired
+            .iter()
+            .chain(x.desired_rate.iter())
+            .chain(x.interaction.iter())
+        {
+            probe = probe.add(d(*v));
+        }
+        if probe != S::ZERO {
+            return WristModeOutput {
+                mode: st.mode,
+                reference: st.reference,
+                reference_rate: [S::ZERO; 2],
+                switched: false,
+                saturated: false,
+                invalid_input: true,
+            };
+        }
+        let torque = x.interaction[0].abs().max(x.interaction[1].abs());
+        let mut switched = false;
+        if let Some(m) = x.request {
+            if m != st.mode {
+                self.enter(st, m, x);
+                switched = true;
+            }
+        } else {
+            let want = match st.mode {
+                WristMode::Active => torque > self.enter,
+                WristMode::Passive => {
+                    // The passive reference's last rate is held in the
+                    // offset-rate slot while passive (see below).
+                    torque < self.exit
+                        && st.offset_rate[0].abs() < self.rest
+                        && st.offset_rate[1].abs() < self.rest
+                }
+            };
+            st.run = if want { st.run.saturating_add(1) } else { 0 };
+            if st.run >= self.debounce && st.in_mode >= self.dwell {
+                let m = match st.mode {
+                    WristMode::Active => WristMode::Passive,
+                    WristMode::Passive => WristMode::Active,
+                };
+                self.enter(st, m, x);
+                switched = true;
+            }
+        }
+        st.in_mode = st.in_mode.saturating_add(1);
+        let (reference, rate, mut saturated) = match st.mode {
+            WristMode::Passive => {
+                let o = self.admittance.update(&mut st.admittance, x.interaction);
+                // Keep the passive rate for the rest test and for a
+                // rate-continuous return to Active.
+                st.offset_rate = o.rate;
+                (o.reference, o.rate, o.saturated)
+            }
+            WristMode::Active => {
+                let mut r = [S::ZERO; 2];
+                let mut v = [S::ZERO; 2];
+                for i in 0..2 {
+                    // Semi-implicit Euler of ö = −2ω ȯ − ω² o.
+                    let od = st.offset_rate[i]
+                        .mul_coef(&self.rate_keep)
+                        .sub(st.offset[i].mul_coef(&self.rate_pull));
+                    st.offset_rate[i] = od;
+                    st.offset[i] = st.offset[i].add(od.mul_coef(&self.step));
+                    r[i] = x.desired[i].add(st.offset[i]);
+                    v[i] = x.desired_rate[i].add(od);
+                }
+                (r, v, false)
+            }
+        };
+        let mut out = reference;
+        for i in 0..2 {
+            let l = self.limits[i];
+            let c = out[i].clamp(l.neg(), l);
+            saturated |= c != out[i];
+            out[i] = c;
+        }
+        let rate = if st.mode == WristMode::Active && saturated {
+            [
+                out[0].sub(st.reference[0]).mul_coef(&self.inv_step),
+                out[1].sub(st.reference[1]).mul_coef(&self.inv_step),
+            ]
+        } else {
+            rate
+        };
+        st.reference = out;
+        WristModeOutput {
+            mode: st.mode,
+            reference: out,
+            reference_rate: rate,
+            switched,
+            saturated,
+            invalid_input: false,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cfg() -> WristModeConfig<f64> {
+        let a = AdmittanceParams::thesis(200.0).unwrap();
+        let p = WristModeParams::try_new(a, 1.5, 0.5, 0.01, 5, 50, 10.0).unwrap();
+        WristModeConfig::new(&p)
+    }
+
+    /// A scripted run: the active wrist follows a sine, a torque pulse
+    /// pushes it into Passive, a hand then guides it (torque small but the
+    /// wrist moving) and releases it; the wrist returns to Active only
+    /// after the release, once, and rejoins the trajectory. At every sample
+    /// the reference moves by at most one ordinary step: the larger of the
+    /// desired step plus the rejoin filter's step, and the admittance
+    /// law's `max_rate·T` — the bumpless property.
+    #[test]
+    fn switching_is_bumpless_and_does_not_cycle_while_guided() {
+        let c = cfg();
+        let t = 0.004;
+        let mut st = c.initial_state(WristMode::Active, [0.0, 0.0]);
+        let mut last = st.reference();
+        let mut switches = 0;
+        let mut modes = std::vec::Vec::new();
+        for k in 0..3000 {
+            let time = k as f64 * t;
+            let desired = [0.1 * (time).sin(), 0.05 * (0.5 * time).sin()];
+            let desired_rate = [0.1 * time.cos(), 0.025 * (0.5 * time).cos()];
+            // 1–1.2 s: a 3 N·m push; 1.2–6 s: guided with 0.3–0.45 N·m;
+            // after 6 s: released.
+            let tau = if (1.0..1.2).contains(&time) {
+                [0.0, 3.0]
+            } else if (1.2..6.0).contains(&time) {
+                [0.15 * (3.0 * time).sin(), 0.3 + 0.15 * (2.0 * time).sin()]
+            } else {
+                [0.0, 0.0]
+            };
+            let o = c.update(
+                &mut st,
+                &WristModeInput {
+                    desired,
+                    desired_rate,
+                    interaction: tau,
+                    request: None,
+                },
+            );
+            switches += o.switched as usize;
+            modes.push(o.mode);
+            // Bound of one step: active ≤ |ẋ_d| T + |ȯ| T (≤ 0.11·T + the
+            // offset's rate, itself ≤ 2ω|o| ≤ 20·0.3), passive ≤
+            // max_rate·T = 1·T.
+            let step = (o.reference[0] - last[0])
+                .abs()
+                .max((o.reference[1] - last[1]).abs());
+            assert!(step <= t * (0.11 + 20.0 * 0.3) + 1e-12, "k={k} step {step}");
+            if o.switched {
+                // The switching sample itself moves like an ordinary one.
+                assert!(step <= t * 1.0 + 1e-12, "k={k} switch step {step}");
+            }
+            last = o.reference;
+        }
+        assert_eq!(switches, 2, "one entry into Passive, one return");
+        assert_eq!(modes[(1.1 / t) as usize], WristMode::Passive);
+        assert_eq!(modes[(5.9 / t) as usize], WristMode::Passive);
+        assert_eq!(*modes.last().unwrap(), WristMode::Active);
+        // Rejoined: 6 s after the release, the offset has decayed.
+        let time = 2999.0 * t;
+        assert!((last[0] - 0.1 * time.sin()).abs() < 1e-4, "{last:?}");
+    }
+
+    /// A hand (a spring of 20 N·m/rad on γ) guides the wrist at 0.03 rad/s
+    /// for 4 s, then lets go. Passive, the admittance law follows it with
+    /// `τ = ḣ/K_c = 0.3 N·m`, below a 0.45 N·m exit threshold: a
+    /// torque-only exit rule returns to Active in mid-guidance, where the
+    /// reference rejoins the trajectory, the hand loads the wrist again and
+    /// it re-enters Passive — it cycles. With the rest condition (reference
+    /// slower than 0.01 rad/s, while guided it moves at 0.03) the wrist
+    /// enters Passive once and returns once, after the release.
+    #[test]
+    fn rest_condition_stops_cycling_while_guided() {
+        let run = |rest: f64| {
+            let a = AdmittanceParams::thesis(200.0).unwrap();
+            let p = WristModeParams::try_new(a, 0.5, 0.45, rest, 5, 25, 10.0).unwrap();
+            let c = WristModeConfig::<f64>::new(&p);
+            let mut st = c.initial_state(WristMode::Active, [0.0, 0.0]);
+            let (mut guided, mut total) = (0, 0);
+            for k in 0..2500 {
+                let time = k as f64 * 0.004;
+                let held = time < 4.0;
+                let h = 0.03 * time;
+                let tau = if held {
+                    20.0 * (h - st.reference()[1])
+                } else {
+                    0.0
+                };
+                let o = c.update(
+                    &mut st,
+                    &WristModeInput {
+                        interaction: [0.0, tau],
+                        ..Default::default()
+                    },
+                );
+                total += o.switched as usize;
+                if held {
+                    guided += o.switched as usize;
+                }
+            }
+            (guided, total, st.mode())
+        };
+        let (guided, _, _) = run(1e3);
+        std::println!("torque-only exit rule: {guided} switches while guided");
+        assert!(
+            guided >= 4,
+            "torque-only rule: {guided} switches while guided"
+        );
+        let (guided, total, mode) = run(0.01);
+        assert_eq!((guided, total, mode), (1, 2, WristMode::Active));
+    }
+
+    #[test]
+    fn manual_request_and_invalid_input() {
+        let c = cfg();
+        let mut st = c.initial_state(WristMode::Active, [0.2, -0.1]);
+        let o = c.update(
+            &mut st,
+            &WristModeInput {
+                desired: [0.0, 0.0],
+                request: Some(WristMode::Passive),
+                ..Default::default()
+            },
+        );
+        // Entering Passive keeps the reference where the wrist is.
+        assert!(o.switched && o.mode == WristMode::Passive);
+        assert_eq!(o.reference, [0.2, -0.1]);
+        let o = c.update(
+            &mut st,
+            &WristModeInput {
+                interaction: [f64::NAN, 0.0],
+                ..Default::default()
+            },
+        );
+        assert!(o.invalid_input && o.reference == [0.2, -0.1]);
+        let a = AdmittanceParams::thesis(200.0).unwrap();
+        assert!(WristModeParams::try_new(a, 0.5, 0.6, 0.01, 5, 50, 10.0).is_err());
+        assert!(WristModeParams::try_new(a, 1.0, 0.5, 0.01, 0, 50, 10.0).is_err());
+        assert!(WristModeParams::try_new(a, 1.0, 0.5, 0.01, 1, 50, 200.0).is_err());
+    }
+
+    /// The guided scenario of `rest_condition_stops_cycling_while_guided`
+    /// on `f32` and `I16F16`: the same switches as `f64` (one in, one out)
+    /// and references within the backends' rounding of the `f64` ones.
+    #[test]
+    fn backends_switch_alike() {
+        use crate::scalar::I16F16;
+        fn run<S: Scalar>() -> (usize, f64) {
+            let a = AdmittanceParams::thesis(200.0).unwrap();
+            let p = WristModeParams::try_new(a, 0.5, 0.45, 0.01, 5, 25, 10.0).unwrap();
+            let c = WristModeConfig::<S>::new(&p);
+            let mut st = c.initial_state(WristMode::Active, [S::ZERO; 2]);
+            let mut switches = 0;
+            let mut max_ref = 0.0f64;
+            for k in 0..2500 {
+                let time = k as f64 * 0.004;
+                let tau = if time < 4.0 {
+                    20.0 * (0.03 * time - st.reference()[1].to_f64())
+                } else {
+                    0.0
+                };
+                let o = c.update(
+                    &mut st,
+                    &WristModeInput {
+                        interaction: [S::ZERO, S::from_f64(tau)],
+                        ..Default::default()
+                    },
+                );
+                switches += o.switched as usize;
+                max_ref = max_ref.max(o.reference[1].to_f64());
+            }
+            (switches, max_ref)
+        }
+        let (s64, r64) = run::<f64>();
+        let (s32, r32) = run::<f32>();
+        let (sfx, rfx) = run::<I16F16>();
+        assert_eq!((s64, s32, sfx), (2, 2, 2));
+        assert!((r32 - r64).abs() < 1e-4, "{r32} {r64}");
+        // ≤ 1000 guided steps, each rounded to ½ LSB (7.6e-6 rad).
+        assert!((rfx - r64).abs() < 1000.0 * 7.7e-6, "{rfx} {r64}");
+    }
+}
