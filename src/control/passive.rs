@@ -118,7 +118,8 @@ impl PassiveParams {
     /// `τ_m = f̂^c(q̇_m) + τ_td/N`: the law compensates friction and adds
     /// the desired joint torque, and the estimate's noise and sampling
     /// delay do not enter a torque-feedback loop, so the choice is stable
-    /// at any sample period. By eq. (4.33) as corrected (errata E4.1) the
+    /// at any sample period (below the sampled limit
+    /// `Î_m K_p > 1 + J₀/I_l` of errata E4.12 for every link). By eq. (4.33) as corrected (errata E4.1) the
     /// joint then moves as a free body of link-side inertia
     /// `N²/K_p = N² Î_m` (0.114 kg·m² here): the rotor's reflected inertia
     /// without its friction. A larger `K_p` makes the joint feel lighter

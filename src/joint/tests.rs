@@ -462,3 +462,41 @@ fn signs_match_the_simulated_joint() {
         "mean estimate {est}, true {truth}"
     );
 }
+
+/// The default passive gain `K_p = 1/Î_m` keeps the sampled passive loop
+/// (errata E4.12) stable for a light and a heavy link, a soft and a stiff
+/// hand, from 0.1 ms to 10 ms; twice the limit gain `1 + J₀/I_l` (the
+/// same analysis) is unstable, so the check can fail.
+#[test]
+fn default_passive_gain_is_stable_when_sampled() {
+    use crate::control::HandContact;
+    let p = PassiveParams::table_4_1_default().unwrap();
+    let im = crate::control::RobustAdaptiveDesign::table_4_1().rotor_inertia;
+    assert!((p.gain() * im - 1.0).abs() < 1e-12);
+    for link_inertia in [0.01, 0.043, 1.0] {
+        for (stiffness, damping) in [(0.0, 0.0), (200.0, 5.0), (2000.0, 1.0)] {
+            let hand = HandContact {
+                stiffness,
+                damping,
+                link_inertia,
+            };
+            for t in [1e-4, 1e-3, 4e-3, 1e-2] {
+                let c = p.characteristics(&hand, t).unwrap();
+                assert!(
+                    c.spectral_radius <= 1.0 + 1e-9,
+                    "{link_inertia} {stiffness} {t}: {c:?}"
+                );
+            }
+        }
+    }
+    // A gain far above the limit 1 + J0/I_l (J0 = N² Î_m = 0.114) on a
+    // 0.043 kg·m² link is unstable in the same analysis.
+    let limit = 1.0 + 100.0 * 100.0 * im / 0.043;
+    let hot = PassiveParams::table_4_1(2.0 * limit / im).unwrap();
+    let hand = HandContact {
+        stiffness: 0.0,
+        damping: 0.0,
+        link_inertia: 0.043,
+    };
+    assert!(hot.characteristics(&hand, 4e-3).unwrap().spectral_radius > 1.0);
+}
