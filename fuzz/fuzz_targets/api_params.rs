@@ -15,8 +15,9 @@ use mrr_control::estimation::{
 use mrr_control::harmonic_drive::kinematic_error::KinematicErrorModel;
 use mrr_control::harmonic_drive::two_spring::{TwoSpringParams, TwoSpringState};
 use mrr_control::harmonic_drive::{
-    CataloguePiecewise, CubicStiffness, FlexsplineParams, HarmonicDriveParams, WaveGeneratorParams,
-    WaveGeneratorTorqueConfig, WaveGeneratorTorqueParams, WaveGeneratorTorqueState,
+    CatalogueCurve, CataloguePiecewise, CubicStiffness, FlexsplineParams, HarmonicDriveParams,
+    WaveGeneratorParams, WaveGeneratorTorqueConfig, WaveGeneratorTorqueParams,
+    WaveGeneratorTorqueState,
 };
 use mrr_control::scalar::units::quantize_keep_non_finite;
 use mrr_control::scalar::{Scalar, I16F16};
@@ -192,13 +193,13 @@ fn check_estimator(p: &TorqueEstimatorParams, start: i64, r: &[Reading]) {
 /// The other parameter types of the family: typed error or a finite step.
 fn check_others(raw: &[u64; 8], mode: u8, readings: &[Reading]) {
     let flag = |k: u8| mode & (1 << k) != 0;
-    match CataloguePiecewise::try_new(
-        value(raw[0], flag(0), 1e2, 1e6, true),
-        value(raw[1], flag(0), 1e2, 1e6, true),
-        value(raw[2], flag(0), 1e2, 1e6, true),
-        value(raw[3], flag(0), 1e-1, 1e3, true),
-        value(raw[4], flag(0), 1e-1, 1e3, true),
-    ) {
+    match CataloguePiecewise::try_new(CatalogueCurve {
+        k1: value(raw[0], flag(0), 1e2, 1e6, true),
+        k2: value(raw[1], flag(0), 1e2, 1e6, true),
+        k3: value(raw[2], flag(0), 1e2, 1e6, true),
+        t1: value(raw[3], flag(0), 1e-1, 1e3, true),
+        t2: value(raw[4], flag(0), 1e-1, 1e3, true),
+    }) {
         Ok(c) => {
             for &(_, _, t) in readings {
                 let d = c.torsion(t);

@@ -185,6 +185,33 @@ fn div_rem_reciprocal(x: u32, d: u32, r: u32) -> (u32, u32) {
 /// Built only by [`try_new`](Self::try_new): every value a
 /// [`TorqueEstimatorConfig`] is built from has been validated, so no
 /// configuration can divide by zero or invert an empty domain.
+///
+/// ```
+/// use mrr_control::prelude::*;
+/// let drive = CatalogueData::SHD_17_100.identify()?;
+/// let p = TorqueEstimatorParams::try_new(drive, None, 1 << 17, 2000, 60.0)?;
+/// let cfg = TorqueEstimatorConfig::<f32>::new(&p);
+/// let e = cfg.update(&mut cfg.state(0, 0), 0, 0, 0.0);
+/// assert!(e.torque_si().abs() < 1e-9 && !e.invalid_input);
+/// // A zero motor resolution is refused by name instead of dividing by 0.
+/// let err = TorqueEstimatorParams::try_new(drive, None, 1 << 17, 0, 60.0).unwrap_err();
+/// assert_eq!(err.to_string(), "parameter `motor_counts_per_rev` must be > 0, got 0");
+/// # Ok::<(), ParamError>(())
+/// ```
+///
+/// A struct literal, which used to skip the checks, no longer compiles:
+///
+/// ```compile_fail
+/// use mrr_control::prelude::*;
+/// let drive = CatalogueData::SHD_17_100.identify().unwrap();
+/// let p = TorqueEstimatorParams {
+///     drive,
+///     kinematic_error: None,
+///     link_counts_per_rev: 1 << 17,
+///     motor_counts_per_rev: 0,
+///     max_torque: 60.0,
+/// };
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TorqueEstimatorParams {
     drive: HarmonicDriveParams,

@@ -40,9 +40,27 @@ pub struct CataloguePiecewise {
     t2: f64,
 }
 
+/// The five numbers of a catalogue curve by name, for
+/// [`CataloguePiecewise::try_new`] (five `f64`s in a row could be swapped
+/// silently).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CatalogueCurve {
+    /// Slope up to `T1`, N·m/rad.
+    pub k1: f64,
+    /// Slope from `T1` to `T2`, N·m/rad.
+    pub k2: f64,
+    /// Slope above `T2`, N·m/rad.
+    pub k3: f64,
+    /// First knee torque, N·m.
+    pub t1: f64,
+    /// Second knee torque, N·m.
+    pub t2: f64,
+}
+
 impl CataloguePiecewise {
     /// Validates `K1, K2, K3 > 0` (N·m/rad) and `0 < T1 < T2` (N·m).
-    pub fn try_new(k1: f64, k2: f64, k3: f64, t1: f64, t2: f64) -> Result<Self, ParamError> {
+    pub fn try_new(curve: CatalogueCurve) -> Result<Self, ParamError> {
+        let CatalogueCurve { k1, k2, k3, t1, t2 } = curve;
         let (k1, k2, k3) = (
             positive("k1", k1)?,
             positive("k2", k2)?,
@@ -51,6 +69,17 @@ impl CataloguePiecewise {
         let (t1, t2) = (positive("t1", t1)?, positive("t2", t2)?);
         increasing(("t1", t1), ("t2", t2))?;
         Ok(CataloguePiecewise { k1, k2, k3, t1, t2 })
+    }
+
+    /// The validated curve.
+    pub fn curve(&self) -> CatalogueCurve {
+        CatalogueCurve {
+            k1: self.k1,
+            k2: self.k2,
+            k3: self.k3,
+            t1: self.t1,
+            t2: self.t2,
+        }
     }
 
     /// Torsion at the knee `T1`, rad.
@@ -208,6 +237,11 @@ impl CubicStiffness {
 ///
 /// Built only by [`try_new`](Self::try_new), so every value a
 /// configuration sees has passed its checks.
+///
+/// ```compile_fail
+/// // Fields are private: a NaN `c_f` cannot skip `try_new`.
+/// let f = mrr_control::harmonic_drive::FlexsplineParams { k_f0: 8.3e3, c_f: f64::NAN };
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FlexsplineParams {
     k_f0: f64,
@@ -579,7 +613,14 @@ mod tests {
 
     #[test]
     fn piecewise_is_continuous_at_the_knees_and_odd() {
-        let c = CataloguePiecewise::try_new(8.4e3, 9.4e3, 1.2e4, 3.9, 12.0).unwrap();
+        let c = CataloguePiecewise::try_new(CatalogueCurve {
+            k1: 8.4e3,
+            k2: 9.4e3,
+            k3: 1.2e4,
+            t1: 3.9,
+            t2: 12.0,
+        })
+        .unwrap();
         for t in [3.9, 12.0] {
             let below = c.torsion(t - 1e-9);
             let above = c.torsion(t + 1e-9);
@@ -612,7 +653,13 @@ mod tests {
     #[test]
     fn piecewise_rejects_unordered_knees() {
         assert_eq!(
-            CataloguePiecewise::try_new(1.0, 2.0, 3.0, 5.0, 5.0),
+            CataloguePiecewise::try_new(CatalogueCurve {
+                k1: 1.0,
+                k2: 2.0,
+                k3: 3.0,
+                t1: 5.0,
+                t2: 5.0
+            }),
             Err(ParamError::NotIncreasing {
                 lower: "t1",
                 lower_value: 5.0,
@@ -621,19 +668,39 @@ mod tests {
             })
         );
         assert!(matches!(
-            CataloguePiecewise::try_new(-1.0, 2.0, 3.0, 1.0, 5.0),
+            CataloguePiecewise::try_new(CatalogueCurve {
+                k1: -1.0,
+                k2: 2.0,
+                k3: 3.0,
+                t1: 1.0,
+                t2: 5.0
+            }),
             Err(ParamError::NotPositive { name: "k1", .. })
         ));
     }
 
     #[test]
     fn cubic_passes_through_the_knees() {
-        let c = CataloguePiecewise::try_new(8.4e3, 9.4e3, 1.2e4, 3.9, 12.0).unwrap();
+        let c = CataloguePiecewise::try_new(CatalogueCurve {
+            k1: 8.4e3,
+            k2: 9.4e3,
+            k3: 1.2e4,
+            t1: 3.9,
+            t2: 12.0,
+        })
+        .unwrap();
         let q = CubicStiffness::through_catalogue_knees(&c).unwrap();
         assert!((q.torque(c.torsion_at_t1()) - 3.9).abs() < 1e-9);
         assert!((q.torque(c.torsion_at_t2()) - 12.0).abs() < 1e-9);
         // A softening catalogue (K2 < K1) has no admissible cubic.
-        let soft = CataloguePiecewise::try_new(9.4e3, 8.4e3, 8e3, 3.9, 12.0).unwrap();
+        let soft = CataloguePiecewise::try_new(CatalogueCurve {
+            k1: 9.4e3,
+            k2: 8.4e3,
+            k3: 8e3,
+            t1: 3.9,
+            t2: 12.0,
+        })
+        .unwrap();
         assert!(CubicStiffness::through_catalogue_knees(&soft).is_err());
     }
 
@@ -814,7 +881,7 @@ mod tests {
         /// The piecewise inverse is exact to rounding.
         #[test]
         fn piecewise_round_trip(t in -100.0f64..100.0) {
-            let c = CataloguePiecewise::try_new(8.4e3, 9.4e3, 1.2e4, 3.9, 12.0).unwrap();
+            let c = CataloguePiecewise::try_new(CatalogueCurve { k1: 8.4e3, k2: 9.4e3, k3: 1.2e4, t1: 3.9, t2: 12.0 }).unwrap();
             prop_assert!((c.torque(c.torsion(t)) - t).abs() <= 1e-10 * (1.0 + t.abs()));
         }
 

@@ -12,8 +12,8 @@ pub mod two_spring;
 pub mod wave_generator_torque;
 
 pub use compliance::{
-    CataloguePiecewise, CubicStiffness, FlexsplineConfig, FlexsplineParams, FlexsplineTorque,
-    HarmonicDriveParams, WaveGeneratorConfig, WaveGeneratorParams,
+    CatalogueCurve, CataloguePiecewise, CubicStiffness, FlexsplineConfig, FlexsplineParams,
+    FlexsplineTorque, HarmonicDriveParams, WaveGeneratorConfig, WaveGeneratorParams,
 };
 pub use identification::CatalogueData;
 pub use wave_generator_torque::{

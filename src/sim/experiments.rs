@@ -17,7 +17,7 @@ use crate::estimation::torque::{
 };
 use crate::harmonic_drive::kinematic_error::{KinematicErrorFit, KinematicErrorModel};
 use crate::harmonic_drive::{
-    CatalogueData, CataloguePiecewise, CubicStiffness, HarmonicDriveParams,
+    CatalogueCurve, CatalogueData, CataloguePiecewise, CubicStiffness, HarmonicDriveParams,
     WaveGeneratorTorqueConfig, WaveGeneratorTorqueParams, WaveGeneratorTorqueState,
 };
 use crate::scalar::{Scalar, I16F16};
@@ -43,8 +43,14 @@ impl Models {
     /// Identify all three from [`CatalogueData::SHD_17_100`] (and `K3`).
     pub fn shd_17_100() -> Self {
         let d = CatalogueData::SHD_17_100;
-        let piecewise =
-            CataloguePiecewise::try_new(d.k1, d.k2, SHD_17_100_K3, d.t1, d.t2).expect("valid");
+        let piecewise = CataloguePiecewise::try_new(CatalogueCurve {
+            k1: d.k1,
+            k2: d.k2,
+            k3: SHD_17_100_K3,
+            t1: d.t1,
+            t2: d.t2,
+        })
+        .expect("valid");
         Models {
             proposed: d.identify().expect("valid"),
             piecewise,

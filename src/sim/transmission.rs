@@ -43,8 +43,8 @@
 
 use crate::error::{increasing, positive, ParamError};
 use crate::harmonic_drive::{
-    kinematic_error::KinematicErrorModel, CatalogueData, CataloguePiecewise, CubicStiffness,
-    FlexsplineParams,
+    kinematic_error::KinematicErrorModel, CatalogueCurve, CatalogueData, CataloguePiecewise,
+    CubicStiffness, FlexsplineParams,
 };
 
 /// `K3` of the SHD-17-100 (N·m/rad) assumed by the plant (see the module
@@ -266,7 +266,13 @@ impl Backbone {
         data: &CatalogueData,
         k3: f64,
     ) -> Result<Self, ParamError> {
-        let piecewise = CataloguePiecewise::try_new(data.k1, data.k2, k3, data.t1, data.t2)?;
+        let piecewise = CataloguePiecewise::try_new(CatalogueCurve {
+            k1: data.k1,
+            k2: data.k2,
+            k3,
+            t1: data.t1,
+            t2: data.t2,
+        })?;
         Ok(match shape {
             BackboneShape::CataloguePiecewise => Backbone::CataloguePiecewise(piecewise),
             BackboneShape::CubicThroughKnees => {
@@ -806,7 +812,14 @@ mod tests {
     #[test]
     fn fitted_backbones_meet_their_catalogue_conditions() {
         let c = CatalogueData::SHD_17_100;
-        let pw = CataloguePiecewise::try_new(c.k1, c.k2, SHD_17_100_K3, c.t1, c.t2).unwrap();
+        let pw = CataloguePiecewise::try_new(CatalogueCurve {
+            k1: c.k1,
+            k2: c.k2,
+            k3: SHD_17_100_K3,
+            t1: c.t1,
+            t2: c.t2,
+        })
+        .unwrap();
         let (d1, d2) = (pw.torsion_at_t1(), pw.torsion_at_t2());
         let get = |s| Backbone::from_catalogue(s, &c, SHD_17_100_K3).unwrap();
         let tanh = get(BackboneShape::TanhThroughT2);
