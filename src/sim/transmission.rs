@@ -555,7 +555,13 @@ impl MeshFrictionPlant {
         k3: f64,
         mesh_friction: f64,
     ) -> Result<Self, ParamError> {
-        let catalogue = CataloguePiecewise::try_new(data.k1, data.k2, k3, data.t1, data.t2)?;
+        let catalogue = CataloguePiecewise::try_new(CatalogueCurve {
+            k1: data.k1,
+            k2: data.k2,
+            k3,
+            t1: data.t1,
+            t2: data.t2,
+        })?;
         let mesh_friction = positive("mesh_friction", mesh_friction)?;
         let scale = positive("starting_torque", data.ratio * data.starting_torque)?;
         let plant = MeshFrictionPlant {
