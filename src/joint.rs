@@ -261,6 +261,14 @@ impl<S: Scalar> JointState<S> {
     pub fn last_command(&self) -> S {
         self.mode.last_torque()
     }
+    /// This state with the mode manager's state replaced by `mode` (one
+    /// reached by running the same [`ModeConfig`], e.g. to resume a joint
+    /// or to start a test in a given mode); the estimator and the motor
+    /// position are kept.
+    pub fn with_mode_state(mut self, mode: ModeState<S>) -> Self {
+        self.mode = mode;
+        self
+    }
 }
 
 /// The raw readings of one tick, as the firmware gets them.

@@ -500,3 +500,22 @@ fn default_passive_gain_is_stable_when_sampled() {
     };
     assert!(hot.characteristics(&hand, 4e-3).unwrap().spectral_radius > 1.0);
 }
+
+/// A state resumed with a mode state reached elsewhere steps exactly as the
+/// joint that reached it.
+#[test]
+fn with_mode_state_resumes_the_manager() {
+    let cfg = JointConfig::<f32>::new(&firmware_params());
+    let mut a = cfg.state(0, 0);
+    let push = JointReadings::counts(0, 30); // ≈ 7 N·m of torsion
+    for _ in 0..8 {
+        cfg.update(&mut a, &push, &JointTarget::default());
+    }
+    assert_ne!(a.mode(), JointMode::Active);
+    let mut b = cfg.state_at(30, 30).with_mode_state(*a.mode_state());
+    let mut a2 = a;
+    let ra = cfg.update(&mut a2, &push, &JointTarget::default());
+    let rb = cfg.update(&mut b, &push, &JointTarget::default());
+    assert_eq!(ra.control, rb.control);
+    assert_eq!(ra.estimate, rb.estimate);
+}
