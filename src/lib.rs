@@ -10,6 +10,7 @@ pub mod error;
 pub mod estimation;
 pub mod friction;
 pub mod harmonic_drive;
+pub mod joint;
 pub mod scalar;
 #[cfg(feature = "sim")]
 pub mod sim;
@@ -38,6 +39,9 @@ pub mod docs {
 }
 
 pub use error::ParamError;
+pub use joint::{
+    JointConfig, JointOutput, JointParams, JointReadings, JointSettings, JointState, JointTarget,
+};
 pub use scalar::{Scalar, I16F16};
 
 /// The types a joint's firmware or simulator uses, in one import:
@@ -57,6 +61,10 @@ pub mod prelude {
     pub use crate::harmonic_drive::kinematic_error::KinematicErrorModel;
     pub use crate::harmonic_drive::{
         CatalogueData, FlexsplineParams, HarmonicDriveParams, WaveGeneratorParams,
+    };
+    pub use crate::joint::{
+        JointConfig, JointOutput, JointParams, JointReadings, JointSettings, JointState,
+        JointTarget,
     };
     pub use crate::scalar::{Scalar, I16F16};
 }

@@ -97,6 +97,33 @@
 //! The measured position is never overwritten: the manager's position
 //! state (offset or hold point) is defined relative to the measured
 //! position at the switch, so the reference is continuous with the joint.
+//!
+//! # Example
+//! A push of 2.5 N·m on a joint held at rest (above the 2 N·m entry
+//! threshold of [`ModeSettings::table_4_1`]): the switch to Passive waits
+//! for the dwell (5 samples) and the debounce (3), so it happens on the
+//! 6th sample, and the motor torque moves by no more than
+//! [`ModeConfig::switch_jump_bound`] at the switch.
+//!
+//! ```
+//! use mrr_control::control::{ControlInput, JointMode, ModeConfig, ModeParams, ModeSettings};
+//! let params = ModeParams::try_new(ModeSettings::table_4_1(2000.0)?)?;
+//! let mc = ModeConfig::<f64>::new(&params);
+//! let mut st = mc.initial_state();
+//! let push = ControlInput { joint_torque: 2.5, ..Default::default() };
+//! let mut switched_at = None;
+//! for sample in 1..=10 {
+//!     let before = st.last_torque();
+//!     let o = mc.update(&mut st, &push);
+//!     if o.switched {
+//!         switched_at = Some(sample);
+//!         assert_eq!(o.mode, JointMode::Passive);
+//!         assert!((o.torque - before).abs() <= mc.switch_jump_bound());
+//!     }
+//! }
+//! assert_eq!(switched_at, Some(5 + 1)); // dwell + 1
+//! # Ok::<(), mrr_control::ParamError>(())
+//! ```
 
 use super::adaptive::{
     ActiveTerms, RobustAdaptiveConfig, RobustAdaptiveParams, RobustAdaptiveState,

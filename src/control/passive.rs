@@ -110,6 +110,27 @@ impl PassiveParams {
         )
     }
 
+    /// The Table 4.1 passive mode with a default gain the thesis does not
+    /// give: `K_p = 1/Î_m` (`Î_m K_p = 1`, i.e. `K_p ≈ 87 719` 1/(kg·m²)
+    /// for `Î_m = 1.14e-5 kg·m²`).
+    ///
+    /// With `Î_m K_p = 1` the two joint-torque terms of eq. (4.32) cancel,
+    /// `τ_m = f̂^c(q̇_m) + τ_td/N`: the law compensates friction and adds
+    /// the desired joint torque, and the estimate's noise and sampling
+    /// delay do not enter a torque-feedback loop, so the choice is stable
+    /// at any sample period (below the sampled limit
+    /// `Î_m K_p > 1 + J₀/I_l` of errata E4.12 for every link). By eq. (4.33) as corrected (errata E4.1) the
+    /// joint then moves as a free body of link-side inertia
+    /// `N²/K_p = N² Î_m` (0.114 kg·m² here): the rotor's reflected inertia
+    /// without its friction. A larger `K_p` makes the joint feel lighter
+    /// (eq. 4.33) but closes a loop on the sampled estimate; check it in
+    /// simulation before raising it ([`table_4_1`](Self::table_4_1) takes
+    /// any gain).
+    pub fn table_4_1_default() -> Result<Self, ParamError> {
+        let d = super::RobustAdaptiveDesign::table_4_1();
+        Self::table_4_1(1.0 / d.rotor_inertia)
+    }
+
     /// `K_p`, 1/(kg·m²).
     pub fn gain(&self) -> f64 {
         self.gain

@@ -75,6 +75,29 @@
 //! one comparison of `|Δθ_f|` with the largest torsion that passes both
 //! on either sign, found at configuration time on the backend's own
 //! arithmetic; the saturated path then skips `tan`.
+//!
+//! # Example
+//! The SHD-17-100 with a 17-bit link encoder and a 2000-count motor
+//! encoder, on `f32`: the link encoder 3 counts ahead of a motor at 0 is a
+//! torsion `Δθ = 3·2π/2¹⁷` rad, and with no motor torque and no kinematic
+//! error the estimate is eq. (3.10), `tan(c_f K_f0 Δθ)/c_f`, here
+//! evaluated in `f64`.
+//!
+//! ```
+//! use mrr_control::estimation::torque::{TorqueEstimatorConfig, TorqueEstimatorParams};
+//! use mrr_control::harmonic_drive::CatalogueData;
+//! let drive = CatalogueData::SHD_17_100.identify()?;
+//! let p = TorqueEstimatorParams::try_new(drive, None, 1 << 17, 2000, 60.0)?;
+//! let est = TorqueEstimatorConfig::<f32>::new(&p);
+//! let mut st = est.state(0, 0); // motor at count 0, counter reading 0
+//! let e = est.update(&mut st, 3, 0, 0.0);
+//! let f = drive.flexspline();
+//! let torsion = 3.0 * std::f64::consts::TAU / 131_072.0;
+//! let tau = (f.c_f() * f.k_f0() * torsion).tan() / f.c_f();
+//! assert!((e.torque_si() - tau).abs() < 1e-5 * tau); // ≈ 1.2 N·m
+//! assert!(!e.saturated && !e.invalid_input);
+//! # Ok::<(), mrr_control::ParamError>(())
+//! ```
 
 use crate::error::{combination, integer, positive, ParamError};
 use crate::harmonic_drive::{
@@ -486,6 +509,15 @@ pub struct TorqueEstimatorState {
     last_counter: u32,
 }
 
+impl TorqueEstimatorState {
+    /// The last raw motor counter given to
+    /// [`TorqueEstimatorConfig::update`] (or to
+    /// [`TorqueEstimatorConfig::state`]), in the estimator's sign.
+    pub fn last_counter(&self) -> u32 {
+        self.last_counter
+    }
+}
+
 /// One torque estimate.
 ///
 /// Every field is finite on every backend, whatever the readings: a bad
@@ -604,6 +636,14 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             motor_in_turn: (p % self.m as i64) as u32,
             last_counter: counter,
         }
+    }
+
+    /// The motor position the state tracks, in motor counts within one
+    /// output revolution, `[0, M·N)`, in the estimator's sign (`θ_wi`;
+    /// the chapter-4 `q_m` runs the other way, errata E2.10). Times
+    /// `2π/M` it is `θ_wi` modulo `2πN` rad.
+    pub fn motor_position_counts(&self, st: &TorqueEstimatorState) -> u64 {
+        st.motor_turn as u64 * self.m as u64 + st.motor_in_turn as u64
     }
 
     /// Advance the motor position by the counter change since the last call

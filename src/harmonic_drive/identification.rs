@@ -16,6 +16,30 @@
 //! The thesis's printed SHD-17-100 results (`K_f0 = 8.2e3`, `c_f = 0.012`)
 //! do not follow from its own equations and inputs; the equations give
 //! `K_f0 = 8335.98 N·m/rad`, `c_f = 0.044940 1/(N·m)` (errata E2.3).
+//!
+//! # Example
+//! Identify the SHD-17-100 from its catalogue sheet and check the model
+//! against the sheet: the flexspline's stiffness, measured by a central
+//! difference of its torsion curve, is `K1` and `K2` at the middles of the
+//! first two pieces (the conditions 2.31–2.32 the identification
+//! imposes), and the hysteresis width `2/(N c_w K_w0)` is the catalogue's
+//! loss `Ψ`.
+//!
+//! ```
+//! use mrr_control::harmonic_drive::CatalogueData;
+//! let sheet = CatalogueData::SHD_17_100;
+//! let drive = sheet.identify()?;
+//! let f = drive.flexspline();
+//! let stiffness = |tau: f64| {
+//!     let h = 1e-3;
+//!     2.0 * h / (f.torsion(tau + h) - f.torsion(tau - h))
+//! };
+//! assert!((stiffness(sheet.t1 / 2.0) - sheet.k1).abs() < 1e-3 * sheet.k1);
+//! assert!((stiffness((sheet.t1 + sheet.t2) / 2.0) - sheet.k2).abs() < 1e-3 * sheet.k2);
+//! let width = 2.0 * drive.wave_generator().max_torsion() / drive.ratio();
+//! assert!((width - sheet.hysteresis_loss).abs() < 1e-12);
+//! # Ok::<(), mrr_control::ParamError>(())
+//! ```
 
 use super::compliance::{FlexsplineParams, HarmonicDriveParams, WaveGeneratorParams};
 use crate::error::{gear_ratio, increasing, positive, ParamError};

@@ -1,0 +1,513 @@
+//! One joint, wired once: raw encoder readings → joint-torque estimate
+//! (ch. 3, eq. 3.8–3.10) → sign conventions → mode manager (ch. 4: active
+//! eq. 4.19, passive eq. 4.32, hold, collision reaction) in one
+//! [`JointConfig::update`] per servo tick.
+//!
+//! The component has the crate's shape: [`JointParams`] (SI, validated by
+//! [`JointParams::try_new`] from named [`JointSettings`], or the
+//! [`JointParams::table_4_1`] preset) → [`JointConfig<S>`] (quantized once
+//! for backend `S`) → [`JointState<S>`] (estimator, mode manager and speed
+//! meter state) → `update(&self, &mut state, &readings, &target)` →
+//! [`JointOutput<S>`]. The step never panics, never allocates and never
+//! returns NaN: an impossible reading is replaced and flagged
+//! ([`JointOutput::invalid_input`]).
+//!
+//! # Sign conventions, handled here once
+//! Users speak the chapter-4 convention throughout: the motor angle
+//! `q_m = N q_l` at zero torsion, the motor torque `τ_m` positive driving
+//! the link forward, and the joint torque `τ_t` the torque the drive
+//! applies to the link (eq. 4.1). The estimator of ch. 3 counts the motor
+//! angle `θ_wi` the other way (eq. 2.4, errata E2.10) and returns the
+//! torque with the sign of the torsion. So the step
+//! * passes the **motor counter negated** to the estimator
+//!   ([`TorqueEstimatorConfig::update`]), and starts the estimator state
+//!   at the negated position;
+//! * gives the estimator the motor torque `τ_w = τ_m` (the same sign in
+//!   both conventions): the reading's [`JointReadings::motor_torque`] or,
+//!   when it is `None`, the previous command;
+//! * feeds the mode manager `τ̂_t = −torque` ([`JointOutput::joint_torque`]).
+//!
+//! A positive reading of [`JointReadings::motor_counter`] therefore moves
+//! the link forward, as a positive [`JointOutput::motor_torque`] drives it.
+//!
+//! # Motor position and speed from the counts
+//! The joint keeps the motor position as a 64-bit count (chapter-4 sign),
+//! advanced by the wrapping 32-bit difference of the free-running counter
+//! (valid while the motor turns fewer than 2³¹ counts per tick), and the
+//! speed as the count difference over a window of `w` ticks,
+//! `q̇_m = (c_k − c_{k−w})·2π/(M w T)` (resolution `2π/(M w T)`, lag half
+//! the window), both converted once per tick by [`Scalar::from_counts`].
+//! [`JointConfig::state`] starts the motor at `N` times the link angle
+//! (zero torsion), the link angle taken in `[−π, π)`.
+//!
+//! # Units
+//! [`JointTarget`] is link-side: rad, rad/s, rad/s² and N·m — the stored
+//! units of every backend (`S::UNITS` scales angles, speeds and link
+//! torques by 1; [`JointTarget::from_si`] applies the scales anyway). The
+//! step multiplies the trajectory by `N` for the motor-side law (eq. 4.15).
+//! [`JointOutput::motor_torque`] is in stored motor-torque units (N·m on
+//! floats, mN·m on `I16F16`); the `_si` readers give SI on every backend.
+//!
+//! # Example
+//! The Table 4.1 joint at rest, then a motor counter that ran ahead of the
+//! link by 10 counts (a torsion): the estimate follows eq. (3.9)–(3.10),
+//! computed here independently in `f64`.
+//!
+//! ```
+//! use mrr_control::joint::{JointConfig, JointParams, JointReadings, JointTarget};
+//! let p = JointParams::table_4_1()?;
+//! let cfg = JointConfig::<f64>::new(&p);
+//! let mut st = cfg.state(0, 0);
+//! let hold = JointTarget::from_si(0.0, 0.0, 0.0);
+//! // Motor 10 counts forward of a link at 0, no motor torque applied.
+//! let readings = JointReadings { link_count: 0, motor_counter: 10, motor_torque: Some(0.0) };
+//! let out = cfg.update(&mut st, &readings, &hold);
+//! // Torsion Δθ = θ_fo + θ_wi/N with θ_wi = −10·2π/2000 (the estimator's
+//! // sign); minus the kinematic error of Table 3.2 at (0, θ_wi); then
+//! // τ_f = tan(c_f K_f0 Δθ_f)/c_f (eq. 3.10) and τ̂_t = −τ_f.
+//! let drive = mrr_control::harmonic_drive::CatalogueData::SHD_17_100.identify()?;
+//! let ke = mrr_control::harmonic_drive::kinematic_error::KinematicErrorModel::table_3_2();
+//! let theta_wi = -10.0 * std::f64::consts::TAU / 2000.0;
+//! let dtheta_f = theta_wi / 100.0 - ke.evaluate(0.0, theta_wi);
+//! let f = drive.flexspline();
+//! let tau_t = -(f.c_f() * f.k_f0() * dtheta_f).tan() / f.c_f();
+//! assert!(tau_t > 0.0); // the motor ahead pushes the link forward
+//! assert!((out.joint_torque - tau_t).abs() < 1e-3 * tau_t.abs());
+//! assert!((out.motor_position - 10.0 * std::f64::consts::TAU / 2000.0).abs() < 1e-12);
+//! assert!(!out.invalid_input);
+//! # Ok::<(), mrr_control::ParamError>(())
+//! ```
+
+use crate::control::{
+    ControlInput, JointMode, ModeConfig, ModeOutput, ModeParams, ModeSettings, ModeState,
+    PassiveParams,
+};
+use crate::error::ParamError;
+use crate::estimation::torque::{
+    TorqueEstimate, TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorState,
+};
+use crate::harmonic_drive::identification::CatalogueData;
+use crate::harmonic_drive::kinematic_error::KinematicErrorModel;
+use crate::scalar::units::{dequantize, quantize_keep_non_finite};
+use crate::scalar::{Coef, Scalar};
+use core::f64::consts::TAU;
+
+/// Longest speed window, ticks.
+pub const MAX_SPEED_WINDOW: u8 = 64;
+
+/// The settings of a joint by name, for [`JointParams::try_new`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JointSettings {
+    /// The joint-torque estimator (drive model, kinematic error, encoder
+    /// resolutions `L` and `M`, torque limit).
+    pub estimator: TorqueEstimatorParams,
+    /// The mode manager (active and passive laws, switching, collision);
+    /// its gear ratio must be the drive's, and its sample period is the
+    /// joint's tick `T`.
+    pub mode: ModeParams,
+    /// Window of the motor speed's count difference, ticks, in
+    /// `[1, MAX_SPEED_WINDOW]`.
+    pub speed_window: u8,
+}
+
+/// Parameters of one joint, SI; built only by [`try_new`](Self::try_new).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JointParams {
+    settings: JointSettings,
+}
+
+impl JointParams {
+    /// Validate: the mode manager's gear ratio (its active law's `N`) equals
+    /// the drive's (`ParamError::OutOfRange` naming `mode.active.ratio`,
+    /// with the drive's ratio as both bounds); `speed_window` in
+    /// `[1, MAX_SPEED_WINDOW]`; the motor speed resolution
+    /// `2π/(M·w·T)` at most 32 768 rad/s (named
+    /// `2π/(motor_counts_per_rev·speed_window·sample_period)`). The
+    /// estimator and mode parameters were validated by their own
+    /// `try_new`.
+    pub fn try_new(settings: JointSettings) -> Result<Self, ParamError> {
+        let n = settings.estimator.drive().ratio();
+        let mode_ratio = settings.mode.settings().active.design().ratio;
+        if mode_ratio != n {
+            return Err(ParamError::OutOfRange {
+                name: "mode.active.ratio",
+                value: mode_ratio,
+                min: n,
+                max: n,
+            });
+        }
+        if settings.speed_window == 0 || settings.speed_window > MAX_SPEED_WINDOW {
+            return Err(ParamError::OutOfRange {
+                name: "speed_window",
+                value: settings.speed_window as f64,
+                min: 1.0,
+                max: MAX_SPEED_WINDOW as f64,
+            });
+        }
+        let p = JointParams { settings };
+        crate::error::combination(
+            "2π/(motor_counts_per_rev·speed_window·sample_period)",
+            p.speed_resolution(),
+            0.0,
+            32_768.0,
+        )?;
+        Ok(p)
+    }
+
+    /// The Table 4.1 joint: the SHD-17-100 identified from its catalogue
+    /// sheet ([`CatalogueData::SHD_17_100`], eq. 2.30), the Table 3.2
+    /// kinematic error, a 17-bit link encoder (`L = 2¹⁷`), a 2000-count
+    /// motor encoder, ±60 N·m estimate limit; the Table 4.1 active law
+    /// (`T = 4 ms`) and passive law with the default gain
+    /// ([`PassiveParams::table_4_1_default`]) under the manager settings of
+    /// [`ModeSettings::table_4_1`] (no collision detector); speed over one
+    /// tick (resolution `2π/(2000·4 ms) = 0.785` rad/s).
+    pub fn table_4_1() -> Result<Self, ParamError> {
+        let estimator = TorqueEstimatorParams::try_new(
+            CatalogueData::SHD_17_100.identify()?,
+            Some(KinematicErrorModel::table_3_2()),
+            1 << 17,
+            2000,
+            60.0,
+        )?;
+        let mode = ModeParams::try_new(ModeSettings {
+            passive: PassiveParams::table_4_1_default()?,
+            ..ModeSettings::table_4_1(1.0)?
+        })?;
+        Self::try_new(JointSettings {
+            estimator,
+            mode,
+            speed_window: 1,
+        })
+    }
+
+    /// The settings, by name.
+    pub fn settings(&self) -> JointSettings {
+        self.settings
+    }
+
+    /// The tick `T`, s (the active law's sample period).
+    pub fn sample_period(&self) -> f64 {
+        self.settings.mode.settings().active.design().sample_period
+    }
+
+    /// The gear ratio `N`.
+    pub fn ratio(&self) -> f64 {
+        self.settings.estimator.drive().ratio()
+    }
+
+    /// Motor angle per count `2π/M`, rad.
+    pub fn motor_rad_per_count(&self) -> f64 {
+        TAU / self.settings.estimator.motor_counts_per_rev() as f64
+    }
+
+    /// The motor speed's resolution `2π/(M w T)`, rad/s.
+    pub fn speed_resolution(&self) -> f64 {
+        self.motor_rad_per_count() / (self.settings.speed_window as f64 * self.sample_period())
+    }
+}
+
+/// The joint quantized for backend `S`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JointConfig<S> {
+    estimator: TorqueEstimatorConfig<S>,
+    mode: ModeConfig<S>,
+    /// `N`, link → motor side.
+    ratio: Coef,
+    /// `2π/M` in stored angle units per count.
+    angle_per_count: Coef,
+    /// `2π/(M w T)` in stored speed units per count.
+    speed_per_count: Coef,
+    speed_window: u8,
+    link_counts: u32,
+    /// `M·N`, motor counts per output revolution.
+    motor_counts_per_output_rev: i64,
+}
+
+/// The joint's state: the estimator's, the mode manager's, and the motor
+/// position and speed meter's.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JointState<S: Scalar> {
+    estimator: TorqueEstimatorState,
+    mode: ModeState<S>,
+    /// Motor position, counts, chapter-4 sign.
+    motor_count: i64,
+    /// Last raw counter (chapter-4 sign).
+    last_counter: u32,
+    /// The last `w` raw counters, oldest at `head`.
+    history: [u32; MAX_SPEED_WINDOW as usize],
+    head: u8,
+}
+
+impl<S: Scalar> JointState<S> {
+    /// The current mode.
+    pub fn mode(&self) -> JointMode {
+        self.mode.mode()
+    }
+    /// The mode manager's state (adapted friction, bias, collision latch).
+    pub fn mode_state(&self) -> &ModeState<S> {
+        &self.mode
+    }
+    /// The estimator's state (in the estimator's sign).
+    pub fn estimator_state(&self) -> &TorqueEstimatorState {
+        &self.estimator
+    }
+    /// The motor position in counts since the state was made, offset by the
+    /// start position, chapter-4 sign (`q_m = counts · 2π/M`).
+    pub fn motor_position_counts(&self) -> i64 {
+        self.motor_count
+    }
+    /// The last motor torque command, stored motor-torque units.
+    pub fn last_command(&self) -> S {
+        self.mode.last_torque()
+    }
+    /// This state with the mode manager's state replaced by `mode` (one
+    /// reached by running the same [`ModeConfig`], e.g. to resume a joint
+    /// or to start a test in a given mode); the estimator and the motor
+    /// position are kept.
+    pub fn with_mode_state(mut self, mode: ModeState<S>) -> Self {
+        self.mode = mode;
+        self
+    }
+}
+
+/// The raw readings of one tick, as the firmware gets them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JointReadings<S> {
+    /// Link-side absolute encoder count, `[0, L)`, increasing with the link
+    /// angle (a larger value is reduced modulo `L` and flagged).
+    pub link_count: u32,
+    /// Free-running motor counter (wrapping), chapter-4 sign: increasing
+    /// as the motor drives the link forward.
+    pub motor_counter: u32,
+    /// Motor torque `τ_m` being applied (e.g. from the measured current),
+    /// stored motor-torque units, positive driving the link forward; `None`
+    /// takes the previous command (the wave-generator torque `τ_w` of
+    /// eq. 3.9 approximated by the command).
+    pub motor_torque: Option<S>,
+}
+
+impl<S> JointReadings<S> {
+    /// Readings with the motor torque taken as the previous command.
+    pub fn counts(link_count: u32, motor_counter: u32) -> Self {
+        JointReadings {
+            link_count,
+            motor_counter,
+            motor_torque: None,
+        }
+    }
+}
+
+/// What the joint should do on this tick, link side.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct JointTarget<S> {
+    /// Desired link angle `q_d`, stored angle units (rad).
+    pub position: S,
+    /// Desired link speed `q̇_d`, stored speed units (rad/s).
+    pub velocity: S,
+    /// Desired link acceleration `q̈_d`, stored speed units per second
+    /// (rad/s²).
+    pub acceleration: S,
+    /// Desired joint torque `τ_td` of the passive law (eq. 4.32; 0 for a
+    /// free joint), stored link-torque units (N·m), eq. (4.1) sign.
+    pub joint_torque: S,
+    /// Joint torque expected without interaction (gravity, payload),
+    /// stored link-torque units (N·m), eq. (4.1) sign: the interaction
+    /// torque and the collision residual are `τ̂_t` minus this.
+    pub expected_joint_torque: S,
+}
+
+impl<S: Scalar> JointTarget<S> {
+    /// A trajectory point from SI values (rad, rad/s, rad/s²), no desired
+    /// or expected joint torque. A NaN or infinity stays one on floats (the
+    /// step then flags it); fixed point saturates it (see
+    /// [`quantize_keep_non_finite`]).
+    pub fn from_si(position: f64, velocity: f64, acceleration: f64) -> Self {
+        let u = S::UNITS;
+        JointTarget {
+            position: quantize_keep_non_finite(position, u.angle),
+            velocity: quantize_keep_non_finite(velocity, u.speed),
+            acceleration: quantize_keep_non_finite(acceleration, u.speed),
+            joint_torque: S::ZERO,
+            expected_joint_torque: S::ZERO,
+        }
+    }
+}
+
+/// One tick of the joint.
+///
+/// Every field is finite on every backend.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JointOutput<S> {
+    /// The motor torque command `τ_m`, stored motor-torque units, positive
+    /// driving the link forward, within the torque limit.
+    pub motor_torque: S,
+    /// The mode that produced it.
+    pub mode: JointMode,
+    /// The estimated joint torque `τ̂_t` (eq. 4.1 sign: the torque the drive
+    /// applies to the link), stored link-torque units; `−estimate.torque`.
+    pub joint_torque: S,
+    /// The measured motor position `q_m` (chapter-4 sign), stored angle
+    /// units.
+    pub motor_position: S,
+    /// The measured motor speed `q̇_m` (count difference over the window),
+    /// stored speed units.
+    pub motor_velocity: S,
+    /// An input was impossible, at either stage: a link count not below
+    /// `L`, a counter jump or torsion no torque can produce, a NaN or
+    /// infinite motor torque (estimator), a NaN or infinite target, or a
+    /// law that overflowed (mode manager). The values that replace it are
+    /// documented on [`TorqueEstimate`] and [`ModeOutput`].
+    pub invalid_input: bool,
+    /// The estimator's output, in the estimator's sign (errata E2.10).
+    pub estimate: TorqueEstimate<S>,
+    /// The mode manager's output (switch, saturation, collision, reference).
+    pub control: ModeOutput<S>,
+}
+
+impl<S: Scalar> JointOutput<S> {
+    /// [`motor_torque`](Self::motor_torque) in N·m.
+    pub fn motor_torque_si(&self) -> f64 {
+        dequantize(self.motor_torque, S::UNITS.motor_torque)
+    }
+    /// [`joint_torque`](Self::joint_torque) in N·m.
+    pub fn joint_torque_si(&self) -> f64 {
+        dequantize(self.joint_torque, S::UNITS.link_torque)
+    }
+    /// [`motor_position`](Self::motor_position) in rad.
+    pub fn motor_position_si(&self) -> f64 {
+        dequantize(self.motor_position, S::UNITS.angle)
+    }
+    /// [`motor_velocity`](Self::motor_velocity) in rad/s.
+    pub fn motor_velocity_si(&self) -> f64 {
+        dequantize(self.motor_velocity, S::UNITS.speed)
+    }
+}
+
+impl<S: Scalar> JointConfig<S> {
+    /// Quantize validated parameters once.
+    pub fn new(p: &JointParams) -> Self {
+        let u = S::UNITS;
+        let s = &p.settings;
+        let m = s.estimator.motor_counts_per_rev();
+        JointConfig {
+            estimator: TorqueEstimatorConfig::new(&s.estimator),
+            mode: ModeConfig::new(&s.mode),
+            ratio: Coef::new(p.ratio()),
+            angle_per_count: Coef::new(p.motor_rad_per_count() * u.angle),
+            speed_per_count: Coef::new(p.speed_resolution() * u.speed),
+            speed_window: s.speed_window,
+            link_counts: s.estimator.link_counts_per_rev(),
+            motor_counts_per_output_rev: m as i64 * p.ratio() as i64,
+        }
+    }
+
+    /// The estimator's configuration.
+    pub fn estimator(&self) -> &TorqueEstimatorConfig<S> {
+        &self.estimator
+    }
+
+    /// The mode manager's configuration.
+    pub fn mode(&self) -> &ModeConfig<S> {
+        &self.mode
+    }
+
+    /// A state for a joint at rest whose encoders read `link_count` and
+    /// `motor_counter` (chapter-4 sign): the motor position is taken as
+    /// `N` times the link angle in `[−π, π)` (zero torsion), in counts
+    /// `⌊c·M·N/L⌋` with `c` the link count in `[−L/2, L/2)`.
+    pub fn state(&self, link_count: u32, motor_counter: u32) -> JointState<S> {
+        let l = self.link_counts as i64;
+        let mut c = link_count as i64 % l;
+        if c >= l - l / 2 {
+            c -= l;
+        }
+        let motor = (c * self.motor_counts_per_output_rev).div_euclid(l);
+        self.state_at(motor, motor_counter)
+    }
+
+    /// A state for a motor at `motor_position` counts (chapter-4 sign,
+    /// `q_m = counts · 2π/M`) while its counter reads `motor_counter`.
+    pub fn state_at(&self, motor_position: i64, motor_counter: u32) -> JointState<S> {
+        JointState {
+            estimator: self
+                .estimator
+                .state(motor_position.wrapping_neg(), motor_counter.wrapping_neg()),
+            mode: self.mode.initial_state(),
+            motor_count: motor_position,
+            last_counter: motor_counter,
+            history: [motor_counter; MAX_SPEED_WINDOW as usize],
+            head: 0,
+        }
+    }
+
+    /// Clear a latched collision reaction (the operator acknowledged it).
+    pub fn acknowledge_collision(&self, st: &mut JointState<S>) {
+        self.mode.acknowledge_collision(&mut st.mode);
+    }
+
+    /// One tick: estimate the joint torque from the readings (eq. 3.8–3.10,
+    /// motor counter negated), measure the motor position and speed, and
+    /// run the mode manager on `τ̂_t = −estimate` and the target times `N`
+    /// (module docs).
+    pub fn update(
+        &self,
+        st: &mut JointState<S>,
+        readings: &JointReadings<S>,
+        target: &JointTarget<S>,
+    ) -> JointOutput<S> {
+        let counter = readings.motor_counter;
+        let motor_torque = match readings.motor_torque {
+            Some(t) => t,
+            None => st.mode.last_torque(),
+        };
+        let estimate = self.estimator.update(
+            &mut st.estimator,
+            readings.link_count,
+            counter.wrapping_neg(),
+            motor_torque,
+        );
+        // Position: wrapping 32-bit difference, exact 64-bit sum.
+        let delta = counter.wrapping_sub(st.last_counter) as i32;
+        st.last_counter = counter;
+        st.motor_count = st.motor_count.wrapping_add(delta as i64);
+        // Speed: difference to the counter `w` ticks ago.
+        let w = self.speed_window.clamp(1, MAX_SPEED_WINDOW);
+        let head = if st.head < w { st.head } else { 0 };
+        let old = st.history.get(head as usize).copied().unwrap_or(counter);
+        if let Some(slot) = st.history.get_mut(head as usize) {
+            *slot = counter;
+        }
+        st.head = if head + 1 >= w { 0 } else { head + 1 };
+        let moved = counter.wrapping_sub(old) as i32;
+        let motor_position = S::from_counts(st.motor_count, &self.angle_per_count);
+        let motor_velocity = S::from_counts(moved as i64, &self.speed_per_count);
+        let joint_torque = estimate.torque.neg();
+        let x = ControlInput {
+            desired_position: target.position.mul_coef(&self.ratio),
+            desired_velocity: target.velocity.mul_coef(&self.ratio),
+            desired_acceleration: target.acceleration.mul_coef(&self.ratio),
+            motor_position,
+            motor_velocity,
+            joint_torque,
+            desired_joint_torque: target.joint_torque,
+            expected_joint_torque: target.expected_joint_torque,
+        };
+        let control = self.mode.update(&mut st.mode, &x);
+        JointOutput {
+            motor_torque: control.torque,
+            mode: control.mode,
+            joint_torque,
+            motor_position,
+            motor_velocity,
+            invalid_input: estimate.invalid_input
+                || estimate.link_count_invalid
+                || control.invalid_input,
+            estimate,
+            control,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;
