@@ -4,9 +4,11 @@
 //! Per sample, with `e = q_m − q_m^d`, `r = ė + λe` and
 //! `a = q̈_m^d − 2λė − λ²e` (eq. 4.15):
 //!
-//! $$ \tau_m = I_m a + \frac{\hat\tau_t}{N} + \hat f^c(\dot q_m) - z
-//!    - K_r\,\mathrm{sat}(r,\epsilon_r)
-//!    - \sum_{j=1}^{4} \rho_{Fj} Y_j\,\mathrm{sat}(r Y_j, \epsilon_{Fj}) $$
+//! ```text
+//! τ_m = I_m a + τ̂_t/N + f̂^c(q̇_m) − z
+//!       − K_r sat(r, ε_r)
+//!       − Σ_{j=1..4} ρ_Fj Y_j sat(r Y_j, ε_Fj)
+//! ```
 //!
 //! (eq. 4.19), where `K_r = ρ_f + ρ_fq + I_m ρ_base + ρ_τ/N`, `f̂^c` and `Y`
 //! are the nominal friction and regressor of eq. (4.17)

@@ -2,8 +2,10 @@
 //!
 //! With the dissipation constant
 //!
-//! $$ c = \frac{\epsilon_r}{4}\Big(\rho_f + \frac{\rho_{\tau t}}{N} + \rho_{fq}
-//!        + I_m\rho_{base}\Big) + \sum_{j=1}^4 \frac{\rho_{Fj}\epsilon_{Fj}}{4} $$
+//! ```text
+//! c = (ε_r/4) (ρ_f + ρ_τt/N + ρ_fq + I_m ρ_base)
+//!     + Σ_{j=1..4} ρ_Fj ε_Fj / 4
+//! ```
 //!
 //! eq. (4.28) reads `V̇ ≤ −I_m λ r² + c`. Hence
 //! * `V̇ < 0` whenever `|r| > r* = √(c/(I_m λ))` (eq. 4.29);

@@ -1,7 +1,9 @@
 //! Interactive-force compensation in passive mode, thesis §4.3, eq. (4.32):
 //!
-//! $$ \tau_m = \hat f^c(\dot q_m) + \frac{\hat\tau_t}{N}
-//!    + \frac{\hat I_m K_p (\tau_{td} - \hat\tau_t)}{N} $$
+//! ```text
+//! τ_m = f̂^c(q̇_m) + τ̂_t/N
+//!       + Î_m K_p (τ_td − τ̂_t)/N
+//! ```
 //!
 //! Friction is compensated by the nominal model of eq. (4.17) (the
 //! estimates passed in, e.g. the adapted ones of the active law, or the

@@ -23,10 +23,12 @@ use crate::scalar::{units::Units, Coef, Scalar};
 /// The catalogue's piecewise-linear torsion curve, eq. (2.11), odd in the
 /// torque: slopes `K1` up to `T1`, `K2` from `T1` to `T2`, `K3` above `T2`.
 ///
-/// $$ \Delta\theta(\tau) = \begin{cases} \tau/K_1 & 0 \le \tau \le T_1 \\
-/// T_1/K_1 + (\tau-T_1)/K_2 & T_1 < \tau \le T_2 \\
-/// T_1/K_1 + (T_2-T_1)/K_2 + (\tau-T_2)/K_3 & \tau > T_2 \end{cases},\quad
-/// \Delta\theta(-\tau) = -\Delta\theta(\tau) $$
+/// ```text
+/// Δθ(τ) = τ/K1                                   0 ≤ τ ≤ T1
+///         T1/K1 + (τ − T1)/K2                    T1 < τ ≤ T2
+///         T1/K1 + (T2 − T1)/K2 + (τ − T2)/K3     τ > T2
+/// Δθ(−τ) = −Δθ(τ)
+/// ```
 ///
 /// The printed eq. (2.11) divides the third piece by `K2` and writes `τ_1`,
 /// `T_f` for `T_1`, `τ_f`; it also leaves the negative torques out. See

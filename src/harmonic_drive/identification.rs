@@ -5,9 +5,11 @@
 //! piecewise slopes at the middle of the first two pieces: `K_fl(T1/2) = K1`
 //! (2.31) and `K_fl((T1+T2)/2) = K2` (2.32). Solving the pair gives
 //!
-//! $$ K_{f0} = \frac{K_1 S^2 - K_2 T_1^2}{S^2 - T_1^2}
-//!          = K_1 + \frac{(K_1-K_2)T_1^2}{S^2-T_1^2}, \qquad
-//!    c_f = 2\sqrt{\frac{K_2-K_1}{K_1 S^2 - K_2 T_1^2}}, \qquad S = T_1+T_2 $$
+//! ```text
+//! K_f0 = (K1 S² − K2 T1²) / (S² − T1²)
+//!      = K1 + (K1 − K2) T1² / (S² − T1²)
+//! c_f  = 2 √( (K2 − K1) / (K1 S² − K2 T1²) ),     S = T1 + T2
+//! ```
 //!
 //! (eq. 2.33, 2.34). The wave generator is matched to the hysteresis loss
 //! `Ψ` and the starting torque `τ_fs`: `K_w0 = 2 τ_fs / (N Ψ)` (2.35) and

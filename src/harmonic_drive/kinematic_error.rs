@@ -7,8 +7,10 @@
 //! Nye & Kraml). The thesis models it with a truncated Fourier series,
 //! eq. (3.3)–(3.7):
 //!
-//! $$ \theta_{err} = a_0 + a_{l1}\cos(w_l\theta_{fo}) + b_{l1}\sin(w_l\theta_{fo})
-//!   + \sum_{k=1}^{2} a_{wk}\cos(k w_w\theta_{wi}) + b_{wk}\sin(k w_w\theta_{wi}) $$
+//! ```text
+//! θ_err = a_0 + a_l1 cos(w_l θ_fo) + b_l1 sin(w_l θ_fo)
+//!             + Σ_{k=1,2} [ a_wk cos(k w_w θ_wi) + b_wk sin(k w_w θ_wi) ]
+//! ```
 //!
 //! (eq. 3.5 and 3.7 print `θ_wo` in the `b_w1` term; it is `θ_wi`, errata E3.2).
 //!
@@ -247,8 +249,10 @@ impl KinematicErrorModel {
 
 /// Eq. (3.7) in amplitude–phase form:
 ///
-/// $$ \theta_{err} = a_0 + R_l\cos(\theta_{fo} - \varphi_l)
-///   + R_1\cos(\theta_{wi} - \varphi_1) + R_2\cos(2\theta_{wi} - \varphi_2) $$
+/// ```text
+/// θ_err = a_0 + R_l cos(θ_fo − φ_l)
+///             + R_1 cos(θ_wi − φ_1) + R_2 cos(2 θ_wi − φ_2)
+/// ```
 ///
 /// with `R_l = √(a_l1² + b_l1²)`, `φ_l = atan2(b_l1, a_l1)` and likewise
 /// for the first and second motor harmonics (`a_w1, b_w1`, `a_w2, b_w2`).
