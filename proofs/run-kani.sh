@@ -6,6 +6,7 @@
 # Usage: proofs/run-kani.sh [-t SECONDS] [-j JOBS] [-s SOLVER] [HARNESS ...]
 #   -t  per-harness timeout (default 600)
 #   -j  harnesses verified at once (default 1)
+#   NICE (environment) niceness of each run (default 15)
 #   -s  CBMC solver passed to `cargo kani --solver` (default: Kani's own,
 #       CaDiCaL; see "solver" below)
 #   HARNESS  names of #[kani::proof] functions (default: every one in proofs/)
@@ -62,10 +63,11 @@ solver_label=${solver:-default}
 list_harnesses() {
     for f in proofs/*.rs; do
         awk -v f="$f" '
+            /^[[:space:]]*(pub )?mod [a-z_0-9]+ \{/ { match($0, /mod [a-z_0-9]+/); m = substr($0, RSTART + 4, RLENGTH - 4) }
             /#\[kani::proof\]/ { want = 1; next }
             want && /fn kani_[A-Za-z0-9_]*\(/ {
                 match($0, /fn kani_[A-Za-z0-9_]*/)
-                print f "\t" substr($0, RSTART + 3, RLENGTH - 3)
+                print f "\t" substr($0, RSTART + 3, RLENGTH - 3) "\t" m
                 want = 0
             }' "$f"
     done
@@ -117,19 +119,19 @@ else
     sel="$all"$'\n'
 fi
 
-# Build once (all harnesses share the compiled crate); fails fast on a
-# compile error instead of once per harness.
 echo "kani $kani_version, cbmc $cbmc_version, commit $commit, timeout ${timeout_s}s, solver $solver_label"
 
 run_one() {
-    local file=$1 name=$2
+    local file=$1 name=$2 module=$3
+    local stem=${file##*/}
+    local path="proofs::${stem%.rs}::$module::$name"
     local log="$logdir/$name.log"
     local solver_args=()
     [ -n "$solver" ] && solver_args=(--solver "$solver")
     local start end secs result
     start=$(date +%s.%N)
     timeout --kill-after=30 $((timeout_s + 120)) \
-        cargo kani --harness "$name" --exact -Z unstable-options \
+        nice -n "${NICE:-15}" cargo kani --harness "$path" --exact -Z unstable-options \
         --harness-timeout "${timeout_s}s" --output-format terse "${solver_args[@]}" \
         >"$log" 2>&1
     local rc=$?
@@ -159,12 +161,12 @@ run_one() {
 export -f run_one property_of backend_of
 export timeout_s solver solver_label kani_version cbmc_version commit logdir
 
-printf '%s' "$sel" | awk 'NF' | xargs -P "$jobs" -L 1 bash -c 'run_one "$0" "$1"'
+printf '%s' "$sel" | awk 'NF' | xargs -P "$jobs" -L 1 bash -c 'run_one "$0" "$1" "$2"'
 
 # Merge the new rows into the table (by harness name), keep the rest.
 tmp=$(mktemp)
 cp "$tsv" "$tmp"
-while IFS=$'\t' read -r file name; do
+while IFS=$'\t' read -r file name _module; do
     [ -z "$name" ] && continue
     row="$logdir/$name.row"
     [ -f "$row" ] || continue
@@ -173,7 +175,7 @@ while IFS=$'\t' read -r file name; do
     rm -f "$row"
 done <<<"$sel"
 # Harnesses never run yet get a NOT RUN row; rows of removed harnesses go.
-while IFS=$'\t' read -r file name; do
+while IFS=$'\t' read -r file name _module; do
     [ -z "$name" ] && continue
     if ! awk -F'\t' -v n="$name" '$1 == n { f = 1 } END { exit !f }' "$tmp"; then
         printf '%s\t%s\t%s\t%s\tNOT RUN\t-\t-\t-\t-\t-\n' "$name" "$file" \
