@@ -54,7 +54,7 @@ fi
 kani_version=$(cargo kani --version 2>/dev/null | head -1 | sed 's/^cargo-kani //')
 cbmc_version=$(cbmc --version 2>/dev/null | head -1 | sed 's/ .*//')
 commit=$(git rev-parse --short=10 HEAD 2>/dev/null || echo unknown)
-if ! git diff --quiet HEAD -- src proofs Cargo.toml 2>/dev/null; then
+if ! git diff --quiet HEAD -- src Cargo.toml 'proofs/*.rs' 2>/dev/null; then
     commit="$commit+uncommitted"
 fi
 solver_label=${solver:-default}
