@@ -163,7 +163,8 @@ export timeout_s solver solver_label kani_version cbmc_version commit logdir
 
 printf '%s' "$sel" | awk 'NF' | xargs -P "$jobs" -L 1 bash -c 'run_one "$0" "$1" "$2"'
 
-# Merge the new rows into the table (by harness name), keep the rest.
+# Merge the new rows into the table (by harness name), keep the rest. Rows
+# left by an interrupted earlier run are merged too.
 tmp=$(mktemp)
 cp "$tsv" "$tmp"
 while IFS=$'\t' read -r file name _module; do
@@ -173,7 +174,7 @@ while IFS=$'\t' read -r file name _module; do
     awk -F'\t' -v n="$name" '$1 != n' "$tmp" >"$tmp.2" && mv "$tmp.2" "$tmp"
     cat "$row" >>"$tmp"
     rm -f "$row"
-done <<<"$sel"
+done <<<"$all"
 # Harnesses never run yet get a NOT RUN row; rows of removed harnesses go.
 while IFS=$'\t' read -r file name _module; do
     [ -z "$name" ] && continue
