@@ -181,22 +181,37 @@ mod kani_entries {
         assert!(sat_monotone_step(x, xn, y).holds);
     }
 
+    /// `x`, `y` for the f32 harnesses. Checker limit, not a property
+    /// precondition: `sat(±∞, +∞)` divides `±∞/+∞` on purpose (the NaN is
+    /// replaced by `sgn(x)`, its limit along `|x| = y`), and Kani's
+    /// NaN-on-division check, which comes with its overflow checks, fails on
+    /// that intermediate. Those two pairs are left to the exhaustive engine
+    /// (`exhaustive_sat_f32`: every pair of bfloat16 values, ±∞ included) and
+    /// to `sat_is_continuous_exactly_at_the_boundary`.
+    fn any_f32_pair() -> (f32, f32) {
+        let (x, y): (f32, f32) = (kani::any(), kani::any());
+        kani::assume(!(x.is_infinite() && y == f32::INFINITY));
+        (x, y)
+    }
+
     #[kani::proof]
     fn kani_sat_in_range_f32() {
-        assert!(sat_in_range::<f32>(kani::any(), kani::any()).holds);
+        let (x, y) = any_f32_pair();
+        assert!(sat_in_range(x, y).holds);
     }
 
     #[kani::proof]
     fn kani_sat_odd_f32() {
-        assert!(sat_odd::<f32>(kani::any(), kani::any()).holds);
+        let (x, y) = any_f32_pair();
+        assert!(sat_odd(x, y).holds);
     }
 
     #[kani::proof]
     fn kani_sat_monotone_f32() {
-        let x: f32 = kani::any();
+        let (x, y) = any_f32_pair();
         // Precondition: a finite successor exists.
         kani::assume(x.is_finite() && x < f32::MAX);
-        assert!(sat_monotone_step(x, next_up(x), kani::any()).holds);
+        assert!(sat_monotone_step(x, next_up(x), y).holds);
     }
 }
 
@@ -305,6 +320,20 @@ mod tests {
             let yf = I16F16::from_num(y);
             assert_eq!(yf.sat(yf), I16F16::ONE);
             assert_eq!(yf.neg().sat(yf), I16F16::ONE.neg());
+        }
+    }
+
+    /// The pairs the f32 Kani harnesses leave out: `sat(±∞, +∞) = ±1`
+    /// (the `∞/∞` NaN replaced by its limit), in range and odd.
+    #[test]
+    fn sat_of_infinities_is_the_limit() {
+        let inf = f32::INFINITY;
+        assert_eq!(inf.sat(inf), 1.0);
+        assert_eq!((-inf).sat(inf), -1.0);
+        for x in [inf, -inf] {
+            assert!(sat_in_range(x, inf).holds);
+            assert!(sat_odd(x, inf).holds);
+            assert!(sat_matches_definition(x, inf).holds);
         }
     }
 
