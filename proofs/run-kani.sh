@@ -130,7 +130,7 @@ run_one() {
     [ -n "$solver" ] && solver_args=(--solver "$solver")
     local start end secs result
     start=$(date +%s.%N)
-    timeout --kill-after=30 $((timeout_s + 120)) \
+    timeout --kill-after=30 $((timeout_s + 600)) \
         nice -n "${NICE:-15}" cargo kani --harness "$path" --exact -Z unstable-options \
         --harness-timeout "${timeout_s}s" --output-format terse "${solver_args[@]}" \
         >"$log" 2>&1
@@ -142,7 +142,7 @@ run_one() {
     vt=$(grep -o 'Verification Time: [0-9.]*s' "$log" | tail -1 | grep -o '[0-9.]*')
     if grep -q 'VERIFICATION:- SUCCESSFUL' "$log"; then
         result=VERIFIED
-    elif grep -qi 'timed out\|harness-timeout\|TIMEOUT' "$log" || [ $rc -eq 124 ] || [ $rc -eq 137 ]; then
+    elif grep -qi 'timed out\|harness-timeout\|TIMEOUT' "$log" || [ $rc -eq 124 ] || [ $rc -eq 137 ] || [ $rc -eq 143 ]; then
         result=TIMEOUT
     elif grep -q 'VERIFICATION:- FAILED' "$log"; then
         result=FAILED
@@ -211,9 +211,9 @@ rm -f "$tmp"
     echo "| harness | file | property | backend | result | time (s) | Kani | CBMC | solver | commit |"
     echo "|---|---|---|---|---|---|---|---|---|---|"
     tail -n +2 "$tsv" | awk -F'\t' '{ printf "| `%s` | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $5, $6, $7, $8, $9, $10 }'
-    if [ -f proofs/KANI_RETIRED.md ]; then
+    if [ -f proofs/KANI_NOTES.md ]; then
         echo
-        cat proofs/KANI_RETIRED.md
+        cat proofs/KANI_NOTES.md
     fi
 } >"$md"
 echo "wrote $md"
