@@ -7,6 +7,8 @@
 #   -t  per-harness timeout (default 600)
 #   -j  harnesses verified at once (default 1)
 #   NICE (environment) niceness of each run (default 15)
+#   -m  run nothing: only merge the results of interrupted runs and rewrite
+#       the table
 #   -s  CBMC solver passed to `cargo kani --solver` (default: Kani's own,
 #       CaDiCaL; see "solver" below)
 #   HARNESS  names of #[kani::proof] functions (default: every one in proofs/)
@@ -28,11 +30,13 @@ cd "$(dirname "$0")/.."
 timeout_s=600
 jobs=1
 solver=""
-while getopts "t:j:s:h" opt; do
+merge_only=0
+while getopts "t:j:s:mh" opt; do
     case "$opt" in
     t) timeout_s="$OPTARG" ;;
     j) jobs="$OPTARG" ;;
     s) solver="$OPTARG" ;;
+    m) merge_only=1 ;;
     *)
         sed -n '2,24p' "$0"
         exit 2
@@ -161,7 +165,9 @@ run_one() {
 export -f run_one property_of backend_of
 export timeout_s solver solver_label kani_version cbmc_version commit logdir
 
-printf '%s' "$sel" | awk 'NF' | xargs -P "$jobs" -L 1 bash -c 'run_one "$0" "$1" "$2"'
+if [ "$merge_only" = 0 ]; then
+    printf '%s' "$sel" | awk 'NF' | xargs -P "$jobs" -L 1 bash -c 'run_one "$0" "$1" "$2"'
+fi
 
 # Merge the new rows into the table (by harness name), keep the rest. Rows
 # left by an interrupted earlier run are merged too.
