@@ -13,7 +13,7 @@
 
 use super::engine::Verdict;
 use crate::harmonic_drive::{CatalogueData, FlexsplineConfig, FlexsplineParams, FlexsplineTorque};
-use crate::scalar::Scalar;
+use crate::scalar::{Scalar, I16F16};
 
 /// The drive the properties are stated for.
 pub fn shd17() -> FlexsplineParams {
@@ -57,6 +57,68 @@ pub fn sign_and_saturation_of<S: Scalar>(
         || (angle.abs() < half_pi - slack && !r.saturated)
         || (angle.abs() - half_pi).abs() <= slack;
     Verdict::logical(no_nan && sign_ok && flag_ok)
+}
+
+/// The torsions (stored `I16F16` bits) where [`sign_and_saturation_of`]
+/// pins the `saturated` flag, computed once in `f64` from the parameters
+/// (outside the solver: under Kani these are constants), so the check on a
+/// symbolic torsion is two integer comparisons.
+///
+/// With `q = 2⁻¹⁶` and the angle `θ = Δθ_f c_f K_f0`, the flag must be clear
+/// where `|θ| < π/2 − q(1 + |θ|)`, i.e. `|θ| < (π/2 − q)/(1 + q)`, and set
+/// where `|θ| ≥ π/2 + q(1 + |θ|)`, i.e. `|θ| ≥ (π/2 + q)/(1 − q)`; in
+/// stored bits (`2¹⁶` per stored unit) each edge is moved inward by a
+/// margin of `10⁻⁶` bit for the `f64` rounding of this computation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SaturationEdges {
+    /// `|D| ≤ clear_up_to` ⟹ the flag must be clear.
+    pub clear_up_to: i64,
+    /// `|D| ≥ set_from` ⟹ the flag must be set.
+    pub set_from: i64,
+}
+
+impl SaturationEdges {
+    /// The edges for the `I16F16` torsion of `p`.
+    pub fn i16f16(p: &FlexsplineParams) -> Self {
+        let q = I16F16::RESOLUTION.to_f64();
+        let half_pi = core::f64::consts::FRAC_PI_2;
+        let bits_per_rad = I16F16::UNITS.torsion / (p.c_f * p.k_f0) * 65536.0;
+        let lo = (half_pi - q) / (1.0 + q) * bits_per_rad;
+        let hi = (half_pi + q) / (1.0 - q) * bits_per_rad;
+        SaturationEdges {
+            clear_up_to: libm::floor(lo - 1e-6) as i64,
+            set_from: libm::ceil(hi + 1e-6) as i64,
+        }
+    }
+}
+
+/// [`inverse_sign_and_saturation`] on `I16F16`, decided on integers (no
+/// `f64` of the symbolic torsion): the torque has the sign of the torsion
+/// (zero at zero), and the flag is clear up to and set from the
+/// [`SaturationEdges`]. Implies [`sign_and_saturation_of`] (fixed point is
+/// never NaN).
+pub fn inverse_sign_and_saturation_i16f16(
+    cfg: &FlexsplineConfig<I16F16>,
+    edges: &SaturationEdges,
+    d: I16F16,
+) -> Verdict {
+    sign_and_saturation_bits(edges, d, cfg.torque(d))
+}
+
+/// The check behind [`inverse_sign_and_saturation_i16f16`] for a computed
+/// `r`.
+pub fn sign_and_saturation_bits(
+    edges: &SaturationEdges,
+    d: I16F16,
+    r: FlexsplineTorque<I16F16>,
+) -> Verdict {
+    let (d, t) = (d.to_bits(), r.torque.to_bits());
+    let sign_ok = (d > 0 && t >= 0) || (d < 0 && t <= 0) || (d == 0 && t == 0);
+    let mag = (d as i64).abs();
+    let flag_ok = (mag <= edges.clear_up_to && !r.saturated)
+        || (mag >= edges.set_from && r.saturated)
+        || (mag > edges.clear_up_to && mag < edges.set_from);
+    Verdict::logical(sign_ok && flag_ok)
 }
 
 /// Monotone inverse: `torque(d) ≤ torque(d_next)` for `d < d_next`.
@@ -132,35 +194,54 @@ pub fn round_trip_of<S: Scalar>(
     Verdict::bounded((back - df).abs() / bound, 1.0)
 }
 
+/// [`shd17`] as constants: the identified parameters written out bit for
+/// bit, so a Kani harness starts from a prepared configuration instead of
+/// running the catalogue identification inside the solver (the test
+/// `shd17_constants_match_identification` keeps the two equal).
+pub const SHD17: FlexsplineParams = FlexsplineParams {
+    k_f0: f64::from_bits(SHD17_K_F0_BITS),
+    c_f: f64::from_bits(SHD17_C_F_BITS),
+};
+const SHD17_K_F0_BITS: u64 = 0x40c0_47fe_0f83_e0f9;
+const SHD17_C_F_BITS: u64 = 0x3fa7_024f_af76_0983;
+
 #[cfg(kani)]
 mod kani_entries {
+    //! The configuration is [`SHD17`] quantized by the library's own
+    //! constructor (concrete values, folded by the solver's front end); the
+    //! torsion is `kani::any()` over every `I16F16` or `f32` value.
     use super::*;
-    use crate::scalar::I16F16;
 
     #[kani::proof]
     fn kani_inverse_sign_and_saturation_i16f16() {
-        let p = shd17();
-        let cfg = FlexsplineConfig::<I16F16>::new(&p);
+        let cfg = FlexsplineConfig::<I16F16>::new(&SHD17);
+        let edges = SaturationEdges::i16f16(&SHD17);
         let d = I16F16::from_bits(kani::any());
-        assert!(inverse_sign_and_saturation(&cfg, &p, d).holds);
+        assert!(inverse_sign_and_saturation_i16f16(&cfg, &edges, d).holds);
     }
 
     #[kani::proof]
     fn kani_inverse_monotone_i16f16() {
-        let p = shd17();
-        let cfg = FlexsplineConfig::<I16F16>::new(&p);
+        let cfg = FlexsplineConfig::<I16F16>::new(&SHD17);
         let b: i32 = kani::any();
         // Precondition: the successor exists.
         kani::assume(b < i32::MAX);
         assert!(inverse_monotone_step(&cfg, I16F16::from_bits(b), I16F16::from_bits(b + 1)).holds);
+    }
+
+    #[kani::proof]
+    fn kani_forward_monotone_i16f16() {
+        let cfg = FlexsplineConfig::<I16F16>::new(&SHD17);
+        let b: i32 = kani::any();
+        // Precondition: the successor exists.
+        kani::assume(b < i32::MAX);
         assert!(forward_monotone_step(&cfg, I16F16::from_bits(b), I16F16::from_bits(b + 1)).holds);
     }
 
     #[kani::proof]
     fn kani_inverse_sign_and_saturation_f32() {
-        let p = shd17();
-        let cfg = FlexsplineConfig::<f32>::new(&p);
-        assert!(inverse_sign_and_saturation(&cfg, &p, kani::any::<f32>()).holds);
+        let cfg = FlexsplineConfig::<f32>::new(&SHD17);
+        assert!(inverse_sign_and_saturation(&cfg, &SHD17, kani::any::<f32>()).holds);
     }
 }
 
@@ -197,13 +278,20 @@ mod tests {
     fn exhaustive_compliance_inverse_i16f16() {
         let p = shd17();
         let cfg = FlexsplineConfig::<I16F16>::new(&p);
+        let edges = SaturationEdges::i16f16(&p);
         // Codes in signed order: code c stands for bits c − 2³¹.
         let bits = |c: u32| I16F16::from_bits((c ^ 0x8000_0000) as i32);
         let r = exhaustive_u32_chained(
             0,
             u32::MAX,
             |c| (cfg.torque(bits(c)), cfg.torsion(bits(c))),
-            |c, cur, prev| chained(&cfg, &p, bits(c), cur, prev),
+            |c, cur, prev| {
+                chained(&cfg, &p, bits(c), cur, prev).and(sign_and_saturation_bits(
+                    &edges,
+                    bits(c),
+                    cur.0,
+                ))
+            },
         );
         println!(
             "PROOF kernel=compliance-inverse(SHD-17) backend=I16F16 domain=all torsions bound=derived round trip, monotone, branch-safe max_err={:.3} of bound at={} checked={} engine=exhaustive",
@@ -267,7 +355,52 @@ mod tests {
             let cfg = FlexsplineConfig::<I16F16>::new(&p);
             let d = I16F16::from_bits(bits);
             prop_assert!(inverse_sign_and_saturation(&cfg, &p, d).holds);
+            prop_assert!(inverse_sign_and_saturation_i16f16(&cfg, &SaturationEdges::i16f16(&p), d).holds);
             prop_assert!(round_trip(&cfg, &p, d).holds);
+        }
+    }
+
+    #[test]
+    fn shd17_constants_match_identification() {
+        let p = shd17();
+        assert_eq!(SHD17.k_f0.to_bits(), p.k_f0.to_bits());
+        assert_eq!(SHD17.c_f.to_bits(), p.c_f.to_bits());
+    }
+
+    /// The integer sign/saturation check accepts the shipped inverse on
+    /// both sides of each edge and rejects a flag or a sign flipped there.
+    #[test]
+    fn integer_saturation_check_can_fail() {
+        let cfg = FlexsplineConfig::<I16F16>::new(&SHD17);
+        let e = SaturationEdges::i16f16(&SHD17);
+        assert!(e.clear_up_to > 0 && e.set_from > e.clear_up_to);
+        for bits in [
+            e.clear_up_to,
+            -e.clear_up_to,
+            e.set_from,
+            -e.set_from,
+            1,
+            -1,
+            0,
+        ] {
+            let d = I16F16::from_bits(bits as i32);
+            let r = cfg.torque(d);
+            assert!(sign_and_saturation_bits(&e, d, r).holds, "{bits}");
+            assert!(sign_and_saturation_of(&SHD17, d, r).holds, "{bits}");
+            if bits != 0 {
+                let flipped = FlexsplineTorque {
+                    saturated: !r.saturated,
+                    ..r
+                };
+                assert!(!sign_and_saturation_bits(&e, d, flipped).holds, "{bits}");
+                if r.torque != I16F16::ZERO {
+                    let negated = FlexsplineTorque {
+                        torque: r.torque.neg(),
+                        ..r
+                    };
+                    assert!(!sign_and_saturation_bits(&e, d, negated).holds, "{bits}");
+                }
+            }
         }
     }
 

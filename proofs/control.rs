@@ -16,7 +16,7 @@ use crate::control::{
     RobustAdaptiveState,
 };
 use crate::friction::{sat_with_reciprocal, FrictionConfig};
-use crate::scalar::{Coef, Scalar};
+use crate::scalar::{Coef, Scalar, I16F16};
 
 /// The Table 4.1 active law for backend `S`.
 pub fn table_4_1<S: Scalar>() -> RobustAdaptiveConfig<S> {
@@ -44,6 +44,32 @@ pub fn sat_reciprocal<S: Scalar>(x: S, eps: S, inv_eps: &Coef) -> Verdict {
     let res = S::RESOLUTION.to_f64();
     let err = (s.to_f64() - exact).abs() / res;
     Verdict::logical(in_range && odd).and(Verdict::bounded(err, 1.0 + 2f64.powi(-29) / res))
+}
+
+/// [`sat_reciprocal`] on `I16F16`, decided on integers (no `f64` of the
+/// symbolic input): with `X`, `E`, `Q` the bits of `x`, `ε` (`> 0`) and the
+/// result, `Q ∈ [−2¹⁶, 2¹⁶]`, odd for `X ≠ MIN`, `Q = 2¹⁶·sgn X` for
+/// `|X| > E`, and otherwise `|Q − 2¹⁶X/E| ≤ 1 + 2⁻¹³` LSB (the same bound:
+/// one LSB plus the coefficient's relative `2⁻²⁹` at `|x/ε| ≤ 1`), i.e.
+/// `8192·|Q·E − 2¹⁶X| ≤ 8193·E` (below 2⁶² in magnitude).
+pub fn sat_reciprocal_i16f16(x: I16F16, eps: I16F16, inv_eps: &Coef) -> Verdict {
+    let s = sat_with_reciprocal(x, eps, inv_eps);
+    let odd = x == I16F16::MIN || sat_with_reciprocal(x.neg(), eps, inv_eps) == s.neg();
+    sat_reciprocal_bits_match(s.to_bits(), x.to_bits(), eps.to_bits()).and(Verdict::logical(odd))
+}
+
+/// The value check of [`sat_reciprocal_i16f16`] for a computed result `q`
+/// (bits), input `x` and layer `e > 0` (bits).
+pub fn sat_reciprocal_bits_match(q: i32, x: i32, e: i32) -> Verdict {
+    const ONE: i64 = 1 << 16;
+    let (q, x, e) = (q as i64, x as i64, e as i64);
+    let in_range = (-ONE..=ONE).contains(&q);
+    let value = if x.abs() > e {
+        q == ONE * x.signum()
+    } else {
+        8192 * (q * e - ONE * x).abs() <= 8193 * e
+    };
+    Verdict::logical(in_range && value)
 }
 
 /// The nominal friction of eq. (4.17) with non-negative estimates never
@@ -122,7 +148,6 @@ pub fn switch_bumpless<S: Scalar>(
 #[cfg(kani)]
 mod kani_entries {
     use super::*;
-    use crate::scalar::I16F16;
 
     fn any_i16f16() -> I16F16 {
         I16F16::from_bits(kani::any())
@@ -133,7 +158,7 @@ mod kani_entries {
         // ε_r = 0.1 rad/s of Table 4.1, as the law quantizes it.
         let eps = I16F16::from_f64(0.1);
         let inv = Coef::new(1.0 / eps.to_f64());
-        assert!(sat_reciprocal(any_i16f16(), eps, &inv).holds);
+        assert!(sat_reciprocal_i16f16(any_i16f16(), eps, &inv).holds);
     }
 
     #[kani::proof]
@@ -212,7 +237,8 @@ mod tests {
         let eps = I16F16::from_f64(0.1);
         let inv = Coef::new(1.0 / eps.to_f64());
         let r = exhaustive_u32(0, u32::MAX, |c| {
-            sat_reciprocal(I16F16::from_bits(c as i32), eps, &inv)
+            let x = I16F16::from_bits(c as i32);
+            sat_reciprocal(x, eps, &inv).and(sat_reciprocal_i16f16(x, eps, &inv))
         });
         println!(
             "PROOF kernel=sat_with_reciprocal(eps_r) backend=I16F16 domain=all bound=1 LSB, odd, in [-1,1] max_err={:.3} LSB at={} checked={} engine=exhaustive",
@@ -315,6 +341,20 @@ mod tests {
         ModeConfig::new(&p)
     }
 
+    /// The integer check rejects a result one LSB beyond its bound and a
+    /// wrong saturation value.
+    #[test]
+    fn sat_reciprocal_bits_check_can_fail() {
+        let e = 6554; // 0.1 in bits
+                      // x = e/2: exact 32768 LSB.
+        assert!(sat_reciprocal_bits_match(32768, e / 2, e).holds);
+        assert!(sat_reciprocal_bits_match(32769, e / 2, e).holds);
+        assert!(!sat_reciprocal_bits_match(32770, e / 2, e).holds);
+        assert!(sat_reciprocal_bits_match(-65536, -e - 1, e).holds);
+        assert!(!sat_reciprocal_bits_match(-65535, -e - 1, e).holds);
+        assert!(!sat_reciprocal_bits_match(65537, e, e).holds);
+    }
+
     proptest! {
         #[test]
         fn sat_reciprocal_random(x in -1.0f64..1.0, eps in 1e-4f64..0.5) {
@@ -324,6 +364,7 @@ mod tests {
             prop_assert!(sat_reciprocal(xf, ef, &Coef::new(1.0 / ef as f64)).holds);
             let (xi, ei) = (I16F16::from_f64(x), I16F16::from_f64(eps.max(1e-4)));
             prop_assert!(sat_reciprocal(xi, ei, &Coef::new(1.0 / ei.to_f64())).holds);
+            prop_assert!(sat_reciprocal_i16f16(xi, ei, &Coef::new(1.0 / ei.to_f64())).holds);
         }
 
         #[test]

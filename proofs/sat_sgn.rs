@@ -17,7 +17,7 @@
 
 use super::engine::Verdict;
 pub use super::kernels_f32::next_up;
-use crate::scalar::Scalar;
+use crate::scalar::{Scalar, I16F16};
 
 /// `sgn` returns exactly `1`, `0` or `-1` according to the sign of `x`,
 /// with `sgn(±0) = 0` and `sgn(NaN) = 0` (eq. 2.17).
@@ -74,6 +74,34 @@ pub fn sat_value_matches_definition<S: Scalar>(got: f64, x: S, y: S) -> Verdict 
     Verdict::bounded((got - expected).abs() / res, 0.5 + 1e-12 / res)
 }
 
+/// [`sat_matches_definition`] for `I16F16`, decided in exact integer
+/// arithmetic on the bit patterns (no `f64` on the way, so Kani decides it
+/// bit-precisely): with `X`, `Y` the bits of `x`, `y` and `Q` those of
+/// `sat(x, y)`,
+/// * `Y ≤ 0` or `|X| > Y` (outside the boundary layer, eq. 4.18):
+///   `Q = 2¹⁶·sgn(X)` exactly;
+/// * otherwise `|Q/2¹⁶ − X/Y| ≤ ½ LSB`, i.e. `2·|Q·Y − 2¹⁶·X| ≤ Y` (all
+///   products below 2⁴⁸ in magnitude, so `i64` holds them exactly).
+///
+/// The same bound as [`sat_matches_definition`] (half an LSB), without its
+/// `1e-12` slack for the `f64` reference.
+pub fn sat_matches_definition_i16f16(x: I16F16, y: I16F16) -> Verdict {
+    sat_bits_match_definition(x.sat(y).to_bits(), x.to_bits(), y.to_bits())
+}
+
+/// The check behind [`sat_matches_definition_i16f16`] for a computed result
+/// `q` (bits), inputs `x`, `y` (bits).
+pub fn sat_bits_match_definition(q: i32, x: i32, y: i32) -> Verdict {
+    const ONE: i64 = 1 << 16;
+    let (q, x, y) = (q as i64, x as i64, y as i64);
+    let holds = if y <= 0 || x.abs() > y {
+        q == ONE * x.signum()
+    } else {
+        2 * (q * y - ONE * x).abs() <= y
+    };
+    Verdict::logical(holds)
+}
+
 /// Odd symmetry: `sat(-x, y) = -sat(x, y)` whenever `-x` is representable.
 pub fn sat_odd<S: Scalar>(x: S, y: S) -> Verdict {
     if x == S::MIN {
@@ -106,8 +134,11 @@ pub fn sat_monotone_step<S: Scalar>(x: S, x_next: S, y: S) -> Verdict {
 
 #[cfg(kani)]
 mod kani_entries {
+    //! One property per harness (a conjunction is as slow as its hardest
+    //! part, and a split result says which part is decided). Every input is
+    //! `kani::any()` over the whole type; no assumption cuts the domain
+    //! except the stated preconditions.
     use super::*;
-    use crate::scalar::I16F16;
 
     #[kani::proof]
     fn kani_sgn_exact_i16f16() {
@@ -120,11 +151,23 @@ mod kani_entries {
     }
 
     #[kani::proof]
-    fn kani_sat_i16f16() {
+    fn kani_sat_in_range_i16f16() {
         let x = I16F16::from_bits(kani::any());
         let y = I16F16::from_bits(kani::any());
         assert!(sat_in_range(x, y).holds);
-        assert!(sat_matches_definition(x, y).holds);
+    }
+
+    #[kani::proof]
+    fn kani_sat_definition_i16f16() {
+        let x = I16F16::from_bits(kani::any());
+        let y = I16F16::from_bits(kani::any());
+        assert!(sat_matches_definition_i16f16(x, y).holds);
+    }
+
+    #[kani::proof]
+    fn kani_sat_odd_i16f16() {
+        let x = I16F16::from_bits(kani::any());
+        let y = I16F16::from_bits(kani::any());
         assert!(sat_odd(x, y).holds);
     }
 
@@ -138,12 +181,36 @@ mod kani_entries {
         assert!(sat_monotone_step(x, xn, y).holds);
     }
 
+    /// `x`, `y` for the f32 harnesses. Checker limit, not a property
+    /// precondition: for `y = +∞`, `sat` divides `x/∞` (`±0`, or `±∞/∞`,
+    /// whose NaN it replaces by `sgn(x)`), and CBMC 6.6.0's `--nan-check`,
+    /// which Kani turns on with its overflow checks, reports "NaN on
+    /// division" for `0/∞` as well, although the quotient is 0 (a
+    /// three-line C program shows it with `cbmc --nan-check` alone). The
+    /// pairs with `y = +∞` are left to the exhaustive engine
+    /// (`exhaustive_sat_f32`: every pair of bfloat16 values, `y = +∞` with
+    /// every `x` among them) and to `sat_of_infinities_is_the_limit`.
+    fn any_f32_pair() -> (f32, f32) {
+        let (x, y): (f32, f32) = (kani::any(), kani::any());
+        kani::assume(y != f32::INFINITY);
+        (x, y)
+    }
+
     #[kani::proof]
-    fn kani_sat_f32() {
-        let x: f32 = kani::any();
-        let y: f32 = kani::any();
+    fn kani_sat_in_range_f32() {
+        let (x, y) = any_f32_pair();
         assert!(sat_in_range(x, y).holds);
+    }
+
+    #[kani::proof]
+    fn kani_sat_odd_f32() {
+        let (x, y) = any_f32_pair();
         assert!(sat_odd(x, y).holds);
+    }
+
+    #[kani::proof]
+    fn kani_sat_monotone_f32() {
+        let (x, y) = any_f32_pair();
         // Precondition: a finite successor exists.
         kani::assume(x.is_finite() && x < f32::MAX);
         assert!(sat_monotone_step(x, next_up(x), y).holds);
@@ -212,7 +279,7 @@ mod tests {
         let r = exhaustive_u32(0, u32::MAX, |c| {
             let (x, y) = i8f8_pair(c);
             let xn = (x.to_bits() < i32::MAX).then(|| I16F16::from_bits(x.to_bits() + 1));
-            all_sat_properties(x, y, xn)
+            all_sat_properties(x, y, xn).and(sat_matches_definition_i16f16(x, y))
         });
         println!(
             "PROOF kernel=sat backend=I16F16 domain=all pairs of I8F8 lattice bound=0.5 LSB (value; steps <= (x'-x)/y + 1 LSB, monotone, odd) max_err={} LSB at={:#x} checked={} engine=exhaustive",
@@ -258,6 +325,23 @@ mod tests {
         }
     }
 
+    /// The pairs the f32 Kani harnesses leave out (`y = +∞`):
+    /// `sat(±∞, +∞) = ±1` (the `∞/∞` NaN replaced by its limit), `sat(x, +∞)
+    /// = ±0` for finite `x`; in range, odd, as defined.
+    #[test]
+    fn sat_of_infinities_is_the_limit() {
+        let inf = f32::INFINITY;
+        assert_eq!(inf.sat(inf), 1.0);
+        assert_eq!((-inf).sat(inf), -1.0);
+        assert_eq!(0.0f32.sat(inf), 0.0);
+        assert_eq!(f32::MAX.sat(inf), 0.0);
+        for x in [inf, -inf, 0.0, -0.0, 1.0, -f32::MAX, f32::MIN_POSITIVE] {
+            assert!(sat_in_range(x, inf).holds);
+            assert!(sat_odd(x, inf).holds);
+            assert!(sat_matches_definition(x, inf).holds);
+        }
+    }
+
     /// The definition check can fail: a saturation that compares `|x|`
     /// with `|y|` instead of `y` (misreading the `|y|` of eq. 4.18) is
     /// rejected for a negative `y`, where the thesis saturates every `x != 0`.
@@ -274,6 +358,34 @@ mod tests {
         assert!(!sat_value_matches_definition(misread_sat(x, y), x, y).holds);
         assert!(sat_value_matches_definition(x.sat(y), x, y).holds);
         assert_eq!(x.sat(y), -1.0);
+    }
+
+    /// The integer definition check rejects one LSB off inside the layer,
+    /// an off-by-one at the layer's edge, and a wrong saturation value; it
+    /// accepts both roundings of an exact tie.
+    #[test]
+    fn exact_definition_check_can_fail() {
+        let (one, three) = (1i32 << 16, 3i32 << 16);
+        // 1/3 = 21845.33 LSB: 21845 is the nearest, 21846 is not.
+        assert!(sat_bits_match_definition(21845, one, three).holds);
+        assert!(!sat_bits_match_definition(21846, one, three).holds);
+        // |x| = y: exactly ±1; one LSB short fails.
+        assert!(sat_bits_match_definition(-one, -three, three).holds);
+        assert!(!sat_bits_match_definition(-one + 1, -three, three).holds);
+        // Outside the layer and for y ≤ 0: sgn(x) exactly.
+        assert!(sat_bits_match_definition(one, three + 1, three).holds);
+        assert!(!sat_bits_match_definition(one - 1, three + 1, three).holds);
+        assert!(sat_bits_match_definition(0, 0, -5).holds);
+        assert!(!sat_bits_match_definition(one, 0, -5).holds);
+        // x/y = 0.5 LSB exactly (x = 1 bit, y = 2^17 bits): 0 and 1 are
+        // both within half an LSB.
+        assert!(sat_bits_match_definition(0, 1, 1 << 17).holds);
+        assert!(sat_bits_match_definition(1, 1, 1 << 17).holds);
+        assert!(!sat_bits_match_definition(2, 1, 1 << 17).holds);
+        // The shipped sat passes where the f64 check does.
+        let (x, y) = (I16F16::from_bits(12_345), I16F16::from_bits(98_765));
+        assert!(sat_matches_definition_i16f16(x, y).holds);
+        assert!(sat_matches_definition(x, y).holds);
     }
 
     proptest! {
@@ -294,6 +406,7 @@ mod tests {
             let (x, y) = (I16F16::from_bits(x), I16F16::from_bits(y));
             prop_assert!(sgn_exact(x).holds);
             prop_assert!(all_sat_properties(x, y, Some(I16F16::from_bits(x.to_bits() + 1))).holds);
+            prop_assert!(sat_matches_definition_i16f16(x, y).holds);
         }
     }
 }
