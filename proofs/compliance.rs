@@ -82,7 +82,7 @@ impl SaturationEdges {
     pub fn i16f16(p: &FlexsplineParams) -> Self {
         let q = I16F16::RESOLUTION.to_f64();
         let half_pi = core::f64::consts::FRAC_PI_2;
-        let bits_per_rad = I16F16::UNITS.torsion / (p.c_f * p.k_f0) * 65536.0;
+        let bits_per_rad = I16F16::UNITS.torsion / (p.c_f() * p.k_f0()) * 65536.0;
         let lo = (half_pi - q) / (1.0 + q) * bits_per_rad;
         let hi = (half_pi + q) / (1.0 - q) * bits_per_rad;
         SaturationEdges {
@@ -198,10 +198,10 @@ pub fn round_trip_of<S: Scalar>(
 /// bit, so a Kani harness starts from a prepared configuration instead of
 /// running the catalogue identification inside the solver (the test
 /// `shd17_constants_match_identification` keeps the two equal).
-pub const SHD17: FlexsplineParams = FlexsplineParams {
-    k_f0: f64::from_bits(SHD17_K_F0_BITS),
-    c_f: f64::from_bits(SHD17_C_F_BITS),
-};
+pub const SHD17: FlexsplineParams = FlexsplineParams::prevalidated(
+    f64::from_bits(SHD17_K_F0_BITS),
+    f64::from_bits(SHD17_C_F_BITS),
+);
 const SHD17_K_F0_BITS: u64 = 0x40c0_47fe_0f83_e0f9;
 const SHD17_C_F_BITS: u64 = 0x3fa7_024f_af76_0983;
 
@@ -363,8 +363,10 @@ mod tests {
     #[test]
     fn shd17_constants_match_identification() {
         let p = shd17();
-        assert_eq!(SHD17.k_f0.to_bits(), p.k_f0.to_bits());
-        assert_eq!(SHD17.c_f.to_bits(), p.c_f.to_bits());
+        assert_eq!(SHD17.k_f0().to_bits(), p.k_f0().to_bits());
+        assert_eq!(SHD17.c_f().to_bits(), p.c_f().to_bits());
+        let checked = FlexsplineParams::try_new(SHD17.k_f0(), SHD17.c_f());
+        assert_eq!(checked, Ok(SHD17));
     }
 
     /// The integer sign/saturation check accepts the shipped inverse on

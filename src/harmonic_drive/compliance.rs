@@ -263,6 +263,15 @@ pub const STIFFENING_RANGE: (f64, f64) = (1e-6, 1e6);
 pub const MAX_TORSION_RANGE: (f64, f64) = (1e-6, 1.0);
 
 impl FlexsplineParams {
+    /// Parameters whose validity is established elsewhere, as a constant:
+    /// only for the verification harnesses' prepared configurations
+    /// (`proofs/`), each of which is tested equal, bit for bit, to the
+    /// result of [`FlexsplineParams::try_new`] on the same values.
+    #[cfg(any(kani, test, feature = "proofs"))]
+    pub(crate) const fn prevalidated(k_f0: f64, c_f: f64) -> Self {
+        FlexsplineParams { k_f0, c_f }
+    }
+
     /// Validates `K_f0 > 0` (N·m/rad) and `c_f` (1/(N·m)) in
     /// [`STIFFENING_RANGE`], both finite, and the composite: the largest
     /// torsion `π/(2 c_f K_f0)` (the edge of the inverse's domain) in
