@@ -182,8 +182,9 @@ impl Pole {
 /// eq. (4.2) with (4.32) gives `τ_t = −(N/K_p) q̈_m` (errata E4.1), the
 /// link `I_l q̈_l = τ_t + τ_h` and `q_m = N q_l`, so
 ///
-/// $$ J \ddot q_l + B_h \dot q_l + K_h q_l = K_h q_h + B_h \dot q_h,
-///    \qquad J = I_l + N^2/K_p, $$
+/// ```text
+/// J q̈_l + B_h q̇_l + K_h q_l = K_h q_h + B_h q̇_h,    J = I_l + N²/K_p,
+/// ```
 ///
 /// with `ω_n = √(K_h/J)`, `ζ = B_h/(2√(K_h J))` and poles
 /// `s = (−B_h ± √(B_h² − 4 J K_h))/(2J)`.

@@ -16,8 +16,10 @@
 //!   [`super::kinematics`], eq. (5.20) with `θ1 ← −θ1 − π/2`,
 //!   `θ3 ← θ3 + π/2` reads
 //!
-//!   $$ \alpha \approx \frac{\theta_3-\theta_1}{2} + \pi,\qquad
-//!   \beta \approx -2\arctan\!\Big(\tan\varphi\,\sin\frac{\theta_1+\theta_3}{2}\Big), $$
+//!   ```text
+//!   α ≈ (θ3 − θ1)/2 + π,
+//!   β ≈ −2 atan(tan φ · sin((θ1 + θ3)/2)),
+//!   ```
 //!
 //!   a signed bend (a negative `β` is the bend `|β|` in direction
 //!   `α + π`); [`WristConfig::alpha_beta_approx`] returns it normalized.

@@ -18,9 +18,11 @@
 //!   with `D = Sδ Sφ S1 + Cδ Cφ ≥ cos 2φ cos φ − sin 2φ sin φ = cos 3φ > 0`
 //!   (`|δ| ≤ 2φ`, `φ ≤ 30°`):
 //!
-//!   $$ J = \frac{1}{D}\begin{bmatrix} C_\delta S_\varphi C_1 & S_\varphi C_1 C_\gamma - S_\gamma D \\
-//!   -S_\varphi S_1 & C_\gamma (S_\delta C_\varphi - C_\delta S_\varphi S_1) \end{bmatrix},\qquad
-//!   \det J = \frac{S_\varphi (C_1 S_\delta C_\gamma - S_1 S_\gamma)}{D}. $$
+//!   ```text
+//!   J = (1/D) [ Cδ Sφ C1     Sφ C1 Cγ − Sγ D          ]
+//!             [ −Sφ S1       Cγ (Sδ Cφ − Cδ Sφ S1)     ],
+//!   det J = Sφ (C1 Sδ Cγ − S1 Sγ) / D.
+//!   ```
 //!
 //! * [`JacobianKind::Thesis`]: the thesis's chain `J = J_2 J_c`,
 //!   eq. (5.23)–(5.27), with `J_c` the derivative of Ryew–Choi's

@@ -9,7 +9,9 @@
 //! orientation is, eq. (5.4) in the product order of the matrices printed
 //! in eq. (5.5) (errata E5.1):
 //!
-//! $$ R(\theta_1,\theta_4,\theta_3) = R_z(\theta_1)R_x(\varphi)R_z(\theta_4)R_x(-\varphi)R_z(\theta_3). $$
+//! ```text
+//! R(θ1, θ4, θ3) = R_z(θ1) R_x(φ) R_z(θ4) R_x(−φ) R_z(θ3)
+//! ```
 //!
 //! The outer universal joint makes it `R = R_y(δ)R_x(γ)`, eq. (5.6)–(5.7):
 //! pitch `δ` about the base `y` axis, then yaw `γ` about the new `x` axis,
@@ -61,8 +63,10 @@
 //! third column and row of `R` (derivation in
 //! `docs/derivations/wrist_fk.py`), with `ψ = atan2(Cφ sin(θ4/2), cos(θ4/2))`:
 //!
-//! $$ \theta_1 = \pi + \operatorname{atan2}(-S_\gamma, C_\gamma S_\delta) - \psi,\qquad
-//!    \theta_3 = -\pi + \operatorname{atan2}(C_\delta S_\gamma, S_\delta) - \psi, $$
+//! ```text
+//! θ1 =  π + atan2(−Sγ, Cγ Sδ) − ψ,
+//! θ3 = −π + atan2(Cδ Sγ, Sδ) − ψ,
+//! ```
 //!
 //! which is eq. (5.14) divided by `2 sin(θ4/2) sin φ` (the printed
 //! `C_1` has `C_δ` for `S_δ`, errata E5.4). It divides nothing by zero:
