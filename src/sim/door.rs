@@ -68,40 +68,8 @@ use crate::wrist::ft_sensor::{DecouplingMatrix, FtSensorConfig, FtSensorParams};
 use crate::wrist::modes::{WristMode, WristModeConfig, WristModeInput, WristModeParams};
 use core::f64::consts::{FRAC_PI_2, PI};
 
-type V3 = [f64; 3];
-type M3 = [[f64; 3]; 3];
+use super::mrr::{add, cross, dot, mat_mul, mat_vec, scale, sub, transpose, M3, V3};
 
-fn add(a: V3, b: V3) -> V3 {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-fn sub(a: V3, b: V3) -> V3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn scale(a: V3, s: f64) -> V3 {
-    [a[0] * s, a[1] * s, a[2] * s]
-}
-fn dot(a: V3, b: V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: V3, b: V3) -> V3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-fn mm(a: &M3, b: &M3) -> M3 {
-    let mut o = [[0.0; 3]; 3];
-    for i in 0..3 {
-        for j in 0..3 {
-            o[i][j] = a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j];
-        }
-    }
-    o
-}
-fn mv(a: &M3, v: V3) -> V3 {
-    [dot(a[0], v), dot(a[1], v), dot(a[2], v)]
-}
 fn mtv(a: &M3, v: V3) -> V3 {
     [
         a[0][0] * v[0] + a[1][0] * v[1] + a[2][0] * v[2],
@@ -454,9 +422,10 @@ pub fn door_opening(cfg: &DoorConfig) -> DoorRun {
     // Sensor-frame axes at zero angles for a link along world +x:
     // z_s forward, y_s down, x_s = y_s × z_s.
     let frame: M3 = [[0.0, 0.0, 1.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]];
-    let link_rot = |psi: f64, pitch: f64| mm(&mm(&rz(psi), &frame), &rx(pitch));
-    let sensor_rot =
-        |psi: f64, pitch: f64, d: f64, g: f64| mm(&mm(&link_rot(psi, pitch), &rx(d)), &ry(-g));
+    let link_rot = |psi: f64, pitch: f64| mat_mul(&mat_mul(&rz(psi), &frame), &rx(pitch));
+    let sensor_rot = |psi: f64, pitch: f64, d: f64, g: f64| {
+        mat_mul(&mat_mul(&link_rot(psi, pitch), &rx(d)), &ry(-g))
+    };
     let knob_rot0 = sensor_rot(psi_l0, 0.0, 0.0, 0.0);
     // --- base motion ---
     let knot_period = 0.2;
@@ -703,7 +672,7 @@ pub fn door_opening(cfg: &DoorConfig) -> DoorRun {
             let spos = add(wpos, scale(col(&rs, 2), ls));
             let phi = door.position;
             let kpos = [r_door * libm::cos(phi), -r_door * libm::sin(phi), 0.0];
-            let rk = mm(&rz(-phi), &knob_rot0);
+            let rk = mat_mul(&rz(-phi), &knob_rot0);
             // Grasp spring-damper (damping ratio ≈ 0.3 on the wrist yaw).
             let (gv, kv) = match prev_g {
                 Some((g0, k0)) => (
@@ -720,7 +689,7 @@ pub fn door_opening(cfg: &DoorConfig) -> DoorRun {
             );
             // Rotation error in the sensor frame: ½ vee(Rsᵀ Rk − Rkᵀ Rs).
             let e_rot = {
-                let a = mm(&transpose(&rs), &rk);
+                let a = mat_mul(&transpose(&rs), &rk);
                 [
                     0.5 * (a[2][1] - a[1][2]),
                     0.5 * (a[0][2] - a[2][0]),
@@ -729,7 +698,7 @@ pub fn door_opening(cfg: &DoorConfig) -> DoorRun {
             };
             let e_rate = match prev_rot {
                 Some((rs0, rk0)) => {
-                    let a0 = mm(&transpose(&rs0), &rk0);
+                    let a0 = mat_mul(&transpose(&rs0), &rk0);
                     let e0 = [
                         0.5 * (a0[2][1] - a0[1][2]),
                         0.5 * (a0[0][2] - a0[2][0]),
@@ -744,7 +713,7 @@ pub fn door_opening(cfg: &DoorConfig) -> DoorRun {
                 scale(e_rot, cfg.grasp_rotational_stiffness),
                 scale(e_rate, 0.3),
             );
-            let couple_w = mv(&rs, couple_s);
+            let couple_w = mat_vec(&rs, couple_s);
             // Wrench at the sensor, sensor frame.
             let m_s = add(cross(sub(gpos, spos), force), couple_w);
             let fs = mtv(&rs, force);
@@ -754,7 +723,7 @@ pub fn door_opening(cfg: &DoorConfig) -> DoorRun {
             let moment_w = add(cross(sub(gpos, wpos), force), couple_w);
             let moment_b = add(cross(sub(gpos, bpos), force), couple_w);
             let axis_d = col(&rl, 0);
-            let axis_g = scale(col(&mm(&rl, &rx(wrist[0].position)), 1), -1.0);
+            let axis_g = scale(col(&mat_mul(&rl, &rx(wrist[0].position)), 1), -1.0);
             let q_t = moment_b[2];
             let q_d = dot(moment_w, axis_d);
             let q_g = dot(moment_w, axis_g);
@@ -796,14 +765,6 @@ pub fn door_opening(cfg: &DoorConfig) -> DoorRun {
         wrist_range,
         saturated_samples: saturated,
     }
-}
-
-fn transpose(a: &M3) -> M3 {
-    [
-        [a[0][0], a[1][0], a[2][0]],
-        [a[0][1], a[1][1], a[2][1]],
-        [a[0][2], a[1][2], a[2][2]],
-    ]
 }
 
 #[cfg(test)]

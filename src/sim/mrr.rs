@@ -39,32 +39,32 @@ use super::sensors::{Encoder, SplitMix64, TorqueSensor};
 use super::transmission::DrivePlantParams;
 use crate::error::{finite, gear_ratio, positive, ParamError};
 
-type V3 = [f64; 3];
-type M3 = [[f64; 3]; 3];
+pub(crate) type V3 = [f64; 3];
+pub(crate) type M3 = [[f64; 3]; 3];
 
-fn add(a: V3, b: V3) -> V3 {
+pub(crate) fn add(a: V3, b: V3) -> V3 {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
-fn sub(a: V3, b: V3) -> V3 {
+pub(crate) fn sub(a: V3, b: V3) -> V3 {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
-fn scale(a: V3, s: f64) -> V3 {
+pub(crate) fn scale(a: V3, s: f64) -> V3 {
     [a[0] * s, a[1] * s, a[2] * s]
 }
-fn dot(a: V3, b: V3) -> f64 {
+pub(crate) fn dot(a: V3, b: V3) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
-fn cross(a: V3, b: V3) -> V3 {
+pub(crate) fn cross(a: V3, b: V3) -> V3 {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
         a[0] * b[1] - a[1] * b[0],
     ]
 }
-fn mat_vec(m: &M3, v: V3) -> V3 {
+pub(crate) fn mat_vec(m: &M3, v: V3) -> V3 {
     [dot(m[0], v), dot(m[1], v), dot(m[2], v)]
 }
-fn mat_mul(a: &M3, b: &M3) -> M3 {
+pub(crate) fn mat_mul(a: &M3, b: &M3) -> M3 {
     let mut r = [[0.0; 3]; 3];
     for (i, row) in r.iter_mut().enumerate() {
         for (j, x) in row.iter_mut().enumerate() {
@@ -73,7 +73,7 @@ fn mat_mul(a: &M3, b: &M3) -> M3 {
     }
     r
 }
-fn transpose(a: &M3) -> M3 {
+pub(crate) fn transpose(a: &M3) -> M3 {
     let mut r = [[0.0; 3]; 3];
     for (i, row) in r.iter_mut().enumerate() {
         for (j, x) in row.iter_mut().enumerate() {
