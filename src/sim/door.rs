@@ -63,7 +63,7 @@ use crate::friction::{FrictionBounds, FrictionParams};
 use crate::wrist::active::{
     WristActiveConfig, WristActiveParams, WristJointSample, WristMotorDesign,
 };
-use crate::wrist::admittance::AdmittanceParams;
+use crate::wrist::admittance::{AdmittanceParams, AdmittanceSettings};
 use crate::wrist::ft_sensor::{DecouplingMatrix, FtSensorConfig, FtSensorParams};
 use crate::wrist::modes::{WristMode, WristModeConfig, WristModeInput, WristModeParams};
 use core::f64::consts::{FRAC_PI_2, PI};
@@ -510,16 +510,16 @@ pub fn door_opening(cfg: &DoorConfig) -> DoorRun {
     let wrist_law = WristActiveConfig::<f64>::new(&active_params);
     let mut wrist_state = wrist_law.initial_state();
     let limit = 30f64.to_radians();
-    let adm = AdmittanceParams::try_new(
-        [0.1, 0.1],
-        cfg.wrist_stiffness_bound(),
-        t_ctrl,
-        1,
-        [limit, limit],
-        1.0,
-        0.0,
-        [0.0; 2],
-    )
+    let adm = AdmittanceParams::try_new(AdmittanceSettings {
+        gain: [0.1, 0.1],
+        stiffness: cfg.wrist_stiffness_bound(),
+        sample_period: t_ctrl,
+        lag_samples: 1,
+        limits: [limit, limit],
+        max_rate: 1.0,
+        deadband: 0.0,
+        desired_torque: [0.0; 2],
+    })
     .expect("admittance gain inside its discrete-time range");
     let mode_params =
         WristModeParams::try_new(adm, 1.0, 0.5, 0.01, 5, 250, 5.0).expect("valid mode params");

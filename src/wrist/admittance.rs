@@ -83,6 +83,29 @@ pub fn max_admittance_gain(stiffness: f64, sample_period: f64, lag_samples: u8) 
     stability_limit(lag_samples) / (sample_period * stiffness)
 }
 
+/// The admittance law's settings by name, SI (units and rules on
+/// [`AdmittanceParams::try_new`]); two of the same type cannot be swapped
+/// by position.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AdmittanceSettings {
+    /// `[K_c,δ, K_c,γ]`, rad/(s·N·m).
+    pub gain: [f64; 2],
+    /// Largest environment stiffness `K_t`, N·m/rad.
+    pub stiffness: f64,
+    /// Sampling period `T`, s.
+    pub sample_period: f64,
+    /// Samples `d` by which the wrist reaches its reference late.
+    pub lag_samples: u8,
+    /// Workspace half-widths `[|δ|, |γ|]`, rad.
+    pub limits: [f64; 2],
+    /// Largest reference speed, rad/s.
+    pub max_rate: f64,
+    /// Torque deadband, N·m.
+    pub deadband: f64,
+    /// `τ_d` (`f_d` of eq. 6.31), N·m.
+    pub desired_torque: [f64; 2],
+}
+
 /// Validated parameters of the admittance law, SI.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AdmittanceParams {
@@ -112,17 +135,17 @@ impl AdmittanceParams {
     ///   internal force");
     /// * `desired_torque` — `τ_d` (`f_d` of eq. 6.31), N·m, finite; 0 for
     ///   the passive mode.
-    #[allow(clippy::too_many_arguments)]
-    pub fn try_new(
-        gain: [f64; 2],
-        stiffness: f64,
-        sample_period: f64,
-        lag_samples: u8,
-        limits: [f64; 2],
-        max_rate: f64,
-        deadband: f64,
-        desired_torque: [f64; 2],
-    ) -> Result<Self, ParamError> {
+    pub fn try_new(settings: AdmittanceSettings) -> Result<Self, ParamError> {
+        let AdmittanceSettings {
+            gain,
+            stiffness,
+            sample_period,
+            lag_samples,
+            limits,
+            max_rate,
+            deadband,
+            desired_torque,
+        } = settings;
         let k = positive("environment_stiffness", stiffness)?;
         let t = positive("sample_period", sample_period)?;
         if !(1e-6..=1.0).contains(&t) {
@@ -212,7 +235,16 @@ impl AdmittanceParams {
     /// speed ≤ 1 rad/s, no deadband.
     pub fn thesis(stiffness: f64) -> Result<Self, ParamError> {
         let l = 30f64.to_radians();
-        Self::try_new([0.1, 0.1], stiffness, 0.004, 1, [l, l], 1.0, 0.0, [0.0; 2])
+        Self::try_new(AdmittanceSettings {
+            gain: [0.1, 0.1],
+            stiffness,
+            sample_period: 0.004,
+            lag_samples: 1,
+            limits: [l, l],
+            max_rate: 1.0,
+            deadband: 0.0,
+            desired_torque: [0.0; 2],
+        })
     }
 
     /// `[K_c,δ, K_c,γ]`, rad/(s·N·m).
@@ -392,8 +424,17 @@ mod tests {
     fn loop_decay(kc: f64, kt: f64, t: f64, d: u8, n: usize) -> f64 {
         // Validate against a slack stiffness so that unstable gains can be
         // simulated with the library's own law.
-        let p = AdmittanceParams::try_new([kc, kc], 1e-9, t, d, [1.5, 1.5], 1e3, 0.0, [0.0; 2])
-            .unwrap();
+        let p = AdmittanceParams::try_new(AdmittanceSettings {
+            gain: [kc, kc],
+            stiffness: 1e-9,
+            sample_period: t,
+            lag_samples: d,
+            limits: [1.5, 1.5],
+            max_rate: 1e3,
+            deadband: 0.0,
+            desired_torque: [0.0; 2],
+        })
+        .unwrap();
         let cfg = AdmittanceConfig::<f64>::new(&p);
         let xe = 1e-3;
         let mut st = cfg.state_at([0.0, 0.0]);
@@ -428,11 +469,27 @@ mod tests {
             let outside = loop_decay(1.03 * kmax, kt, t, d, 4000);
             assert!(inside < 1e-2, "d={d}: inside {inside}");
             assert!(outside > 1e2, "d={d}: outside {outside}");
-            let ok =
-                AdmittanceParams::try_new([0.99 * kmax; 2], kt, t, d, [0.5; 2], 1.0, 0.0, [0.0; 2]);
+            let ok = AdmittanceParams::try_new(AdmittanceSettings {
+                gain: [0.99 * kmax; 2],
+                stiffness: kt,
+                sample_period: t,
+                lag_samples: d,
+                limits: [0.5; 2],
+                max_rate: 1.0,
+                deadband: 0.0,
+                desired_torque: [0.0; 2],
+            });
             assert!(ok.is_ok());
-            let bad =
-                AdmittanceParams::try_new([kmax, 0.1], kt, t, d, [0.5; 2], 1.0, 0.0, [0.0; 2]);
+            let bad = AdmittanceParams::try_new(AdmittanceSettings {
+                gain: [kmax, 0.1],
+                stiffness: kt,
+                sample_period: t,
+                lag_samples: d,
+                limits: [0.5; 2],
+                max_rate: 1.0,
+                deadband: 0.0,
+                desired_torque: [0.0; 2],
+            });
             assert!(
                 matches!(bad, Err(ParamError::OutOfRange { name: "admittance_gain", max, .. }) if (max - kmax).abs() < 1e-12)
             );
@@ -442,12 +499,28 @@ mod tests {
         assert!((stability_limit(1) - 1.0).abs() < 1e-15);
         assert!((stability_limit(2) - 0.6180339887).abs() < 1e-9);
         // Negative and zero gains are rejected too.
-        assert!(
-            AdmittanceParams::try_new([0.0, 0.1], kt, t, 0, [0.5; 2], 1.0, 0.0, [0.0; 2]).is_err()
-        );
-        assert!(
-            AdmittanceParams::try_new([-0.1, 0.1], kt, t, 0, [0.5; 2], 1.0, 0.0, [0.0; 2]).is_err()
-        );
+        assert!(AdmittanceParams::try_new(AdmittanceSettings {
+            gain: [0.0, 0.1],
+            stiffness: kt,
+            sample_period: t,
+            lag_samples: 0,
+            limits: [0.5; 2],
+            max_rate: 1.0,
+            deadband: 0.0,
+            desired_torque: [0.0; 2]
+        })
+        .is_err());
+        assert!(AdmittanceParams::try_new(AdmittanceSettings {
+            gain: [-0.1, 0.1],
+            stiffness: kt,
+            sample_period: t,
+            lag_samples: 0,
+            limits: [0.5; 2],
+            max_rate: 1.0,
+            deadband: 0.0,
+            desired_torque: [0.0; 2]
+        })
+        .is_err());
     }
 
     /// Errata E6.2: the printed sign. With `f = K_t x` (eq. 6.28, the
@@ -469,9 +542,17 @@ mod tests {
 
     #[test]
     fn limits_deadband_and_backends() {
-        let p =
-            AdmittanceParams::try_new([0.1, 0.2], 200.0, 0.004, 1, [0.5, 0.5], 0.5, 0.3, [0.0; 2])
-                .unwrap();
+        let p = AdmittanceParams::try_new(AdmittanceSettings {
+            gain: [0.1, 0.2],
+            stiffness: 200.0,
+            sample_period: 0.004,
+            lag_samples: 1,
+            limits: [0.5, 0.5],
+            max_rate: 0.5,
+            deadband: 0.3,
+            desired_torque: [0.0; 2],
+        })
+        .unwrap();
         let c = AdmittanceConfig::<f64>::new(&p);
         let mut st = c.state_at([0.49, -7.0]);
         assert_eq!(st.reference, [0.49, -0.5]);
