@@ -44,7 +44,7 @@ pub use joint::{
 };
 pub use scalar::{Scalar, I16F16};
 
-/// The types a joint's firmware or simulator uses, in one import:
+/// The types a joint's or a wrist's firmware or simulator uses, in one import:
 /// `use mrr_control::prelude::*;`. Every parameter type is built by its
 /// validating `try_new` (or a named-field settings struct), and every step
 /// reads and writes SI values through the `from_si` / `*_si` conversions.
@@ -67,6 +67,10 @@ pub mod prelude {
         JointTarget,
     };
     pub use crate::scalar::{Scalar, I16F16};
+    pub use crate::wrist::{
+        MotorAngles, PitchYaw, WristMode, WristOutput, WristReadings, WristStepConfig,
+        WristStepParams, WristStepSettings, WristStepState, WristTarget,
+    };
 }
 
 /// Verification properties (see `proofs/mod.rs`), compiled for the test,

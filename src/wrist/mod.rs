@@ -13,6 +13,9 @@
 //!   6.28–6.33) in task space, with its discrete-time stability range.
 //! * [`modes`] — active ↔ passive switching of the wrist's task-space
 //!   reference, bumpless.
+//! * [`step`] — the whole wrist in one call per tick: gauge signals →
+//!   interaction torques → mode manager → inverse kinematics → both motor
+//!   laws ([`WristStepConfig::update`]).
 //!
 //! Angles are in rad, torques in any one unit (the maps are linear in
 //! torque and dimensionless). Conventions and the corrections to the
@@ -53,10 +56,16 @@ pub mod ft_sensor;
 pub mod jacobian;
 pub mod kinematics;
 pub mod modes;
+pub mod step;
 pub mod ujoint;
 
 pub use alpha_beta::AlphaBeta;
 pub use jacobian::{ForceMapping, Jacobian, JacobianKind, MappedTorques};
 pub use kinematics::{
     Forward, IkState, Inverse, MotorAngles, PitchYaw, Unreachable, WristConfig, WristParams,
+};
+pub use modes::WristMode;
+pub use step::{
+    WristOutput, WristReadings, WristStepConfig, WristStepParams, WristStepSettings,
+    WristStepState, WristTarget,
 };

@@ -1,0 +1,571 @@
+//! One wrist, wired once: F/T gauge signals → interaction torques
+//! `(τ_δ, τ_γ)` (eq. 6.35, 6.3) → active ↔ passive mode manager in task
+//! space ([`super::modes`], admittance law eq. 6.28–6.33) → inverse
+//! kinematics of the task reference (eq. 5.13–5.15) → the robust adaptive
+//! law of both motors (eq. 6.12–6.15) in one [`WristStepConfig::update`]
+//! per servo tick.
+//!
+//! The component has the crate's shape: [`WristStepParams`] (SI, validated
+//! by [`WristStepParams::try_new`] from named [`WristStepSettings`], or the
+//! [`WristStepParams::table_6_1`] preset) → [`WristStepConfig<S>`]
+//! (quantized once for backend `S`) → [`WristStepState<S>`] →
+//! `update(&self, &mut state, &readings, &target)` → [`WristOutput<S>`].
+//! The step never panics, never allocates and never returns NaN.
+//!
+//! # The step, in order
+//! 1. **Sensing.** The six gauge signals `SG` (V) give the wrench
+//!    `w = M·SG` (eq. 6.35) and the interaction torques
+//!    `τ = (τ_δ, τ_γ)` of eq. (6.3) (corrected, errata E6.1). Eq. (6.3)
+//!    needs the yaw `γ`: the step uses the pose of the previous tick's
+//!    reference as reached through the inverse kinematics (the wrist
+//!    tracks it within the position loop's error `e_γ`, which rotates the
+//!    `(τ_x, τ_z)` part of `τ_δ` by `e_γ`: a relative error below `|e_γ|`).
+//!    This saves the forward kinematics (eq. 5.8–5.12) on every tick.
+//! 2. **Mode manager** ([`WristModeConfig`]): in Active mode the reference
+//!    follows the target (with a bumpless offset that decays after a
+//!    switch); in Passive mode the admittance law integrates the reference
+//!    from `τ` (eq. 6.32). Switching: by `τ` and the reference's rest
+//!    (automatic) or by [`WristTarget::request`].
+//! 3. **Inverse kinematics** of the task reference `x_r = (δ_r, γ_r)` to the
+//!    motor references `(θ1_r, θ3_r)`, continuous in time ([`IkState`]). A
+//!    reference outside the reachable cone (bend above `2φ`; the mode
+//!    manager's box `|δ|, |γ| ≤ 30°` contains poses bent up to 42°) is
+//!    projected onto its boundary and flagged
+//!    ([`WristOutput::reference_saturated`]).
+//! 4. **Motor reference rates by difference**, not by the Jacobian:
+//!    `θ̇_r[k] = (θ_r[k] − θ_r[k−1])/T` and
+//!    `θ̈_r[k] = (θ̇_r[k] − θ̇_r[k−1])/T`. The inverse Jacobian is singular
+//!    at the straight pose and on the boundary (see [`super::jacobian`]);
+//!    the difference is bounded everywhere, costs two subtractions, and
+//!    lags the exact rate by half a tick.
+//! 5. **Force mapping**, eq. (6.1): the load torque of each motor law,
+//!    `τ_t = −Jᵀ τ` (the torque the joint applies to the environment
+//!    side, the ch. 4 sign of eq. 4.1/6.4; `τ` is the environment's torque
+//!    on the wrist), with the exact Jacobian evaluated at the reference
+//!    (`θ1_r` and the reached pose: again no forward kinematics).
+//! 6. **Both motor laws** ([`WristActiveConfig`], eq. 6.12–6.15) on the
+//!    joint coordinates `(θ1, θ3)`: reference, rates, measured position and
+//!    speed, and `τ_t`.
+//!
+//! # Sign conventions, handled here once
+//! * Angles: `θ1` about the base `z` axis, `θ3` about the output `z` axis
+//!   ([`MotorAngles`]), both in rad at the gear output, zero at the
+//!   thesis's initial status; `δ` about the base `y` axis, `γ` about the
+//!   pitched `x` axis ([`PitchYaw`]). A firmware whose second encoder
+//!   reads the motor-2 shaft angle `θ2` converts it to `θ3` through the
+//!   universal joint of eq. (5.1) ([`super::ujoint`]) before the step.
+//! * Torques: [`WristOutput::motor_torque`] is positive driving its joint
+//!   coordinate forward (`θ1`, `θ3` increasing);
+//!   [`WristOutput::interaction`] is the environment's torque on the wrist,
+//!   positive tending to increase `δ` (`γ`) (eq. 6.3 as corrected);
+//!   [`WristOutput::joint_torque`] is `τ_t = −Jᵀ·interaction`.
+//!
+//! # Units
+//! [`WristReadings`] and [`WristTarget`] hold stored values: gauge signals
+//! in V, angles in rad, speeds in rad/s on every backend (`S::UNITS` scales
+//! them by 1; the `from_si` constructors apply the scales anyway). The
+//! motor torques are in stored motor-torque units (N·m on floats, mN·m on
+//! `I16F16`), the interaction and joint torques in stored link-torque units
+//! (N·m); the `*_si` readers give SI on every backend.
+//!
+//! # Example
+//! The Table 6.1 wrist held at a pose; then a 2 N·m push about the yaw
+//! axis (a pure torque `τ_y = −2 N·m` at the sensor, eq. 6.3) switches it
+//! to the passive mode, where the reference yields in `+γ` at
+//! `K_c τ = 0.1·2 = 0.2 rad/s` (eq. 6.32).
+//!
+//! ```
+//! use mrr_control::wrist::{PitchYaw, WristConfig, WristMode, WristParams};
+//! use mrr_control::wrist::step::{WristReadings, WristStepConfig, WristStepParams, WristTarget};
+//! let p = WristStepParams::table_6_1()?;
+//! let cfg = WristStepConfig::<f64>::new(&p);
+//! // Start at rest where the pose (0.2, −0.1) rad is reached.
+//! let pose = PitchYaw { delta: 0.2, gamma: -0.1 };
+//! let motors = WristConfig::<f64>::new(&WristParams::thesis()).inverse(pose).motors;
+//! let mut st = cfg.state(motors);
+//! let hold = WristTarget::from_si(0.2, -0.1, 0.0, 0.0);
+//! let still = WristReadings::from_si([0.0; 6], [motors.theta1, motors.theta3], [0.0; 2]);
+//! let out = cfg.update(&mut st, &still, &hold);
+//! assert_eq!(out.mode, WristMode::Active);
+//! assert!(out.motor_torque_si()[0].abs() < 1e-9 && !out.saturated && !out.invalid_input);
+//! // A 2 N·m push about the yaw axis, as the gauges read it.
+//! let sg = p.settings().sensor.decoupling().gauge_signals(&[0.0, 0.0, 0.0, 0.0, -2.0, 0.0]);
+//! let pushed = WristReadings::from_si(sg, [motors.theta1, motors.theta3], [0.0; 2]);
+//! let (mut last, mut passive_ticks) = (out, 0);
+//! for _ in 0..60 {
+//!     last = cfg.update(&mut st, &pushed, &hold);
+//!     passive_ticks += (last.mode == WristMode::Passive) as u32;
+//! }
+//! assert!((last.interaction_si()[1] - 2.0).abs() < 1e-6);
+//! assert_eq!(last.mode, WristMode::Passive); // after the 50-tick dwell
+//! // The reference yielded by T·K_c·τ = 8e-4 rad per passive tick.
+//! let yielded = last.reference_si()[1] + 0.1;
+//! assert!((yielded - 8e-4 * passive_ticks as f64).abs() < 1e-4, "{yielded}");
+//! # Ok::<(), mrr_control::ParamError>(())
+//! ```
+
+// Two-element arrays indexed in parallel (axes): index loops read better
+// than zipped iterators here.
+#![allow(clippy::needless_range_loop)]
+
+use super::active::{WristActiveConfig, WristActiveParams, WristActiveState, WristJointSample};
+use super::admittance::{AdmittanceParams, AdmittanceSettings};
+use super::ft_sensor::{DecouplingMatrix, FtSensorConfig, FtSensorParams};
+use super::kinematics::{IkState, MotorAngles, PitchYaw, WristConfig, WristParams};
+use super::modes::{WristMode, WristModeConfig, WristModeInput, WristModeParams, WristModeState};
+use crate::control::ActiveOutput;
+use crate::error::ParamError;
+use crate::scalar::units::{dequantize, quantize_keep_non_finite};
+use crate::scalar::{Coef, Scalar};
+
+/// The settings of a wrist by name, for [`WristStepParams::try_new`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WristStepSettings {
+    /// The DAUJ kinematics (the inclination `φ`).
+    pub kinematics: WristParams,
+    /// The F/T sensor: decoupling matrix (eq. 6.35) and offset `l`
+    /// (eq. 6.3).
+    pub sensor: FtSensorParams,
+    /// The robust adaptive laws of both motors (eq. 6.12–6.15); their
+    /// sample period is the wrist's tick `T`.
+    pub active: WristActiveParams,
+    /// The mode manager and its admittance law (eq. 6.28–6.33); the
+    /// admittance law's sample period must be `T`.
+    pub modes: WristModeParams,
+    /// The mode a new state starts in.
+    pub initial_mode: WristMode,
+}
+
+/// Parameters of one wrist, SI; built only by [`try_new`](Self::try_new).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WristStepParams {
+    settings: WristStepSettings,
+}
+
+impl WristStepParams {
+    /// Validate: the admittance law's sample period equals the motor laws'
+    /// (`ParamError::OutOfRange` named `modes.admittance.sample_period`,
+    /// with the motor laws' period as both bounds). The parts were
+    /// validated by their own `try_new`.
+    pub fn try_new(settings: WristStepSettings) -> Result<Self, ParamError> {
+        let t = settings.active.laws()[0].design().sample_period;
+        let ta = settings.modes.admittance().sample_period();
+        if ta != t {
+            return Err(ParamError::OutOfRange {
+                name: "modes.admittance.sample_period",
+                value: ta,
+                min: t,
+                max: t,
+            });
+        }
+        Ok(WristStepParams { settings })
+    }
+
+    /// The Table 6.1 wrist: `φ = 16°` ([`WristParams::thesis`]); both
+    /// motors by Table 6.1 ([`WristActiveParams::table_6_1`], `T = 4 ms`);
+    /// the thesis's passive mode, `K_c = 0.1 rad/(s·N·m)` on the ±30°
+    /// workspace (§6.4.3, [`AdmittanceParams::thesis`]) validated for
+    /// environments up to 1000 N·m/rad; starts Active.
+    ///
+    /// Not printed in the thesis, and documented defaults here: the sensor
+    /// calibration ([`DecouplingMatrix::example`], **replace it with your
+    /// sensor's certificate**) at `l = 0.05 m`; the switching rule — enter
+    /// Passive above 1 N·m, leave below 0.5 N·m with the reference at rest
+    /// (below 0.01 rad/s), debounce 5 ticks (20 ms), dwell 50 ticks
+    /// (200 ms) in a mode before an automatic switch, bumpless rejoin at
+    /// 5 rad/s.
+    pub fn table_6_1() -> Result<Self, ParamError> {
+        let l = 30f64.to_radians();
+        let admittance = AdmittanceParams::try_new(AdmittanceSettings {
+            gain: [0.1, 0.1],
+            stiffness: 1000.0,
+            sample_period: 0.004,
+            lag_samples: 1,
+            limits: [l, l],
+            max_rate: 1.0,
+            deadband: 0.0,
+            desired_torque: [0.0; 2],
+        })?;
+        Self::try_new(WristStepSettings {
+            kinematics: WristParams::thesis(),
+            sensor: FtSensorParams::try_new(DecouplingMatrix::example(), 0.05)?,
+            active: WristActiveParams::table_6_1()?,
+            modes: WristModeParams::try_new(admittance, 1.0, 0.5, 0.01, 5, 50, 5.0)?,
+            initial_mode: WristMode::Active,
+        })
+    }
+
+    /// The settings, by name.
+    pub fn settings(&self) -> WristStepSettings {
+        self.settings
+    }
+
+    /// The tick `T`, s.
+    pub fn sample_period(&self) -> f64 {
+        self.settings.active.laws()[0].design().sample_period
+    }
+}
+
+/// The wrist quantized for backend `S`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WristStepConfig<S> {
+    kinematics: WristConfig<S>,
+    sensor: FtSensorConfig<S>,
+    active: WristActiveConfig<S>,
+    modes: WristModeConfig<S>,
+    initial_mode: WristMode,
+    /// `1/T`, stored angle → stored speed.
+    inv_t: Coef,
+    /// `1/T`, stored speed → stored speed per second.
+    inv_t_rate: Coef,
+}
+
+/// The wrist's state: the mode manager's, the motor laws', the inverse
+/// kinematics' (previous motor references) and the previous reference
+/// rates.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WristStepState<S: Scalar> {
+    modes: WristModeState<S>,
+    laws: WristActiveState<S>,
+    ik: IkState<S>,
+    /// The pose the previous reference reached (for `γ` of eq. 6.3).
+    pose: PitchYaw<S>,
+    /// `θ̇_r[k−1]`, stored speed units.
+    rate: [S; 2],
+}
+
+impl<S: Scalar> WristStepState<S> {
+    /// The current mode.
+    pub fn mode(&self) -> WristMode {
+        self.modes.mode()
+    }
+    /// The mode manager's state.
+    pub fn mode_state(&self) -> &WristModeState<S> {
+        &self.modes
+    }
+    /// The motor laws' state (integrals, adapted friction).
+    pub fn law_state(&self) -> &WristActiveState<S> {
+        &self.laws
+    }
+    /// The last motor references `(θ1_r, θ3_r)`, stored angle units.
+    pub fn motor_reference(&self) -> MotorAngles<S> {
+        self.ik.motors
+    }
+    /// The pose the last reference reached, stored angle units.
+    pub fn pose_reference(&self) -> PitchYaw<S> {
+        self.pose
+    }
+}
+
+/// The readings of one tick.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WristReadings<S> {
+    /// The six gauge signals `SG_i = V_out,i − V_ref,i` (V) of the F/T
+    /// sensor (eq. 6.34), in the order of the decoupling matrix's columns.
+    pub gauges: [S; 6],
+    /// Measured joint coordinates `(θ1, θ3)`, stored angle units (rad),
+    /// continuous (turns accumulated).
+    pub motors: MotorAngles<S>,
+    /// Measured `(θ̇1, θ̇3)`, stored speed units (rad/s).
+    pub motor_velocity: [S; 2],
+}
+
+impl<S: Scalar> WristReadings<S> {
+    /// Readings from SI values: gauge signals (V), `[θ1, θ3]` (rad),
+    /// `[θ̇1, θ̇3]` (rad/s). A NaN or infinity stays one on floats (the step
+    /// then flags it); fixed point saturates it.
+    pub fn from_si(gauges: [f64; 6], motors: [f64; 2], motor_velocity: [f64; 2]) -> Self {
+        let u = S::UNITS;
+        let mut g = [S::ZERO; 6];
+        for i in 0..6 {
+            g[i] = quantize_keep_non_finite(gauges[i], 1.0);
+        }
+        WristReadings {
+            gauges: g,
+            motors: MotorAngles {
+                theta1: quantize_keep_non_finite(motors[0], u.angle),
+                theta3: quantize_keep_non_finite(motors[1], u.angle),
+            },
+            motor_velocity: [
+                quantize_keep_non_finite(motor_velocity[0], u.speed),
+                quantize_keep_non_finite(motor_velocity[1], u.speed),
+            ],
+        }
+    }
+}
+
+/// What the wrist should do on this tick, in task space.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct WristTarget<S> {
+    /// Desired pose `(δ_d, γ_d)`, stored angle units (rad); followed in
+    /// Active mode.
+    pub pose: PitchYaw<S>,
+    /// Desired `[δ̇_d, γ̇_d]`, stored speed units (rad/s).
+    pub rate: [S; 2],
+    /// A mode to switch to now (`None`: the automatic rule).
+    pub request: Option<WristMode>,
+}
+
+impl<S: Scalar> WristTarget<S> {
+    /// A target from SI values (rad, rad/s), no mode request. A NaN or
+    /// infinity stays one on floats (the step then flags it); fixed point
+    /// saturates it.
+    pub fn from_si(delta: f64, gamma: f64, delta_rate: f64, gamma_rate: f64) -> Self {
+        let u = S::UNITS;
+        WristTarget {
+            pose: PitchYaw {
+                delta: quantize_keep_non_finite(delta, u.angle),
+                gamma: quantize_keep_non_finite(gamma, u.angle),
+            },
+            rate: [
+                quantize_keep_non_finite(delta_rate, u.speed),
+                quantize_keep_non_finite(gamma_rate, u.speed),
+            ],
+            request: None,
+        }
+    }
+
+    /// This target with a mode request.
+    pub fn with_request(mut self, mode: WristMode) -> Self {
+        self.request = Some(mode);
+        self
+    }
+}
+
+/// One tick of the wrist. Every field is finite on every backend.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WristOutput<S> {
+    /// Motor torque commands `[τ1, τ3]`, stored motor-torque units,
+    /// positive driving `θ1` (`θ3`) forward, within each law's limit.
+    pub motor_torque: [S; 2],
+    /// The mode that produced them.
+    pub mode: WristMode,
+    /// The mode changed on this tick.
+    pub switched: bool,
+    /// `[τ_δ, τ_γ]` (eq. 6.3), the environment's torque on the wrist,
+    /// stored link-torque units, positive tending to increase `δ` (`γ`);
+    /// 0 when the sensor reading was invalid.
+    pub interaction: [S; 2],
+    /// `τ_t = −Jᵀ·interaction` fed to each motor law (eq. 6.1, ch. 4
+    /// sign), stored link-torque units.
+    pub joint_torque: [S; 2],
+    /// The task reference reached, `(δ_r, γ_r)`, stored angle units:
+    /// the mode manager's, projected onto the reachable cone when
+    /// `reference_saturated`.
+    pub reference: PitchYaw<S>,
+    /// The motor references `(θ1_r, θ3_r)`, stored angle units.
+    pub motor_reference: MotorAngles<S>,
+    /// `[θ̇1_r, θ̇3_r]` by difference (module docs), stored speed units.
+    pub motor_reference_rate: [S; 2],
+    /// `reference_saturated || torque_saturated`.
+    pub saturated: bool,
+    /// The task reference was limited: by the mode manager (workspace box,
+    /// admittance rate limit) or by the inverse kinematics (outside the
+    /// reachable cone, projected).
+    pub reference_saturated: bool,
+    /// A motor law's torque was at its limit (valid inputs only).
+    pub torque_saturated: bool,
+    /// The Jacobian at the reference is singular (`|det J| < DET_MIN`,
+    /// near the straight pose or the boundary); the mapping stays bounded.
+    pub singular: bool,
+    /// An input was NaN or infinite: a gauge signal (the interaction reads
+    /// 0), the target (the reference holds), or a measured position or
+    /// speed (that motor's torque is 0 and its law's state is kept).
+    pub invalid_input: bool,
+    /// The two motor laws' outputs.
+    pub laws: [ActiveOutput<S>; 2],
+}
+
+impl<S: Scalar> WristOutput<S> {
+    /// [`motor_torque`](Self::motor_torque) in N·m.
+    pub fn motor_torque_si(&self) -> [f64; 2] {
+        let u = S::UNITS.motor_torque;
+        [
+            dequantize(self.motor_torque[0], u),
+            dequantize(self.motor_torque[1], u),
+        ]
+    }
+    /// [`interaction`](Self::interaction) `[τ_δ, τ_γ]` in N·m.
+    pub fn interaction_si(&self) -> [f64; 2] {
+        let u = S::UNITS.link_torque;
+        [
+            dequantize(self.interaction[0], u),
+            dequantize(self.interaction[1], u),
+        ]
+    }
+    /// [`joint_torque`](Self::joint_torque) in N·m.
+    pub fn joint_torque_si(&self) -> [f64; 2] {
+        let u = S::UNITS.link_torque;
+        [
+            dequantize(self.joint_torque[0], u),
+            dequantize(self.joint_torque[1], u),
+        ]
+    }
+    /// [`reference`](Self::reference) `[δ_r, γ_r]` in rad.
+    pub fn reference_si(&self) -> [f64; 2] {
+        let u = S::UNITS.angle;
+        [
+            dequantize(self.reference.delta, u),
+            dequantize(self.reference.gamma, u),
+        ]
+    }
+    /// [`motor_reference`](Self::motor_reference) `[θ1_r, θ3_r]` in rad.
+    pub fn motor_reference_si(&self) -> [f64; 2] {
+        let u = S::UNITS.angle;
+        [
+            dequantize(self.motor_reference.theta1, u),
+            dequantize(self.motor_reference.theta3, u),
+        ]
+    }
+    /// [`motor_reference_rate`](Self::motor_reference_rate) in rad/s.
+    pub fn motor_reference_rate_si(&self) -> [f64; 2] {
+        let u = S::UNITS.speed;
+        [
+            dequantize(self.motor_reference_rate[0], u),
+            dequantize(self.motor_reference_rate[1], u),
+        ]
+    }
+}
+
+impl<S: Scalar> WristStepConfig<S> {
+    /// Quantize validated parameters once.
+    pub fn new(p: &WristStepParams) -> Self {
+        let s = &p.settings;
+        let u = S::UNITS;
+        let t = p.sample_period();
+        WristStepConfig {
+            kinematics: WristConfig::new(&s.kinematics),
+            sensor: FtSensorConfig::new(&s.sensor),
+            active: WristActiveConfig::new(&s.active),
+            modes: WristModeConfig::new(&s.modes),
+            initial_mode: s.initial_mode,
+            inv_t: Coef::new(u.speed / (t * u.angle)),
+            inv_t_rate: Coef::new(1.0 / t),
+        }
+    }
+
+    /// The kinematics.
+    pub fn kinematics(&self) -> &WristConfig<S> {
+        &self.kinematics
+    }
+    /// The F/T sensing chain.
+    pub fn sensor(&self) -> &FtSensorConfig<S> {
+        &self.sensor
+    }
+    /// The two motor laws.
+    pub fn active(&self) -> &WristActiveConfig<S> {
+        &self.active
+    }
+    /// The mode manager.
+    pub fn modes(&self) -> &WristModeConfig<S> {
+        &self.modes
+    }
+
+    /// A state for a wrist at rest at the measured joint coordinates
+    /// `motors` (rad): the reference starts at the pose they reach (forward
+    /// kinematics, once), the motor references at `motors`, in the
+    /// settings' initial mode.
+    pub fn state(&self, motors: MotorAngles<S>) -> WristStepState<S> {
+        let pose = self.kinematics.forward(motors).pose;
+        let mut ik = IkState::new(motors);
+        let reached = self.kinematics.update(&mut ik, pose);
+        ik.motors = reached.motors;
+        WristStepState {
+            modes: self
+                .modes
+                .initial_state(self.initial_mode, [pose.delta, pose.gamma]),
+            laws: self.active.initial_state(),
+            ik,
+            pose: reached.pose,
+            rate: [S::ZERO; 2],
+        }
+    }
+
+    /// One tick: sensing, mode manager, inverse kinematics, reference
+    /// rates, force mapping and both motor laws (module docs).
+    pub fn update(
+        &self,
+        st: &mut WristStepState<S>,
+        readings: &WristReadings<S>,
+        target: &WristTarget<S>,
+    ) -> WristOutput<S> {
+        // 1. Eq. (6.35), (6.3) at the previous reference's yaw.
+        let ft = self.sensor.update(&readings.gauges, st.pose.gamma);
+        // 2. Mode manager in task space.
+        let m = self.modes.update(
+            &mut st.modes,
+            &WristModeInput {
+                desired: [target.pose.delta, target.pose.gamma],
+                desired_rate: target.rate,
+                interaction: ft.interaction,
+                request: target.request,
+            },
+        );
+        // 3. Inverse kinematics, continuous in time.
+        let prev = st.ik.motors;
+        let ik = self.kinematics.update(
+            &mut st.ik,
+            PitchYaw {
+                delta: m.reference[0],
+                gamma: m.reference[1],
+            },
+        );
+        st.pose = ik.pose;
+        // 4. Reference rates and accelerations by difference.
+        let now = [ik.motors.theta1, ik.motors.theta3];
+        let before = [prev.theta1, prev.theta3];
+        let mut rate = [S::ZERO; 2];
+        let mut acc = [S::ZERO; 2];
+        for i in 0..2 {
+            rate[i] = now[i].sub(before[i]).mul_coef(&self.inv_t);
+            acc[i] = rate[i].sub(st.rate[i]).mul_coef(&self.inv_t_rate);
+        }
+        st.rate = rate;
+        // 5. Eq. (6.1): τ_t = −Jᵀ τ at the reference.
+        let j = self.kinematics.jacobian_at_pose(ik.motors.theta1, ik.pose);
+        let [td, tg] = ft.interaction;
+        let joint_torque = [
+            j.m[0][0].mul(td).add(j.m[1][0].mul(tg)).neg(),
+            j.m[0][1].mul(td).add(j.m[1][1].mul(tg)).neg(),
+        ];
+        // 6. Both motor laws.
+        let sample = |i: usize| WristJointSample {
+            desired_position: now[i],
+            desired_velocity: rate[i],
+            desired_acceleration: acc[i],
+            position: if i == 0 {
+                readings.motors.theta1
+            } else {
+                readings.motors.theta3
+            },
+            velocity: readings.motor_velocity[i],
+            interaction_torque: joint_torque[i],
+        };
+        let laws = self.active.update(&mut st.laws, &[sample(0), sample(1)]);
+        let reference_saturated = m.saturated || ik.saturated;
+        let torque_saturated = (laws[0].saturated && !laws[0].invalid_input)
+            || (laws[1].saturated && !laws[1].invalid_input);
+        WristOutput {
+            motor_torque: [laws[0].torque, laws[1].torque],
+            mode: m.mode,
+            switched: m.switched,
+            interaction: ft.interaction,
+            joint_torque,
+            reference: ik.pose,
+            motor_reference: ik.motors,
+            motor_reference_rate: rate,
+            saturated: reference_saturated || torque_saturated,
+            reference_saturated,
+            torque_saturated,
+            singular: j.singular,
+            invalid_input: ft.invalid_input
+                || m.invalid_input
+                || laws[0].invalid_input
+                || laws[1].invalid_input,
+            laws,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;
