@@ -46,7 +46,7 @@
 //! below (bounded by `1/DET_MIN`, continuous) and flags it.
 
 use super::alpha_beta::AlphaBeta;
-use super::kinematics::{denan, MotorAngles, PitchYaw, WristConfig, WristParams};
+use super::kinematics::{denan, MotorAngles, WristConfig, WristParams};
 use crate::scalar::Scalar;
 
 /// Below this `|det J|` the mapping of eq. (5.29) is flagged singular and
@@ -95,17 +95,9 @@ impl<S: Scalar> WristConfig<S> {
     /// The exact Jacobian at the motor angles (rad); see the module docs.
     pub fn jacobian(&self, motors: MotorAngles<S>) -> Jacobian<S> {
         let f = self.forward(motors);
-        self.jacobian_at_pose(motors.theta1, f.pose)
-    }
-
-    /// The exact Jacobian from `θ1` (rad) and the pose `(δ, γ)` it reaches
-    /// with some `θ3` (the formula of the module docs needs nothing else),
-    /// for a caller that has the pose already, e.g. from the inverse
-    /// kinematics: no forward kinematics is evaluated.
-    pub(crate) fn jacobian_at_pose(&self, theta1: S, pose: PitchYaw<S>) -> Jacobian<S> {
-        let (s1, c1) = denan(theta1).sin_cos();
-        let (sd, cd) = denan(pose.delta).sin_cos();
-        let (sg, cg) = denan(pose.gamma).sin_cos();
+        let (s1, c1) = denan(motors.theta1).sin_cos();
+        let (sd, cd) = f.pose.delta.sin_cos();
+        let (sg, cg) = f.pose.gamma.sin_cos();
         let (sp, cp) = (self.sin_phi, self.cos_phi);
         let d = sd.mul(sp).mul(s1).add(cd.mul(cp));
         let m = [

@@ -13,36 +13,51 @@
 //! The step never panics, never allocates and never returns NaN.
 //!
 //! # The step, in order
-//! 1. **Sensing.** The six gauge signals `SG` (V) give the wrench
-//!    `w = M·SG` (eq. 6.35) and the interaction torques
-//!    `τ = (τ_δ, τ_γ)` of eq. (6.3) (corrected, errata E6.1). Eq. (6.3)
-//!    needs the yaw `γ`: the step uses the pose of the previous tick's
-//!    reference as reached through the inverse kinematics (the wrist
-//!    tracks it within the position loop's error `e_γ`, which rotates the
-//!    `(τ_x, τ_z)` part of `τ_δ` by `e_γ`: a relative error below `|e_γ|`).
-//!    This saves the forward kinematics (eq. 5.8–5.12) on every tick.
+//! 1. **Sensing.** The six gauge signals `SG` (V) give the interaction
+//!    torques `τ = (τ_δ, τ_γ)` of eq. (6.35) and (6.3) (corrected, errata
+//!    E6.1). Eq. (6.3) uses three combinations of the wrench's rows only,
+//!    `m_x = τ_x − l F_y`, `m_y = τ_y + l F_x` and `τ_z`: the step combines
+//!    those rows of the decoupling matrix once, at configuration (18
+//!    products per tick instead of 36). Eq. (6.3) needs the yaw `γ`: the
+//!    step uses the pose of the previous tick's reference as reached
+//!    through the inverse kinematics (the wrist tracks it within the
+//!    position loop's error `e_γ`, which rotates the `(m_x, τ_z)` part of
+//!    `τ_δ` by `e_γ`: a relative error below `|e_γ|`). This saves the
+//!    forward kinematics (eq. 5.8–5.12) on every tick.
 //! 2. **Mode manager** ([`WristModeConfig`]): in Active mode the reference
 //!    follows the target (with a bumpless offset that decays after a
 //!    switch); in Passive mode the admittance law integrates the reference
 //!    from `τ` (eq. 6.32). Switching: by `τ` and the reference's rest
 //!    (automatic) or by [`WristTarget::request`].
 //! 3. **Inverse kinematics** of the task reference `x_r = (δ_r, γ_r)` to the
-//!    motor references `(θ1_r, θ3_r)`, continuous in time ([`IkState`]). A
-//!    reference outside the reachable cone (bend above `2φ`; the mode
-//!    manager's box `|δ|, |γ| ≤ 30°` contains poses bent up to 42°) is
-//!    projected onto its boundary and flagged
+//!    motor references `(θ1_r, θ3_r)`: the map of
+//!    [`WristConfig::inverse`] (eq. 5.13–5.14, same branch, same
+//!    projection) written in vector form so that its sines and cosines are
+//!    shared with steps 5 and 1 (two `atan2`, no half-angle sines; see
+//!    `ik` in the source; `tests::vector_inverse_kinematics_matches_the_library_inverse`
+//!    compares the two on every backend), then made continuous in time
+//!    like [`IkState`](super::kinematics::IkState): each motor moves by the
+//!    multiple of `2π` nearest its previous value. A reference outside the
+//!    reachable cone (bend above `2φ`; the mode manager's box
+//!    `|δ|, |γ| ≤ 30°` contains poses bent up to 42°) is projected onto its
+//!    boundary along its azimuth and flagged
 //!    ([`WristOutput::reference_saturated`]).
 //! 4. **Motor reference rates by difference**, not by the Jacobian:
 //!    `θ̇_r[k] = (θ_r[k] − θ_r[k−1])/T` and
 //!    `θ̈_r[k] = (θ̇_r[k] − θ̇_r[k−1])/T`. The inverse Jacobian is singular
 //!    at the straight pose and on the boundary (see [`super::jacobian`]);
 //!    the difference is bounded everywhere, costs two subtractions, and
-//!    lags the exact rate by half a tick.
+//!    lags the exact rate by half a tick. Near the straight pose the motor
+//!    angles turn fast for a small pose motion (the direction of the bend
+//!    is undefined there): a target through the straight pose gives large
+//!    reference rates, and on `I16F16` the stored acceleration saturates
+//!    at ±32 768 rad/s².
 //! 5. **Force mapping**, eq. (6.1): the load torque of each motor law,
 //!    `τ_t = −Jᵀ τ` (the torque the joint applies to the environment
 //!    side, the ch. 4 sign of eq. 4.1/6.4; `τ` is the environment's torque
-//!    on the wrist), with the exact Jacobian evaluated at the reference
-//!    (`θ1_r` and the reached pose: again no forward kinematics).
+//!    on the wrist), with the exact Jacobian of [`super::jacobian`]
+//!    evaluated at the reference (`θ1_r` and the pose reached, whose sines
+//!    and cosines step 3 computed: no forward kinematics).
 //! 6. **Both motor laws** ([`WristActiveConfig`], eq. 6.12–6.15) on the
 //!    joint coordinates `(θ1, θ3)`: reference, rates, measured position and
 //!    speed, and `τ_t`.
@@ -111,7 +126,8 @@
 use super::active::{WristActiveConfig, WristActiveParams, WristActiveState, WristJointSample};
 use super::admittance::{AdmittanceParams, AdmittanceSettings};
 use super::ft_sensor::{DecouplingMatrix, FtSensorConfig, FtSensorParams};
-use super::kinematics::{IkState, MotorAngles, PitchYaw, WristConfig, WristParams};
+use super::jacobian::DET_MIN;
+use super::kinematics::{denan, hypot, wrap, MotorAngles, PitchYaw, WristConfig, WristParams};
 use super::modes::{WristMode, WristModeConfig, WristModeInput, WristModeParams, WristModeState};
 use crate::control::ActiveOutput;
 use crate::error::ParamError;
@@ -214,22 +230,42 @@ pub struct WristStepConfig<S> {
     active: WristActiveConfig<S>,
     modes: WristModeConfig<S>,
     initial_mode: WristMode,
+    /// The three rows of eq. (6.35) that eq. (6.3) needs, combined once:
+    /// `M₃ − l M₁` (moment `m_x` about the wrist centre), `M₄ + l M₀`
+    /// (`m_y`) and `M₅` (`τ_z`), in stored link-torque units per volt.
+    rows: [[Coef; 6]; 3],
+    cos_phi: S,
+    sin_2phi: S,
+    cos_2phi: S,
+    half: S,
+    /// `1/(2 sin φ)`.
+    inv_2_sin_phi: Coef,
+    /// `1/(√2 sin φ)`.
+    inv_sqrt2_sin_phi: Coef,
+    sin_phi_coef: Coef,
+    cos_phi_coef: Coef,
+    det_min: S,
     /// `1/T`, stored angle → stored speed.
     inv_t: Coef,
     /// `1/T`, stored speed → stored speed per second.
     inv_t_rate: Coef,
 }
 
-/// The wrist's state: the mode manager's, the motor laws', the inverse
-/// kinematics' (previous motor references) and the previous reference
-/// rates.
+/// The wrist's state: the mode manager's, the motor laws', the motor
+/// references (continuous, and reduced to `(−π, π]`), the pose they reach
+/// and the previous reference rates.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WristStepState<S: Scalar> {
     modes: WristModeState<S>,
     laws: WristActiveState<S>,
-    ik: IkState<S>,
-    /// The pose the previous reference reached (for `γ` of eq. 6.3).
+    /// `(θ1_r, θ3_r)`, continuous (turns accumulated), stored angle units.
+    theta: [S; 2],
+    /// The same reduced to `(−π, π]`.
+    reduced: [S; 2],
+    /// The pose the last reference reached.
     pose: PitchYaw<S>,
+    /// `(sin γ, cos γ)` of that pose, for eq. (6.3).
+    yaw_sin_cos: (S, S),
     /// `θ̇_r[k−1]`, stored speed units.
     rate: [S; 2],
 }
@@ -249,7 +285,10 @@ impl<S: Scalar> WristStepState<S> {
     }
     /// The last motor references `(θ1_r, θ3_r)`, stored angle units.
     pub fn motor_reference(&self) -> MotorAngles<S> {
-        self.ik.motors
+        MotorAngles {
+            theta1: self.theta[0],
+            theta3: self.theta[1],
+        }
     }
     /// The pose the last reference reached, stored angle units.
     pub fn pose_reference(&self) -> PitchYaw<S> {
@@ -427,18 +466,52 @@ impl<S: Scalar> WristOutput<S> {
     }
 }
 
+/// The inverse kinematics of one reference, with the trigonometric values
+/// the rest of the step reuses.
+struct Ik<S> {
+    /// The pose reached (the reference, or its projection).
+    pose: PitchYaw<S>,
+    sd: S,
+    cd: S,
+    sg: S,
+    cg: S,
+    /// `θ1`, `θ3` reduced to `(−π, π]`; `None` at the straight pose.
+    reduced: Option<[S; 2]>,
+    saturated: bool,
+}
+
 impl<S: Scalar> WristStepConfig<S> {
     /// Quantize validated parameters once.
     pub fn new(p: &WristStepParams) -> Self {
         let s = &p.settings;
         let u = S::UNITS;
         let t = p.sample_period();
+        let phi = s.kinematics.phi();
+        let m = s.sensor.decoupling().matrix();
+        let l = s.sensor.offset();
+        let mut rows = [[Coef::new(0.0); 6]; 3];
+        for j in 0..6 {
+            rows[0][j] = Coef::new((m[3][j] - l * m[1][j]) * u.link_torque);
+            rows[1][j] = Coef::new((m[4][j] + l * m[0][j]) * u.link_torque);
+            rows[2][j] = Coef::new(m[5][j] * u.link_torque);
+        }
+        let sin_phi = libm::sin(phi);
         WristStepConfig {
             kinematics: WristConfig::new(&s.kinematics),
             sensor: FtSensorConfig::new(&s.sensor),
             active: WristActiveConfig::new(&s.active),
             modes: WristModeConfig::new(&s.modes),
             initial_mode: s.initial_mode,
+            rows,
+            cos_phi: S::from_f64(libm::cos(phi)),
+            sin_2phi: S::from_f64(libm::sin(2.0 * phi)),
+            cos_2phi: S::from_f64(libm::cos(2.0 * phi)),
+            half: S::from_f64(0.5),
+            inv_2_sin_phi: Coef::new(0.5 / sin_phi),
+            inv_sqrt2_sin_phi: Coef::new(1.0 / (core::f64::consts::SQRT_2 * sin_phi)),
+            sin_phi_coef: Coef::new(sin_phi),
+            cos_phi_coef: Coef::new(libm::cos(phi)),
+            det_min: S::from_f64(DET_MIN),
             inv_t: Coef::new(u.speed / (t * u.angle)),
             inv_t_rate: Coef::new(1.0 / t),
         }
@@ -448,7 +521,8 @@ impl<S: Scalar> WristStepConfig<S> {
     pub fn kinematics(&self) -> &WristConfig<S> {
         &self.kinematics
     }
-    /// The F/T sensing chain.
+    /// The F/T sensing chain (the step evaluates the same map with its
+    /// rows combined once, module docs).
     pub fn sensor(&self) -> &FtSensorConfig<S> {
         &self.sensor
     }
@@ -463,22 +537,148 @@ impl<S: Scalar> WristStepConfig<S> {
 
     /// A state for a wrist at rest at the measured joint coordinates
     /// `motors` (rad): the reference starts at the pose they reach (forward
-    /// kinematics, once), the motor references at `motors`, in the
-    /// settings' initial mode.
+    /// kinematics, once), the motor references at `motors` (the inverse
+    /// kinematics of that pose, unwrapped to them), in the settings'
+    /// initial mode, every rate 0.
     pub fn state(&self, motors: MotorAngles<S>) -> WristStepState<S> {
         let pose = self.kinematics.forward(motors).pose;
-        let mut ik = IkState::new(motors);
-        let reached = self.kinematics.update(&mut ik, pose);
-        ik.motors = reached.motors;
-        WristStepState {
+        let m = [denan(motors.theta1), denan(motors.theta3)];
+        let reduce = |x: S| {
+            let (s, c) = x.sin_cos();
+            s.atan2(c)
+        };
+        let mut st = WristStepState {
             modes: self
                 .modes
                 .initial_state(self.initial_mode, [pose.delta, pose.gamma]),
             laws: self.active.initial_state(),
-            ik,
-            pose: reached.pose,
+            theta: m,
+            reduced: [reduce(m[0]), reduce(m[1])],
+            pose,
+            yaw_sin_cos: pose.gamma.sin_cos(),
             rate: [S::ZERO; 2],
+        };
+        let ik = self.ik(pose);
+        self.advance(&mut st, &ik);
+        st.rate = [S::ZERO; 2];
+        st
+    }
+
+    /// Eq. (6.35) and (6.3) on the combined rows, at the stored yaw.
+    /// `None` when an input or the result is NaN or infinite.
+    #[inline]
+    fn interaction(&self, gauges: &[S; 6], (s, c): (S, S)) -> Option<[S; 2]> {
+        let mut m = [S::ZERO; 3];
+        for (mi, row) in m.iter_mut().zip(self.rows.iter()) {
+            let mut acc = S::ZERO;
+            for (g, k) in gauges.iter().zip(row.iter()) {
+                acc = acc.add(g.mul_coef(k));
+            }
+            *mi = acc;
         }
+        let tau = [c.mul(m[0]).sub(s.mul(m[2])), m[1].neg()];
+        // `v − v` is 0 for a finite value and NaN for NaN and ±∞.
+        let d = |v: S| v.sub(v);
+        let mut probe = d(tau[0]).add(d(tau[1]));
+        for g in gauges.iter() {
+            probe = probe.add(d(*g));
+        }
+        if probe != S::ZERO {
+            None
+        } else {
+            Some(tau)
+        }
+    }
+
+    /// The inverse kinematics of eq. (5.13)–(5.14) in vector form (module
+    /// docs of [`super::kinematics`]): with `A = (cγ sδ, −sγ)` (the output
+    /// axis's azimuth), `B = (sδ, cδ sγ)` and `P = (cos(θ4/2),
+    /// cos φ sin(θ4/2))` (so `ψ = arg P`), `θ1 = arg(−A·P̄)` and
+    /// `θ3 = arg(−B·P̄)`. The bend enters through `cos β = cδ cγ` only:
+    /// `sin(θ4/2) = sin β /(2 sin φ cos(β/2))` with `sin β = |A|` and
+    /// `cos(β/2) = √((1 + cos β)/2)`, and
+    /// `cos(θ4/2) = √((cos β − cos 2φ)/2) / sin φ`, free of cancellation
+    /// at the straight pose. A pose with `cos β < cos 2φ` is projected
+    /// along its azimuth onto the cone `β = 2φ` (as
+    /// [`WristConfig::inverse`] does).
+    #[inline]
+    fn ik(&self, r: PitchYaw<S>) -> Ik<S> {
+        let (mut sd, mut cd) = r.delta.sin_cos();
+        let (mut sg, mut cg) = r.gamma.sin_cos();
+        let (ax, ay) = (cg.mul(sd), sg.neg());
+        let cb = cd.mul(cg);
+        let n = hypot(ax, ay);
+        let saturated = cb < self.cos_2phi;
+        let mut pose = r;
+        let (sh, ch) = if saturated {
+            // The boundary pose of the same azimuth: z = (sin 2φ·a/|a|, cos 2φ).
+            let (ux, uy) = if n > S::ZERO {
+                (ax.div(n), ay.div(n))
+            } else {
+                (S::ONE, S::ZERO)
+            };
+            let (bx, by) = (ux.mul(self.sin_2phi), uy.mul(self.sin_2phi));
+            cg = S::ONE.sub(by.mul(by)).max(S::ZERO).sqrt();
+            sg = by.neg();
+            sd = bx.div(cg);
+            cd = self.cos_2phi.div(cg);
+            pose = PitchYaw {
+                delta: bx.atan2(self.cos_2phi),
+                gamma: sg.atan2(cg),
+            };
+            (S::ONE, S::ZERO)
+        } else {
+            let half_cos = cb.mul(self.half).add(self.half).sqrt();
+            let sh = n.div(half_cos).mul_coef(&self.inv_2_sin_phi).min(S::ONE);
+            let ch = cb
+                .sub(self.cos_2phi)
+                .max(S::ZERO)
+                .sqrt()
+                .mul_coef(&self.inv_sqrt2_sin_phi);
+            (sh, ch)
+        };
+        let reduced = if sh <= S::ZERO {
+            None
+        } else {
+            let (px, py) = (ch, sh.mul_coef(&self.cos_phi_coef));
+            // −X·P̄ = (−(x px + y py), x py − y px) for X = (x, y).
+            let arg = |x: S, y: S| {
+                x.mul(py)
+                    .sub(y.mul(px))
+                    .atan2(x.mul(px).add(y.mul(py)).neg())
+            };
+            Some([arg(ax, ay), arg(sd, cd.mul(sg))])
+        };
+        Ik {
+            pose,
+            sd,
+            cd,
+            sg,
+            cg,
+            reduced,
+            saturated,
+        }
+    }
+
+    /// Move the motor references to the inverse kinematics `ik`, each by
+    /// the multiple of `2π` nearest its previous value (at the straight
+    /// pose `θ1` stays and `θ3 → −θ1`, as [`IkState`](super::kinematics::IkState) does); returns the
+    /// steps `Δθ` (stored angle units) and `(sin θ1, cos θ1)`.
+    #[inline]
+    fn advance(&self, st: &mut WristStepState<S>, ik: &Ik<S>) -> ([S; 2], (S, S)) {
+        let target = match ik.reduced {
+            Some(t) => t,
+            None => [st.reduced[0], wrap(st.reduced[0].neg())],
+        };
+        let mut step = [S::ZERO; 2];
+        for i in 0..2 {
+            step[i] = wrap(target[i].sub(st.reduced[i]));
+            st.theta[i] = st.theta[i].add(step[i]);
+            st.reduced[i] = target[i];
+        }
+        st.pose = ik.pose;
+        st.yaw_sin_cos = (ik.sg, ik.cg);
+        (step, target[0].sin_cos())
     }
 
     /// One tick: sensing, mode manager, inverse kinematics, reference
@@ -490,58 +690,64 @@ impl<S: Scalar> WristStepConfig<S> {
         target: &WristTarget<S>,
     ) -> WristOutput<S> {
         // 1. Eq. (6.35), (6.3) at the previous reference's yaw.
-        let ft = self.sensor.update(&readings.gauges, st.pose.gamma);
+        let sensed = self.interaction(&readings.gauges, st.yaw_sin_cos);
+        let interaction = sensed.unwrap_or([S::ZERO; 2]);
         // 2. Mode manager in task space.
         let m = self.modes.update(
             &mut st.modes,
             &WristModeInput {
                 desired: [target.pose.delta, target.pose.gamma],
                 desired_rate: target.rate,
-                interaction: ft.interaction,
+                interaction,
                 request: target.request,
             },
         );
         // 3. Inverse kinematics, continuous in time.
-        let prev = st.ik.motors;
-        let ik = self.kinematics.update(
-            &mut st.ik,
-            PitchYaw {
-                delta: m.reference[0],
-                gamma: m.reference[1],
-            },
-        );
-        st.pose = ik.pose;
+        let ik = self.ik(PitchYaw {
+            delta: m.reference[0],
+            gamma: m.reference[1],
+        });
+        let (step, (s1, c1)) = self.advance(st, &ik);
         // 4. Reference rates and accelerations by difference.
-        let now = [ik.motors.theta1, ik.motors.theta3];
-        let before = [prev.theta1, prev.theta3];
         let mut rate = [S::ZERO; 2];
         let mut acc = [S::ZERO; 2];
         for i in 0..2 {
-            rate[i] = now[i].sub(before[i]).mul_coef(&self.inv_t);
+            rate[i] = step[i].mul_coef(&self.inv_t);
             acc[i] = rate[i].sub(st.rate[i]).mul_coef(&self.inv_t_rate);
         }
         st.rate = rate;
-        // 5. Eq. (6.1): τ_t = −Jᵀ τ at the reference.
-        let j = self.kinematics.jacobian_at_pose(ik.motors.theta1, ik.pose);
-        let [td, tg] = ft.interaction;
+        // 5. Eq. (6.1): τ_t = −Jᵀ τ, the exact Jacobian at the reference
+        // (module docs of `super::jacobian`; D ≥ cos 3φ > 0 on the cone).
+        let (sd, cd, sg, cg) = (ik.sd, ik.cd, ik.sg, ik.cg);
+        let sp_s1 = s1.mul_coef(&self.sin_phi_coef);
+        let sp_c1 = c1.mul_coef(&self.sin_phi_coef);
+        let d = sd.mul(sp_s1).add(cd.mul(self.cos_phi));
+        let inv_d = S::ONE.div(d);
+        let j = [
+            [cd.mul(sp_c1).mul(inv_d), sp_c1.mul(cg).mul(inv_d).sub(sg)],
+            [
+                sp_s1.mul(inv_d).neg(),
+                cg.mul(sd.mul(self.cos_phi).sub(cd.mul(sp_s1))).mul(inv_d),
+            ],
+        ];
+        let det = j[0][0].mul(j[1][1]).sub(j[0][1].mul(j[1][0]));
+        let [td, tg] = interaction;
         let joint_torque = [
-            j.m[0][0].mul(td).add(j.m[1][0].mul(tg)).neg(),
-            j.m[0][1].mul(td).add(j.m[1][1].mul(tg)).neg(),
+            j[0][0].mul(td).add(j[1][0].mul(tg)).neg(),
+            j[0][1].mul(td).add(j[1][1].mul(tg)).neg(),
         ];
         // 6. Both motor laws.
+        let position = [readings.motors.theta1, readings.motors.theta3];
         let sample = |i: usize| WristJointSample {
-            desired_position: now[i],
+            desired_position: st.theta[i],
             desired_velocity: rate[i],
             desired_acceleration: acc[i],
-            position: if i == 0 {
-                readings.motors.theta1
-            } else {
-                readings.motors.theta3
-            },
+            position: position[i],
             velocity: readings.motor_velocity[i],
             interaction_torque: joint_torque[i],
         };
-        let laws = self.active.update(&mut st.laws, &[sample(0), sample(1)]);
+        let samples = [sample(0), sample(1)];
+        let laws = self.active.update(&mut st.laws, &samples);
         let reference_saturated = m.saturated || ik.saturated;
         let torque_saturated = (laws[0].saturated && !laws[0].invalid_input)
             || (laws[1].saturated && !laws[1].invalid_input);
@@ -549,16 +755,16 @@ impl<S: Scalar> WristStepConfig<S> {
             motor_torque: [laws[0].torque, laws[1].torque],
             mode: m.mode,
             switched: m.switched,
-            interaction: ft.interaction,
+            interaction,
             joint_torque,
             reference: ik.pose,
-            motor_reference: ik.motors,
+            motor_reference: st.motor_reference(),
             motor_reference_rate: rate,
             saturated: reference_saturated || torque_saturated,
             reference_saturated,
             torque_saturated,
-            singular: j.singular,
-            invalid_input: ft.invalid_input
+            singular: det.abs() < self.det_min,
+            invalid_input: sensed.is_none()
                 || m.invalid_input
                 || laws[0].invalid_input
                 || laws[1].invalid_input,

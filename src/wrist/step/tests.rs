@@ -1,9 +1,514 @@
-//! Tests of the one-call wrist step.
+//! Tests of the one-call wrist step: against an independent composition
+//! of the components (the library's own sensing chain, inverse kinematics
+//! with `IkState`, forward-kinematics Jacobian and force mapping), the
+//! vector-form inverse kinematics against `WristConfig::inverse`, backends
+//! against `f64`, and impossible inputs.
 
 use super::*;
+use crate::scalar::I16F16;
+use crate::wrist::jacobian::{ForceMapping, JacobianKind};
+use crate::wrist::kinematics::IkState;
+use core::f64::consts::{PI, TAU};
+use std::vec::Vec;
+
+fn params() -> WristStepParams {
+    WristStepParams::table_6_1().unwrap()
+}
+
+/// `x` reduced to `(−π, π]` in f64.
+fn reduce(x: f64) -> f64 {
+    let r = x - TAU * libm::round(x / TAU);
+    if r <= -PI {
+        r + TAU
+    } else {
+        r
+    }
+}
+
+/// Gauge signals (V), motors (rad), speeds (rad/s), target `[δ, γ, δ̇, γ̇]`.
+type Tick = ([f64; 6], [f64; 2], [f64; 2], [f64; 4]);
+
+/// An open-loop scenario, per tick: gauge signals, measured motors and
+/// speeds, and the target `[δ, γ, δ̇, γ̇]`. The target ramps out from the
+/// straight pose to a circle of radius 0.45 rad (beyond the 32° cone in
+/// its diagonal parts and beyond the ±30° box), then runs along a line
+/// that passes 0.02 rad from the straight pose; the measured motors follow
+/// the library's inverse kinematics of the target (clamped to the box)
+/// within a few mrad, so the laws see realistic tracking errors; the
+/// environment pushes twice (mode switches).
+fn scenario(p: &WristStepParams, n: usize) -> Vec<Tick> {
+    let kin = WristConfig::<f64>::new(&p.settings().kinematics);
+    let mut ik = IkState::new(MotorAngles::default());
+    let l = 30f64.to_radians();
+    let mut last = [0.0; 2];
+    let mut out = Vec::new();
+    for k in 0..n {
+        let t = k as f64 * 0.004;
+        let (d, g, dd, dg) = if t < 3.0 {
+            let (w, r0) = (1.5, 0.45);
+            let (r, dr) = if t < 0.5 {
+                (r0 * t / 0.5, r0 / 0.5)
+            } else {
+                (r0, 0.0)
+            };
+            let (s, c) = (w * t).sin_cos();
+            (r * c, r * s, dr * c - r * w * s, dr * s + r * w * c)
+        } else {
+            // From the circle's end towards and past the straight pose.
+            let (s, c) = (1.5f64 * 3.0).sin_cos();
+            let start = [0.45 * c, 0.45 * s];
+            let dir = [-start[0] / 0.45, -start[1] / 0.45];
+            let v = 0.15;
+            let off = 0.02;
+            let x = (t - 3.0) * v;
+            (
+                start[0] + dir[0] * x - dir[1] * off,
+                start[1] + dir[1] * x + dir[0] * off,
+                dir[0] * v,
+                dir[1] * v,
+            )
+        };
+        let mut w = [0.0; 6];
+        if (1.0..1.6).contains(&t) {
+            w[4] = -2.5;
+            w[0] = 3.0;
+        }
+        if (4.0..4.5).contains(&t) {
+            w[3] = 2.0;
+            w[5] = 0.4;
+        }
+        let sg = p.settings().sensor.decoupling().gauge_signals(&w);
+        let r = kin.update(
+            &mut ik,
+            PitchYaw {
+                delta: d.clamp(-l, l),
+                gamma: g.clamp(-l, l),
+            },
+        );
+        let m = [
+            r.motors.theta1 + 0.002 * (9.0 * t).sin(),
+            r.motors.theta3 - 0.003 * (7.0 * t).cos(),
+        ];
+        let v = if k == 0 {
+            [0.0; 2]
+        } else {
+            [(m[0] - last[0]) / 0.004, (m[1] - last[1]) / 0.004]
+        };
+        last = m;
+        out.push((sg, m, v, [d, g, dd, dg]));
+    }
+    out
+}
+
+fn target<S: Scalar>(x: [f64; 4]) -> WristTarget<S> {
+    WristTarget::from_si(x[0], x[1], x[2], x[3])
+}
+
+/// The step composed from the components by hand, in f64: the library's
+/// sensing chain (all six rows, then eq. 6.3), mode manager, continuous
+/// inverse kinematics (`IkState`), rates by difference of the continuous
+/// motor references, the exact Jacobian through the forward kinematics
+/// (`ForceMapping`), and both laws.
+struct Composition {
+    sensor: FtSensorConfig<f64>,
+    modes: WristModeConfig<f64>,
+    kin: WristConfig<f64>,
+    fm: ForceMapping<f64>,
+    laws: WristActiveConfig<f64>,
+    mode_st: WristModeState<f64>,
+    ik: IkState<f64>,
+    law_st: WristActiveState<f64>,
+    gamma: f64,
+    rate: [f64; 2],
+}
+
+impl Composition {
+    fn new(p: &WristStepParams, motors: MotorAngles<f64>) -> Self {
+        let s = p.settings();
+        let kin = WristConfig::new(&s.kinematics);
+        let pose = kin.forward(motors).pose;
+        let modes = WristModeConfig::new(&s.modes);
+        let laws = WristActiveConfig::new(&s.active);
+        Composition {
+            sensor: FtSensorConfig::new(&s.sensor),
+            mode_st: modes.initial_state(s.initial_mode, [pose.delta, pose.gamma]),
+            modes,
+            kin,
+            fm: ForceMapping::new(&s.kinematics, JacobianKind::Exact),
+            law_st: laws.initial_state(),
+            laws,
+            ik: IkState::new(motors),
+            gamma: pose.gamma,
+            rate: [0.0; 2],
+        }
+    }
+
+    /// Motor torques, reference pose, motor references, rates, flags.
+    fn step(
+        &mut self,
+        sg: [f64; 6],
+        m: [f64; 2],
+        v: [f64; 2],
+        x: [f64; 4],
+    ) -> ([f64; 2], [f64; 2], [f64; 2], [f64; 2], bool, WristMode) {
+        let ft = self.sensor.update(&sg, self.gamma);
+        let mo = self.modes.update(
+            &mut self.mode_st,
+            &WristModeInput {
+                desired: [x[0], x[1]],
+                desired_rate: [x[2], x[3]],
+                interaction: ft.interaction,
+                request: None,
+            },
+        );
+        let prev = self.ik.motors;
+        let ik = self.kin.update(
+            &mut self.ik,
+            PitchYaw {
+                delta: mo.reference[0],
+                gamma: mo.reference[1],
+            },
+        );
+        self.gamma = ik.pose.gamma;
+        let now = [ik.motors.theta1, ik.motors.theta3];
+        let rate = [
+            (now[0] - prev.theta1) / 0.004,
+            (now[1] - prev.theta3) / 0.004,
+        ];
+        let acc = [
+            (rate[0] - self.rate[0]) / 0.004,
+            (rate[1] - self.rate[1]) / 0.004,
+        ];
+        self.rate = rate;
+        let tm = self.fm.motor_torques(ik.motors, ft.interaction).torque;
+        let sample = |i: usize| WristJointSample {
+            desired_position: now[i],
+            desired_velocity: rate[i],
+            desired_acceleration: acc[i],
+            position: m[i],
+            velocity: v[i],
+            interaction_torque: -tm[i],
+        };
+        let o = self.laws.update(&mut self.law_st, &[sample(0), sample(1)]);
+        (
+            [o[0].torque, o[1].torque],
+            [ik.pose.delta, ik.pose.gamma],
+            now,
+            rate,
+            mo.saturated || ik.saturated,
+            mo.mode,
+        )
+    }
+}
 
 #[test]
-fn table_6_1_is_valid() {
-    let p = WristStepParams::table_6_1().unwrap();
+fn matches_an_independent_composition_of_the_components() {
+    let p = params();
+    let cfg = WristStepConfig::<f64>::new(&p);
+    let sc = scenario(&p, 2000);
+    let m0 = sc[0].1;
+    let motors = MotorAngles {
+        theta1: m0[0],
+        theta3: m0[1],
+    };
+    let mut st = cfg.state(motors);
+    let mut c = Composition::new(&p, motors);
+    let (mut switches, mut saturated, mut passive, mut straight_near) = (0, 0, 0, 0);
+    let mut worst = [0.0f64; 4];
+    for (k, &(sg, m, v, x)) in sc.iter().enumerate() {
+        let out = cfg.update(&mut st, &WristReadings::from_si(sg, m, v), &target(x));
+        let (tau, pose, motors, rate, sat, mode) = c.step(sg, m, v, x);
+        assert_eq!(out.mode, mode, "k={k}");
+        assert_eq!(out.reference_saturated, sat, "k={k}");
+        let r = out.reference_si();
+        let mr = out.motor_reference_si();
+        let rr = out.motor_reference_rate_si();
+        let tq = out.motor_torque_si();
+        for i in 0..2 {
+            worst[0] = worst[0].max((r[i] - pose[i]).abs());
+            worst[1] = worst[1].max((mr[i] - motors[i]).abs());
+            worst[2] = worst[2].max((rr[i] - rate[i]).abs());
+            worst[3] = worst[3].max((tq[i] - tau[i]).abs());
+        }
+        switches += out.switched as usize;
+        saturated += out.reference_saturated as usize;
+        passive += (out.mode == WristMode::Passive) as usize;
+        straight_near += (r[0].hypot(r[1]) < 0.01) as usize;
+        assert!(!out.invalid_input, "k={k}");
+    }
+    // The scenario reaches what it is meant to.
+    assert!(switches >= 3, "{switches} switches");
+    assert!(
+        saturated > 50 && passive > 100 && straight_near > 0,
+        "{saturated} {passive} {straight_near}"
+    );
+    // Pose and motor references agree to rounding, rates (÷T) and torques
+    // to rounding amplified by 1/T and the laws' gains.
+    assert!(worst[0] < 1e-12 && worst[1] < 1e-9, "{worst:?}");
+    assert!(worst[2] < 1e-6 && worst[3] < 1e-6, "{worst:?}");
+}
+
+#[test]
+fn vector_inverse_kinematics_matches_the_library_inverse() {
+    fn run<S: Scalar>(tol: f64) {
+        let p = params();
+        let cfg = WristStepConfig::<S>::new(&p);
+        let kin = WristConfig::<S>::new(&p.settings().kinematics);
+        let cos_2phi = libm::cos(2.0 * p.settings().kinematics.phi());
+        let mut worst = 0.0f64;
+        let n = 121;
+        for a in 0..n {
+            for b in 0..n {
+                // ±0.6 rad, and a finer grid near the straight pose.
+                let scale = if (a + b) % 2 == 0 { 0.6 } else { 0.003 };
+                let d = scale * (2.0 * a as f64 / (n - 1) as f64 - 1.0);
+                let g = scale * (2.0 * b as f64 / (n - 1) as f64 - 1.0);
+                let cb = libm::cos(d) * libm::cos(g);
+                if (cb - cos_2phi).abs() < 1e-4 {
+                    continue; // the saturation test itself is a rounding call
+                }
+                let r = PitchYaw {
+                    delta: S::from_f64(d),
+                    gamma: S::from_f64(g),
+                };
+                let mine = cfg.ik(r);
+                let lib = kin.inverse(r);
+                assert_eq!(mine.saturated, lib.saturated, "({d}, {g})");
+                let dp = (mine.pose.delta.to_f64() - lib.pose.delta.to_f64()).abs()
+                    + (mine.pose.gamma.to_f64() - lib.pose.gamma.to_f64()).abs();
+                worst = worst.max(dp);
+                match mine.reduced {
+                    None => assert!(lib.straight || lib.theta4.to_f64() < 1e-3, "({d}, {g})"),
+                    Some(t) => {
+                        // Same motor angles modulo 2π (the bend direction is
+                        // undefined within rounding of the straight pose).
+                        if lib.theta4.to_f64() < 1e-2 {
+                            continue;
+                        }
+                        let e1 = reduce(t[0].to_f64() - lib.motors.theta1.to_f64()).abs();
+                        let e3 = reduce(t[1].to_f64() - lib.motors.theta3.to_f64()).abs();
+                        worst = worst.max(e1).max(e3);
+                    }
+                }
+                // The pose reached is on or inside the cone.
+                let (pd, pg) = (mine.pose.delta.to_f64(), mine.pose.gamma.to_f64());
+                assert!(
+                    libm::cos(pd) * libm::cos(pg) >= cos_2phi - 4.0 * tol,
+                    "({d}, {g})"
+                );
+            }
+        }
+        assert!(worst < tol, "worst {worst} ≥ {tol}");
+    }
+    run::<f64>(1e-12);
+    run::<f32>(2e-5);
+    run::<I16F16>(5e-3);
+}
+
+/// The scenario on backend `S`, per tick: motor torques (N·m), motor
+/// references (rad) and the bend of the reference pose (rad).
+fn run_backend<S: Scalar>() -> Vec<([f64; 2], [f64; 2], f64)> {
+    let p = params();
+    let cfg = WristStepConfig::<S>::new(&p);
+    let sc = scenario(&p, 2000);
+    let m0 = sc[0].1;
+    let mut st = cfg.state(MotorAngles {
+        theta1: S::from_f64(m0[0]),
+        theta3: S::from_f64(m0[1]),
+    });
+    sc.iter()
+        .map(|&(sg, m, v, x)| {
+            let out = cfg.update(&mut st, &WristReadings::from_si(sg, m, v), &target(x));
+            assert!(!out.invalid_input);
+            let r = out.reference_si();
+            let bend = libm::acos(libm::cos(r[0]) * libm::cos(r[1]));
+            (out.motor_torque_si(), out.motor_reference_si(), bend)
+        })
+        .collect()
+}
+
+#[test]
+fn backends_agree_with_f64() {
+    // Compared where the inverse kinematics is well conditioned (bend of
+    // the f64 reference above 0.05 rad): within 0.05 rad of the straight
+    // pose the motor angles turn by ~1/bend per unit of pose motion, so a
+    // backend's angle rounding is amplified by that factor, and twice more
+    // by the rates and accelerations taken by difference (÷T each).
+    //
+    // Stated bounds. Motor references: 1e-5 rad on f32, 6e-3 rad on
+    // I16F16 (the vector IK's rounding of 1.5e-5 rad divided by the bend).
+    // Torques on f32: 0.03 N·m (5 % of the 0.6 N·m limit) on the worst
+    // tick; the laws amplify rounding by their boundary layers' slopes
+    // (K_r/ε_r = 5.4 N·m per rad/s of `r`, and the friction-parameter terms
+    // with ε_F down to 1e-4). Torques on I16F16: the median tick within
+    // 1e-3 N·m, but 10 % of the ticks differ by up to 0.6 N·m and the
+    // worst by the whole range: the reference acceleration by second
+    // difference has a resolution of 1.5e-5 rad/T² ≈ 1 rad/s², and the
+    // friction-parameter boundary layer ε_F = 1e-4 is 6.5 resolution steps
+    // wide, so the I16F16 law switches its robust terms on rounding. The
+    // assertions keep this from getting worse.
+    let r64 = run_backend::<f64>();
+    let compare = |r: &[([f64; 2], [f64; 2], f64)]| {
+        let (mut wa, mut n) = (0.0f64, 0);
+        let mut dt = Vec::new();
+        for (a, b) in r.iter().zip(r64.iter()) {
+            if b.2 < 0.05 {
+                continue;
+            }
+            n += 1;
+            for i in 0..2 {
+                dt.push((a.0[i] - b.0[i]).abs());
+                wa = wa.max(reduce(a.1[i] - b.1[i]).abs());
+            }
+        }
+        dt.sort_by(f64::total_cmp);
+        let q = |f: f64| dt[((dt.len() - 1) as f64 * f) as usize];
+        std::println!(
+            "torque difference, quantiles 50/90/99/100 %: {:.2e} {:.2e} {:.2e} {:.2e} N·m",
+            q(0.5),
+            q(0.9),
+            q(0.99),
+            q(1.0)
+        );
+        ([q(0.5), q(0.9), q(1.0)], wa, n)
+    };
+    let (t32, a32, n) = compare(&run_backend::<f32>());
+    let (tfx, afx, _) = compare(&run_backend::<I16F16>());
+    std::println!(
+        "wrist step vs f64 over {n} ticks: f32 angle {a32:.2e} rad; I16F16 angle {afx:.2e} rad"
+    );
+    assert!(n > 1500, "{n}");
+    assert!(a32 < 1e-5 && t32[2] < 0.03, "f32 {a32} {t32:?}");
+    assert!(
+        afx < 6e-3 && tfx[0] < 1e-3 && tfx[1] < 0.6,
+        "I16F16 {afx} {tfx:?}"
+    );
+    // Not trivially equal: the scenario commands torques well above the
+    // bounds.
+    let peak = r64
+        .iter()
+        .map(|t| t.0[0].abs().max(t.0[1].abs()))
+        .fold(0.0, f64::max);
+    assert!(peak > 0.5, "{peak}");
+}
+
+#[test]
+fn impossible_readings_are_flagged_and_outputs_stay_finite() {
+    fn run<S: Scalar>() {
+        let p = params();
+        let cfg = WristStepConfig::<S>::new(&p);
+        let mut st = cfg.state(MotorAngles::default());
+        let hold = WristTarget::<S>::from_si(0.1, 0.05, 0.0, 0.0);
+        let cases: [Tick; 6] = [
+            (
+                [f64::NAN, 0.0, 0.0, 0.0, 0.0, 0.0],
+                [0.0; 2],
+                [0.0; 2],
+                [0.1, 0.05, 0.0, 0.0],
+            ),
+            (
+                [0.0, f64::INFINITY, 0.0, 0.0, 0.0, 0.0],
+                [0.0; 2],
+                [0.0; 2],
+                [0.1, 0.05, 0.0, 0.0],
+            ),
+            ([0.0; 6], [f64::NAN, 0.0], [0.0; 2], [0.1, 0.05, 0.0, 0.0]),
+            (
+                [0.0; 6],
+                [0.0, 0.0],
+                [0.0, f64::NEG_INFINITY],
+                [0.1, 0.05, 0.0, 0.0],
+            ),
+            ([0.0; 6], [0.0; 2], [0.0; 2], [f64::NAN, 0.0, 0.0, 0.0]),
+            (
+                [1e30; 6],
+                [1e30, -1e30],
+                [1e30; 2],
+                [1e30, -1e30, f64::INFINITY, 0.0],
+            ),
+        ];
+        for (i, (g, m, v, x)) in cases.iter().enumerate() {
+            let out = cfg.update(&mut st, &WristReadings::from_si(*g, *m, *v), &target(*x));
+            let finite = |a: &[f64]| a.iter().all(|v| v.is_finite());
+            assert!(finite(&out.motor_torque_si()), "case {i}");
+            assert!(
+                finite(&out.interaction_si()) && finite(&out.joint_torque_si()),
+                "case {i}"
+            );
+            assert!(
+                finite(&out.reference_si()) && finite(&out.motor_reference_si()),
+                "case {i}"
+            );
+            assert!(finite(&out.motor_reference_rate_si()), "case {i}");
+            // Floats keep NaN/∞ and must flag them; fixed point saturated
+            // them on the way in (nothing impossible reached the step).
+            if S::RESOLUTION.to_f64() < 1e-6 && i < 5 {
+                assert!(out.invalid_input, "case {i}");
+            }
+            // And the step recovers on the next good tick.
+            let good = WristReadings::<S>::from_si([0.0; 6], [0.0; 2], [0.0; 2]);
+            let next = cfg.update(&mut st, &good, &hold);
+            assert!(!next.invalid_input, "after case {i}");
+            assert!(next.motor_torque_si().iter().all(|v| v.is_finite()));
+        }
+    }
+    run::<f64>();
+    run::<f32>();
+    run::<I16F16>();
+}
+
+#[test]
+fn unreachable_reference_saturates_onto_the_cone() {
+    let p = params();
+    let cfg = WristStepConfig::<f64>::new(&p);
+    let phi = p.settings().kinematics.phi();
+    let mut st = cfg.state(MotorAngles::default());
+    // (0.6, 0.6) rad: outside the ±30° box and, once clamped to it,
+    // 42° of bend, beyond 2φ = 32°.
+    let out = cfg.update(
+        &mut st,
+        &WristReadings::from_si([0.0; 6], [0.0; 2], [0.0; 2]),
+        &WristTarget::from_si(0.6, 0.6, 0.0, 0.0),
+    );
+    assert!(out.reference_saturated && out.saturated);
+    let r = out.reference_si();
+    let bend = libm::acos(libm::cos(r[0]) * libm::cos(r[1]));
+    assert!((bend - 2.0 * phi).abs() < 1e-9, "{bend}");
+    // Same azimuth as the clamped request (30°, 30°): the output axis
+    // (sδ cγ, −sγ) is parallel to the request's.
+    let l = 30f64.to_radians();
+    let (ax, ay) = (libm::sin(l) * libm::cos(l), -libm::sin(l));
+    let (bx, by) = (libm::sin(r[0]) * libm::cos(r[1]), -libm::sin(r[1]));
+    assert!((ax * by - ay * bx).abs() < 1e-12);
+    // The motors reach that pose: forward kinematics of the references.
+    let mr = out.motor_reference;
+    let f = cfg.kinematics().forward(mr).pose;
+    assert!((f.delta - r[0]).abs() < 1e-9 && (f.gamma - r[1]).abs() < 1e-9);
+}
+
+#[test]
+fn parameters_are_validated() {
+    let p = params();
+    let mut s = p.settings();
+    let l = 30f64.to_radians();
+    let adm = AdmittanceParams::try_new(AdmittanceSettings {
+        gain: [0.1, 0.1],
+        stiffness: 1000.0,
+        sample_period: 0.002,
+        lag_samples: 1,
+        limits: [l, l],
+        max_rate: 1.0,
+        deadband: 0.0,
+        desired_torque: [0.0; 2],
+    })
+    .unwrap();
+    s.modes = WristModeParams::try_new(adm, 1.0, 0.5, 0.01, 5, 50, 5.0).unwrap();
+    match WristStepParams::try_new(s) {
+        Err(ParamError::OutOfRange { name, value, .. }) => {
+            assert_eq!(name, "modes.admittance.sample_period");
+            assert_eq!(value, 0.002);
+        }
+        other => panic!("{other:?}"),
+    }
     assert_eq!(p.sample_period(), 0.004);
 }
