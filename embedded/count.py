@@ -603,6 +603,8 @@ class Step:
     image: str = "main"  # "variants": the second image (src/main.rs)
     prep_mask: int = 0  # or-ed into word 3 of `prepare_joint`'s arguments: which states to warm up
     note: str = None  # printed in the budget column (e.g. "informative")
+    arm_joint_entry: str = None  # with max_arm_total_share: the per-joint entry of the whole-arm check
+    max_arm_total_share: float = None  # required (ARM_JOINTS x joint + this step) cycles x 2 / tick
 
 
 def kernel_steps():
@@ -730,10 +732,65 @@ def radians_vectors(f, torque):
     return out
 
 
+# The wrist step (embedded/src/wrist.rs): (prepare: scenario word, seed,
+# target δ, γ, δ̇, γ̇, measured θ̇1, θ̇3) + (six gauge signals, measured θ1,
+# θ3). Scenario word: bits 0-7 the state (`wrist::warm_up`: 0 initial at the
+# straight pose, 1 Active about to switch to Passive, 2 Passive with the
+# reference in the box corner beyond the cone, 3 Passive about to return,
+# 4 Active just after the return, 5 Active near the cone's edge, 6+ random
+# walks), bits 8-9 which backend's states to warm up, bits 12-13 a mode
+# request (0 none, 1 Active, 2 Passive). Targets at the straight pose, just
+# off it, on and beyond the cone (2φ = 0.5585 rad) and the ±30° box, far
+# outside; gauge signals quiet, below and above the switching levels
+# (about 0.5 and 1 N·m: ±0.1-2 V), huge and (f32) NaN; motors at the
+# reference (tracking errors inside the boundary layers) and far from it.
+WRIST_SCENARIOS = 8
+WRIST_TARGETS = [(0.0, 0.0), (1e-4, -2e-4), (0.01, 0.0), (0.3, 0.42), (0.5236, 0.5236), (0.55, 0.0), (0.0, -0.5585),
+                 (0.4, 0.39), (-0.5236, 0.3), (2.0, -3.0), (0.39, -0.39)]
+
+
+def wrist_vectors(f, backend_bit, nan):
+    rng = random.Random(0x3A1)
+    out = []
+    for i in range(360):
+        scen = i % WRIST_SCENARIOS
+        req = 0 if i % 11 else (1 + (i // 11) % 2)
+        d, g = rng.choice(WRIST_TARGETS) if rng.random() < 0.7 else (rng.uniform(-0.7, 0.7), rng.uniform(-0.7, 0.7))
+        dd, dg = rng.choice([(0.0, 0.0), (rng.uniform(-2, 2), rng.uniform(-2, 2)), (40.0, -40.0)])
+        v = [rng.choice([0.0, rng.uniform(-0.02, 0.02), rng.uniform(-5, 5), 300.0]) for _ in range(2)]
+        kind = rng.random()
+        if kind < 0.25:
+            gs = [0.0] * 6
+        elif kind < 0.85:
+            a = rng.choice([0.1, 0.5, 1.0, 2.0, 5.0])
+            gs = [rng.uniform(-a, a) for _ in range(6)]
+        else:
+            gs = [rng.choice([1e4, -1e4, 3e4]) for _ in range(6)]
+            if nan and rng.random() < 0.5:
+                gs[rng.randrange(6)] = NAN
+        m = [rng.choice([0.0, rng.uniform(-0.01, 0.01), rng.uniform(-4, 4), rng.uniform(-40, 40)]) for _ in range(2)]
+        if nan and rng.random() < 0.03:
+            m[0] = NAN
+        pre = [scen | backend_bit | req << 12, rng.getrandbits(32)] + [f(x) for x in (d, g, dd, dg, v[0], v[1])]
+        out.append((pre, [f(x) for x in gs + m]))
+    return out
+
+
 def wrist_steps(quick=False):
-    """Hook for the wrist step (ch. 5-6): one `Step` row per core, with its
-    `entry!` in src/main.rs. Empty until the wrist step exists."""
-    return []
+    """The wrist step (ch. 5-6) on both cores, with its libm / cordic
+    reference: the issue's budgets on the bound (M4F <= 2,500, M0+ <= 9,000
+    instructions) and, on the M0+, the whole arm (six joint steps plus the
+    wrist step, static bounds' cycles x 2) <= 15 % of the 4 ms tick."""
+    steps = []
+    for backend, core, xs, bit, dec, f, nan, budget in (
+            ("f32", "M4F", "f32", 1 << 8, f32_of, f32w, True, dict(max_insns=2500)),
+            ("I16F16", "M0+", "i16f16", 2 << 8, x_of, xw, False,
+             dict(max_insns=9000, arm_joint_entry="joint_i16f16", max_arm_total_share=0.15))):
+        vecs = wrist_vectors(f, bit, nan) + found_vectors(core, [f"wrist_{xs}"])
+        ref = "wrist_libm_f32" if backend == "f32" else "wrist_cordic_i16f16"
+        steps.append(Step("wrist step", core, backend, f"wrist_{xs}", ref, vecs, prepare="prepare_wrist",
+                          decode=lambda o, d=dec: d(o[0]), **budget))
+    return steps
 
 
 def all_steps(quick=False):
@@ -904,7 +961,26 @@ def run(args):
             if arm > s.max_arm_share:
                 failures.append(f"BUDGET {s.label} {s.core} {s.backend}: {ARM_JOINTS} joints use {arm:.1%} "
                                 f"> {s.max_arm_share:.0%} of the tick (static bound)")
+        if s.max_arm_total_share:
+            # The whole arm: ARM_JOINTS per-joint steps plus this step, each
+            # at its static bound's cycles (the joint's bound from the same ELF).
+            try:
+                jb = progs[s.core, "main"].bound(fws[s.core, "main"].syms[s.arm_joint_entry])
+            except wcet.WcetError as e:
+                jb = None
+                failures.append(f"{s.label} {s.core}: no static bound for {s.arm_joint_entry}: {e}")
+            s.arm_total = ((ARM_JOINTS * jb.cycles + bound.cycles) * SAFETY_FACTOR / TICK_CYCLES
+                           if jb is not None and bound is not None else float("inf"))
+            s.arm_joint_cycles = jb.cycles if jb is not None else None
+            if s.arm_total > s.max_arm_total_share:
+                failures.append(f"BUDGET {s.label} {s.core} {s.backend}: {ARM_JOINTS} joints + this step use "
+                                f"{s.arm_total:.1%} > {s.max_arm_total_share:.0%} of the tick (static bounds)")
     print_table(rows, base, args.profile)
+    for s, own, ref, bound in rows:
+        if s.max_arm_total_share and bound is not None and s.arm_joint_cycles is not None:
+            print(f"Whole arm on {s.core}: {ARM_JOINTS} x {s.arm_joint_entry} {s.arm_joint_cycles:,} + {s.entry} "
+                  f"{bound.cycles:,} bound cycles, x {SAFETY_FACTOR} = {s.arm_total:.2%} of the 4 ms tick at 150 MHz, "
+                  f"{s.arm_total * TICK_CYCLES / (TICK_S * 48e6):.2%} at 48 MHz (budget {s.max_arm_total_share:.0%} at 150 MHz)")
     return failures, {k: fw for (k, image), fw in fws.items() if image == "main"}
 
 
@@ -955,6 +1031,9 @@ def print_table(rows, base, profile):
         if s.max_arm_share:
             ok = bound is not None and share(bound.cycles, 150e6, ARM_JOINTS) <= s.max_arm_share
             budget.append(f"{ARM_JOINTS} joints <= {s.max_arm_share:.0%} at 150 MHz" + ("" if ok else " EXCEEDS"))
+        if s.max_arm_total_share:
+            ok = getattr(s, "arm_total", float("inf")) <= s.max_arm_total_share
+            budget.append(f"{ARM_JOINTS} joints + this <= {s.max_arm_total_share:.0%} at 150 MHz" + ("" if ok else " EXCEEDS"))
         if s.note:
             budget.append(s.note)
         print(f"| {s.label} | {s.core} | {s.backend} | {bi} | {own.insns:,} | {loose} | {bc} | {sh} | {a150} | {a48} "
@@ -982,6 +1061,8 @@ def print_table(rows, base, profile):
                 line += f"; reference did not return within {MAX_INSNS:,} instructions at {len(ref.bad)} vectors, e.g. [{ref.bad[0][0][0]:08x}] ({ref.bad[0][1]})"
         if s.entry.startswith("joint"):
             line += "; paths reached: " + joint_coverage(own.outputs)
+        if s.entry.startswith("wrist"):
+            line += "; paths reached: " + wrist_coverage(own.outputs)
         print(line)
     print(f"\nCall overhead included in every row (load one argument, store one result, return): "
           + ", ".join(f"{k} {v} instr" for k, v in base.items()))
@@ -997,6 +1078,16 @@ def joint_coverage(outputs):
     parts += [f"switched to {m} {n}" for m, n in sw.items()]
     parts += [f"saturated {sum(1 for w in fl if w & 8)}", f"collision latched {sum(1 for w in fl if w & 32)}"]
     return ", ".join(parts)
+
+
+def wrist_coverage(outputs):
+    """How many argument vectors of the wrist step ended in each mode,
+    switched, saturated (reference, torque), were invalid or singular (flag
+    word of embedded/src/wrist.rs `Out`)."""
+    fl = [o[2] for o in outputs if o]
+    bits = [("Passive", 1), ("switched", 4), ("saturated", 8), ("invalid", 16), ("reference saturated", 32),
+            ("torque saturated", 64), ("singular", 128)]
+    return ", ".join(f"{name} {sum(1 for w in fl if w & b)}" for name, b in bits) + f" of {len(fl)}"
 
 
 # -------------------------------------------------------------- bit check
