@@ -244,6 +244,8 @@ pub struct WristStepConfig<S> {
     inv_sqrt2_sin_phi: Coef,
     sin_phi_coef: Coef,
     cos_phi_coef: Coef,
+    /// Below this `sin β` the pose counts as straight.
+    min_bend: S,
     det_min: S,
     /// `1/T`, stored angle → stored speed.
     inv_t: Coef,
@@ -266,6 +268,8 @@ pub struct WristStepState<S: Scalar> {
     pose: PitchYaw<S>,
     /// `(sin γ, cos γ)` of that pose, for eq. (6.3).
     yaw_sin_cos: (S, S),
+    /// `(sin θ1_r, cos θ1_r)`, for the Jacobian at the straight pose.
+    theta1_sin_cos: (S, S),
     /// `θ̇_r[k−1]`, stored speed units.
     rate: [S; 2],
 }
@@ -475,8 +479,9 @@ struct Ik<S> {
     cd: S,
     sg: S,
     cg: S,
-    /// `θ1`, `θ3` reduced to `(−π, π]`; `None` at the straight pose.
-    reduced: Option<[S; 2]>,
+    /// `θ1`, `θ3` reduced to `(−π, π]` and `(sin θ1, cos θ1)`; `None` at
+    /// the straight pose.
+    reduced: Option<([S; 2], (S, S))>,
     saturated: bool,
 }
 
@@ -511,6 +516,7 @@ impl<S: Scalar> WristStepConfig<S> {
             inv_sqrt2_sin_phi: Coef::new(1.0 / (core::f64::consts::SQRT_2 * sin_phi)),
             sin_phi_coef: Coef::new(sin_phi),
             cos_phi_coef: Coef::new(libm::cos(phi)),
+            min_bend: S::from_f64((64.0 * S::RESOLUTION.to_f64()).max(1e-6)),
             det_min: S::from_f64(DET_MIN),
             inv_t: Coef::new(u.speed / (t * u.angle)),
             inv_t_rate: Coef::new(1.0 / t),
@@ -556,6 +562,7 @@ impl<S: Scalar> WristStepConfig<S> {
             reduced: [reduce(m[0]), reduce(m[1])],
             pose,
             yaw_sin_cos: pose.gamma.sin_cos(),
+            theta1_sin_cos: m[0].sin_cos(),
             rate: [S::ZERO; 2],
         };
         let ik = self.ik(pose);
@@ -607,47 +614,58 @@ impl<S: Scalar> WristStepConfig<S> {
         let (mut sg, mut cg) = r.gamma.sin_cos();
         let (ax, ay) = (cg.mul(sd), sg.neg());
         let cb = cd.mul(cg);
+        // sin β = |A|.
         let n = hypot(ax, ay);
         let saturated = cb < self.cos_2phi;
         let mut pose = r;
-        let (sh, ch) = if saturated {
-            // The boundary pose of the same azimuth: z = (sin 2φ·a/|a|, cos 2φ).
+        // −X·P̄ = (−(x px + y py), x py − y px) for X = (x, y).
+        let rot =
+            |x: S, y: S, px: S, py: S| (x.mul(px).add(y.mul(py)).neg(), x.mul(py).sub(y.mul(px)));
+        let reduced = if saturated {
+            // The boundary pose of the same azimuth: z = (sin 2φ·A/|A|,
+            // cos 2φ); there θ4 = π, P = (0, cos φ), |P| = cos(β/2) = cos φ.
+            // (|A| = sin β > sin 2φ here: a bend beyond 2φ.)
+            let inv_n = if n > S::ZERO { S::ONE.div(n) } else { S::ZERO };
             let (ux, uy) = if n > S::ZERO {
-                (ax.div(n), ay.div(n))
+                (ax.mul(inv_n), ay.mul(inv_n))
             } else {
                 (S::ONE, S::ZERO)
             };
             let (bx, by) = (ux.mul(self.sin_2phi), uy.mul(self.sin_2phi));
             cg = S::ONE.sub(by.mul(by)).max(S::ZERO).sqrt();
+            let inv_cg = S::ONE.div(cg);
             sg = by.neg();
-            sd = bx.div(cg);
-            cd = self.cos_2phi.div(cg);
+            sd = bx.mul(inv_cg);
+            cd = self.cos_2phi.mul(inv_cg);
             pose = PitchYaw {
                 delta: bx.atan2(self.cos_2phi),
                 gamma: sg.atan2(cg),
             };
-            (S::ONE, S::ZERO)
+            // θ1 = arg A + π/2, θ3 = arg B + π/2, (cos θ1, sin θ1) = (−u_y, u_x).
+            let b3 = cd.mul(sg);
+            Some(([ux.atan2(uy.neg()), sd.atan2(b3.neg())], (ux, uy.neg())))
+        } else if n < self.min_bend {
+            None
         } else {
+            // cos(β/2) = √((1 + cos β)/2); sin(θ4/2) = sin β/(2 sin φ cos(β/2));
+            // cos(θ4/2) = √((cos β − cos 2φ)/2)/sin φ.
             let half_cos = cb.mul(self.half).add(self.half).sqrt();
-            let sh = n.div(half_cos).mul_coef(&self.inv_2_sin_phi).min(S::ONE);
+            let inv_h = S::ONE.div(half_cos);
+            let sh = n.mul(inv_h).mul_coef(&self.inv_2_sin_phi).min(S::ONE);
             let ch = cb
                 .sub(self.cos_2phi)
                 .max(S::ZERO)
                 .sqrt()
                 .mul_coef(&self.inv_sqrt2_sin_phi);
-            (sh, ch)
-        };
-        let reduced = if sh <= S::ZERO {
-            None
-        } else {
             let (px, py) = (ch, sh.mul_coef(&self.cos_phi_coef));
-            // −X·P̄ = (−(x px + y py), x py − y px) for X = (x, y).
-            let arg = |x: S, y: S| {
-                x.mul(py)
-                    .sub(y.mul(px))
-                    .atan2(x.mul(px).add(y.mul(py)).neg())
-            };
-            Some([arg(ax, ay), arg(sd, cd.mul(sg))])
+            let v1 = rot(ax, ay, px, py);
+            let v3 = rot(sd, cd.mul(sg), px, py);
+            // |V1| = |A|·|P| = sin β · cos(β/2).
+            let k = inv_h.mul(S::ONE.div(n));
+            Some((
+                [v1.1.atan2(v1.0), v3.1.atan2(v3.0)],
+                (v1.1.mul(k), v1.0.mul(k)),
+            ))
         };
         Ik {
             pose,
@@ -666,9 +684,12 @@ impl<S: Scalar> WristStepConfig<S> {
     /// steps `Δθ` (stored angle units) and `(sin θ1, cos θ1)`.
     #[inline]
     fn advance(&self, st: &mut WristStepState<S>, ik: &Ik<S>) -> ([S; 2], (S, S)) {
-        let target = match ik.reduced {
+        let (target, s1c1) = match ik.reduced {
             Some(t) => t,
-            None => [st.reduced[0], wrap(st.reduced[0].neg())],
+            None => (
+                [st.reduced[0], wrap(st.reduced[0].neg())],
+                st.theta1_sin_cos,
+            ),
         };
         let mut step = [S::ZERO; 2];
         for i in 0..2 {
@@ -678,7 +699,8 @@ impl<S: Scalar> WristStepConfig<S> {
         }
         st.pose = ik.pose;
         st.yaw_sin_cos = (ik.sg, ik.cg);
-        (step, target[0].sin_cos())
+        st.theta1_sin_cos = s1c1;
+        (step, s1c1)
     }
 
     /// One tick: sensing, mode manager, inverse kinematics, reference
