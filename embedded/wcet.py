@@ -72,7 +72,7 @@ LOOP_BOUNDS = {
     # The 64-bit division of the I16F16 quotient (`div_bits`, src/scalar/fixed.rs)
     # reaches compiler_builtins' `specialized_div_rem::u32_div_rem` on Armv6-M:
     # shift-and-subtract, at most one iteration per quotient bit.
-    "u32_div_rem": (32, "one iteration per quotient bit of a 32-bit division (compiler_builtins u32_div_rem)"),
+    ("specialized_div_rem", "u32_div_rem"): (32, "one iteration per quotient bit of a 32-bit division (compiler_builtins u32_div_rem)"),
 }
 
 PANIC_SYMBOLS = ("firmware_panic",)
