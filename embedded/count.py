@@ -789,7 +789,7 @@ def wrist_steps(quick=False):
         vecs = wrist_vectors(f, bit, nan) + found_vectors(core, [f"wrist_{xs}"])
         ref = "wrist_libm_f32" if backend == "f32" else "wrist_cordic_i16f16"
         steps.append(Step("wrist step", core, backend, f"wrist_{xs}", ref, vecs, prepare="prepare_wrist",
-                          decode=lambda o, d=dec: d(o[0]), **budget))
+                          decode=lambda o, d=dec: d(o[0]), image="wrist", **budget))
     return steps
 
 
@@ -917,7 +917,7 @@ def run(args):
         steps = [s for s in steps if s.image == "main"]
     # The variants image first: both share the output path, and the main
     # image must be the one left there (QEMU, profile.py, the bit check).
-    for image in ("variants", "main"):
+    for image in ("variants", "wrist", "main"):
         if image != "main" and not any(s.image == image for s in steps):
             continue
         for key, core in CORES.items():

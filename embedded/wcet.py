@@ -73,6 +73,7 @@ LOOP_BOUNDS = {
     # reaches compiler_builtins' `specialized_div_rem::u32_div_rem` on Armv6-M:
     # shift-and-subtract, at most one iteration per quotient bit.
     ("specialized_div_rem", "u32_div_rem"): (32, "one iteration per quotient bit of a 32-bit division (compiler_builtins u32_div_rem)"),
+    ("specialized_div_rem", "u64_div_rem"): (64, "one iteration per quotient bit of a 64-bit division (compiler_builtins u64_div_rem)"),
 }
 
 PANIC_SYMBOLS = ("firmware_panic",)

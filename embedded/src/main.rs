@@ -197,17 +197,24 @@ entry!(est_radians_i16f16(l: I16F16, m: I16F16, t: I16F16) => unsafe { steps::ES
 // (scenario word, seed, then δ, γ, δ̇, γ̇ of the target and θ̇1, θ̇3 in the
 // backend's words) stores the rest of the tick's input and sets the state.
 // The libm / cordic entries are the same tick written from the components
-// (src/wrist.rs, `reference`).
+// (src/wrist.rs, `reference`). Built with the `wrist` feature into a third
+// image, so that the default image's joint counts do not move.
+#[cfg(feature = "wrist")]
 entry!(wrist_f32(g0: f32, g1: f32, g2: f32, g3: f32, g4: f32, g5: f32, t1: f32, t3: f32) => unsafe { wrist::step_f32([g0, g1, g2, g3, g4, g5], [t1, t3]) });
+#[cfg(feature = "wrist")]
 entry!(wrist_i16f16(g0: I16F16, g1: I16F16, g2: I16F16, g3: I16F16, g4: I16F16, g5: I16F16, t1: I16F16, t3: I16F16) => unsafe { wrist::step_x([g0, g1, g2, g3, g4, g5], [t1, t3]) });
+#[cfg(feature = "wrist")]
 entry!(wrist_libm_f32(g0: f32, g1: f32, g2: f32, g3: f32, g4: f32, g5: f32, t1: f32, t3: f32) => unsafe { wrist::step_libm_f32([g0, g1, g2, g3, g4, g5], [t1, t3]) });
+#[cfg(feature = "wrist")]
 entry!(wrist_cordic_i16f16(g0: I16F16, g1: I16F16, g2: I16F16, g3: I16F16, g4: I16F16, g5: I16F16, t1: I16F16, t3: I16F16) => unsafe { wrist::step_cordic_x([g0, g1, g2, g3, g4, g5], [t1, t3]) });
+#[cfg(feature = "wrist")]
 entry!(prepare_wrist(scenario: u32, seed: u32, w0: u32, w1: u32, w2: u32, w3: u32, w4: u32, w5: u32) => unsafe { wrist::prepare(scenario, seed, [w0, w1, w2, w3, w4, w5]) });
 entry!(joint_libm_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, q: f32, v: f32, te: f32) => unsafe { joint::step_libm_f32(l, m, [qd, vd, ad, q, v, te]) });
 entry!(joint_cordic_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, te: I16F16) => unsafe { joint::step_cordic_x(l, m, [qd, vd, ad, q, v, te]) });
 entry!(prepare_joint(pos_lo: u32, pos_hi: u32, counter: u32, scenario: u32, seed: u32) => unsafe { joint::prepare(pos_lo, pos_hi, counter, scenario, seed) });
 
 mod joint;
+#[cfg(feature = "wrist")]
 mod wrist;
 
 /// Configurations and states of the stateful steps. They are built once by
@@ -257,6 +264,7 @@ mod steps {
         REF_F32.write(RefEstimator::new(&p));
         REF_X.write(RefEstimator::new(&p));
         crate::joint::init(&p, &params(false));
+        #[cfg(feature = "wrist")]
         crate::wrist::init();
     }
 

@@ -447,10 +447,7 @@ pub mod reference {
             let mut sat = d != d0 || g != g0;
             let (mut sd, mut cd) = K::sin_cos(d);
             let (mut sg, mut cg) = K::sin_cos(g);
-            let mut hb = hypot::<S, K>(
-                K::sin(d.mul(half)),
-                K::sqrt(cd).mul(K::sin(g.mul(half))),
-            );
+            let mut hb = hypot::<S, K>(K::sin(d.mul(half)), K::sqrt(cd).mul(K::sin(g.mul(half))));
             if hb > self.sp {
                 sat = true;
                 let (zx, zy) = (sd.mul(cg), sg.neg());
@@ -572,7 +569,11 @@ pub mod reference {
             let (n1, n3, pose, sat, straight) = self.inverse::<K>(m.reference[0], m.reference[1]);
             st.gamma = pose.gamma;
             let p = st.motors;
-            let (n1, n3) = if straight { (p[0], p[0].neg()) } else { (n1, n3) };
+            let (n1, n3) = if straight {
+                (p[0], p[0].neg())
+            } else {
+                (n1, n3)
+            };
             // IkState: nearest multiple of 2π to the previous value.
             let near = |p: S, n: S| {
                 let tp = S::PI.add(S::PI);
