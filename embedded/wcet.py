@@ -58,6 +58,10 @@ LOOP_BOUNDS = {
     ("RobustAdaptiveConfig", "6update"): _ADAPT,
     "active_i16f16": _ADAPT,
     "active_f32": _ADAPT,
+    ("WristStepConfig", "6update"): (5, "the wrist step (src/wrist/step.rs) when not inlined: the six gauge "
+                                         "products of each sensing row and the gauge probe (six passes, five "
+                                         "jumps back), the two axes, and the laws' four friction parameters "
+                                         "(three); five bounds them all"),
     ("KinematicErrorModel", "6series"): (6, "the seven terms of eq. (3.7), `KinematicErrorModel::series` "
                                             "(src/harmonic_drive/kinematic_error.rs): seven passes, six jumps back"),
     # compiler_builtins' shift-and-subtract division (Armv6-M has no divide
