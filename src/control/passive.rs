@@ -877,7 +877,16 @@ mod tests {
             let c = c32.update(&x32);
             prop_assert!(b.torque.abs() <= cx.torque_limit() && c.torque.abs() <= c32.torque_limit());
             let lsb = 1.0 / 65536.0;
-            let tol_x = (4.0 * 10.0 * lsb + 6.0 * 2.0 * lsb) / 1e3;
+            // Rounding of the products, plus, inside the velocity layer, the
+            // quantized layer width: I16F16 stores `ε` to the nearest code
+            // (0.01 → 655/65536) and scales by its exact reciprocal so the
+            // layer meets ±1 continuously, which moves `sat(q̇/ε)` by the
+            // relative width error times `|q̇/ε|` (weighted by the Coulomb
+            // and Stribeck levels, stored mN·m).
+            let (e64, ex) = (c64.friction.eps_velocity(), cx.friction.eps_velocity().to_f64());
+            let layer = (x64.motor_velocity / e64).abs().min(1.0) * (1.0 - e64 / ex).abs();
+            let levels = cx.nominal[1].to_f64().abs() + cx.nominal[2].to_f64().abs();
+            let tol_x = (4.0 * 10.0 * lsb + 6.0 * 2.0 * lsb + levels * layer) / 1e3;
             prop_assert!((b.torque.to_f64() / 1e3 - a.torque).abs() <= tol_x, "{} vs {}", b.torque, a.torque);
             let a32 = c64.update(&ControlInput { motor_velocity: x32.motor_velocity as f64, joint_torque: x32.joint_torque as f64, ..Default::default() });
             let big = a32.law_torque.abs() + (tau / 100.0).abs() * (1.0 + 1.14e-5 * kp) + 0.03;
