@@ -40,7 +40,8 @@ pub mod docs {
 
 pub use error::ParamError;
 pub use joint::{
-    JointConfig, JointOutput, JointParams, JointReadings, JointSettings, JointState, JointTarget,
+    JointConfig, JointMeasurement, JointOutput, JointParams, JointReadings, JointSettings,
+    JointState, JointTarget,
 };
 pub use scalar::{Scalar, I16F16};
 
@@ -63,8 +64,8 @@ pub mod prelude {
         CatalogueData, FlexsplineParams, HarmonicDriveParams, WaveGeneratorParams,
     };
     pub use crate::joint::{
-        JointConfig, JointOutput, JointParams, JointReadings, JointSettings, JointState,
-        JointTarget,
+        JointConfig, JointMeasurement, JointOutput, JointParams, JointReadings, JointSettings,
+        JointState, JointTarget,
     };
     pub use crate::scalar::{Scalar, I16F16};
 }
