@@ -1727,6 +1727,11 @@ fn index_html(chapters: &[(&str, Vec<Figure>)], quick: bool) -> String {
     h
 }
 
+/// Text for a Markdown table cell (`|` escaped).
+pub fn md_cell(s: &str) -> String {
+    s.replace('|', "\\|")
+}
+
 /// The per-figure comparison as a Markdown table (for the README).
 fn summary_md(chapters: &[(&str, Vec<Figure>)], quick: bool) -> String {
     let mut m = format!(
@@ -1738,9 +1743,9 @@ fn summary_md(chapters: &[(&str, Vec<Figure>)], quick: bool) -> String {
             let _ = writeln!(
                 m,
                 "| {} | {} | {} |",
-                f.title.replace('|', "/"),
-                f.thesis.replace('|', "/"),
-                f.ours.replace('|', "/")
+                md_cell(&f.title),
+                md_cell(&f.thesis),
+                md_cell(&f.ours)
             );
         }
     }

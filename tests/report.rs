@@ -164,7 +164,7 @@ fn quick_report_writes_linked_well_formed_figures() {
     for f in &figures {
         let row = summary
             .lines()
-            .find(|l| l.starts_with(&format!("| {} |", f.title.replace('|', "/"))))
+            .find(|l| l.starts_with(&format!("| {} |", thesis_report::md_cell(&f.title))))
             .unwrap_or_else(|| panic!("{} missing from summary.md", f.title));
         assert_eq!(row.matches(" | ").count(), 2, "{row}");
     }
