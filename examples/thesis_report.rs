@@ -1414,8 +1414,9 @@ fn fig6_10(r: &mut Report) -> Result<Figure, Error> {
          no number given)"
             .into(),
         format!(
-            "bench wrist (sim::wrist_bench), δ_d to {:.1}°, γ_d to {:.1}°: max |error| after \
-             1 s δ {:.3}°, γ {:.3}°; command at its limit in {} samples",
+            "DAUJ wrist on the bench (sim::wrist_bench: IK to joint space, FK back), \
+             δ_d to {:.1}°, γ_d to {:.1}°: max |error| after 1 s δ {:.3}°, γ {:.3}°; \
+             command at its limit in {} samples",
             reach(0),
             reach(1),
             e(0),
