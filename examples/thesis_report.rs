@@ -34,7 +34,7 @@ use mrr_control::sim::experiments::{
 };
 use mrr_control::sim::wrist_bench::{
     bench_axis, wrist_finger_push, wrist_tracking, FingerCase, WristBenchRun, WristBenchSample,
-    FINGER_STIFFNESS, FINGER_TRAVEL,
+    FINGER_START, FINGER_STIFFNESS, FINGER_TRAVEL,
 };
 use mrr_control::wrist::figures::{
     alpha_beta_comparison, workspace_mapping, MappingRule, WorkspaceSample,
@@ -1491,13 +1491,14 @@ fn fig6_14(r: &mut Report) -> Result<Figure, Error> {
         },
         "Case 1: the wrist does not move; Case 2: it moves freely with a small finger force".into(),
         format!(
-            "finger travel {:.0}° per push; largest |δ|, |γ|: Case 1 {:.1}°, {:.1}° \
-             (it slips once the finger exceeds the gear's breakaway); Case 2 {:.1}°, {:.1}°",
+            "finger travel {:.0}° per push from δ = {:.0}°; wrist travel of δ, γ: Case 1 \
+             {:.2}°, {:.2}°; Case 2 {:.1}°, {:.1}°",
             FINGER_TRAVEL.to_degrees(),
-            off.range[0].to_degrees(),
-            off.range[1].to_degrees(),
-            on.range[0].to_degrees(),
-            on.range[1].to_degrees()
+            FINGER_START[0].to_degrees(),
+            off.travel[0].to_degrees(),
+            off.travel[1].to_degrees(),
+            on.travel[0].to_degrees(),
+            on.travel[1].to_degrees()
         ),
     )
 }
@@ -1534,7 +1535,9 @@ fn fig6_15(r: &mut Report) -> Result<Figure, Error> {
         chart,
         "more than 10 N·m of pitch torque without the wrist moving".into(),
         format!(
-            "{peaks}; the bench gear breaks away at {:.1} N·m (the thesis's held more)",
+            "{peaks} (the finger's spring fully stretched) with the wrist moving {:.2}°; each \
+             motor axis breaks away at {:.1} N·m on its side of Jᵀ",
+            run.travel[0].max(run.travel[1]).to_degrees(),
             {
                 let a = bench_axis(0.0);
                 a.coulomb + a.static_excess
