@@ -4,6 +4,8 @@
 #![doc = "[equations]: crate::docs::equations\n[errata]: crate::docs::errata\n[guide]: crate::docs::guide\n"]
 #![doc = include_str!("../README.md")]
 #![cfg_attr(not(any(feature = "std", test, kani)), no_std)]
+// docs.rs (nightly, `--cfg docsrs`): mark feature-gated items with their feature.
+#![cfg_attr(docsrs, feature(doc_cfg))]
 
 pub mod control;
 pub mod error;
@@ -13,6 +15,7 @@ pub mod harmonic_drive;
 pub mod joint;
 pub mod scalar;
 #[cfg(feature = "sim")]
+#[cfg_attr(docsrs, doc(cfg(feature = "sim")))]
 pub mod sim;
 pub mod wrist;
 
@@ -40,7 +43,8 @@ pub mod docs {
 
 pub use error::ParamError;
 pub use joint::{
-    JointConfig, JointOutput, JointParams, JointReadings, JointSettings, JointState, JointTarget,
+    JointConfig, JointMeasurement, JointOutput, JointParams, JointReadings, JointSettings,
+    JointState, JointTarget,
 };
 pub use scalar::{Scalar, I16F16};
 
@@ -63,8 +67,8 @@ pub mod prelude {
         CatalogueData, FlexsplineParams, HarmonicDriveParams, WaveGeneratorParams,
     };
     pub use crate::joint::{
-        JointConfig, JointOutput, JointParams, JointReadings, JointSettings, JointState,
-        JointTarget,
+        JointConfig, JointMeasurement, JointOutput, JointParams, JointReadings, JointSettings,
+        JointState, JointTarget,
     };
     pub use crate::scalar::{Scalar, I16F16};
 }

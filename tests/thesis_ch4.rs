@@ -106,7 +106,7 @@ proptest! {
     /// `ρ_τt = 1 N·m`), or — in half the cases — feedback variant C, the
     /// ch. 3 estimate itself (2¹⁶-count motor encoder), with the design's
     /// `ρ_τt` set to `ESTIMATED_TORQUE_ERROR_BOUND` = 4 N·m (the
-    /// estimator's measured worst case in the smooth loops is 3.0 N·m,
+    /// estimator's measured worst case in the smooth loops is 2.9 N·m,
     /// `estimator_error_is_within_the_variant_c_bound`; each run checks
     /// its own error against it).
     /// After the reaching time of eq. (4.31), the true `|r|` (plant state,
@@ -416,7 +416,7 @@ fn count_speed_is_within_one_count_per_window() {
 /// `control::mode`): in the interaction scenario (a hand leads the link to
 /// 0.4 rad over 2 s, holds it 0.5 s and lets go at 3 s) the torque-only
 /// Passive → Active rule cycles — at least 20 switches while the hand is
-/// on the link (36 measured) — and the release rule of
+/// on the link (38 measured) — and the release rule of
 /// `ModeScenarioConfig::interaction` switches exactly twice: to Passive
 /// when the hand starts pushing, back to Active after it let go.
 #[test]

@@ -33,8 +33,9 @@
 //! the guidance; Active starts rejoining the desired trajectory, the hand
 //! resists, `|τ_i|` exceeds `enter`, and the joint cycles. In the simulated
 //! guidance scenario (`sim::closed_loop::interaction_scenario`, exit 2 N·m)
-//! the torque-only rule gave 36 switches between 0.88 s and 3.0 s (an
-//! earlier build 38). What a guided joint does and a released one does not
+//! the torque-only rule gives 38 switches between 0.88 s and 3.01 s
+//! (36 with the simulator's former speed meter, which extrapolated its
+//! first window). What a guided joint does and a released one does not
 //! is *move*: requiring `|q̇_m| ≤ v_rest` blocks the return while the hand
 //! leads, and holding that for longer than the hand's pauses blocks it
 //! while the hand holds still (the same scenario with the rule of

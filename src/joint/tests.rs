@@ -229,6 +229,41 @@ fn motor_position_and_speed_follow_the_counter() {
     assert_eq!(st.motor_position_counts(), total);
 }
 
+/// `measure` is the first half of `update`: on twin states fed the same
+/// readings it returns the fields `update` reports, and it leaves the mode
+/// manager's state as it was.
+#[test]
+fn measure_is_the_measuring_half_of_update() {
+    let p = firmware_params();
+    let cfg = JointConfig::<f64>::new(&p);
+    let mut a = cfg.state_at(40, 12);
+    let mut b = a;
+    let target = JointTarget::from_si(0.01, 0.0, 0.0);
+    let mut seed = 7u64;
+    let mut counter = 12u32;
+    for k in 0..60 {
+        counter = counter.wrapping_add((sym(&mut seed, 9.0)) as i32 as u32);
+        let link = (xorshift(&mut seed) % 40) as u32;
+        let r = JointReadings {
+            link_count: link,
+            motor_counter: counter,
+            motor_torque: Some(sym(&mut seed, 0.1)),
+        };
+        let mode_before = *b.mode_state();
+        let m = cfg.measure(&mut b, &r);
+        assert_eq!(*b.mode_state(), mode_before, "tick {k}");
+        let o = cfg.update(&mut a, &r, &target);
+        assert_eq!(m.joint_torque, o.joint_torque, "tick {k}");
+        assert_eq!(m.motor_position, o.motor_position, "tick {k}");
+        assert_eq!(m.motor_velocity, o.motor_velocity, "tick {k}");
+        assert_eq!(m.estimate, o.estimate, "tick {k}");
+        assert_eq!(m.joint_torque, -o.estimate.torque);
+        // Keep the twins' mode managers equal so the next tick's `None`
+        // torque (unused here) could not differ either.
+        b = b.with_mode_state(*a.mode_state());
+    }
+}
+
 #[test]
 fn state_starts_the_motor_at_n_times_the_link_angle() {
     let cfg = JointConfig::<f32>::new(&firmware_params());
