@@ -9,8 +9,8 @@
 use libfuzzer_sys::fuzz_target;
 use mrr_control::control::{ModeParams, ModeSettings};
 use mrr_control::estimation::{
-    CollisionParams, CollisionReaction, TorqueEstimate, TorqueEstimatorConfig,
-    TorqueEstimatorParams,
+    CollisionParams, CollisionReaction, CollisionSettings, TorqueEstimate, TorqueEstimatorConfig,
+    TorqueEstimatorParams, TorqueEstimatorSettings,
 };
 use mrr_control::harmonic_drive::kinematic_error::KinematicErrorModel;
 use mrr_control::harmonic_drive::two_spring::{TwoSpringParams, TwoSpringState};
@@ -266,13 +266,13 @@ fn check_others(raw: &[u64; 8], mode: u8, readings: &[Reading]) {
         Err(e) => typed(e),
     }
     if let Ok(s) = ModeSettings::table_4_1(2000.0) {
-        let collision = CollisionParams::try_new(
-            value(raw[2], flag(3), 1e-2, 1e2, true),
-            value(raw[3], flag(3), 1e-2, 1e2, true),
-            raw[4] as u16,
-            (raw[4] >> 16) as u16,
-            CollisionReaction::Stop,
-        );
+        let collision = CollisionParams::try_new(CollisionSettings {
+            threshold: value(raw[2], flag(3), 1e-2, 1e2, true),
+            release_threshold: value(raw[3], flag(3), 1e-2, 1e2, true),
+            debounce: raw[4] as u16,
+            release: (raw[4] >> 16) as u16,
+            reaction: CollisionReaction::Stop,
+        });
         let collision = match collision {
             Ok(c) => Some(c),
             Err(e) => {
@@ -364,7 +364,13 @@ fuzz_target!(|data: (
         (1 + (l >> (l % 32)), 1 + (m >> (m % 32)))
     };
     let max_torque = value(raw[5], flag(6), 1e-3, 1e5, true);
-    let p = match TorqueEstimatorParams::try_new(drive, ke, l, m, max_torque) {
+    let p = match TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+        drive,
+        kinematic_error: ke,
+        link_counts_per_rev: l,
+        motor_counts_per_rev: m,
+        max_torque,
+    }) {
         Ok(p) => p,
         Err(e) => return typed(e),
     };

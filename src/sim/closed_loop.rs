@@ -48,7 +48,7 @@ use crate::control::{
     RobustAdaptiveState,
 };
 use crate::estimation::torque::{
-    TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorState,
+    TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorSettings, TorqueEstimatorState,
 };
 use crate::harmonic_drive::kinematic_error::KinematicErrorModel;
 use core::f64::consts::TAU;
@@ -142,13 +142,13 @@ impl JointTorqueEstimator {
         kinematic_error: Option<KinematicErrorModel>,
     ) -> Self {
         let models = Models::shd_17_100();
-        let p = TorqueEstimatorParams::try_new(
-            models.proposed,
+        let p = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+            drive: models.proposed,
             kinematic_error,
-            module.link_encoder.counts_per_rev,
-            module.motor_encoder.counts_per_rev,
-            60.0,
-        )
+            link_counts_per_rev: module.link_encoder.counts_per_rev,
+            motor_counts_per_rev: module.motor_encoder.counts_per_rev,
+            max_torque: 60.0,
+        })
         .expect("thesis estimator parameters are valid");
         let config = TorqueEstimatorConfig::new(&p);
         let (_, c0) = estimator_counts(module, s, i);
@@ -862,17 +862,17 @@ pub struct BackDriveSample {
 /// friction compensation and the feed-forward `τ̂_t/N`, not a lighter
 /// inertia.
 pub fn back_drive(cfg: &BackDriveConfig) -> BackDriveResult {
-    use crate::control::{PassiveConfig, PassiveParams};
+    use crate::control::{PassiveConfig, PassiveParams, PassiveSettings};
     let module = ModuleParams::thesis_joint();
     let t = cfg.sample_period;
-    let p = PassiveParams::try_new(
-        module.rotor_inertia,
-        cfg.gain,
-        module.drive.ratio,
-        0.01,
-        identified_motor_friction(),
-        module.max_motor_torque,
-    )
+    let p = PassiveParams::try_new(PassiveSettings {
+        rotor_inertia: module.rotor_inertia,
+        gain: cfg.gain,
+        ratio: module.drive.ratio,
+        eps_velocity: 0.01,
+        nominal_friction: identified_motor_friction(),
+        torque_limit: module.max_motor_torque,
+    })
     .expect("valid passive parameters");
     let law = PassiveConfig::<f64>::new(&p);
     let steps = ((t / 1e-4).round() as usize).max(1);
@@ -1263,25 +1263,34 @@ pub fn mode_scenario(
     env: &Environment,
     obstacle: Option<f64>,
 ) -> ModeScenarioResult {
-    use crate::control::{JointMode, ModeConfig, ModeParams, ModeSettings, PassiveParams};
-    use crate::estimation::collision::CollisionParams;
+    use crate::control::{
+        JointMode, ModeConfig, ModeParams, ModeSettings, PassiveParams, PassiveSettings,
+    };
+    use crate::estimation::collision::{CollisionParams, CollisionSettings};
     let module = fine_motor_encoder(ModuleParams::thesis_joint());
     let mut design = bound_design(1.0);
     design.sample_period = cfg.sample_period;
     let t = cfg.sample_period;
     let n = design.ratio;
     let active = RobustAdaptiveParams::try_new(design).expect("valid design");
-    let passive = PassiveParams::try_new(
-        design.rotor_inertia,
-        cfg.passive_gain / design.rotor_inertia,
-        n,
-        design.eps_velocity,
-        identified_motor_friction(),
-        design.torque_limit,
-    )
+    let passive = PassiveParams::try_new(PassiveSettings {
+        rotor_inertia: design.rotor_inertia,
+        gain: cfg.passive_gain / design.rotor_inertia,
+        ratio: n,
+        eps_velocity: design.eps_velocity,
+        nominal_friction: identified_motor_friction(),
+        torque_limit: design.torque_limit,
+    })
     .expect("valid passive");
     let collision = cfg.collision.map(|(th, rel, reaction)| {
-        CollisionParams::try_new(th, rel, 3, 50, reaction).expect("valid detector")
+        CollisionParams::try_new(CollisionSettings {
+            threshold: th,
+            release_threshold: rel,
+            debounce: 3,
+            release: 50,
+            reaction,
+        })
+        .expect("valid detector")
     });
     let params = ModeParams::try_new(ModeSettings {
         active,

@@ -1,4 +1,5 @@
 use super::*;
+use crate::estimation::CollisionSettings;
 use crate::scalar::I16F16;
 use proptest::prelude::*;
 
@@ -101,7 +102,13 @@ proptest! {
     /// and random switching sequences, on every backend.
     #[test]
     fn switching_is_bumpless(prefix in proptest::collection::vec(sample(), 0..120), tail in sample()) {
-        let p = params(1, 0, Some(CollisionParams::try_new(4.0, 3.0, 2, 2, CollisionReaction::Stop).unwrap()));
+        let p = params(1, 0, Some(CollisionParams::try_new(CollisionSettings {
+            threshold: 4.0,
+            release_threshold: 3.0,
+            debounce: 2,
+            release: 2,
+            reaction: CollisionReaction::Stop,
+        }).unwrap()));
         // Interaction torques beyond ±2 N·m switch to passive, below ±1
         // back; the random prefix leaves a random state, and the tail
         // forces at least two switches from it (Active → Passive →
@@ -273,7 +280,14 @@ fn release_rule_is_validated() {
 
 #[test]
 fn collision_stop_holds_the_position_until_acknowledged() {
-    let col = CollisionParams::try_new(3.0, 1.0, 2, 2, CollisionReaction::Stop).unwrap();
+    let col = CollisionParams::try_new(CollisionSettings {
+        threshold: 3.0,
+        release_threshold: 1.0,
+        debounce: 2,
+        release: 2,
+        reaction: CollisionReaction::Stop,
+    })
+    .unwrap();
     let cfg = ModeConfig::<f64>::new(&params(1, 0, Some(col)));
     let mut st = cfg.initial_state();
     let mut x = ControlInput {
@@ -319,7 +333,14 @@ fn collision_stop_holds_the_position_until_acknowledged() {
 
 #[test]
 fn collision_passive_reaction_latches_passive() {
-    let col = CollisionParams::try_new(3.0, 1.0, 1, 1, CollisionReaction::Passive).unwrap();
+    let col = CollisionParams::try_new(CollisionSettings {
+        threshold: 3.0,
+        release_threshold: 1.0,
+        debounce: 1,
+        release: 1,
+        reaction: CollisionReaction::Passive,
+    })
+    .unwrap();
     let cfg = ModeConfig::<f32>::new(&params(5, 0, Some(col)));
     let mut st = cfg.initial_state();
     let o = step(&cfg, &mut st, 3.5);
