@@ -405,6 +405,39 @@ fn invalid_input_gives_zero_and_keeps_state() {
     assert!(o.invalid_input && o.torque == 0.0 && st == before);
 }
 
+/// A NaN or infinite motor position is flagged and no output field is NaN
+/// (the reference position used to echo the NaN reading), on both float
+/// backends; a finite position is echoed.
+#[test]
+fn invalid_position_gives_no_nan_field() {
+    fn check<S: Scalar>() {
+        let cfg = ModeConfig::<S>::new(&params(1, 0, None));
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let mut st = cfg.initial_state();
+            let x = ControlInput::<S>::from_si(&ControlInput {
+                desired_position: bad,
+                motor_position: bad,
+                ..Default::default()
+            });
+            let o = cfg.update(&mut st, &x);
+            assert!(o.invalid_input && o.torque == S::ZERO, "{o:?}");
+            assert!(!o.reference_position.is_nan() && !o.interaction.is_nan());
+            assert_eq!(o.reference_position, S::ZERO);
+        }
+        let mut st = cfg.initial_state();
+        let x = ControlInput::<S>::from_si(&ControlInput {
+            motor_position: 0.25,
+            joint_torque: f64::NAN,
+            ..Default::default()
+        });
+        let o = cfg.update(&mut st, &x);
+        assert!(o.invalid_input);
+        assert_eq!(o.reference_position.to_f64(), 0.25 * S::UNITS.angle);
+    }
+    check::<f64>();
+    check::<f32>();
+}
+
 /// The preset is the settings the tests above use, field by field, and
 /// validated parameters give their settings back unchanged.
 #[test]
