@@ -260,8 +260,13 @@ mod tests {
         let case = size_case(TABLE_3_1[3]).unwrap();
         let (p, drive) = (case.params, case.params.drive());
         let f = drive.flexspline();
-        let stiffer =
-            crate::harmonic_drive::FlexsplineParams::try_new(f.k_f0() * 1.01, f.c_f()).unwrap();
+        let stiffer = crate::harmonic_drive::FlexsplineParams::try_new(
+            crate::harmonic_drive::FlexsplineSettings {
+                k_f0: f.k_f0() * 1.01,
+                c_f: f.c_f(),
+            },
+        )
+        .unwrap();
         let drive =
             HarmonicDriveParams::try_new(stiffer, drive.wave_generator(), drive.ratio()).unwrap();
         let wrong = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {

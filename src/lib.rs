@@ -61,7 +61,8 @@ pub mod prelude {
     };
     pub use crate::harmonic_drive::kinematic_error::KinematicErrorModel;
     pub use crate::harmonic_drive::{
-        CatalogueData, FlexsplineParams, HarmonicDriveParams, WaveGeneratorParams,
+        CatalogueData, FlexsplineParams, FlexsplineSettings, HarmonicDriveParams,
+        WaveGeneratorParams, WaveGeneratorSettings,
     };
     pub use crate::joint::{
         JointConfig, JointOutput, JointParams, JointReadings, JointSettings, JointState,

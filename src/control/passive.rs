@@ -86,7 +86,13 @@ impl PassiveParams {
             });
         }
         let f = nominal_friction;
-        FrictionParams::try_new(f.viscous, f.coulomb, f.stribeck, f.stribeck_shape)?;
+        FrictionParams {
+            viscous: f.viscous,
+            coulomb: f.coulomb,
+            stribeck: f.stribeck,
+            stribeck_shape: f.stribeck_shape,
+        }
+        .validated()?;
         positive("torque_limit", torque_limit)?;
         if torque_limit > 16.0 {
             return Err(ParamError::OutOfRange {
@@ -686,7 +692,14 @@ mod tests {
     /// validation.)
     #[test]
     fn named_settings_reach_their_getters_and_the_law() {
-        let friction = FrictionParams::try_new(2e-4, 3e-3, 1e-3, 0.5).unwrap();
+        let friction = FrictionParams {
+            viscous: 2e-4,
+            coulomb: 3e-3,
+            stribeck: 1e-3,
+            stribeck_shape: 0.5,
+        }
+        .validated()
+        .unwrap();
         let s = PassiveSettings {
             rotor_inertia: 2e-5,
             gain: 3000.0,
@@ -782,7 +795,14 @@ mod tests {
     }
 
     fn frictionless(i_m: f64, kp: f64, n: f64) -> PassiveParams {
-        let f = FrictionParams::try_new(0.0, 0.0, 0.0, 1.0).unwrap();
+        let f = FrictionParams {
+            viscous: 0.0,
+            coulomb: 0.0,
+            stribeck: 0.0,
+            stribeck_shape: 1.0,
+        }
+        .validated()
+        .unwrap();
         PassiveParams::try_new(PassiveSettings {
             rotor_inertia: i_m,
             gain: kp,

@@ -1447,7 +1447,11 @@ mod tests {
         {
             let mut drive = CatalogueData::SHD_17_100.identify().unwrap();
             if let Some(c_f) = c_f {
-                let f = FlexsplineParams::try_new(1000.0, c_f).unwrap();
+                let f = FlexsplineParams::try_new(crate::harmonic_drive::FlexsplineSettings {
+                    k_f0: 1000.0,
+                    c_f,
+                })
+                .unwrap();
                 drive =
                     HarmonicDriveParams::try_new(f, drive.wave_generator(), drive.ratio()).unwrap();
             }

@@ -491,8 +491,22 @@ impl BoundCase {
 pub fn bound_design(stribeck: f64) -> RobustAdaptiveDesign {
     use crate::friction::{FrictionBounds, FrictionParams as Fp};
     let bounds = FrictionBounds::try_new(
-        Fp::try_new(0.0, 0.0, 0.0, stribeck).expect("valid"),
-        Fp::try_new(1e-4, 0.012, 0.012, stribeck).expect("valid"),
+        Fp {
+            viscous: 0.0,
+            coulomb: 0.0,
+            stribeck: 0.0,
+            stribeck_shape: stribeck,
+        }
+        .validated()
+        .expect("valid"),
+        Fp {
+            viscous: 1e-4,
+            coulomb: 0.012,
+            stribeck: 0.012,
+            stribeck_shape: stribeck,
+        }
+        .validated()
+        .expect("valid"),
         [1e-4, 1e-2, 1e-2, 1.0],
     )
     .expect("valid box");

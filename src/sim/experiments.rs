@@ -565,7 +565,11 @@ pub fn back_driven(cfg: &BackDrivenConfig) -> BackDrivenResult {
     .expect("valid plant");
     let n = r.modules()[0].drive.ratio;
     let play = WaveGeneratorTorqueConfig::<f64>::new(
-        &WaveGeneratorTorqueParams::try_new(BACKDRIVE_FRICTION, n).expect("valid"),
+        &WaveGeneratorTorqueParams::try_new(crate::harmonic_drive::WaveGeneratorTorqueSettings {
+            backdrive_friction: BACKDRIVE_FRICTION,
+            ratio: n,
+        })
+        .expect("valid"),
     );
     let mut play_state = WaveGeneratorTorqueState::default();
     let mut dis = Dissipation::new(&r);
