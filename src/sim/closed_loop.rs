@@ -77,6 +77,18 @@ impl JointTorqueFeedback {
     }
 }
 
+/// The settings of a [`CountSpeed`] meter by name (three `f64`: named so
+/// that none can be swapped).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CountSpeedSettings {
+    /// Length of the difference window, s (at least one sample is used).
+    pub window: f64,
+    /// Sample period, s.
+    pub period: f64,
+    /// Encoder resolution, rad per count.
+    pub rad_per_count: f64,
+}
+
 /// Windowed count-difference speed of one encoder (module docs).
 #[derive(Debug, Clone)]
 pub struct CountSpeed {
@@ -88,7 +100,12 @@ pub struct CountSpeed {
 impl CountSpeed {
     /// A meter over `window` seconds (at least one sample of `period`) for
     /// an encoder of `rad_per_count`.
-    pub fn new(window: f64, period: f64, rad_per_count: f64) -> Self {
+    pub fn new(settings: CountSpeedSettings) -> Self {
+        let CountSpeedSettings {
+            window,
+            period,
+            rad_per_count,
+        } = settings;
         let w = ((window / period).round() as usize).max(1);
         CountSpeed {
             history: VecDeque::with_capacity(w + 1),
@@ -326,7 +343,11 @@ pub fn active_tracking(cfg: &TrackingConfig) -> TrackingResult {
     let qm0 = robot.motor_angles_for_torque(&[0.0], &[g0])[0];
     robot.set_state(&[0.0], &[qm0], &[0.0], &[0.0]);
     let rad = module.motor_encoder.rad_per_count();
-    let mut speed = CountSpeed::new(cfg.speed_window, t, rad);
+    let mut speed = CountSpeed::new(CountSpeedSettings {
+        window: cfg.speed_window,
+        period: t,
+        rad_per_count: rad,
+    });
     let s0 = robot.read_sensors();
     let mut est = JointTorqueEstimator::new(&module, &s0, 0);
     let mut last_torque = 0.0;
@@ -893,7 +914,11 @@ pub fn back_drive(cfg: &BackDriveConfig) -> BackDriveResult {
     let mut robot =
         Mrr::try_new(vec![module.clone()], [0.0, 0.0, -9.81], t, steps, cfg.seed).expect("plant");
     let rad = module.motor_encoder.rad_per_count();
-    let mut speed = CountSpeed::new(4e-3, t, rad);
+    let mut speed = CountSpeed::new(CountSpeedSettings {
+        window: 4e-3,
+        period: t,
+        rad_per_count: rad,
+    });
     let s0 = robot.read_sensors();
     let mut est = JointTorqueEstimator::new(&module, &s0, 0);
     let mut last = 0.0;
@@ -1093,7 +1118,11 @@ pub fn payload_drop(cfg: &PayloadDropConfig) -> PayloadDropResult {
     let s0 = robot.read_sensors();
     let mut est = JointTorqueEstimator::new(&module, &s0, 0);
     let hold = s0.motor_counts[0] as f64 * rad;
-    let mut speed = CountSpeed::new(FINE_SPEED_WINDOW, t, rad);
+    let mut speed = CountSpeed::new(CountSpeedSettings {
+        window: FINE_SPEED_WINDOW,
+        period: t,
+        rad_per_count: rad,
+    });
     let mut last = 0.0;
     let mut trace = Vec::new();
     let total = (cfg.duration / t).round() as usize;
@@ -1328,7 +1357,11 @@ pub fn mode_scenario(
     let mut robot =
         Mrr::try_new(vec![module.clone()], [0.0, 0.0, -9.81], t, steps, cfg.seed).expect("plant");
     let rad = module.motor_encoder.rad_per_count();
-    let mut speed = CountSpeed::new(FINE_SPEED_WINDOW, t, rad);
+    let mut speed = CountSpeed::new(CountSpeedSettings {
+        window: FINE_SPEED_WINDOW,
+        period: t,
+        rad_per_count: rad,
+    });
     let s0 = robot.read_sensors();
     let mut est = JointTorqueEstimator::new(&module, &s0, 0);
     let mut res = ModeScenarioResult {
@@ -1469,4 +1502,25 @@ pub fn collision_scenario(cfg: &ModeScenarioConfig) -> ModeScenarioResult {
         }
     };
     mode_scenario(cfg, 5.0, &desired, &wall, Some(WALL))
+}
+
+#[cfg(test)]
+mod count_speed_tests {
+    use super::*;
+
+    /// The named settings reach their roles: a window of 8 ms at 4 ms is two
+    /// samples, so counts 0, 10, 20 at 0.01 rad/count give
+    /// `(20 − 0)·0.01/(2·0.004) = 25` rad/s. Swapped window and period (both
+    /// `f64`, as positional arguments allowed) would give a one-sample
+    /// window and 12.5 rad/s.
+    #[test]
+    fn named_settings_reach_their_roles() {
+        let mut m = CountSpeed::new(CountSpeedSettings {
+            window: 8e-3,
+            period: 4e-3,
+            rad_per_count: 0.01,
+        });
+        let speeds: std::vec::Vec<f64> = [0, 10, 20].iter().map(|&c| m.update(c)).collect();
+        assert!((speeds[2] - 25.0).abs() < 1e-9, "{speeds:?}");
+    }
 }
