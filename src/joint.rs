@@ -84,7 +84,8 @@ use crate::control::{
 };
 use crate::error::ParamError;
 use crate::estimation::torque::{
-    TorqueEstimate, TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorState,
+    TorqueEstimate, TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorSettings,
+    TorqueEstimatorState,
 };
 use crate::harmonic_drive::identification::CatalogueData;
 use crate::harmonic_drive::kinematic_error::KinematicErrorModel;
@@ -163,13 +164,13 @@ impl JointParams {
     /// [`ModeSettings::table_4_1`] (no collision detector); speed over one
     /// tick (resolution `2π/(2000·4 ms) = 0.785` rad/s).
     pub fn table_4_1() -> Result<Self, ParamError> {
-        let estimator = TorqueEstimatorParams::try_new(
-            CatalogueData::SHD_17_100.identify()?,
-            Some(KinematicErrorModel::table_3_2()),
-            1 << 17,
-            2000,
-            60.0,
-        )?;
+        let estimator = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+            drive: CatalogueData::SHD_17_100.identify()?,
+            kinematic_error: Some(KinematicErrorModel::table_3_2()),
+            link_counts_per_rev: 1 << 17,
+            motor_counts_per_rev: 2000,
+            max_torque: 60.0,
+        })?;
         let mode = ModeParams::try_new(ModeSettings {
             passive: PassiveParams::table_4_1_default()?,
             ..ModeSettings::table_4_1(1.0)?

@@ -55,16 +55,18 @@ pub use scalar::{Scalar, I16F16};
 pub mod prelude {
     pub use crate::control::{
         ControlInput, JointMode, ModeConfig, ModeOutput, ModeParams, ModeSettings, ModeState,
-        PassiveParams, RobustAdaptiveParams,
+        PassiveParams, PassiveSettings, RobustAdaptiveParams,
     };
     pub use crate::error::ParamError;
     pub use crate::estimation::{
-        AgreementBound, CollisionParams, CollisionReaction, TorqueEstimate, TorqueEstimatorConfig,
-        TorqueEstimatorParams, TorqueEstimatorState,
+        AgreementBound, CollisionParams, CollisionReaction, CollisionSettings, TorqueEstimate,
+        TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorSettings,
+        TorqueEstimatorState,
     };
     pub use crate::harmonic_drive::kinematic_error::KinematicErrorModel;
     pub use crate::harmonic_drive::{
-        CatalogueData, FlexsplineParams, HarmonicDriveParams, WaveGeneratorParams,
+        CatalogueData, FlexsplineParams, FlexsplineSettings, HarmonicDriveParams,
+        WaveGeneratorParams, WaveGeneratorSettings,
     };
     pub use crate::joint::{
         JointConfig, JointMeasurement, JointOutput, JointParams, JointReadings, JointSettings,

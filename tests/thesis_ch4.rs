@@ -12,7 +12,8 @@ use mrr_control::estimation::collision::CollisionReaction;
 use mrr_control::sim::closed_loop::{
     active_tracking, back_drive, bound_run, collision_scenario, interaction_scenario, payload_drop,
     sampled_sliding_radius, BackDriveConfig, BackDriveMode, BoundCase, CountSpeed,
-    JointTorqueFeedback, ModeScenarioConfig, PayloadDropConfig, TrackingConfig, TrackingResult,
+    CountSpeedSettings, JointTorqueFeedback, ModeScenarioConfig, PayloadDropConfig, TrackingConfig,
+    TrackingResult,
 };
 use proptest::prelude::*;
 use std::sync::OnceLock;
@@ -400,7 +401,11 @@ fn collision_is_detected_on_the_estimate_and_stops_or_yields() {
 fn count_speed_is_within_one_count_per_window() {
     let (t, delta) = (1e-4, TAU / 2000.0);
     for (v, window) in [(3.7, 4e-3), (-52.0, 4e-3), (0.8, 4e-4)] {
-        let mut m = CountSpeed::new(window, t, delta);
+        let mut m = CountSpeed::new(CountSpeedSettings {
+            window,
+            period: t,
+            rad_per_count: delta,
+        });
         let w = (window / t).round();
         for k in 0..200 {
             let c = (v * k as f64 * t / delta).round() as i64;

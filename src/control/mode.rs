@@ -496,7 +496,9 @@ pub struct ModeOutput<S> {
     /// A collision reaction is latched.
     pub collision: bool,
     /// The position reference used (Active: desired + offset; Hold: the
-    /// held position; Passive: the measured position), stored angle.
+    /// held position; Passive: the measured position), stored angle. On
+    /// invalid input: the measured position, or 0 when it is NaN or
+    /// infinite (never NaN).
     pub reference_position: S,
 }
 
@@ -725,7 +727,13 @@ impl<S: Scalar> ModeConfig<S> {
                 invalid_input: true,
                 interaction: S::ZERO,
                 collision: st.latched,
-                reference_position: x.motor_position,
+                // Never NaN out of a step: the measured position when it is
+                // a number (`v − v` is 0 only for a finite float), else 0.
+                reference_position: if x.motor_position.sub(x.motor_position) == S::ZERO {
+                    x.motor_position
+                } else {
+                    S::ZERO
+                },
             };
         }
         let mut target = self.wanted(st, interaction, x.motor_velocity);

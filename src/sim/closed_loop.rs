@@ -50,10 +50,10 @@
 use super::experiments::{ErrorStats, Models};
 use super::mrr::{misaligned, ModuleParams, Mrr, Sensors};
 use crate::control::{
-    ControlInput, ModeParams, ModeSettings, PassiveParams, RobustAdaptiveConfig,
+    ControlInput, ModeParams, ModeSettings, PassiveParams, PassiveSettings, RobustAdaptiveConfig,
     RobustAdaptiveDesign, RobustAdaptiveParams, RobustAdaptiveState,
 };
-use crate::estimation::torque::TorqueEstimatorParams;
+use crate::estimation::torque::{TorqueEstimatorParams, TorqueEstimatorSettings};
 use crate::harmonic_drive::kinematic_error::KinematicErrorModel;
 use crate::joint::{
     JointConfig, JointMeasurement, JointOutput, JointParams, JointReadings, JointSettings,
@@ -85,6 +85,18 @@ impl JointTorqueFeedback {
     }
 }
 
+/// The settings of a [`CountSpeed`] meter by name (three `f64`: named so
+/// that none can be swapped).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CountSpeedSettings {
+    /// Length of the difference window, s (at least one sample is used).
+    pub window: f64,
+    /// Sample period, s.
+    pub period: f64,
+    /// Encoder resolution, rad per count.
+    pub rad_per_count: f64,
+}
+
 /// Windowed count-difference speed of one encoder (module docs).
 #[derive(Debug, Clone)]
 pub struct CountSpeed {
@@ -96,7 +108,12 @@ pub struct CountSpeed {
 impl CountSpeed {
     /// A meter over `window` seconds (at least one sample of `period`) for
     /// an encoder of `rad_per_count`.
-    pub fn new(window: f64, period: f64, rad_per_count: f64) -> Self {
+    pub fn new(settings: CountSpeedSettings) -> Self {
+        let CountSpeedSettings {
+            window,
+            period,
+            rad_per_count,
+        } = settings;
         let w = ((window / period).round() as usize).max(1);
         CountSpeed {
             history: VecDeque::with_capacity(w + 1),
@@ -209,13 +226,13 @@ pub fn joint_params(
     mode: ModeParams,
     speed_window: f64,
 ) -> Result<JointParams, crate::ParamError> {
-    let estimator = TorqueEstimatorParams::try_new(
-        Models::shd_17_100().proposed,
+    let estimator = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+        drive: Models::shd_17_100().proposed,
         kinematic_error,
-        module.link_encoder.counts_per_rev,
-        module.motor_encoder.counts_per_rev,
-        60.0,
-    )?;
+        link_counts_per_rev: module.link_encoder.counts_per_rev,
+        motor_counts_per_rev: module.motor_encoder.counts_per_rev,
+        max_torque: 60.0,
+    })?;
     let t = mode.settings().active.design().sample_period;
     let w = ((speed_window / t).round()).clamp(1.0, crate::joint::MAX_SPEED_WINDOW as f64);
     JointParams::try_new(JointSettings {
@@ -232,14 +249,14 @@ pub fn joint_params(
 /// `0.5/T`, bias time constant at least `T`). Never run by those loops.
 pub fn measuring_mode(design: RobustAdaptiveDesign) -> Result<ModeParams, crate::ParamError> {
     let t = design.sample_period;
-    let passive = PassiveParams::try_new(
-        design.rotor_inertia,
-        1.0 / design.rotor_inertia,
-        design.ratio,
-        design.eps_velocity,
-        design.initial_friction,
-        design.torque_limit,
-    )?;
+    let passive = PassiveParams::try_new(PassiveSettings {
+        rotor_inertia: design.rotor_inertia,
+        gain: 1.0 / design.rotor_inertia,
+        ratio: design.ratio,
+        eps_velocity: design.eps_velocity,
+        nominal_friction: design.initial_friction,
+        torque_limit: design.torque_limit,
+    })?;
     let base = ModeSettings::table_4_1(1.0)?;
     ModeParams::try_new(ModeSettings {
         active: RobustAdaptiveParams::try_new(design)?,
@@ -588,8 +605,22 @@ impl BoundCase {
 pub fn bound_design(stribeck: f64) -> RobustAdaptiveDesign {
     use crate::friction::{FrictionBounds, FrictionParams as Fp};
     let bounds = FrictionBounds::try_new(
-        Fp::try_new(0.0, 0.0, 0.0, stribeck).expect("valid"),
-        Fp::try_new(1e-4, 0.012, 0.012, stribeck).expect("valid"),
+        Fp {
+            viscous: 0.0,
+            coulomb: 0.0,
+            stribeck: 0.0,
+            stribeck_shape: stribeck,
+        }
+        .validated()
+        .expect("valid"),
+        Fp {
+            viscous: 1e-4,
+            coulomb: 0.012,
+            stribeck: 0.012,
+            stribeck_shape: stribeck,
+        }
+        .validated()
+        .expect("valid"),
         [1e-4, 1e-2, 1e-2, 1.0],
     )
     .expect("valid box");
@@ -960,17 +991,17 @@ pub struct BackDriveSample {
 /// friction compensation and the feed-forward `τ̂_t/N`, not a lighter
 /// inertia.
 pub fn back_drive(cfg: &BackDriveConfig) -> BackDriveResult {
-    use crate::control::{PassiveConfig, PassiveParams};
+    use crate::control::{PassiveConfig, PassiveParams, PassiveSettings};
     let module = ModuleParams::thesis_joint();
     let t = cfg.sample_period;
-    let p = PassiveParams::try_new(
-        module.rotor_inertia,
-        cfg.gain,
-        module.drive.ratio,
-        0.01,
-        identified_motor_friction(),
-        module.max_motor_torque,
-    )
+    let p = PassiveParams::try_new(PassiveSettings {
+        rotor_inertia: module.rotor_inertia,
+        gain: cfg.gain,
+        ratio: module.drive.ratio,
+        eps_velocity: 0.01,
+        nominal_friction: identified_motor_friction(),
+        torque_limit: module.max_motor_torque,
+    })
     .expect("valid passive parameters");
     let law = PassiveConfig::<f64>::new(&p);
     let steps = ((t / 1e-4).round() as usize).max(1);
@@ -1369,25 +1400,34 @@ pub fn mode_scenario(
     env: &Environment,
     obstacle: Option<f64>,
 ) -> ModeScenarioResult {
-    use crate::control::{JointMode, ModeConfig, ModeParams, ModeSettings, PassiveParams};
-    use crate::estimation::collision::CollisionParams;
+    use crate::control::{
+        JointMode, ModeConfig, ModeParams, ModeSettings, PassiveParams, PassiveSettings,
+    };
+    use crate::estimation::collision::{CollisionParams, CollisionSettings};
     let module = fine_motor_encoder(ModuleParams::thesis_joint());
     let mut design = bound_design(1.0);
     design.sample_period = cfg.sample_period;
     let t = cfg.sample_period;
     let n = design.ratio;
     let active = RobustAdaptiveParams::try_new(design).expect("valid design");
-    let passive = PassiveParams::try_new(
-        design.rotor_inertia,
-        cfg.passive_gain / design.rotor_inertia,
-        n,
-        design.eps_velocity,
-        identified_motor_friction(),
-        design.torque_limit,
-    )
+    let passive = PassiveParams::try_new(PassiveSettings {
+        rotor_inertia: design.rotor_inertia,
+        gain: cfg.passive_gain / design.rotor_inertia,
+        ratio: n,
+        eps_velocity: design.eps_velocity,
+        nominal_friction: identified_motor_friction(),
+        torque_limit: design.torque_limit,
+    })
     .expect("valid passive");
     let collision = cfg.collision.map(|(th, rel, reaction)| {
-        CollisionParams::try_new(th, rel, 3, 50, reaction).expect("valid detector")
+        CollisionParams::try_new(CollisionSettings {
+            threshold: th,
+            release_threshold: rel,
+            debounce: 3,
+            release: 50,
+            reaction,
+        })
+        .expect("valid detector")
     });
     let params = ModeParams::try_new(ModeSettings {
         active,
@@ -1545,4 +1585,25 @@ pub fn collision_scenario(cfg: &ModeScenarioConfig) -> ModeScenarioResult {
         }
     };
     mode_scenario(cfg, 5.0, &desired, &wall, Some(WALL))
+}
+
+#[cfg(test)]
+mod count_speed_tests {
+    use super::*;
+
+    /// The named settings reach their roles: a window of 8 ms at 4 ms is two
+    /// samples, so counts 0, 10, 20 at 0.01 rad/count give
+    /// `(20 − 0)·0.01/(2·0.004) = 25` rad/s. Swapped window and period (both
+    /// `f64`, as positional arguments allowed) would give a one-sample
+    /// window and 12.5 rad/s.
+    #[test]
+    fn named_settings_reach_their_roles() {
+        let mut m = CountSpeed::new(CountSpeedSettings {
+            window: 8e-3,
+            period: 4e-3,
+            rad_per_count: 0.01,
+        });
+        let speeds: std::vec::Vec<f64> = [0, 10, 20].iter().map(|&c| m.update(c)).collect();
+        assert!((speeds[2] - 25.0).abs() < 1e-9, "{speeds:?}");
+    }
 }

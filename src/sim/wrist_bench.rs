@@ -350,7 +350,16 @@ pub fn wrist_finger_push(case: FingerCase, duration: f64, seed: u64) -> WristBen
     })
     .expect("K_c = 0.1 inside its discrete-time range");
     let modes = WristModeConfig::<f64>::new(
-        &WristModeParams::try_new(adm, 1.0, 0.5, 0.01, 5, 250, 5.0).expect("valid mode params"),
+        &WristModeParams::try_new(crate::wrist::modes::WristModeSettings {
+            admittance: adm,
+            enter_passive: 1.0,
+            exit_passive: 0.5,
+            rest_speed: 0.01,
+            debounce: 5,
+            dwell: 250,
+            rejoin_bandwidth: 5.0,
+        })
+        .expect("valid mode params"),
     );
     let wp = WristParams::thesis();
     let kin = WristConfig::<f64>::new(&wp);
