@@ -16,8 +16,10 @@ use criterion::{BenchmarkId, Criterion, Throughput};
 use mrr_control::control::{
     ControlInput, ModeConfig, ModeParams, ModeSettings, PassiveParams, RobustAdaptiveParams,
 };
-use mrr_control::estimation::collision::{CollisionParams, CollisionReaction};
-use mrr_control::estimation::torque::{TorqueEstimatorConfig, TorqueEstimatorParams};
+use mrr_control::estimation::collision::{CollisionParams, CollisionReaction, CollisionSettings};
+use mrr_control::estimation::torque::{
+    TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorSettings,
+};
 use mrr_control::harmonic_drive::kinematic_error::KinematicErrorModel;
 use mrr_control::harmonic_drive::CatalogueData;
 use mrr_control::{Scalar, I16F16};
@@ -81,13 +83,13 @@ fn estimator_params() -> TorqueEstimatorParams {
     let drive = CatalogueData::SHD_17_100
         .identify()
         .expect("catalogue data");
-    TorqueEstimatorParams::try_new(
+    TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
         drive,
-        Some(KinematicErrorModel::table_3_2()),
-        1 << 17,
-        2000,
-        60.0,
-    )
+        kinematic_error: Some(KinematicErrorModel::table_3_2()),
+        link_counts_per_rev: 1 << 17,
+        motor_counts_per_rev: 2000,
+        max_torque: 60.0,
+    })
     .expect("valid parameters")
 }
 
@@ -138,8 +140,14 @@ fn mode_params() -> ModeParams {
         rejoin_bandwidth: 10.0,
         bias_time_constant: 0.1,
         collision: Some(
-            CollisionParams::try_new(4.0, 3.0, 2, 2, CollisionReaction::Stop)
-                .expect("valid detector"),
+            CollisionParams::try_new(CollisionSettings {
+                threshold: 4.0,
+                release_threshold: 3.0,
+                debounce: 2,
+                release: 2,
+                reaction: CollisionReaction::Stop,
+            })
+            .expect("valid detector"),
         ),
     })
     .expect("valid mode parameters")

@@ -20,9 +20,9 @@
 //! ```
 
 use mrr_control::control::{
-    JointMode, ModeParams, ModeSettings, PassiveParams, RobustAdaptiveParams,
+    JointMode, ModeParams, ModeSettings, PassiveParams, PassiveSettings, RobustAdaptiveParams,
 };
-use mrr_control::estimation::torque::TorqueEstimatorParams;
+use mrr_control::estimation::torque::{TorqueEstimatorParams, TorqueEstimatorSettings};
 use mrr_control::harmonic_drive::kinematic_error::KinematicErrorModel;
 use mrr_control::harmonic_drive::CatalogueData;
 use mrr_control::joint::{JointConfig, JointParams, JointReadings, JointSettings, JointTarget};
@@ -75,13 +75,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
 
     // 2. Drive + kinematic error + encoders → torque estimator.
-    let estimator = TorqueEstimatorParams::try_new(
+    let estimator = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
         drive,
-        Some(KinematicErrorModel::table_3_2()),
-        module.link_encoder.counts_per_rev,
-        module.motor_encoder.counts_per_rev,
-        60.0,
-    )?;
+        kinematic_error: Some(KinematicErrorModel::table_3_2()),
+        link_counts_per_rev: module.link_encoder.counts_per_rev,
+        motor_counts_per_rev: module.motor_encoder.counts_per_rev,
+        max_torque: 60.0,
+    })?;
     println!(
         "2. estimator: link encoder L = {}, motor encoder M = {} counts/rev",
         estimator.link_counts_per_rev(),
@@ -92,15 +92,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut design = bound_design(1.0);
     design.sample_period = TICK;
     let active = RobustAdaptiveParams::try_new(design)?;
-    let passive = PassiveParams::try_new(
-        design.rotor_inertia,
-        // The default of `PassiveParams::table_4_1_default`: Î_m K_p = 1.
-        1.0 / design.rotor_inertia,
-        design.ratio,
-        design.eps_velocity,
-        identified_motor_friction(),
-        design.torque_limit,
-    )?;
+    let passive = PassiveParams::try_new(PassiveSettings {
+        rotor_inertia: design.rotor_inertia, // The default of `PassiveParams::table_4_1_default`: Î_m K_p = 1.
+        gain: 1.0 / design.rotor_inertia,
+        ratio: design.ratio,
+        eps_velocity: design.eps_velocity,
+        nominal_friction: identified_motor_friction(),
+        torque_limit: design.torque_limit,
+    })?;
     let mode = ModeParams::try_new(ModeSettings {
         active,
         passive,

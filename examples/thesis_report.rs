@@ -1,4 +1,4 @@
-//! The thesis's ch. 2–4 figures regenerated from the library and its
+//! The thesis's ch. 2–6 figures regenerated from the library and its
 //! simulator, as SVG files plus an `index.html` to open in a browser.
 //! Each figure carries one line: what the thesis reports, and what this run
 //! gets (numbers computed here).
@@ -12,11 +12,12 @@
 //! Output: `DIR`, else `$CARGO_TARGET_DIR/figures`, else `target/figures`.
 //!
 //! Every curve comes from a library call (the models of
-//! [`mrr_control::harmonic_drive`], the experiments of
-//! [`mrr_control::sim`]); this file only runs them and draws.
+//! [`mrr_control::harmonic_drive`] and [`mrr_control::wrist`], the
+//! experiments of [`mrr_control::sim`]); this file only runs them and
+//! draws.
 //!
-//! To add figures (the wrist and door opening of ch. 5–6), write a
-//! `fn(&mut Report) -> Result<Figure, Error>` and list it in [`CHAPTERS`].
+//! To add a figure, write a `fn(&mut Report) -> Result<Figure, Error>` and
+//! list it in [`CHAPTERS`].
 
 use mrr_control::harmonic_drive::kinematic_error::KinematicErrorModel;
 use mrr_control::harmonic_drive::CatalogueData;
@@ -25,11 +26,20 @@ use mrr_control::sim::closed_loop::{
     BackDriveMode, BackDriveResult, JointTorqueFeedback, ModeScenarioConfig, PayloadDropConfig,
     TrackingConfig, TrackingResult,
 };
+use mrr_control::sim::door::{door_opening, DoorConfig, DoorControl, DoorRun};
 use mrr_control::sim::experiments::{
     back_driven, locked_output, torque_estimation, width_at_zero, BackDrivenConfig,
     BackDrivenResult, ComplianceResult, ComplianceSample, ErrorStats, LockedOutputConfig, Models,
     TorqueEstimationConfig, TorqueEstimationResult, ESTIMATORS,
 };
+use mrr_control::sim::wrist_bench::{
+    bench_axis, wrist_finger_push, wrist_tracking, FingerCase, WristBenchRun, WristBenchSample,
+    FINGER_START, FINGER_STIFFNESS, FINGER_TRAVEL,
+};
+use mrr_control::wrist::figures::{
+    alpha_beta_comparison, workspace_mapping, MappingRule, WorkspaceSample,
+};
+use mrr_control::wrist::WristParams;
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -53,9 +63,7 @@ pub struct Figure {
 /// A figure generator.
 pub type FigureFn = fn(&mut Report) -> Result<Figure, Error>;
 
-/// The figures, by chapter. Ch. 5–6 (the wrist's workspace and α/β,
-/// Fig. 5.7–5.8, 5.10–5.11; wrist active/passive control, Fig. 6.10–6.11,
-/// 6.14–6.17; door opening, Fig. 6.19–6.20) go in a fourth entry.
+/// The figures, by chapter.
 pub const CHAPTERS: &[(&str, &[FigureFn])] = &[
     (
         "Chapter 2: harmonic-drive compliance",
@@ -70,6 +78,16 @@ pub const CHAPTERS: &[(&str, &[FigureFn])] = &[
     (
         "Chapter 4: multiple-mode joint control",
         &[fig4_2, fig4_3, fig4_11, fig4_12],
+    ),
+    (
+        "Chapter 5: the compact wrist's kinematics",
+        &[fig5_7, fig5_8, fig5_10, fig5_11],
+    ),
+    (
+        "Chapter 6: wrist control and door opening",
+        &[
+            fig6_10, fig6_11, fig6_14, fig6_15, fig6_16, fig6_17, fig6_19, fig6_20,
+        ],
     ),
 ];
 
@@ -100,6 +118,9 @@ pub struct Report {
     tracking: Option<Vec<TrackingResult>>,
     passive: Option<Vec<BackDriveResult>>,
     smooth: Option<TrackingResult>,
+    wrist_tracking: Option<WristBenchRun>,
+    finger: Option<Vec<WristBenchRun>>,
+    door: Option<Vec<DoorRun>>,
 }
 
 impl Report {
@@ -112,7 +133,43 @@ impl Report {
             tracking: None,
             passive: None,
             smooth: None,
+            wrist_tracking: None,
+            finger: None,
+            door: None,
         }
+    }
+
+    /// §6.4.2: the wrist tracking a task trajectory in active mode.
+    fn wrist_tracking(&mut self) -> &WristBenchRun {
+        let quick = self.opts.quick;
+        self.wrist_tracking
+            .get_or_insert_with(|| wrist_tracking(if quick { 6.0 } else { 12.0 }, 1.0))
+    }
+
+    /// §6.4.3: the finger push, Case 1 (motors off) and Case 2
+    /// (admittance).
+    fn finger(&mut self) -> &[WristBenchRun] {
+        self.finger.get_or_insert_with(|| {
+            [FingerCase::MotorsOff, FingerCase::Admittance]
+                .into_iter()
+                .map(|c| wrist_finger_push(c, 8.0, 1))
+                .collect()
+        })
+    }
+
+    /// §6.4.4: passive, passive with a 3° heading error, active hold
+    /// (seed 7, as `examples/door_opening.rs`).
+    fn door(&mut self) -> &[DoorRun] {
+        self.door.get_or_insert_with(|| {
+            [
+                (DoorControl::Passive, 0.0),
+                (DoorControl::Passive, 3f64.to_radians()),
+                (DoorControl::ActiveHold, 0.0),
+            ]
+            .into_iter()
+            .map(|(c, h)| door_opening(&DoorConfig::thesis(c, h, 7)))
+            .collect()
+        })
     }
 
     fn locked(&mut self) -> &ComplianceResult {
@@ -1151,6 +1208,466 @@ fn fig4_12(r: &mut Report) -> Result<Figure, Error> {
     )
 }
 
+// ---------------------------------------------------------------- chapter 5
+
+/// Grid of the workspace figures.
+const GRID: usize = 41;
+
+/// Reachable grid neighbours whose `θ1 + θ3` differ by more than 1 rad.
+fn mapping_jumps(g: &[[WorkspaceSample; GRID]; GRID]) -> usize {
+    let mut n = 0;
+    for i in 0..GRID {
+        for j in 0..GRID {
+            let a = g[i][j];
+            let next = [g.get(i + 1).map(|r| r[j]), g[i].get(j + 1).copied()];
+            for b in next.into_iter().flatten() {
+                if a.reachable
+                    && b.reachable
+                    && ((a.theta1 + a.theta3) - (b.theta1 + b.theta3)).abs() > 1.0
+                {
+                    n += 1;
+                }
+            }
+        }
+    }
+    n
+}
+
+/// `(θ1, θ3)` of the reachable grid points, degrees.
+fn mapping_points(g: &[[WorkspaceSample; GRID]; GRID]) -> Vec<(f64, f64)> {
+    g.iter()
+        .flatten()
+        .filter(|s| s.reachable)
+        .map(|s| (s.theta1.to_degrees(), s.theta3.to_degrees()))
+        .collect()
+}
+
+fn fig5_7(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let p = WristParams::thesis();
+    let g = workspace_mapping::<GRID>(&p, MappingRule::Principal);
+    let jumps = mapping_jumps(&g);
+    figure(
+        &dir,
+        "fig5_7_workspace.svg",
+        "Fig. 5.7: workspace mapping, eq. (5.14) on principal branches",
+        Chart {
+            title: "Fig. 5.7  (θ1, θ3) of the reachable (δ, γ) grid, eq. (5.14)",
+            x: "θ1 (deg)",
+            y: "θ3 (deg)",
+            series: vec![dots(
+                &format!("{GRID}×{GRID} grid of δ, γ ∈ ±2φ, reachable points"),
+                BLUE_,
+                mapping_points(&g),
+            )],
+            markers: vec![],
+        },
+        "for continuous δ and γ the motor angles θ1, θ3 of eq. (5.14) can be discontinuous".into(),
+        format!(
+            "φ = {:.2}°: {jumps} pairs of reachable grid neighbours whose θ1 + θ3 jumps by \
+             more than 1 rad",
+            p.phi().to_degrees()
+        ),
+    )
+}
+
+fn fig5_8(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let p = WristParams::thesis();
+    let printed = workspace_mapping::<GRID>(&p, MappingRule::PrintedFix);
+    let lib = workspace_mapping::<GRID>(&p, MappingRule::Library);
+    let (jp, jl) = (mapping_jumps(&printed), mapping_jumps(&lib));
+    figure(
+        &dir,
+        "fig5_8_workspace_adjusted.svg",
+        "Fig. 5.8: adjusted workspace mapping, eq. (5.15)",
+        Chart {
+            title: "Fig. 5.8  (θ1, θ3): printed fix (5.15) and the library's rule",
+            x: "θ1 (deg)",
+            y: "θ3 (deg)",
+            series: vec![
+                dots("eq. (5.15) as printed", ORANGE, mapping_points(&printed)),
+                dots("library: θ1 + θ3 continuous", BLUE_, mapping_points(&lib)),
+            ],
+            markers: vec![],
+        },
+        "with θ3 shifted by 2π where θ1 + θ3 < −π/2, eq. (5.15), the mapping becomes continuous"
+            .into(),
+        format!(
+            "jumps of θ1 + θ3 > 1 rad between reachable neighbours: {jp} with eq. (5.15) as \
+             printed (errata E5.5), {jl} with the library's inverse kinematics"
+        ),
+    )
+}
+
+/// `(θ1 − θ3 in degrees, exact − approximate)` over the motor strip, for
+/// `α` (wrapped, where `β > 0.05` rad) or `β`.
+fn alpha_beta_errors(alpha: bool) -> (Vec<(f64, f64)>, f64) {
+    let p = WristParams::thesis();
+    let g = alpha_beta_comparison::<GRID>(&p);
+    let mut pts = Vec::new();
+    let mut worst = 0.0f64;
+    for s in g.iter().flatten() {
+        let e = if alpha {
+            if s.beta_exact <= 0.05 {
+                continue;
+            }
+            let d = s.alpha_exact - s.alpha_approx;
+            d.sin().atan2(d.cos())
+        } else {
+            s.beta_exact - s.beta_approx
+        };
+        worst = worst.max(e.abs());
+        pts.push(((s.theta1 - s.theta3).to_degrees(), e.to_degrees()));
+    }
+    (pts, worst)
+}
+
+fn fig5_10(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let (pts, worst) = alpha_beta_errors(true);
+    figure(
+        &dir,
+        "fig5_10_alpha.svg",
+        "Fig. 5.10: α exact (5.19) minus Ryew–Choi (5.21)",
+        Chart {
+            title: "Fig. 5.10  α exact − α approximate, motor strip θ1 + θ3 ∈ [−π, 0]",
+            x: "θ1 − θ3 (deg)",
+            y: "Δα (deg)",
+            series: vec![dots("Δα where β > 0.05 rad", BLUE_, pts)],
+            markers: vec![],
+        },
+        "the difference between eq. (5.19) and eq. (5.21) is less than 2 %".into(),
+        format!(
+            "max |Δα| = {:.3} rad = {:.1} % of π over the whole motor strip (bend up to 2φ), \
+             with eq. (5.21) corrected (errata E5.7)",
+            worst,
+            100.0 * worst / std::f64::consts::PI
+        ),
+    )
+}
+
+fn fig5_11(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let (pts, worst) = alpha_beta_errors(false);
+    let two_phi = 2.0 * WristParams::thesis().phi();
+    figure(
+        &dir,
+        "fig5_11_beta.svg",
+        "Fig. 5.11: β exact (5.17) minus Ryew–Choi (5.21)",
+        Chart {
+            title: "Fig. 5.11  β exact − β approximate, motor strip θ1 + θ3 ∈ [−π, 0]",
+            x: "θ1 − θ3 (deg)",
+            y: "Δβ (deg)",
+            series: vec![dots("Δβ", BLUE_, pts)],
+            markers: vec![],
+        },
+        "the difference between eq. (5.17) and eq. (5.21) is less than 2 %".into(),
+        format!(
+            "max |Δβ| = {:.4} rad = {:.1} % of the largest bend 2φ over the whole motor strip",
+            worst,
+            100.0 * worst / two_phi
+        ),
+    )
+}
+
+// ---------------------------------------------------------------- chapter 6
+
+/// `(t, f(sample))` over a bench run.
+fn series(run: &WristBenchRun, f: impl Fn(&WristBenchSample) -> f64) -> Vec<(f64, f64)> {
+    run.samples.iter().map(|s| (s.time, f(s))).collect()
+}
+
+fn fig6_10(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let run = r.wrist_tracking().clone();
+    let e = |i: usize| max_abs(&run.position_error[i]).to_degrees();
+    let reach = |i: usize| {
+        run.samples
+            .iter()
+            .map(|s| s.desired[i].to_degrees())
+            .fold(0.0f64, |a, x| if x.abs() > a.abs() { x } else { a })
+    };
+    figure(
+        &dir,
+        "fig6_10_wrist_position_error.svg",
+        "Fig. 6.10: wrist position tracking errors, active mode",
+        Chart {
+            title: "Fig. 6.10  task-space position error, eq. (6.15), T = 4 ms",
+            x: "time (s)",
+            y: "error (deg)",
+            series: vec![
+                line(
+                    "δ − δ_d",
+                    BLUE_,
+                    series(&run, |s| (s.pose[0] - s.desired[0]).to_degrees()),
+                ),
+                line(
+                    "γ − γ_d",
+                    ORANGE,
+                    series(&run, |s| (s.pose[1] - s.desired[1]).to_degrees()),
+                ),
+            ],
+            markers: vec![],
+        },
+        "the active-mode law makes the wrist follow the desired pitch and yaw (errors shown, \
+         no number given)"
+            .into(),
+        format!(
+            "DAUJ wrist on the bench (sim::wrist_bench: IK to joint space, FK back), \
+             δ_d to {:.1}°, γ_d to {:.1}°: max |error| after 1 s δ {:.3}°, γ {:.3}°; \
+             command at its limit in {} samples",
+            reach(0),
+            reach(1),
+            e(0),
+            e(1),
+            run.saturated_samples
+        ),
+    )
+}
+
+fn fig6_11(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let run = r.wrist_tracking().clone();
+    let e = |i: usize| run.velocity_error[i].rms.to_degrees();
+    let peak = |i: usize| {
+        run.samples
+            .iter()
+            .map(|s| s.desired_rate[i].abs().to_degrees())
+            .fold(0.0, f64::max)
+    };
+    figure(
+        &dir,
+        "fig6_11_wrist_velocity_error.svg",
+        "Fig. 6.11: wrist velocity tracking errors, active mode",
+        Chart {
+            title: "Fig. 6.11  task-space velocity error (true rates), T = 4 ms",
+            x: "time (s)",
+            y: "error (deg/s)",
+            series: vec![
+                line(
+                    "δ̇ − δ̇_d",
+                    BLUE_,
+                    series(&run, |s| (s.rate[0] - s.desired_rate[0]).to_degrees()),
+                ),
+                line(
+                    "γ̇ − γ̇_d",
+                    ORANGE,
+                    series(&run, |s| (s.rate[1] - s.desired_rate[1]).to_degrees()),
+                ),
+            ],
+            markers: vec![],
+        },
+        "velocity tracking errors of the active mode (no number given)".into(),
+        format!(
+            "RMS after 1 s: δ̇ {:.3}°/s, γ̇ {:.3}°/s (peak desired rates {:.1} and {:.1}°/s)",
+            e(0),
+            e(1),
+            peak(0),
+            peak(1)
+        ),
+    )
+}
+
+fn fig6_14(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let runs = r.finger().to_vec();
+    let (off, on) = (&runs[0], &runs[1]);
+    figure(
+        &dir,
+        "fig6_14_passive_motion.svg",
+        "Fig. 6.13–6.14: interactive motions, motors off (Case 1) and admittance (Case 2)",
+        Chart {
+            title: "Fig. 6.13–6.14  wrist pose while a finger pushes pitch, then yaw",
+            x: "time (s)",
+            y: "angle (deg)",
+            series: vec![
+                line("δ, Case 2", BLUE_, series(on, |s| s.pose[0].to_degrees())),
+                line("γ, Case 2", ORANGE, series(on, |s| s.pose[1].to_degrees())),
+                line("δ, Case 1", GREEN_, series(off, |s| s.pose[0].to_degrees())),
+                line("γ, Case 1", RED_, series(off, |s| s.pose[1].to_degrees())),
+            ],
+            markers: vec![],
+        },
+        "Case 1: the wrist does not move; Case 2: it moves freely with a small finger force".into(),
+        format!(
+            "finger travel {:.0}° per push from δ = {:.0}°; wrist travel of δ, γ: Case 1 \
+             {:.2}°, {:.2}°; Case 2 {:.1}°, {:.1}°",
+            FINGER_TRAVEL.to_degrees(),
+            FINGER_START[0].to_degrees(),
+            off.travel[0].to_degrees(),
+            off.travel[1].to_degrees(),
+            on.travel[0].to_degrees(),
+            on.travel[1].to_degrees()
+        ),
+    )
+}
+
+/// The finger's torques over a bench run, and their peaks as text.
+fn finger_torques(run: &WristBenchRun, title: &'static str) -> (Chart<'static>, String) {
+    (
+        Chart {
+            title,
+            x: "time (s)",
+            y: "torque (N·m)",
+            series: vec![
+                line("τ_δ", BLUE_, series(run, |s| s.interaction[0])),
+                line("τ_γ", ORANGE, series(run, |s| s.interaction[1])),
+            ],
+            markers: vec![],
+        },
+        format!(
+            "peak |τ_δ| {:.2} N·m, |τ_γ| {:.2} N·m",
+            run.peak_interaction[0], run.peak_interaction[1]
+        ),
+    )
+}
+
+fn fig6_15(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let run = r.finger()[0].clone();
+    let (chart, peaks) =
+        finger_torques(&run, "Fig. 6.15  interaction torques, motors off (Case 1)");
+    figure(
+        &dir,
+        "fig6_15_internal_case1.svg",
+        "Fig. 6.15: internal torques, motors off (Case 1)",
+        chart,
+        "more than 10 N·m of pitch torque without the wrist moving".into(),
+        format!(
+            "{peaks} (the finger's spring fully stretched) with the wrist moving {:.2}°; each \
+             motor axis breaks away at {:.1} N·m on its side of Jᵀ",
+            run.travel[0].max(run.travel[1]).to_degrees(),
+            {
+                let a = bench_axis(0.0);
+                a.coulomb + a.static_excess
+            }
+        ),
+    )
+}
+
+fn fig6_16(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let run = r.finger()[1].clone();
+    let (chart, peaks) = finger_torques(
+        &run,
+        "Fig. 6.16  interaction torques, admittance mode K_c = 0.1 (Case 2)",
+    );
+    figure(
+        &dir,
+        "fig6_16_internal_case2.svg",
+        "Fig. 6.16: internal torques, admittance-passive mode (Case 2)",
+        chart,
+        "residual internal torques less than 2 N·m".into(),
+        format!(
+            "{peaks} (finger {FINGER_STIFFNESS:.0} N·m/rad moving {:.0}° in 1.5 s; the \
+             admittance moves the wrist at K_c τ, so a finger at speed v meets v/K_c)",
+            FINGER_TRAVEL.to_degrees()
+        ),
+    )
+}
+
+fn fig6_17(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let run = r.finger()[1].clone();
+    figure(
+        &dir,
+        "fig6_17_compensation.svg",
+        "Fig. 6.17: compensation torques of the motors (Case 2)",
+        Chart {
+            title: "Fig. 6.17  motor torques in admittance-passive mode",
+            x: "time (s)",
+            y: "motor torque (N·m)",
+            series: vec![
+                line("τ_m1 (pitch)", BLUE_, series(&run, |s| s.motor_torque[0])),
+                line("τ_m2 (yaw)", ORANGE, series(&run, |s| s.motor_torque[1])),
+            ],
+            markers: vec![],
+        },
+        "the motors generate the torques that compensate the friction (no number given)".into(),
+        format!(
+            "peak |τ_m| {:.3} and {:.3} N·m (limit 0.6 N·m), at the limit in {} samples",
+            run.peak_motor_torque[0], run.peak_motor_torque[1], run.saturated_samples
+        ),
+    )
+}
+
+fn fig6_19(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let runs = r.door().to_vec();
+    let pts = |run: &DoorRun, i: usize| -> Vec<(f64, f64)> {
+        run.samples
+            .iter()
+            .map(|s| (s.door.to_degrees(), s.wrist[i].to_degrees()))
+            .collect()
+    };
+    figure(
+        &dir,
+        "fig6_19_door_motion.svg",
+        "Fig. 6.19: wrist motion during door opening",
+        Chart {
+            title: "Fig. 6.19  wrist pitch δ and yaw γ over the door angle (passive run)",
+            x: "door angle (deg)",
+            y: "wrist angle (deg)",
+            series: vec![
+                line("δ", BLUE_, pts(&runs[0], 0)),
+                line("γ", ORANGE, pts(&runs[0], 1)),
+            ],
+            markers: vec![],
+        },
+        "the passive wrist moves with the door while the base jerks and slides (no number \
+         given)"
+            .into(),
+        format!(
+            "door opened to {:.1}°; wrist range |δ| {:.2}°, |γ| {:.2}° (sim::door, seed 7)",
+            runs[0].door_angle.to_degrees(),
+            runs[0].wrist_range[0].to_degrees(),
+            runs[0].wrist_range[1].to_degrees()
+        ),
+    )
+}
+
+fn fig6_20(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let runs = r.door().to_vec();
+    let pts = |run: &DoorRun, i: usize| -> Vec<(f64, f64)> {
+        run.samples
+            .iter()
+            .map(|s| (s.door.to_degrees(), s.measured[i]))
+            .collect()
+    };
+    let pk = |k: usize| {
+        format!(
+            "{:.2} / {:.2}",
+            runs[k].peak_measured[0], runs[k].peak_measured[1]
+        )
+    };
+    figure(
+        &dir,
+        "fig6_20_door_torques.svg",
+        "Fig. 6.20: wrist–knob interaction torques during door opening",
+        Chart {
+            title: "Fig. 6.20  measured τ_δ, τ_γ over the door angle",
+            x: "door angle (deg)",
+            y: "torque (N·m)",
+            series: vec![
+                line("τ_δ, passive", BLUE_, pts(&runs[0], 0)),
+                line("τ_γ, passive", ORANGE, pts(&runs[0], 1)),
+                line("τ_γ, passive, 3° heading error", GREEN_, pts(&runs[1], 1)),
+            ],
+            markers: vec![],
+        },
+        "internal torques below 2 N·m; a maximum of 3 N·m with a 3° initial heading error".into(),
+        format!(
+            "peak measured |τ_δ| / |τ_γ| (N·m): passive {}, 3° heading error {}, \
+             active hold (contrast) {}",
+            pk(0),
+            pk(1),
+            pk(2)
+        ),
+    )
+}
+
 // ---------------------------------------------------------------- index
 
 fn escape(s: &str) -> String {
@@ -1168,7 +1685,7 @@ fn index_html(chapters: &[(&str, Vec<Figure>)], quick: bool) -> String {
          figure{margin:2em 0;border-top:1px solid #ccc;padding-top:1em}\n\
          img{max-width:100%}\nfigcaption{font-size:0.95em}\n\
          .thesis{color:#555}\n</style>\n</head>\n<body>\n\
-         <h1>H. Zhang (2013), ch. 2–4, regenerated by mrr-control</h1>\n",
+         <h1>H. Zhang (2013), ch. 2–6, regenerated by mrr-control</h1>\n",
     );
     let _ = writeln!(
         h,
@@ -1214,6 +1731,31 @@ fn index_html(chapters: &[(&str, Vec<Figure>)], quick: bool) -> String {
     h
 }
 
+/// Text for a Markdown table cell (`|` escaped).
+pub fn md_cell(s: &str) -> String {
+    s.replace('|', "\\|")
+}
+
+/// The per-figure comparison as a Markdown table (for the README).
+fn summary_md(chapters: &[(&str, Vec<Figure>)], quick: bool) -> String {
+    let mut m = format!(
+        "| figure | thesis reports | this run ({}) |\n|---|---|---|\n",
+        if quick { "--quick" } else { "full" }
+    );
+    for (_, figs) in chapters {
+        for f in figs {
+            let _ = writeln!(
+                m,
+                "| {} | {} | {} |",
+                md_cell(&f.title),
+                md_cell(&f.thesis),
+                md_cell(&f.ours)
+            );
+        }
+    }
+    m
+}
+
 /// Render every figure of [`CHAPTERS`] and the index into `opts.out`;
 /// returns the figures in order.
 pub fn run(opts: &Options) -> Result<Vec<Figure>, Error> {
@@ -1230,6 +1772,10 @@ pub fn run(opts: &Options) -> Result<Vec<Figure>, Error> {
     std::fs::write(
         opts.out.join("index.html"),
         index_html(&chapters, opts.quick),
+    )?;
+    std::fs::write(
+        opts.out.join("summary.md"),
+        summary_md(&chapters, opts.quick),
     )?;
     Ok(chapters.into_iter().flat_map(|(_, f)| f).collect())
 }

@@ -365,7 +365,10 @@ mod tests {
         let p = shd17();
         assert_eq!(SHD17.k_f0().to_bits(), p.k_f0().to_bits());
         assert_eq!(SHD17.c_f().to_bits(), p.c_f().to_bits());
-        let checked = FlexsplineParams::try_new(SHD17.k_f0(), SHD17.c_f());
+        let checked = FlexsplineParams::try_new(crate::harmonic_drive::FlexsplineSettings {
+            k_f0: SHD17.k_f0(),
+            c_f: SHD17.c_f(),
+        });
         assert_eq!(checked, Ok(SHD17));
     }
 
@@ -411,7 +414,11 @@ mod tests {
     #[test]
     fn round_trip_check_detects_inconsistent_coefficients() {
         let p = shd17();
-        let skewed = FlexsplineParams::try_new(p.k_f0(), p.c_f() * (1.0 + 1e-4)).unwrap();
+        let skewed = FlexsplineParams::try_new(crate::harmonic_drive::FlexsplineSettings {
+            k_f0: p.k_f0(),
+            c_f: p.c_f() * (1.0 + 1e-4),
+        })
+        .unwrap();
         let inv = FlexsplineConfig::<f32>::new(&skewed);
         let fwd = FlexsplineConfig::<f32>::new(&p);
         let d = 0.9 * p.max_torsion() as f32;

@@ -226,7 +226,7 @@ mod tests {
     use super::super::engine::{exhaustive_u32, exhaustive_u32_chained};
     use super::*;
     use crate::control::{ModeParams, ModeSettings, PassiveParams};
-    use crate::estimation::{CollisionParams, CollisionReaction};
+    use crate::estimation::{CollisionParams, CollisionReaction, CollisionSettings};
     use crate::scalar::I16F16;
     use proptest::prelude::*;
     use std::println;
@@ -334,7 +334,14 @@ mod tests {
             rejoin_bandwidth: 10.0,
             bias_time_constant: 0.1,
             collision: Some(
-                CollisionParams::try_new(4.0, 3.0, 2, 1, CollisionReaction::Passive).unwrap(),
+                CollisionParams::try_new(CollisionSettings {
+                    threshold: 4.0,
+                    release_threshold: 3.0,
+                    debounce: 2,
+                    release: 1,
+                    reaction: CollisionReaction::Passive,
+                })
+                .unwrap(),
             ),
         })
         .unwrap();

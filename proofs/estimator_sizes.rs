@@ -30,7 +30,9 @@
 //! would not cancel.
 
 use super::engine::Verdict;
-use crate::estimation::{TorqueEstimate, TorqueEstimatorConfig, TorqueEstimatorParams};
+use crate::estimation::{
+    TorqueEstimate, TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorSettings,
+};
 use crate::harmonic_drive::kinematic_error::DriveSize;
 use crate::harmonic_drive::{CatalogueData, HarmonicDriveParams};
 use crate::scalar::Scalar;
@@ -64,8 +66,14 @@ pub fn size_case(row: DriveSize) -> Option<SizeCase> {
     let cat = CatalogueData::scaled_from_shd17(row.rated_torque, row.k2, row.ratio as f64).ok()?;
     let drive = cat.identify().ok()?;
     let limit = LIMIT_PER_RATED * row.rated_torque;
-    let params =
-        TorqueEstimatorParams::try_new(drive, None, LINK_COUNTS, MOTOR_COUNTS, limit).ok()?;
+    let params = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+        drive,
+        kinematic_error: None,
+        link_counts_per_rev: LINK_COUNTS,
+        motor_counts_per_rev: MOTOR_COUNTS,
+        max_torque: limit,
+    })
+    .ok()?;
     let lmn = LINK_COUNTS as f64 * MOTOR_COUNTS as f64 * row.ratio as f64;
     let torsion_at_limit = drive.flexspline().torsion(limit)
         + 1.0 / (drive.wave_generator().c_w() * drive.ratio() * drive.wave_generator().k_w0());
@@ -252,17 +260,22 @@ mod tests {
         let case = size_case(TABLE_3_1[3]).unwrap();
         let (p, drive) = (case.params, case.params.drive());
         let f = drive.flexspline();
-        let stiffer =
-            crate::harmonic_drive::FlexsplineParams::try_new(f.k_f0() * 1.01, f.c_f()).unwrap();
+        let stiffer = crate::harmonic_drive::FlexsplineParams::try_new(
+            crate::harmonic_drive::FlexsplineSettings {
+                k_f0: f.k_f0() * 1.01,
+                c_f: f.c_f(),
+            },
+        )
+        .unwrap();
         let drive =
             HarmonicDriveParams::try_new(stiffer, drive.wave_generator(), drive.ratio()).unwrap();
-        let wrong = TorqueEstimatorParams::try_new(
+        let wrong = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
             drive,
-            p.kinematic_error(),
-            p.link_counts_per_rev(),
-            p.motor_counts_per_rev(),
-            p.max_torque(),
-        )
+            kinematic_error: p.kinematic_error(),
+            link_counts_per_rev: p.link_counts_per_rev(),
+            motor_counts_per_rev: p.motor_counts_per_rev(),
+            max_torque: p.max_torque(),
+        })
         .unwrap();
         let cfg = TorqueEstimatorConfig::<f32>::new(&wrong);
         let d = case.d_max * 8 / 10;

@@ -26,5 +26,6 @@ pub mod kernels_f64;
 pub mod kernels_i16f16;
 pub mod kernels_q15;
 pub mod kernels_turn;
+pub mod law_budget;
 pub mod sat_sgn;
 pub mod wrist_ik;

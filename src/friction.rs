@@ -43,18 +43,16 @@ pub struct FrictionParams {
 pub const PARAMETER_NAMES: [&str; 4] = ["viscous", "coulomb", "stribeck", "stribeck_shape"];
 
 impl FrictionParams {
-    /// Validate: `b, f_c, f_s ≥ 0`, `f_τ > 0`, all finite.
-    pub fn try_new(
-        viscous: f64,
-        coulomb: f64,
-        stribeck: f64,
-        stribeck_shape: f64,
-    ) -> Result<Self, ParamError> {
+    /// Validate the named fields: `b, f_c, f_s ≥ 0`, `f_τ > 0`, all finite
+    /// (errors name the field). The fields are named, so none can be
+    /// swapped: `FrictionParams { viscous, coulomb, stribeck,
+    /// stribeck_shape }.validated()?`.
+    pub fn validated(self) -> Result<Self, ParamError> {
         let p = FrictionParams {
-            viscous: non_negative("viscous", viscous)?,
-            coulomb: non_negative("coulomb", coulomb)?,
-            stribeck: non_negative("stribeck", stribeck)?,
-            stribeck_shape: positive("stribeck_shape", stribeck_shape)?,
+            viscous: non_negative("viscous", self.viscous)?,
+            coulomb: non_negative("coulomb", self.coulomb)?,
+            stribeck: non_negative("stribeck", self.stribeck)?,
+            stribeck_shape: positive("stribeck_shape", self.stribeck_shape)?,
         };
         Ok(p)
     }
@@ -86,7 +84,7 @@ impl FrictionParams {
     ///
     /// ```
     /// use mrr_control::friction::FrictionParams;
-    /// let f = FrictionParams::try_new(1e-4, 0.01, 0.005, 4.0)?;
+    /// let f = FrictionParams { viscous: 1e-4, coulomb: 0.01, stribeck: 0.005, stribeck_shape: 4.0 }.validated()?;
     /// // At 0.5 rad/s: 0.01 + 0.005·e^{−1} + 1e-4·0.5 = 0.0118894 N·m.
     /// assert!((f.torque(0.5) - 0.0118894).abs() < 1e-7);
     /// // Inside the boundary layer ε = 0.01 the nominal model ramps:
@@ -156,10 +154,20 @@ impl FrictionBounds {
         max: FrictionParams,
         variable: [f64; 4],
     ) -> Result<Self, ParamError> {
-        let min =
-            FrictionParams::try_new(min.viscous, min.coulomb, min.stribeck, min.stribeck_shape)?;
-        let max =
-            FrictionParams::try_new(max.viscous, max.coulomb, max.stribeck, max.stribeck_shape)?;
+        let min = FrictionParams {
+            viscous: min.viscous,
+            coulomb: min.coulomb,
+            stribeck: min.stribeck,
+            stribeck_shape: min.stribeck_shape,
+        }
+        .validated()?;
+        let max = FrictionParams {
+            viscous: max.viscous,
+            coulomb: max.coulomb,
+            stribeck: max.stribeck,
+            stribeck_shape: max.stribeck_shape,
+        }
+        .validated()?;
         let (lo, hi) = (min.to_array(), max.to_array());
         for j in 0..4 {
             if lo[j] > hi[j] {
@@ -441,35 +449,109 @@ mod tests {
     use crate::scalar::I16F16;
     use proptest::prelude::*;
 
+    /// `validated` keeps the named fields as they are and names the field
+    /// that breaks its rule.
+    #[test]
+    fn validated_keeps_the_fields_and_names_the_bad_one() {
+        let f = FrictionParams {
+            viscous: 1e-4,
+            coulomb: 2e-3,
+            stribeck: 3e-3,
+            stribeck_shape: 4.0,
+        };
+        assert_eq!(f.validated(), Ok(f));
+        let bad = FrictionParams {
+            stribeck: -1.0,
+            ..f
+        };
+        assert_eq!(
+            bad.validated(),
+            Err(ParamError::Negative {
+                name: "stribeck",
+                value: -1.0
+            })
+        );
+        let bad = FrictionParams {
+            stribeck_shape: 0.0,
+            ..f
+        };
+        assert!(matches!(
+            bad.validated(),
+            Err(ParamError::NotPositive {
+                name: "stribeck_shape",
+                ..
+            })
+        ));
+    }
+
     fn example() -> FrictionParams {
-        FrictionParams::try_new(2e-5, 0.006, 0.006, 1.0).unwrap()
+        FrictionParams {
+            viscous: 2e-5,
+            coulomb: 0.006,
+            stribeck: 0.006,
+            stribeck_shape: 1.0,
+        }
+        .validated()
+        .unwrap()
     }
 
     #[test]
     fn try_new_names_the_bad_value() {
         assert_eq!(
-            FrictionParams::try_new(-1.0, 0.0, 0.0, 1.0),
+            FrictionParams {
+                viscous: -1.0,
+                coulomb: 0.0,
+                stribeck: 0.0,
+                stribeck_shape: 1.0
+            }
+            .validated(),
             Err(ParamError::Negative {
                 name: "viscous",
                 value: -1.0
             })
         );
         assert!(matches!(
-            FrictionParams::try_new(0.0, 0.0, 0.0, 0.0),
+            FrictionParams {
+                viscous: 0.0,
+                coulomb: 0.0,
+                stribeck: 0.0,
+                stribeck_shape: 0.0
+            }
+            .validated(),
             Err(ParamError::NotPositive {
                 name: "stribeck_shape",
                 ..
             })
         ));
         assert!(matches!(
-            FrictionParams::try_new(0.0, f64::NAN, 0.0, 1.0),
+            FrictionParams {
+                viscous: 0.0,
+                coulomb: f64::NAN,
+                stribeck: 0.0,
+                stribeck_shape: 1.0
+            }
+            .validated(),
             Err(ParamError::NotFinite {
                 name: "coulomb",
                 ..
             })
         ));
-        let lo = FrictionParams::try_new(0.0, 0.01, 0.0, 1.0).unwrap();
-        let hi = FrictionParams::try_new(1e-4, 0.005, 0.01, 2.0).unwrap();
+        let lo = FrictionParams {
+            viscous: 0.0,
+            coulomb: 0.01,
+            stribeck: 0.0,
+            stribeck_shape: 1.0,
+        }
+        .validated()
+        .unwrap();
+        let hi = FrictionParams {
+            viscous: 1e-4,
+            coulomb: 0.005,
+            stribeck: 0.01,
+            stribeck_shape: 2.0,
+        }
+        .validated()
+        .unwrap();
         assert!(matches!(
             FrictionBounds::try_new(lo, hi, [0.0; 4]),
             Err(ParamError::NotIncreasing {
@@ -477,7 +559,14 @@ mod tests {
                 ..
             })
         ));
-        let lo = FrictionParams::try_new(0.0, 0.0, 0.0, 1e-4).unwrap();
+        let lo = FrictionParams {
+            viscous: 0.0,
+            coulomb: 0.0,
+            stribeck: 0.0,
+            stribeck_shape: 1e-4,
+        }
+        .validated()
+        .unwrap();
         assert!(matches!(
             FrictionBounds::try_new(lo, hi, [0.0; 4]),
             Err(ParamError::OutOfRange {
@@ -512,7 +601,7 @@ mod tests {
             qd in -50.0f64..50.0, eps in 1e-4f64..0.5,
             b in 0.0f64..1e-3, fc in 0.0f64..0.05, fs in 0.0f64..0.05, ft in 1e-3f64..100.0,
         ) {
-            let f = FrictionParams::try_new(b, fc, fs, ft).unwrap();
+            let f = FrictionParams { viscous: b, coulomb: fc, stribeck: fs, stribeck_shape: ft }.validated().unwrap();
             let sum = f.nominal(qd, eps) + f.boundary_layer_residual(qd, eps);
             prop_assert!((sum - f.torque(qd)).abs() <= 1e-15 * (1.0 + f.torque(qd).abs()));
             prop_assert!(f.boundary_layer_residual(qd, eps).abs() <= fc + fs);
@@ -525,7 +614,7 @@ mod tests {
             qd in -5.0f64..5.0, eps in 1e-3f64..0.1,
             b in 0.0f64..1e-3, fc in 0.0f64..0.05, fs in 1e-3f64..0.05, ft in 0.01f64..10.0,
         ) {
-            let f = FrictionParams::try_new(b, fc, fs, ft).unwrap();
+            let f = FrictionParams { viscous: b, coulomb: fc, stribeck: fs, stribeck_shape: ft }.validated().unwrap();
             let y = f.regressor(qd, eps);
             let a = f.to_array();
             for j in 0..4 {
@@ -553,7 +642,7 @@ mod tests {
             qd in -200.0f64..200.0,
             b in 0.0f64..1e-3, fc in 0.0f64..0.05, fs in 0.0f64..0.05, ft in 1e-3f64..10.0,
         ) {
-            let f = FrictionParams::try_new(b, fc, fs, ft).unwrap();
+            let f = FrictionParams { viscous: b, coulomb: fc, stribeck: fs, stribeck_shape: ft }.validated().unwrap();
             let eps = 0.01;
             // I16F16
             let cx = FrictionConfig::<I16F16>::new(eps);
@@ -653,21 +742,63 @@ mod tests {
 
     #[test]
     fn split_and_boundary_layer_bound() {
-        let lo = FrictionParams::try_new(0.0, 0.0, 0.0, 0.01).unwrap();
-        let hi = FrictionParams::try_new(1e-4, 0.012, 0.012, 10.0).unwrap();
+        let lo = FrictionParams {
+            viscous: 0.0,
+            coulomb: 0.0,
+            stribeck: 0.0,
+            stribeck_shape: 0.01,
+        }
+        .validated()
+        .unwrap();
+        let hi = FrictionParams {
+            viscous: 1e-4,
+            coulomb: 0.012,
+            stribeck: 0.012,
+            stribeck_shape: 10.0,
+        }
+        .validated()
+        .unwrap();
         let bx = FrictionBounds::try_new(lo, hi, [1e-3, 1e-2, 1e-2, 1.0]).unwrap();
-        let inside = FrictionParams::try_new(5e-5, 0.006, 0.006, 1.0).unwrap();
+        let inside = FrictionParams {
+            viscous: 5e-5,
+            coulomb: 0.006,
+            stribeck: 0.006,
+            stribeck_shape: 1.0,
+        }
+        .validated()
+        .unwrap();
         let (c, v, ok) = bx.split(&inside);
         assert!(ok && v == [0.0; 4] && c == inside.to_array());
-        let outside = FrictionParams::try_new(5e-5, 0.015, 0.006, 1.0).unwrap();
+        let outside = FrictionParams {
+            viscous: 5e-5,
+            coulomb: 0.015,
+            stribeck: 0.006,
+            stribeck_shape: 1.0,
+        }
+        .validated()
+        .unwrap();
         let (c, v, ok) = bx.split(&outside);
         assert!(ok && (c[1] - 0.012).abs() < 1e-15 && (v[1] - 0.003).abs() < 1e-15);
-        let far = FrictionParams::try_new(5e-5, 0.03, 0.006, 1.0).unwrap();
+        let far = FrictionParams {
+            viscous: 5e-5,
+            coulomb: 0.03,
+            stribeck: 0.006,
+            stribeck_shape: 1.0,
+        }
+        .validated()
+        .unwrap();
         assert!(!bx.split(&far).2);
         // ρ_f = (0.012 + 0.01) + (0.012 + 0.01), and it bounds f̌ for the
         // extreme admissible parameters just inside the layer.
         assert!((bx.boundary_layer_bound() - 0.044).abs() < 1e-15);
-        let extreme = FrictionParams::try_new(1e-4, 0.0219, 0.0219, 0.01).unwrap();
+        let extreme = FrictionParams {
+            viscous: 1e-4,
+            coulomb: 0.0219,
+            stribeck: 0.0219,
+            stribeck_shape: 0.01,
+        }
+        .validated()
+        .unwrap();
         let r = extreme.boundary_layer_residual(1e-9, 0.01);
         assert!(r < bx.boundary_layer_bound() && r > 0.0438 * 0.99);
     }

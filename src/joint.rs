@@ -84,7 +84,8 @@ use crate::control::{
 };
 use crate::error::ParamError;
 use crate::estimation::torque::{
-    TorqueEstimate, TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorState,
+    TorqueEstimate, TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorSettings,
+    TorqueEstimatorState,
 };
 use crate::harmonic_drive::identification::CatalogueData;
 use crate::harmonic_drive::kinematic_error::KinematicErrorModel;
@@ -163,13 +164,13 @@ impl JointParams {
     /// [`ModeSettings::table_4_1`] (no collision detector); speed over one
     /// tick (resolution `2π/(2000·4 ms) = 0.785` rad/s).
     pub fn table_4_1() -> Result<Self, ParamError> {
-        let estimator = TorqueEstimatorParams::try_new(
-            CatalogueData::SHD_17_100.identify()?,
-            Some(KinematicErrorModel::table_3_2()),
-            1 << 17,
-            2000,
-            60.0,
-        )?;
+        let estimator = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+            drive: CatalogueData::SHD_17_100.identify()?,
+            kinematic_error: Some(KinematicErrorModel::table_3_2()),
+            link_counts_per_rev: 1 << 17,
+            motor_counts_per_rev: 2000,
+            max_torque: 60.0,
+        })?;
         let mode = ModeParams::try_new(ModeSettings {
             passive: PassiveParams::table_4_1_default()?,
             ..ModeSettings::table_4_1(1.0)?
@@ -334,6 +335,38 @@ impl<S: Scalar> JointTarget<S> {
     }
 }
 
+/// What [`JointConfig::measure`] read from one tick's readings (the inputs
+/// the mode manager gets), chapter-4 signs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JointMeasurement<S> {
+    /// The estimated joint torque `τ̂_t` (eq. 4.1 sign: the torque the drive
+    /// applies to the link), stored link-torque units; `−estimate.torque`.
+    pub joint_torque: S,
+    /// The measured motor position `q_m`, stored angle units.
+    pub motor_position: S,
+    /// The measured motor speed `q̇_m` (count difference over the window),
+    /// stored speed units.
+    pub motor_velocity: S,
+    /// The estimator's output, in the estimator's sign (errata E2.10); its
+    /// `invalid_input` and `link_count_invalid` flag impossible readings.
+    pub estimate: TorqueEstimate<S>,
+}
+
+impl<S: Scalar> JointMeasurement<S> {
+    /// [`joint_torque`](Self::joint_torque) in N·m.
+    pub fn joint_torque_si(&self) -> f64 {
+        dequantize(self.joint_torque, S::UNITS.link_torque)
+    }
+    /// [`motor_position`](Self::motor_position) in rad.
+    pub fn motor_position_si(&self) -> f64 {
+        dequantize(self.motor_position, S::UNITS.angle)
+    }
+    /// [`motor_velocity`](Self::motor_velocity) in rad/s.
+    pub fn motor_velocity_si(&self) -> f64 {
+        dequantize(self.motor_velocity, S::UNITS.speed)
+    }
+}
+
 /// One tick of the joint.
 ///
 /// Every field is finite on every backend.
@@ -446,16 +479,19 @@ impl<S: Scalar> JointConfig<S> {
         self.mode.acknowledge_collision(&mut st.mode);
     }
 
-    /// One tick: estimate the joint torque from the readings (eq. 3.8–3.10,
-    /// motor counter negated), measure the motor position and speed, and
-    /// run the mode manager on `τ̂_t = −estimate` and the target times `N`
-    /// (module docs).
-    pub fn update(
+    /// The measuring half of [`update`](Self::update): estimate the joint
+    /// torque from the readings (eq. 3.8–3.10, motor counter negated,
+    /// `τ̂_t = −estimate`) and measure the motor position and speed,
+    /// advancing the estimator and the speed meter, not the mode manager.
+    /// For a loop that runs its own law on the measured joint (a
+    /// simulator comparing feedback variants, a test bench); call it once
+    /// per tick instead of `update`, never both.
+    #[inline]
+    pub fn measure(
         &self,
         st: &mut JointState<S>,
         readings: &JointReadings<S>,
-        target: &JointTarget<S>,
-    ) -> JointOutput<S> {
+    ) -> JointMeasurement<S> {
         let counter = readings.motor_counter;
         let motor_torque = match readings.motor_torque {
             Some(t) => t,
@@ -480,9 +516,30 @@ impl<S: Scalar> JointConfig<S> {
         }
         st.head = if head + 1 >= w { 0 } else { head + 1 };
         let moved = counter.wrapping_sub(old) as i32;
-        let motor_position = S::from_counts(st.motor_count, &self.angle_per_count);
-        let motor_velocity = S::from_counts(moved as i64, &self.speed_per_count);
-        let joint_torque = estimate.torque.neg();
+        JointMeasurement {
+            joint_torque: estimate.torque.neg(),
+            motor_position: S::from_counts(st.motor_count, &self.angle_per_count),
+            motor_velocity: S::from_counts(moved as i64, &self.speed_per_count),
+            estimate,
+        }
+    }
+
+    /// One tick: [`measure`](Self::measure) (estimate the joint torque from
+    /// the readings, eq. 3.8–3.10, motor counter negated; measure the motor
+    /// position and speed), then run the mode manager on
+    /// `τ̂_t = −estimate` and the target times `N` (module docs).
+    pub fn update(
+        &self,
+        st: &mut JointState<S>,
+        readings: &JointReadings<S>,
+        target: &JointTarget<S>,
+    ) -> JointOutput<S> {
+        let JointMeasurement {
+            joint_torque,
+            motor_position,
+            motor_velocity,
+            estimate,
+        } = self.measure(st, readings);
         let x = ControlInput {
             desired_position: target.position.mul_coef(&self.ratio),
             desired_velocity: target.velocity.mul_coef(&self.ratio),

@@ -4,6 +4,8 @@
 #![doc = "[equations]: crate::docs::equations\n[errata]: crate::docs::errata\n[guide]: crate::docs::guide\n"]
 #![doc = include_str!("../README.md")]
 #![cfg_attr(not(any(feature = "std", test, kani)), no_std)]
+// docs.rs (nightly, `--cfg docsrs`): mark feature-gated items with their feature.
+#![cfg_attr(docsrs, feature(doc_cfg))]
 
 pub mod control;
 pub mod error;
@@ -13,6 +15,7 @@ pub mod harmonic_drive;
 pub mod joint;
 pub mod scalar;
 #[cfg(feature = "sim")]
+#[cfg_attr(docsrs, doc(cfg(feature = "sim")))]
 pub mod sim;
 pub mod wrist;
 
@@ -40,7 +43,8 @@ pub mod docs {
 
 pub use error::ParamError;
 pub use joint::{
-    JointConfig, JointOutput, JointParams, JointReadings, JointSettings, JointState, JointTarget,
+    JointConfig, JointMeasurement, JointOutput, JointParams, JointReadings, JointSettings,
+    JointState, JointTarget,
 };
 pub use scalar::{Scalar, I16F16};
 
@@ -51,20 +55,22 @@ pub use scalar::{Scalar, I16F16};
 pub mod prelude {
     pub use crate::control::{
         ControlInput, JointMode, ModeConfig, ModeOutput, ModeParams, ModeSettings, ModeState,
-        PassiveParams, RobustAdaptiveParams,
+        PassiveParams, PassiveSettings, RobustAdaptiveParams,
     };
     pub use crate::error::ParamError;
     pub use crate::estimation::{
-        AgreementBound, CollisionParams, CollisionReaction, TorqueEstimate, TorqueEstimatorConfig,
-        TorqueEstimatorParams, TorqueEstimatorState,
+        AgreementBound, CollisionParams, CollisionReaction, CollisionSettings, TorqueEstimate,
+        TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorSettings,
+        TorqueEstimatorState,
     };
     pub use crate::harmonic_drive::kinematic_error::KinematicErrorModel;
     pub use crate::harmonic_drive::{
-        CatalogueData, FlexsplineParams, HarmonicDriveParams, WaveGeneratorParams,
+        CatalogueData, FlexsplineParams, FlexsplineSettings, HarmonicDriveParams,
+        WaveGeneratorParams, WaveGeneratorSettings,
     };
     pub use crate::joint::{
-        JointConfig, JointOutput, JointParams, JointReadings, JointSettings, JointState,
-        JointTarget,
+        JointConfig, JointMeasurement, JointOutput, JointParams, JointReadings, JointSettings,
+        JointState, JointTarget,
     };
     pub use crate::scalar::{Scalar, I16F16};
     pub use crate::wrist::{

@@ -220,8 +220,22 @@ fn e4_7_sat_with_a_non_positive_layer_is_the_sign() {
 #[test]
 fn e4_9_linearisation_leaves_a_second_order_remainder() {
     let eps = 0.01;
-    let truth = FrictionParams::try_new(5e-5, 0.006, 0.012, 1.0).unwrap();
-    let est = FrictionParams::try_new(5e-5, 0.006, 0.012, 10.0).unwrap();
+    let truth = FrictionParams {
+        viscous: 5e-5,
+        coulomb: 0.006,
+        stribeck: 0.012,
+        stribeck_shape: 1.0,
+    }
+    .validated()
+    .unwrap();
+    let est = FrictionParams {
+        viscous: 5e-5,
+        coulomb: 0.006,
+        stribeck: 0.012,
+        stribeck_shape: 10.0,
+    }
+    .validated()
+    .unwrap();
     let (t, e) = (truth.to_array(), est.to_array());
     let mut worst: f64 = 0.0;
     for k in 1..400 {

@@ -131,7 +131,9 @@ fn quick_report_writes_linked_well_formed_figures() {
     // The figures the report promises (thesis numbering).
     for id in [
         "fig2_11", "fig2_12", "fig2_18", "fig2_19", "fig2_20", "fig2_22", "fig3_1", "fig3_2",
-        "fig3_3", "fig3_6", "fig3_7", "fig3_8", "fig4_3", "fig4_11",
+        "fig3_3", "fig3_6", "fig3_7", "fig3_8", "fig4_3", "fig4_11", "fig5_7", "fig5_8", "fig5_10",
+        "fig5_11", "fig6_10", "fig6_11", "fig6_14", "fig6_15", "fig6_16", "fig6_17", "fig6_19",
+        "fig6_20",
     ] {
         assert!(
             figures
@@ -156,6 +158,15 @@ fn quick_report_writes_linked_well_formed_figures() {
         );
         assert!(!f.ours.is_empty() && !f.thesis.is_empty(), "{}", f.file);
         assert!(!f.ours.contains("NaN"), "{}: {}", f.file, f.ours);
+    }
+    // The Markdown summary lists every figure with both columns filled.
+    let summary = std::fs::read_to_string(dir.join("summary.md")).expect("summary.md");
+    for f in &figures {
+        let row = summary
+            .lines()
+            .find(|l| l.starts_with(&format!("| {} |", thesis_report::md_cell(&f.title))))
+            .unwrap_or_else(|| panic!("{} missing from summary.md", f.title));
+        assert_eq!(row.matches(" | ").count(), 2, "{row}");
     }
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -12,7 +12,8 @@ use mrr_control::estimation::collision::CollisionReaction;
 use mrr_control::sim::closed_loop::{
     active_tracking, back_drive, bound_run, collision_scenario, interaction_scenario, payload_drop,
     sampled_sliding_radius, BackDriveConfig, BackDriveMode, BoundCase, CountSpeed,
-    JointTorqueFeedback, ModeScenarioConfig, PayloadDropConfig, TrackingConfig, TrackingResult,
+    CountSpeedSettings, JointTorqueFeedback, ModeScenarioConfig, PayloadDropConfig, TrackingConfig,
+    TrackingResult,
 };
 use proptest::prelude::*;
 use std::sync::OnceLock;
@@ -106,7 +107,7 @@ proptest! {
     /// `ρ_τt = 1 N·m`), or — in half the cases — feedback variant C, the
     /// ch. 3 estimate itself (2¹⁶-count motor encoder), with the design's
     /// `ρ_τt` set to `ESTIMATED_TORQUE_ERROR_BOUND` = 4 N·m (the
-    /// estimator's measured worst case in the smooth loops is 3.0 N·m,
+    /// estimator's measured worst case in the smooth loops is 2.9 N·m,
     /// `estimator_error_is_within_the_variant_c_bound`; each run checks
     /// its own error against it).
     /// After the reaching time of eq. (4.31), the true `|r|` (plant state,
@@ -400,7 +401,11 @@ fn collision_is_detected_on_the_estimate_and_stops_or_yields() {
 fn count_speed_is_within_one_count_per_window() {
     let (t, delta) = (1e-4, TAU / 2000.0);
     for (v, window) in [(3.7, 4e-3), (-52.0, 4e-3), (0.8, 4e-4)] {
-        let mut m = CountSpeed::new(window, t, delta);
+        let mut m = CountSpeed::new(CountSpeedSettings {
+            window,
+            period: t,
+            rad_per_count: delta,
+        });
         let w = (window / t).round();
         for k in 0..200 {
             let c = (v * k as f64 * t / delta).round() as i64;
@@ -416,7 +421,7 @@ fn count_speed_is_within_one_count_per_window() {
 /// `control::mode`): in the interaction scenario (a hand leads the link to
 /// 0.4 rad over 2 s, holds it 0.5 s and lets go at 3 s) the torque-only
 /// Passive → Active rule cycles — at least 20 switches while the hand is
-/// on the link (36 measured) — and the release rule of
+/// on the link (38 measured) — and the release rule of
 /// `ModeScenarioConfig::interaction` switches exactly twice: to Passive
 /// when the hand starts pushing, back to Active after it let go.
 #[test]

@@ -482,7 +482,9 @@ fn door_opening_passive_wrist_limits_the_interaction_torque() {
 #[test]
 fn mode_switching_is_bumpless_through_the_inverse_kinematics() {
     use mrr_control::wrist::admittance::AdmittanceParams;
-    use mrr_control::wrist::modes::{WristMode, WristModeConfig, WristModeInput, WristModeParams};
+    use mrr_control::wrist::modes::{
+        WristMode, WristModeConfig, WristModeInput, WristModeParams, WristModeSettings,
+    };
     use mrr_control::wrist::{IkState, MotorAngles, PitchYaw, WristConfig, WristParams};
     let kin = WristConfig::<f64>::new(&WristParams::thesis());
     let fk = |m: MotorAngles<f64>| {
@@ -491,7 +493,16 @@ fn mode_switching_is_bumpless_through_the_inverse_kinematics() {
     };
     let a = AdmittanceParams::thesis(200.0).unwrap();
     let modes = WristModeConfig::<f64>::new(
-        &WristModeParams::try_new(a, 1.5, 0.5, 0.01, 5, 50, 10.0).unwrap(),
+        &WristModeParams::try_new(WristModeSettings {
+            admittance: a,
+            enter_passive: 1.5,
+            exit_passive: 0.5,
+            rest_speed: 0.01,
+            debounce: 5,
+            dwell: 50,
+            rejoin_bandwidth: 10.0,
+        })
+        .unwrap(),
     );
     let x0 = [0.2, 0.1];
     let mut st = modes.initial_state(WristMode::Active, x0);

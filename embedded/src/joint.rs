@@ -18,7 +18,7 @@ use mrr_control::control::{
     ControlInput, ModeConfig, ModeOutput, ModeParams, ModeSettings, ModeState, PassiveConfig,
     PassiveParams, RobustAdaptiveParams, RobustAdaptiveState,
 };
-use mrr_control::estimation::collision::{CollisionParams, CollisionReaction};
+use mrr_control::estimation::collision::{CollisionParams, CollisionReaction, CollisionSettings};
 use mrr_control::estimation::torque::{
     TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorState,
 };
@@ -49,7 +49,13 @@ pub fn mode_params(reaction: CollisionReaction) -> ModeParams {
         dwell: 5,
         rejoin_bandwidth: 10.0,
         bias_time_constant: 0.1,
-        collision: Some(ok(CollisionParams::try_new(4.0, 3.0, 2, 2, reaction))),
+        collision: Some(ok(CollisionParams::try_new(CollisionSettings {
+            threshold: 4.0,
+            release_threshold: 3.0,
+            debounce: 2,
+            release: 2,
+            reaction,
+        }))),
     }))
 }
 

@@ -24,7 +24,7 @@ mod reference;
 use fixed::types::I16F16;
 use io::{arg, put, Args};
 use mrr_control::estimation::torque::{
-    TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorState,
+    TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorSettings, TorqueEstimatorState,
 };
 use mrr_control::harmonic_drive::kinematic_error::KinematicErrorModel;
 use mrr_control::harmonic_drive::CatalogueData;
@@ -232,17 +232,17 @@ mod steps {
             Ok(d) => d,
             Err(_) => crate::firmware_panic(),
         };
-        match TorqueEstimatorParams::try_new(
+        match TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
             drive,
-            if with_kinematic_error {
+            kinematic_error: if with_kinematic_error {
                 Some(KinematicErrorModel::table_3_2())
             } else {
                 None
             },
-            1 << 17,
-            2000,
-            60.0,
-        ) {
+            link_counts_per_rev: 1 << 17,
+            motor_counts_per_rev: 2000,
+            max_torque: 60.0,
+        }) {
             Ok(p) => p,
             Err(_) => crate::firmware_panic(),
         }

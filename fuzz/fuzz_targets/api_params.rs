@@ -9,15 +9,15 @@
 use libfuzzer_sys::fuzz_target;
 use mrr_control::control::{ModeParams, ModeSettings};
 use mrr_control::estimation::{
-    CollisionParams, CollisionReaction, TorqueEstimate, TorqueEstimatorConfig,
-    TorqueEstimatorParams,
+    CollisionParams, CollisionReaction, CollisionSettings, TorqueEstimate, TorqueEstimatorConfig,
+    TorqueEstimatorParams, TorqueEstimatorSettings,
 };
 use mrr_control::harmonic_drive::kinematic_error::KinematicErrorModel;
-use mrr_control::harmonic_drive::two_spring::{TwoSpringParams, TwoSpringState};
+use mrr_control::harmonic_drive::two_spring::{TwoSpringParams, TwoSpringSettings, TwoSpringState};
 use mrr_control::harmonic_drive::{
-    CatalogueCurve, CataloguePiecewise, CubicStiffness, FlexsplineParams, HarmonicDriveParams,
-    WaveGeneratorParams, WaveGeneratorTorqueConfig, WaveGeneratorTorqueParams,
-    WaveGeneratorTorqueState,
+    CatalogueCurve, CataloguePiecewise, CubicStiffness, FlexsplineParams, FlexsplineSettings,
+    HarmonicDriveParams, WaveGeneratorParams, WaveGeneratorSettings, WaveGeneratorTorqueConfig,
+    WaveGeneratorTorqueParams, WaveGeneratorTorqueSettings, WaveGeneratorTorqueState,
 };
 use mrr_control::scalar::units::quantize_keep_non_finite;
 use mrr_control::scalar::{Scalar, I16F16};
@@ -227,11 +227,11 @@ fn check_others(raw: &[u64; 8], mode: u8, readings: &[Reading]) {
         }
         Err(e) => typed(e),
     }
-    match TwoSpringParams::try_new(
-        value(raw[5], flag(1), 1e-3, 1e6, true),
-        value(raw[6], flag(1), 1e-3, 1e6, true),
-        value(raw[7], flag(1), 1e-3, 1e3, true),
-    ) {
+    match TwoSpringParams::try_new(TwoSpringSettings {
+        k_a: value(raw[5], flag(1), 1e-3, 1e6, true),
+        k_b: value(raw[6], flag(1), 1e-3, 1e6, true),
+        friction: value(raw[7], flag(1), 1e-3, 1e3, true),
+    }) {
         Ok(p) => {
             let mut st = TwoSpringState::default();
             for &(_, _, t) in readings {
@@ -244,10 +244,10 @@ fn check_others(raw: &[u64; 8], mode: u8, readings: &[Reading]) {
         }
         Err(e) => typed(e),
     }
-    match WaveGeneratorTorqueParams::try_new(
-        value(raw[0], flag(2), 1e-3, 1e3, true),
-        value(raw[1], flag(2), 0.5, 200.0, false),
-    ) {
+    match WaveGeneratorTorqueParams::try_new(WaveGeneratorTorqueSettings {
+        backdrive_friction: value(raw[0], flag(2), 1e-3, 1e3, true),
+        ratio: value(raw[1], flag(2), 0.5, 200.0, false),
+    }) {
         Ok(p) => {
             let c32 = WaveGeneratorTorqueConfig::<f32>::new(&p);
             let cx = WaveGeneratorTorqueConfig::<I16F16>::new(&p);
@@ -266,13 +266,13 @@ fn check_others(raw: &[u64; 8], mode: u8, readings: &[Reading]) {
         Err(e) => typed(e),
     }
     if let Ok(s) = ModeSettings::table_4_1(2000.0) {
-        let collision = CollisionParams::try_new(
-            value(raw[2], flag(3), 1e-2, 1e2, true),
-            value(raw[3], flag(3), 1e-2, 1e2, true),
-            raw[4] as u16,
-            (raw[4] >> 16) as u16,
-            CollisionReaction::Stop,
-        );
+        let collision = CollisionParams::try_new(CollisionSettings {
+            threshold: value(raw[2], flag(3), 1e-2, 1e2, true),
+            release_threshold: value(raw[3], flag(3), 1e-2, 1e2, true),
+            debounce: raw[4] as u16,
+            release: (raw[4] >> 16) as u16,
+            reaction: CollisionReaction::Stop,
+        });
         let collision = match collision {
             Ok(c) => Some(c),
             Err(e) => {
@@ -322,14 +322,14 @@ fuzz_target!(|data: (
     check_others(&raw, mode, &others);
 
     // The drive and estimator from raw fields.
-    let fl = FlexsplineParams::try_new(
-        value(raw[0], flag(0), 1.0, 1e8, true),
-        value(raw[1], flag(0), 1e-8, 1e8, true),
-    );
-    let wg = WaveGeneratorParams::try_new(
-        value(raw[2], flag(1), 1e-4, 1e4, true),
-        value(raw[3], flag(1), 1e-8, 1e8, true),
-    );
+    let fl = FlexsplineParams::try_new(FlexsplineSettings {
+        k_f0: value(raw[0], flag(0), 1.0, 1e8, true),
+        c_f: value(raw[1], flag(0), 1e-8, 1e8, true),
+    });
+    let wg = WaveGeneratorParams::try_new(WaveGeneratorSettings {
+        k_w0: value(raw[2], flag(1), 1e-4, 1e4, true),
+        c_w: value(raw[3], flag(1), 1e-8, 1e8, true),
+    });
     let ratio = if flag(2) {
         f64::from_bits(raw[4])
     } else if n_raw & 1 == 0 {
@@ -364,7 +364,13 @@ fuzz_target!(|data: (
         (1 + (l >> (l % 32)), 1 + (m >> (m % 32)))
     };
     let max_torque = value(raw[5], flag(6), 1e-3, 1e5, true);
-    let p = match TorqueEstimatorParams::try_new(drive, ke, l, m, max_torque) {
+    let p = match TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+        drive,
+        kinematic_error: ke,
+        link_counts_per_rev: l,
+        motor_counts_per_rev: m,
+        max_torque,
+    }) {
         Ok(p) => p,
         Err(e) => return typed(e),
     };

@@ -8,9 +8,9 @@
 use libfuzzer_sys::fuzz_target;
 use mrr_control::control::{
     ControlInput, ModeConfig, ModeParams, ModeSettings, PassiveConfig, PassiveParams,
-    RobustAdaptiveConfig, RobustAdaptiveDesign, RobustAdaptiveParams,
+    PassiveSettings, RobustAdaptiveConfig, RobustAdaptiveDesign, RobustAdaptiveParams,
 };
-use mrr_control::estimation::{CollisionParams, CollisionReaction};
+use mrr_control::estimation::{CollisionParams, CollisionReaction, CollisionSettings};
 use mrr_control::scalar::{Scalar, I16F16};
 
 fn input<S: Scalar>(v: &[f32; 8]) -> ControlInput<S> {
@@ -96,23 +96,23 @@ fuzz_target!(|data: ([f64; 8], [f64; 4], u8, u8, bool, Vec<[f32; 8]>)| {
         .unwrap_or_else(|_| RobustAdaptiveParams::table_4_1().unwrap());
     let limit = active.design().torque_limit;
     let ad = active.design();
-    let passive = PassiveParams::try_new(
-        ad.rotor_inertia,
-        th[0],
-        ad.ratio,
-        ad.eps_velocity,
-        ad.initial_friction,
-        limit,
-    )
+    let passive = PassiveParams::try_new(PassiveSettings {
+        rotor_inertia: ad.rotor_inertia,
+        gain: th[0],
+        ratio: ad.ratio,
+        eps_velocity: ad.eps_velocity,
+        nominal_friction: ad.initial_friction,
+        torque_limit: limit,
+    })
     .unwrap_or_else(|_| {
-        PassiveParams::try_new(
-            ad.rotor_inertia,
-            2000.0,
-            ad.ratio,
-            ad.eps_velocity,
-            ad.initial_friction,
-            limit,
-        )
+        PassiveParams::try_new(PassiveSettings {
+            rotor_inertia: ad.rotor_inertia,
+            gain: 2000.0,
+            ratio: ad.ratio,
+            eps_velocity: ad.eps_velocity,
+            nominal_friction: ad.initial_friction,
+            torque_limit: limit,
+        })
         .unwrap()
     });
     let reaction = if stop {
@@ -120,8 +120,14 @@ fuzz_target!(|data: ([f64; 8], [f64; 4], u8, u8, bool, Vec<[f32; 8]>)| {
     } else {
         CollisionReaction::Passive
     };
-    let collision =
-        CollisionParams::try_new(th[1], th[2], debounce.max(1) as u16, 2, reaction).ok();
+    let collision = CollisionParams::try_new(CollisionSettings {
+        threshold: th[1],
+        release_threshold: th[2],
+        debounce: debounce.max(1) as u16,
+        release: 2,
+        reaction,
+    })
+    .ok();
     let mode = ModeParams::try_new(ModeSettings {
         active,
         passive,

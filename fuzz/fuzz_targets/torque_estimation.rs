@@ -4,7 +4,9 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use mrr_control::estimation::{TorqueEstimatorConfig, TorqueEstimatorParams};
+use mrr_control::estimation::{
+    TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorSettings,
+};
 use mrr_control::harmonic_drive::kinematic_error::KinematicErrorModel;
 use mrr_control::harmonic_drive::CatalogueData;
 use mrr_control::scalar::{Scalar, I16F16};
@@ -59,7 +61,13 @@ fuzz_target!(
         }
         let ke = with_ke.then(KinematicErrorModel::table_3_2);
         let max_torque = (max_t % 30_000) as f64 + 0.5;
-        let Ok(p) = TorqueEstimatorParams::try_new(drive, ke, l, m, max_torque) else {
+        let Ok(p) = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+            drive,
+            kinematic_error: ke,
+            link_counts_per_rev: l,
+            motor_counts_per_rev: m,
+            max_torque,
+        }) else {
             return;
         };
         let readings = &readings[..readings.len().min(64)];

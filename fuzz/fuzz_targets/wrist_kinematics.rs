@@ -11,9 +11,7 @@ use mrr_control::proofs::wrist_ik::{branch_and_round_trip, branch_slack, wrist};
 use mrr_control::scalar::{Scalar, I16F16};
 use mrr_control::wrist::jacobian::MAX_TORQUE;
 use mrr_control::wrist::ujoint::{transmit, MAX_BEND};
-use mrr_control::wrist::{
-    ForceMapping, IkState, JacobianKind, MotorAngles, PitchYaw, WristConfig,
-};
+use mrr_control::wrist::{ForceMapping, IkState, JacobianKind, MotorAngles, PitchYaw, WristConfig};
 
 fn finite<S: Scalar>(x: S) -> bool {
     !x.is_nan() && x.abs() <= S::MAX
@@ -23,10 +21,21 @@ fn check<S: Scalar>(v: [S; 6]) {
     let p = wrist();
     let cfg = WristConfig::<S>::new(&p);
     // Rounding allowance on the ranges: 64 units of the backend.
-    let tol = 64.0 * if S::RESOLUTION.to_f64() > 1e-6 { 1.0 / 65536.0 } else { 2e-6 };
+    let tol = 64.0
+        * if S::RESOLUTION.to_f64() > 1e-6 {
+            1.0 / 65536.0
+        } else {
+            2e-6
+        };
     let pi = core::f64::consts::PI;
-    let motors = MotorAngles { theta1: v[0], theta3: v[1] };
-    let pose = PitchYaw { delta: v[2], gamma: v[3] };
+    let motors = MotorAngles {
+        theta1: v[0],
+        theta3: v[1],
+    };
+    let pose = PitchYaw {
+        delta: v[2],
+        gamma: v[3],
+    };
 
     let f = cfg.forward(motors);
     for x in [f.pose.delta, f.pose.gamma, f.theta4] {
@@ -38,12 +47,18 @@ fn check<S: Scalar>(v: [S; 6]) {
 
     let r = cfg.inverse(pose);
     let (t1, t3) = (r.motors.theta1.to_f64(), r.motors.theta3.to_f64());
-    assert!(finite(r.motors.theta1) && finite(r.motors.theta3), "inverse {pose:?} -> {r:?}");
+    assert!(
+        finite(r.motors.theta1) && finite(r.motors.theta3),
+        "inverse {pose:?} -> {r:?}"
+    );
     assert!(t1.abs() <= pi + tol, "{r:?}");
     let eps = branch_slack(&p);
     assert!(t1 + t3 >= -pi - eps - tol && t1 + t3 <= eps + tol, "{r:?}");
     assert!(r.theta4.to_f64() >= -tol && r.theta4.to_f64() <= pi + tol);
-    assert!(branch_and_round_trip(&cfg, &p, v[2], v[3]).holds, "branch at {pose:?}: {r:?}");
+    assert!(
+        branch_and_round_trip(&cfg, &p, v[2], v[3]).holds,
+        "branch at {pose:?}: {r:?}"
+    );
     if cfg.try_inverse(pose).is_ok() {
         assert!(!pose.delta.is_nan());
     }

@@ -247,7 +247,13 @@ impl RobustAdaptiveParams {
             });
         }
         let f = d.initial_friction;
-        FrictionParams::try_new(f.viscous, f.coulomb, f.stribeck, f.stribeck_shape)?;
+        FrictionParams {
+            viscous: f.viscous,
+            coulomb: f.coulomb,
+            stribeck: f.stribeck,
+            stribeck_shape: f.stribeck_shape,
+        }
+        .validated()?;
         if !d.friction_bounds.contains(&f) {
             let (lo, hi, a) = (
                 d.friction_bounds.min(),

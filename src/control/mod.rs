@@ -37,7 +37,8 @@ pub use mode::{
     JointMode, ModeConfig, ModeOutput, ModeParams, ModeSettings, ModeState, ReleaseRule,
 };
 pub use passive::{
-    HandContact, PassiveCharacteristics, PassiveConfig, PassiveOutput, PassiveParams, Pole,
+    HandContact, PassiveCharacteristics, PassiveConfig, PassiveOutput, PassiveParams,
+    PassiveSettings, Pole,
 };
 
 /// One control sample of one joint, in stored units of `S::UNITS`.

@@ -33,8 +33,9 @@
 //! the guidance; Active starts rejoining the desired trajectory, the hand
 //! resists, `|τ_i|` exceeds `enter`, and the joint cycles. In the simulated
 //! guidance scenario (`sim::closed_loop::interaction_scenario`, exit 2 N·m)
-//! the torque-only rule gave 36 switches between 0.88 s and 3.0 s (an
-//! earlier build 38). What a guided joint does and a released one does not
+//! the torque-only rule gives 38 switches between 0.88 s and 3.01 s
+//! (36 with the simulator's former speed meter, which extrapolated its
+//! first window). What a guided joint does and a released one does not
 //! is *move*: requiring `|q̇_m| ≤ v_rest` blocks the return while the hand
 //! leads, and holding that for longer than the hand's pauses blocks it
 //! while the hand holds still (the same scenario with the rule of
@@ -495,7 +496,9 @@ pub struct ModeOutput<S> {
     /// A collision reaction is latched.
     pub collision: bool,
     /// The position reference used (Active: desired + offset; Hold: the
-    /// held position; Passive: the measured position), stored angle.
+    /// held position; Passive: the measured position), stored angle. On
+    /// invalid input: the measured position, or 0 when it is NaN or
+    /// infinite (never NaN).
     pub reference_position: S,
 }
 
@@ -724,7 +727,13 @@ impl<S: Scalar> ModeConfig<S> {
                 invalid_input: true,
                 interaction: S::ZERO,
                 collision: st.latched,
-                reference_position: x.motor_position,
+                // Never NaN out of a step: the measured position when it is
+                // a number (`v − v` is 0 only for a finite float), else 0.
+                reference_position: if x.motor_position.sub(x.motor_position) == S::ZERO {
+                    x.motor_position
+                } else {
+                    S::ZERO
+                },
             };
         }
         let mut target = self.wanted(st, interaction, x.motor_velocity);

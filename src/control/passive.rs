@@ -26,7 +26,26 @@ use crate::error::{gear_ratio, positive, ParamError};
 use crate::friction::{FrictionConfig, FrictionParams};
 use crate::scalar::{Coef, Scalar};
 
-/// Parameters of eq. (4.32), SI.
+/// The parameters of eq. (4.32) by name, SI, for [`PassiveParams::try_new`]
+/// (six values, five of them `f64`: named so that none can be swapped).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PassiveSettings {
+    /// Rotor inertia estimate `Î_m`, kg·m² (> 0).
+    pub rotor_inertia: f64,
+    /// Torque-feedback gain `K_p`, 1/(kg·m²) (≥ 0).
+    pub gain: f64,
+    /// Gear ratio `N` (≥ 1).
+    pub ratio: f64,
+    /// Boundary layer `ε_q̇` of the friction model's sign, rad/s
+    /// (≥ 2⁻¹⁶).
+    pub eps_velocity: f64,
+    /// Nominal friction `f̂^c` compensated by the law (eq. 4.17).
+    pub nominal_friction: FrictionParams,
+    /// Motor torque limit, N·m, in `(0, 16]`.
+    pub torque_limit: f64,
+}
+
+/// Parameters of eq. (4.32), SI; built only by [`try_new`](Self::try_new).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PassiveParams {
     rotor_inertia: f64,
@@ -39,16 +58,17 @@ pub struct PassiveParams {
 
 impl PassiveParams {
     /// Validate: `Î_m > 0` (kg·m²), `K_p ≥ 0` (1/(kg·m²)), `N ≥ 1`,
-    /// `ε_q̇ > 0` (rad/s), valid nominal friction, torque limit in
-    /// `(0, 16]` N·m.
-    pub fn try_new(
-        rotor_inertia: f64,
-        gain: f64,
-        ratio: f64,
-        eps_velocity: f64,
-        nominal_friction: FrictionParams,
-        torque_limit: f64,
-    ) -> Result<Self, ParamError> {
+    /// `ε_q̇ ≥ 2⁻¹⁶` rad/s, valid nominal friction, torque limit in
+    /// `(0, 16]` N·m, `Î_m K_p / N ≤ 10⁶`.
+    pub fn try_new(settings: PassiveSettings) -> Result<Self, ParamError> {
+        let PassiveSettings {
+            rotor_inertia,
+            gain,
+            ratio,
+            eps_velocity,
+            nominal_friction,
+            torque_limit,
+        } = settings;
         positive("rotor_inertia", rotor_inertia)?;
         let gain = crate::error::finite("gain", gain)?;
         if gain < 0.0 {
@@ -66,7 +86,13 @@ impl PassiveParams {
             });
         }
         let f = nominal_friction;
-        FrictionParams::try_new(f.viscous, f.coulomb, f.stribeck, f.stribeck_shape)?;
+        FrictionParams {
+            viscous: f.viscous,
+            coulomb: f.coulomb,
+            stribeck: f.stribeck,
+            stribeck_shape: f.stribeck_shape,
+        }
+        .validated()?;
         positive("torque_limit", torque_limit)?;
         if torque_limit > 16.0 {
             return Err(ParamError::OutOfRange {
@@ -94,6 +120,43 @@ impl PassiveParams {
         })
     }
 
+    /// The settings, by name (`try_new(p.settings()) == Ok(p)`).
+    pub fn settings(&self) -> PassiveSettings {
+        PassiveSettings {
+            rotor_inertia: self.rotor_inertia,
+            gain: self.gain,
+            ratio: self.ratio,
+            eps_velocity: self.eps_velocity,
+            nominal_friction: self.nominal_friction,
+            torque_limit: self.torque_limit,
+        }
+    }
+
+    /// Rotor inertia estimate `Î_m`, kg·m².
+    pub fn rotor_inertia(&self) -> f64 {
+        self.rotor_inertia
+    }
+
+    /// Gear ratio `N`.
+    pub fn ratio(&self) -> f64 {
+        self.ratio
+    }
+
+    /// Boundary layer `ε_q̇` of the friction sign, rad/s.
+    pub fn eps_velocity(&self) -> f64 {
+        self.eps_velocity
+    }
+
+    /// Nominal friction compensated by the law.
+    pub fn nominal_friction(&self) -> FrictionParams {
+        self.nominal_friction
+    }
+
+    /// Motor torque limit, N·m.
+    pub fn torque_limit(&self) -> f64 {
+        self.torque_limit
+    }
+
     /// The passive mode for the Table 4.1 joint: `Î_m = 1.14e-5 kg·m²`,
     /// `N = 100`, `ε_q̇ = 0.01 rad/s`, the nominal friction at the centre of
     /// the Table 4.1 example box
@@ -102,14 +165,14 @@ impl PassiveParams {
     /// ch. 4).
     pub fn table_4_1(gain: f64) -> Result<Self, ParamError> {
         let d = super::RobustAdaptiveDesign::table_4_1();
-        Self::try_new(
-            d.rotor_inertia,
+        Self::try_new(PassiveSettings {
+            rotor_inertia: d.rotor_inertia,
             gain,
-            d.ratio,
-            d.eps_velocity,
-            d.initial_friction,
-            d.torque_limit,
-        )
+            ratio: d.ratio,
+            eps_velocity: d.eps_velocity,
+            nominal_friction: d.initial_friction,
+            torque_limit: d.torque_limit,
+        })
     }
 
     /// The Table 4.1 passive mode with a default gain the thesis does not
@@ -597,17 +660,84 @@ mod tests {
             Err(ParamError::Negative { name: "gain", .. })
         ));
         let f = RobustFriction::nominal();
+        let s = PassiveSettings {
+            rotor_inertia: 1e-5,
+            gain: 1.0,
+            ratio: 0.5,
+            eps_velocity: 0.01,
+            nominal_friction: f,
+            torque_limit: 0.1,
+        };
         assert!(matches!(
-            PassiveParams::try_new(1e-5, 1.0, 0.5, 0.01, f, 0.1),
+            PassiveParams::try_new(s),
             Err(ParamError::OutOfRange { name: "ratio", .. })
         ));
         assert!(matches!(
-            PassiveParams::try_new(1e-5, 1.0, 100.0, 0.01, f, 17.0),
+            PassiveParams::try_new(PassiveSettings {
+                ratio: 100.0,
+                torque_limit: 17.0,
+                ..s
+            }),
             Err(ParamError::OutOfRange {
                 name: "torque_limit",
                 ..
             })
         ));
+    }
+
+    /// Each named setting reaches its own getter and its own place in
+    /// eq. (4.32): six distinct values, the law's output recomputed here
+    /// from the equation. (With positional arguments `Î_m`, `K_p`, `N`,
+    /// `ε_q̇` and the limit, all `f64`, could be swapped and still pass
+    /// validation.)
+    #[test]
+    fn named_settings_reach_their_getters_and_the_law() {
+        let friction = FrictionParams {
+            viscous: 2e-4,
+            coulomb: 3e-3,
+            stribeck: 1e-3,
+            stribeck_shape: 0.5,
+        }
+        .validated()
+        .unwrap();
+        let s = PassiveSettings {
+            rotor_inertia: 2e-5,
+            gain: 3000.0,
+            ratio: 80.0,
+            eps_velocity: 0.02,
+            nominal_friction: friction,
+            torque_limit: 0.7,
+        };
+        let p = PassiveParams::try_new(s).unwrap();
+        assert_eq!(p.rotor_inertia(), 2e-5);
+        assert_eq!(p.gain(), 3000.0);
+        assert_eq!(p.ratio(), 80.0);
+        assert_eq!(p.eps_velocity(), 0.02);
+        assert_eq!(p.nominal_friction(), friction);
+        assert_eq!(p.torque_limit(), 0.7);
+        assert_eq!(p.settings(), s);
+        assert_eq!(PassiveParams::try_new(p.settings()), Ok(p));
+        let cfg = PassiveConfig::<f64>::new(&p);
+        let x = ControlInput {
+            motor_velocity: 0.3,
+            joint_torque: 1.5,
+            desired_joint_torque: -0.5,
+            ..Default::default()
+        };
+        // Eq. (4.32) with eq. (4.17), written out: f̂ = b q̇ + (f_c + f_s
+        // e^{−f_τ q̇²}) · sat(q̇/ε).
+        let qd: f64 = 0.3;
+        let sat = (qd / 0.02).clamp(-1.0, 1.0);
+        let f_hat = 2e-4 * qd + (3e-3 + 1e-3 * (-0.5 * qd * qd).exp()) * sat;
+        let want = f_hat + 1.5 / 80.0 + 2e-5 * 3000.0 * (-0.5 - 1.5) / 80.0;
+        let got = cfg.update(&x).torque;
+        assert!((got - want).abs() <= 1e-12, "{got} vs {want}");
+        // The limit is the named one.
+        let big = ControlInput {
+            joint_torque: 1e3,
+            ..x
+        };
+        assert_eq!(cfg.update(&big).torque, 0.7);
     }
 
     /// Roots of a complex-coefficient-free monic polynomial
@@ -665,8 +795,23 @@ mod tests {
     }
 
     fn frictionless(i_m: f64, kp: f64, n: f64) -> PassiveParams {
-        let f = FrictionParams::try_new(0.0, 0.0, 0.0, 1.0).unwrap();
-        PassiveParams::try_new(i_m, kp, n, 0.01, f, 16.0).unwrap()
+        let f = FrictionParams {
+            viscous: 0.0,
+            coulomb: 0.0,
+            stribeck: 0.0,
+            stribeck_shape: 1.0,
+        }
+        .validated()
+        .unwrap();
+        PassiveParams::try_new(PassiveSettings {
+            rotor_inertia: i_m,
+            gain: kp,
+            ratio: n,
+            eps_velocity: 0.01,
+            nominal_friction: f,
+            torque_limit: 16.0,
+        })
+        .unwrap()
     }
 
     /// The sampled passive loop simulated from its physical description,
@@ -877,7 +1022,16 @@ mod tests {
             let c = c32.update(&x32);
             prop_assert!(b.torque.abs() <= cx.torque_limit() && c.torque.abs() <= c32.torque_limit());
             let lsb = 1.0 / 65536.0;
-            let tol_x = (4.0 * 10.0 * lsb + 6.0 * 2.0 * lsb) / 1e3;
+            // Rounding of the products, plus, inside the velocity layer, the
+            // quantized layer width: I16F16 stores `ε` to the nearest code
+            // (0.01 → 655/65536) and scales by its exact reciprocal so the
+            // layer meets ±1 continuously, which moves `sat(q̇/ε)` by the
+            // relative width error times `|q̇/ε|` (weighted by the Coulomb
+            // and Stribeck levels, stored mN·m).
+            let (e64, ex) = (c64.friction.eps_velocity(), cx.friction.eps_velocity().to_f64());
+            let layer = (x64.motor_velocity / e64).abs().min(1.0) * (1.0 - e64 / ex).abs();
+            let levels = cx.nominal[1].to_f64().abs() + cx.nominal[2].to_f64().abs();
+            let tol_x = (4.0 * 10.0 * lsb + 6.0 * 2.0 * lsb + levels * layer) / 1e3;
             prop_assert!((b.torque.to_f64() / 1e3 - a.torque).abs() <= tol_x, "{} vs {}", b.torque, a.torque);
             let a32 = c64.update(&ControlInput { motor_velocity: x32.motor_velocity as f64, joint_torque: x32.joint_torque as f64, ..Default::default() });
             let big = a32.law_torque.abs() + (tau / 100.0).abs() * (1.0 + 1.14e-5 * kp) + 0.03;

@@ -22,7 +22,26 @@ pub enum CollisionReaction {
     Passive,
 }
 
-/// Detector parameters, SI.
+/// The detector's parameters by name, SI, for [`CollisionParams::try_new`]
+/// (two thresholds and two sample counts of the same types: named so that
+/// they cannot be swapped).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CollisionSettings {
+    /// Detection threshold on `|ρ|`, N·m (link torque), in
+    /// `(0, 30 000]`.
+    pub threshold: f64,
+    /// Release threshold on `|ρ|`, N·m, in `(0, threshold]` (hysteresis).
+    pub release_threshold: f64,
+    /// Consecutive samples over `threshold` that detect a collision (≥ 1).
+    pub debounce: u16,
+    /// Consecutive samples under `release_threshold` that release it
+    /// (≥ 1).
+    pub release: u16,
+    /// What the joint does on detection.
+    pub reaction: CollisionReaction,
+}
+
+/// Detector parameters, SI; built only by [`try_new`](CollisionParams::try_new).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CollisionParams {
     threshold: f64,
@@ -35,13 +54,14 @@ pub struct CollisionParams {
 impl CollisionParams {
     /// Validate: `0 < release_threshold ≤ threshold ≤ 30 000` N·m (link
     /// torque); `debounce, release ≥ 1` samples.
-    pub fn try_new(
-        threshold: f64,
-        release_threshold: f64,
-        debounce: u16,
-        release: u16,
-        reaction: CollisionReaction,
-    ) -> Result<Self, ParamError> {
+    pub fn try_new(settings: CollisionSettings) -> Result<Self, ParamError> {
+        let CollisionSettings {
+            threshold,
+            release_threshold,
+            debounce,
+            release,
+            reaction,
+        } = settings;
         positive("threshold", threshold)?;
         positive("release_threshold", release_threshold)?;
         if release_threshold > threshold {
@@ -72,6 +92,37 @@ impl CollisionParams {
             release,
             reaction,
         })
+    }
+
+    /// The settings, by name (`try_new(p.settings()) == Ok(p)`).
+    pub fn settings(&self) -> CollisionSettings {
+        CollisionSettings {
+            threshold: self.threshold,
+            release_threshold: self.release_threshold,
+            debounce: self.debounce,
+            release: self.release,
+            reaction: self.reaction,
+        }
+    }
+
+    /// Detection threshold, N·m.
+    pub fn threshold(&self) -> f64 {
+        self.threshold
+    }
+
+    /// Release threshold, N·m.
+    pub fn release_threshold(&self) -> f64 {
+        self.release_threshold
+    }
+
+    /// Samples over the threshold that detect.
+    pub fn debounce(&self) -> u16 {
+        self.debounce
+    }
+
+    /// Samples under the release threshold that release.
+    pub fn release(&self) -> u16 {
+        self.release
     }
 
     /// The configured reaction.
@@ -183,11 +234,60 @@ mod tests {
     use crate::scalar::I16F16;
     use proptest::prelude::*;
 
+    /// Thresholds 2 and 1 N·m, the given counts.
+    fn settings(debounce: u16, release: u16, reaction: CollisionReaction) -> CollisionSettings {
+        CollisionSettings {
+            threshold: 2.0,
+            release_threshold: 1.0,
+            debounce,
+            release,
+            reaction,
+        }
+    }
+
     fn det(debounce: u16, release: u16) -> CollisionConfig<I16F16> {
         CollisionConfig::new(
-            &CollisionParams::try_new(2.0, 1.0, debounce, release, CollisionReaction::Stop)
+            &CollisionParams::try_new(settings(debounce, release, CollisionReaction::Stop))
                 .unwrap(),
         )
+    }
+
+    /// Each named setting reaches its own getter and its own role in the
+    /// detector: with debounce 3 and release 1 (the old positional order
+    /// swapped would give 1 and 3) detection takes three samples and the
+    /// release one. (Thresholds are ordered by validation; the counts, both
+    /// `u16`, were not.)
+    #[test]
+    fn named_settings_reach_their_getters_and_roles() {
+        let s = CollisionSettings {
+            threshold: 5.0,
+            release_threshold: 2.5,
+            debounce: 3,
+            release: 1,
+            reaction: CollisionReaction::Passive,
+        };
+        let p = CollisionParams::try_new(s).unwrap();
+        assert_eq!(
+            (
+                p.threshold(),
+                p.release_threshold(),
+                p.debounce(),
+                p.release()
+            ),
+            (5.0, 2.5, 3, 1)
+        );
+        assert_eq!(p.reaction(), CollisionReaction::Passive);
+        assert_eq!(p.settings(), s);
+        let c = CollisionConfig::<f64>::new(&p);
+        let mut st = CollisionState::default();
+        let seq = [6.0, 6.0, 6.0, 4.0, 2.0];
+        let got: Vec<bool> = seq
+            .iter()
+            .map(|&r| c.update(&mut st, r, 0.0).detected)
+            .collect();
+        // Over 5 three times: detected on the third; 4 is between the
+        // thresholds (stays); 2 < 2.5 once releases.
+        assert_eq!(got, [false, false, true, true, false]);
     }
 
     #[test]
@@ -220,11 +320,15 @@ mod tests {
     #[test]
     fn rejects_inverted_thresholds_and_zero_counts() {
         assert!(matches!(
-            CollisionParams::try_new(1.0, 2.0, 1, 1, CollisionReaction::Passive),
+            CollisionParams::try_new(CollisionSettings {
+                threshold: 1.0,
+                release_threshold: 2.0,
+                ..settings(1, 1, CollisionReaction::Passive)
+            }),
             Err(ParamError::NotIncreasing { .. })
         ));
         assert!(matches!(
-            CollisionParams::try_new(1.0, 0.5, 0, 1, CollisionReaction::Passive),
+            CollisionParams::try_new(settings(0, 1, CollisionReaction::Passive)),
             Err(ParamError::NotPositive {
                 name: "debounce",
                 ..
@@ -235,7 +339,7 @@ mod tests {
     #[test]
     fn nan_is_a_collision() {
         let c = CollisionConfig::<f32>::new(
-            &CollisionParams::try_new(2.0, 1.0, 1, 1, CollisionReaction::Stop).unwrap(),
+            &CollisionParams::try_new(settings(1, 1, CollisionReaction::Stop)).unwrap(),
         );
         let mut st = CollisionState::default();
         let o = c.update(&mut st, f32::NAN, 0.0);
@@ -243,7 +347,7 @@ mod tests {
         // While detected, a NaN does not count towards the release: it
         // restarts the run of samples under the release threshold.
         let c = CollisionConfig::<f32>::new(
-            &CollisionParams::try_new(2.0, 1.0, 1, 2, CollisionReaction::Stop).unwrap(),
+            &CollisionParams::try_new(settings(1, 2, CollisionReaction::Stop)).unwrap(),
         );
         let mut st = CollisionState::default();
         let seq = [f32::NAN, 0.0, f32::NAN, 0.0, 0.0];
@@ -263,7 +367,7 @@ mod tests {
         fn matches_the_specification(seq in proptest::collection::vec(-4.0f64..4.0, 1..200),
                                      debounce in 1u16..5, release in 1u16..5) {
             let c = CollisionConfig::<f64>::new(
-                &CollisionParams::try_new(2.0, 1.0, debounce, release, CollisionReaction::Passive).unwrap());
+                &CollisionParams::try_new(settings(debounce, release, CollisionReaction::Passive)).unwrap());
             let mut st = CollisionState::default();
             let (mut latched, mut run_hi, mut run_lo) = (false, 0u16, 0u16);
             for r in seq {

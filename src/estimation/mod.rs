@@ -5,9 +5,10 @@ pub mod collision;
 pub mod torque;
 
 pub use collision::{
-    CollisionConfig, CollisionOutput, CollisionParams, CollisionReaction, CollisionState,
+    CollisionConfig, CollisionOutput, CollisionParams, CollisionReaction, CollisionSettings,
+    CollisionState,
 };
 pub use torque::{
     AgreementBound, TorqueEstimate, TorqueEstimatorConfig, TorqueEstimatorParams,
-    TorqueEstimatorState,
+    TorqueEstimatorSettings, TorqueEstimatorState,
 };

@@ -84,10 +84,18 @@
 //! evaluated in `f64`.
 //!
 //! ```
-//! use mrr_control::estimation::torque::{TorqueEstimatorConfig, TorqueEstimatorParams};
+//! use mrr_control::estimation::torque::{
+//!     TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorSettings,
+//! };
 //! use mrr_control::harmonic_drive::CatalogueData;
 //! let drive = CatalogueData::SHD_17_100.identify()?;
-//! let p = TorqueEstimatorParams::try_new(drive, None, 1 << 17, 2000, 60.0)?;
+//! let p = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+//!     drive,
+//!     kinematic_error: None,
+//!     link_counts_per_rev: 1 << 17,
+//!     motor_counts_per_rev: 2000,
+//!     max_torque: 60.0,
+//! })?;
 //! let est = TorqueEstimatorConfig::<f32>::new(&p);
 //! let mut st = est.state(0, 0); // motor at count 0, counter reading 0
 //! let e = est.update(&mut st, 3, 0, 0.0);
@@ -180,6 +188,26 @@ fn div_rem_reciprocal(x: u32, d: u32, r: u32) -> (u32, u32) {
     }
 }
 
+/// The estimator's parameters by name, for [`TorqueEstimatorParams::try_new`]
+/// (the two encoder resolutions are both `u32`: named so that they cannot be
+/// swapped).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TorqueEstimatorSettings {
+    /// The identified compliance model, eq. (2.30); its ratio `N` must be an
+    /// integer.
+    pub drive: HarmonicDriveParams,
+    /// Kinematic-error model of eq. (3.7), or `None` to leave it out.
+    pub kinematic_error: Option<KinematicErrorModel>,
+    /// Link-side absolute encoder counts per revolution `L` (≥ 1).
+    pub link_counts_per_rev: u32,
+    /// Motor-side incremental counts per motor revolution `M`, after
+    /// quadrature decoding (≥ 1).
+    pub motor_counts_per_rev: u32,
+    /// Largest torque the estimate may report, N·m, in
+    /// `[MIN_TORQUE_LIMIT, MAX_TORQUE_LIMIT]`.
+    pub max_torque: f64,
+}
+
 /// Physical parameters of the estimator.
 ///
 /// Built only by [`try_new`](Self::try_new): every value a
@@ -189,12 +217,24 @@ fn div_rem_reciprocal(x: u32, d: u32, r: u32) -> (u32, u32) {
 /// ```
 /// use mrr_control::prelude::*;
 /// let drive = CatalogueData::SHD_17_100.identify()?;
-/// let p = TorqueEstimatorParams::try_new(drive, None, 1 << 17, 2000, 60.0)?;
+/// let p = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+///     drive,
+///     kinematic_error: None,
+///     link_counts_per_rev: 1 << 17,
+///     motor_counts_per_rev: 2000,
+///     max_torque: 60.0,
+/// })?;
 /// let cfg = TorqueEstimatorConfig::<f32>::new(&p);
 /// let e = cfg.update(&mut cfg.state(0, 0), 0, 0, 0.0);
 /// assert!(e.torque_si().abs() < 1e-9 && !e.invalid_input);
 /// // A zero motor resolution is refused by name instead of dividing by 0.
-/// let err = TorqueEstimatorParams::try_new(drive, None, 1 << 17, 0, 60.0).unwrap_err();
+/// let err = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+///     drive,
+///     kinematic_error: None,
+///     link_counts_per_rev: 1 << 17,
+///     motor_counts_per_rev: 0,
+///     max_torque: 60.0,
+/// }).unwrap_err();
 /// assert_eq!(err.to_string(), "parameter `motor_counts_per_rev` must be > 0, got 0");
 /// # Ok::<(), ParamError>(())
 /// ```
@@ -253,13 +293,14 @@ impl TorqueEstimatorParams {
     ///
     /// The drive and the kinematic-error model were validated by their own
     /// `try_new`.
-    pub fn try_new(
-        drive: HarmonicDriveParams,
-        kinematic_error: Option<KinematicErrorModel>,
-        link_counts_per_rev: u32,
-        motor_counts_per_rev: u32,
-        max_torque: f64,
-    ) -> Result<Self, ParamError> {
+    pub fn try_new(settings: TorqueEstimatorSettings) -> Result<Self, ParamError> {
+        let TorqueEstimatorSettings {
+            drive,
+            kinematic_error,
+            link_counts_per_rev,
+            motor_counts_per_rev,
+            max_torque,
+        } = settings;
         let n = integer("ratio", drive.ratio(), 1.0, 65535.0)?;
         for (name, v) in [
             ("link_counts_per_rev", link_counts_per_rev),
@@ -289,6 +330,17 @@ impl TorqueEstimatorParams {
         let by_range = libm::floor(2_147_483_648.0 * TAU / (2.0 * p.torsion_range()));
         combination(LMN_NAME, lmn, 1.0, by_range.min(MAX_COUNTS_PER_OUTPUT_REV))?;
         Ok(p)
+    }
+
+    /// The settings, by name (`try_new(p.settings()) == Ok(p)`).
+    pub fn settings(&self) -> TorqueEstimatorSettings {
+        TorqueEstimatorSettings {
+            drive: self.drive,
+            kinematic_error: self.kinematic_error,
+            link_counts_per_rev: self.link_counts_per_rev,
+            motor_counts_per_rev: self.motor_counts_per_rev,
+            max_torque: self.max_torque,
+        }
     }
 
     /// The identified compliance model, eq. (2.30) (integer ratio).
@@ -979,7 +1031,14 @@ mod tests {
 
     fn params(ke: Option<KinematicErrorModel>) -> TorqueEstimatorParams {
         let drive = CatalogueData::SHD_17_100.identify().unwrap();
-        TorqueEstimatorParams::try_new(drive, ke, L, M, 60.0).unwrap()
+        TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+            drive,
+            kinematic_error: ke,
+            link_counts_per_rev: L,
+            motor_counts_per_rev: M,
+            max_torque: 60.0,
+        })
+        .unwrap()
     }
 
     /// The SHD-17-100 estimator with other encoders `L`, `M` and ratio `N`.
@@ -992,7 +1051,14 @@ mod tests {
         let d = CatalogueData::SHD_17_100.identify().unwrap();
         let drive =
             HarmonicDriveParams::try_new(d.flexspline(), d.wave_generator(), n as f64).unwrap();
-        TorqueEstimatorParams::try_new(drive, ke, l, m, 60.0).unwrap()
+        TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+            drive,
+            kinematic_error: ke,
+            link_counts_per_rev: l,
+            motor_counts_per_rev: m,
+            max_torque: 60.0,
+        })
+        .unwrap()
     }
 
     /// Encoder readings for a joint at link angle `link` (rad) carrying a
@@ -1381,11 +1447,22 @@ mod tests {
         {
             let mut drive = CatalogueData::SHD_17_100.identify().unwrap();
             if let Some(c_f) = c_f {
-                let f = FlexsplineParams::try_new(1000.0, c_f).unwrap();
+                let f = FlexsplineParams::try_new(crate::harmonic_drive::FlexsplineSettings {
+                    k_f0: 1000.0,
+                    c_f,
+                })
+                .unwrap();
                 drive =
                     HarmonicDriveParams::try_new(f, drive.wave_generator(), drive.ratio()).unwrap();
             }
-            let p = TorqueEstimatorParams::try_new(drive, None, L, M, max).unwrap();
+            let p = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+                drive,
+                kinematic_error: None,
+                link_counts_per_rev: L,
+                motor_counts_per_rev: M,
+                max_torque: max,
+            })
+            .unwrap();
             edge_bound[case] = floats(&TorqueEstimatorConfig::<f32>::new(&p), |x, k| {
                 f32::from_bits((x.to_bits() as i32 + k) as u32)
             });
@@ -1413,7 +1490,14 @@ mod tests {
         let d = CatalogueData::SHD_17_100.identify().unwrap();
         let drive =
             HarmonicDriveParams::try_new(d.flexspline(), d.wave_generator(), 100.5).unwrap();
-        let e = TorqueEstimatorParams::try_new(drive, None, L, M, 60.0).unwrap_err();
+        let e = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+            drive,
+            kinematic_error: None,
+            link_counts_per_rev: L,
+            motor_counts_per_rev: M,
+            max_torque: 60.0,
+        })
+        .unwrap_err();
         assert_eq!(
             e,
             ParamError::NotInteger {
@@ -1429,14 +1513,26 @@ mod tests {
         );
         let drive = CatalogueData::SHD_17_100.identify().unwrap();
         assert!(matches!(
-            TorqueEstimatorParams::try_new(drive, None, 0, M, 60.0),
+            TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+                drive,
+                kinematic_error: None,
+                link_counts_per_rev: 0,
+                motor_counts_per_rev: M,
+                max_torque: 60.0
+            }),
             Err(ParamError::NotPositive {
                 name: "link_counts_per_rev",
                 ..
             })
         ));
         assert!(matches!(
-            TorqueEstimatorParams::try_new(drive, None, L, M, -1.0),
+            TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+                drive,
+                kinematic_error: None,
+                link_counts_per_rev: L,
+                motor_counts_per_rev: M,
+                max_torque: -1.0
+            }),
             Err(ParamError::NotPositive {
                 name: "max_torque",
                 ..
@@ -1445,9 +1541,57 @@ mod tests {
         // 2^31 counts must span the torsion range: 2^26 link counts with a
         // 2^16-count motor encoder is too fine.
         assert!(matches!(
-            TorqueEstimatorParams::try_new(drive, None, 1 << 26, 1 << 16, 60.0),
+            TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+                drive,
+                kinematic_error: None,
+                link_counts_per_rev: 1 << 26,
+                motor_counts_per_rev: 1 << 16,
+                max_torque: 60.0
+            }),
             Err(ParamError::CombinationOutOfRange { name: LMN_NAME, .. })
         ));
+    }
+
+    /// The named encoder resolutions reach their own getters and their own
+    /// roles: one link count is a torsion of `2π/L`, one motor count one of
+    /// `2π/(M N)` (eq. 2.13, computed here from the definitions). With
+    /// positional `u32` arguments `L` and `M` could be swapped and still
+    /// validate; swapped, these torsions would be `2π/M` and `2π/(L N)`.
+    #[test]
+    fn named_encoder_resolutions_reach_their_roles() {
+        let drive = CatalogueData::SHD_17_100.identify().unwrap();
+        let (l, m) = (1u32 << 17, 2000u32);
+        let s = TorqueEstimatorSettings {
+            drive,
+            kinematic_error: None,
+            link_counts_per_rev: l,
+            motor_counts_per_rev: m,
+            max_torque: 50.0,
+        };
+        let p = TorqueEstimatorParams::try_new(s).unwrap();
+        assert_eq!(
+            (
+                p.link_counts_per_rev(),
+                p.motor_counts_per_rev(),
+                p.max_torque()
+            ),
+            (l, m, 50.0)
+        );
+        assert_eq!(p.settings(), s);
+        assert_eq!(TorqueEstimatorParams::try_new(p.settings()), Ok(p));
+        let cfg = TorqueEstimatorConfig::<f64>::new(&p);
+        let one_link = cfg.update(&mut cfg.state(0, 0), 1, 0, 0.0).torsion;
+        let want = TAU / l as f64;
+        assert!(
+            (one_link - want).abs() <= 1e-12 * want,
+            "{one_link} vs {want}"
+        );
+        let one_motor = cfg.update(&mut cfg.state(0, 0), 0, 1, 0.0).torsion;
+        let want = TAU / (m as f64 * 100.0);
+        assert!(
+            (one_motor.abs() - want).abs() <= 1e-12 * want,
+            "{one_motor} vs {want}"
+        );
     }
 
     /// A zero motor resolution used to reach `state()` through a struct
@@ -1460,7 +1604,14 @@ mod tests {
             (L, 0, "motor_counts_per_rev"),
             (0, M, "link_counts_per_rev"),
         ] {
-            let e = TorqueEstimatorParams::try_new(drive, None, l, m, 60.0).unwrap_err();
+            let e = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+                drive,
+                kinematic_error: None,
+                link_counts_per_rev: l,
+                motor_counts_per_rev: m,
+                max_torque: 60.0,
+            })
+            .unwrap_err();
             assert_eq!(e, ParamError::NotPositive { name, value: 0.0 });
             assert_eq!(
                 e.to_string(),
@@ -1474,7 +1625,14 @@ mod tests {
     #[test]
     fn oversized_encoder_product_names_the_product() {
         let drive = CatalogueData::SHD_17_100.identify().unwrap();
-        let e = TorqueEstimatorParams::try_new(drive, None, u32::MAX, u32::MAX, 60.0).unwrap_err();
+        let e = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+            drive,
+            kinematic_error: None,
+            link_counts_per_rev: u32::MAX,
+            motor_counts_per_rev: u32::MAX,
+            max_torque: 60.0,
+        })
+        .unwrap_err();
         let lmn = u32::MAX as f64 * u32::MAX as f64 * 100.0;
         match e {
             ParamError::CombinationOutOfRange {

@@ -135,6 +135,16 @@ impl CataloguePiecewise {
     }
 }
 
+/// The coefficients of eq. (2.10) by name, for [`CubicStiffness::try_new`] (two `f64` of different
+/// units: named so that they cannot be swapped).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CubicStiffnessSettings {
+    /// Linear coefficient `a1`, N·m/rad (> 0).
+    pub a1: f64,
+    /// Cubic coefficient `a3`, N·m/rad³ (≥ 0).
+    pub a3: f64,
+}
+
 /// The cubic stiffness of eq. (2.10), `τ_f = a1 Δθ + a3 Δθ³`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CubicStiffness {
@@ -145,7 +155,8 @@ pub struct CubicStiffness {
 impl CubicStiffness {
     /// Validates `a1 > 0` (N·m/rad) and `a3 ≥ 0` (N·m/rad³), which make the
     /// curve strictly increasing and so invertible.
-    pub fn try_new(a1: f64, a3: f64) -> Result<Self, ParamError> {
+    pub fn try_new(settings: CubicStiffnessSettings) -> Result<Self, ParamError> {
+        let CubicStiffnessSettings { a1, a3 } = settings;
         let a1 = positive("a1", a1)?;
         let a3 = finite("a3", a3)?;
         if a3 < 0.0 {
@@ -155,6 +166,14 @@ impl CubicStiffness {
             });
         }
         Ok(CubicStiffness { a1, a3 })
+    }
+
+    /// The settings, by name (`try_new(p.settings()) == Ok(p)`).
+    pub fn settings(&self) -> CubicStiffnessSettings {
+        CubicStiffnessSettings {
+            a1: self.a1,
+            a3: self.a3,
+        }
     }
 
     /// The cubic through the catalogue's two knee points `(Δθ(T1), T1)` and
@@ -174,7 +193,7 @@ impl CubicStiffness {
                 value: a3,
             });
         }
-        Self::try_new(a1, a3)
+        Self::try_new(CubicStiffnessSettings { a1, a3 })
     }
 
     /// The linear coefficient `a1`, N·m/rad.
@@ -234,6 +253,16 @@ impl CubicStiffness {
     }
 }
 
+/// The flexspline stiffness of eq. (2.24)–(2.26) by name, for [`FlexsplineParams::try_new`] (two
+/// `f64` of different units: named so that they cannot be swapped).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FlexsplineSettings {
+    /// Stiffness at zero torque `K_f0`, N·m/rad (> 0).
+    pub k_f0: f64,
+    /// Stiffening coefficient `c_f`, 1/(N·m), in [`STIFFENING_RANGE`].
+    pub c_f: f64,
+}
+
 /// Flexspline stiffness of the proposed model, eq. (2.24):
 /// `K_fl = K_f0 (1 + (c_f τ_f)²)`.
 ///
@@ -277,7 +306,8 @@ impl FlexsplineParams {
     /// torsion `π/(2 c_f K_f0)` (the edge of the inverse's domain) in
     /// [`MAX_TORSION_RANGE`]. Errors name the parameter (`k_f0`, `c_f`) or
     /// the combination (`π/(2·c_f·k_f0)`).
-    pub fn try_new(k_f0: f64, c_f: f64) -> Result<Self, ParamError> {
+    pub fn try_new(settings: FlexsplineSettings) -> Result<Self, ParamError> {
+        let FlexsplineSettings { k_f0, c_f } = settings;
         let k_f0 = positive("k_f0", k_f0)?;
         let c_f = in_range("c_f", c_f, STIFFENING_RANGE.0, STIFFENING_RANGE.1)?;
         let p = FlexsplineParams { k_f0, c_f };
@@ -288,6 +318,14 @@ impl FlexsplineParams {
             MAX_TORSION_RANGE.1,
         )?;
         Ok(p)
+    }
+
+    /// The settings, by name (`try_new(p.settings()) == Ok(p)`).
+    pub fn settings(&self) -> FlexsplineSettings {
+        FlexsplineSettings {
+            k_f0: self.k_f0,
+            c_f: self.c_f,
+        }
     }
 
     /// Stiffness at zero torque `K_f0`, N·m/rad.
@@ -451,6 +489,16 @@ impl<S: Scalar> FlexsplineConfig<S> {
     }
 }
 
+/// The wave-generator compliance of eq. (2.27) by name, for [`WaveGeneratorParams::try_new`] (two
+/// `f64` of different units: named so that they cannot be swapped).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WaveGeneratorSettings {
+    /// Stiffness at zero torque `K_w0`, N·m/rad, wave-generator side (> 0).
+    pub k_w0: f64,
+    /// Stiffening coefficient `c_w`, 1/(N·m), in [`STIFFENING_RANGE`].
+    pub c_w: f64,
+}
+
 /// Wave-generator compliance of the proposed model, eq. (2.27):
 /// `K_wl = K_w0 e^{c_w |τ_w|}`.
 ///
@@ -465,11 +513,20 @@ impl WaveGeneratorParams {
     /// Validates `K_w0 > 0` (N·m/rad, wave-generator side) and `c_w`
     /// (1/(N·m)) in [`STIFFENING_RANGE`], both finite; the largest
     /// wave-generator torsion `1/(c_w K_w0)` must be a finite number.
-    pub fn try_new(k_w0: f64, c_w: f64) -> Result<Self, ParamError> {
+    pub fn try_new(settings: WaveGeneratorSettings) -> Result<Self, ParamError> {
+        let WaveGeneratorSettings { k_w0, c_w } = settings;
         let k_w0 = positive("k_w0", k_w0)?;
         let c_w = in_range("c_w", c_w, STIFFENING_RANGE.0, STIFFENING_RANGE.1)?;
         combination("1/(c_w·k_w0)", 1.0 / (c_w * k_w0), 0.0, f64::MAX)?;
         Ok(WaveGeneratorParams { k_w0, c_w })
+    }
+
+    /// The settings, by name (`try_new(p.settings()) == Ok(p)`).
+    pub fn settings(&self) -> WaveGeneratorSettings {
+        WaveGeneratorSettings {
+            k_w0: self.k_w0,
+            c_w: self.c_w,
+        }
     }
 
     /// Stiffness at zero torque `K_w0`, N·m/rad (wave-generator side).
@@ -618,8 +675,52 @@ mod tests {
     use crate::scalar::I16F16;
     use proptest::prelude::*;
 
+    /// The named settings reach their own getters and roles: the slope of
+    /// eq. (3.10) at zero torsion is `K_f0` (a finite difference), the cubic
+    /// of eq. (2.10) is `a1 Δθ + a3 Δθ³` written out. Positional `f64`
+    /// pairs could be swapped and still validate (`K_f0 = 0.02`,
+    /// `c_f = 8000` is accepted).
+    #[test]
+    fn named_settings_reach_their_getters_and_roles() {
+        let fs = FlexsplineSettings {
+            k_f0: 8000.0,
+            c_f: 0.02,
+        };
+        let f = FlexsplineParams::try_new(fs).unwrap();
+        assert_eq!((f.k_f0(), f.c_f()), (8000.0, 0.02));
+        assert_eq!(f.settings(), fs);
+        let h = 1e-7;
+        let slope = (f.torque(h).torque - f.torque(-h).torque) / (2.0 * h);
+        assert!((slope - 8000.0).abs() < 1e-3, "{slope}");
+        assert!(FlexsplineParams::try_new(FlexsplineSettings {
+            k_f0: 0.02,
+            c_f: 8000.0
+        })
+        .is_ok());
+        let ws = WaveGeneratorSettings {
+            k_w0: 5e4,
+            c_w: 0.3,
+        };
+        let w = WaveGeneratorParams::try_new(ws).unwrap();
+        assert_eq!((w.k_w0(), w.c_w()), (5e4, 0.3));
+        assert_eq!(WaveGeneratorParams::try_new(w.settings()), Ok(w));
+        let cs = CubicStiffnessSettings {
+            a1: 7000.0,
+            a3: 3e9,
+        };
+        let c = CubicStiffness::try_new(cs).unwrap();
+        assert_eq!((c.a1(), c.a3(), c.settings()), (7000.0, 3e9, cs));
+        let d: f64 = 2e-3;
+        let want = 7000.0 * d + 3e9 * d * d * d;
+        assert!((c.torque(d) - want).abs() <= 1e-12 * want);
+    }
+
     fn shd17() -> FlexsplineParams {
-        FlexsplineParams::try_new(8.336e3, 0.0449).unwrap()
+        FlexsplineParams::try_new(FlexsplineSettings {
+            k_f0: 8.336e3,
+            c_f: 0.0449,
+        })
+        .unwrap()
     }
 
     #[test]
@@ -647,7 +748,11 @@ mod tests {
     /// return NaN; the inverse is now finite and still inverts.
     #[test]
     fn cubic_inverse_is_finite_for_huge_torques() {
-        let q = CubicStiffness::try_new(8.0e3, 2.0e9).unwrap();
+        let q = CubicStiffness::try_new(CubicStiffnessSettings {
+            a1: 8.0e3,
+            a3: 2.0e9,
+        })
+        .unwrap();
         for t in [1e100, 1e250, 1e300, f64::MAX] {
             let x = q.torsion(t);
             assert!(x.is_finite() && x > 0.0, "{t}: {x}");
@@ -723,13 +828,13 @@ mod tests {
         extern crate std;
         use std::string::ToString;
         let f = |k, c| {
-            FlexsplineParams::try_new(k, c)
+            FlexsplineParams::try_new(FlexsplineSettings { k_f0: k, c_f: c })
                 .map(|_| ())
                 .unwrap_err()
                 .to_string()
         };
         let w = |k, c| {
-            WaveGeneratorParams::try_new(k, c)
+            WaveGeneratorParams::try_new(WaveGeneratorSettings { k_w0: k, c_w: c })
                 .map(|_| ())
                 .unwrap_err()
                 .to_string()
@@ -767,7 +872,11 @@ mod tests {
         }
         // The composite: a flexspline so stiff that its inverse's domain
         // π/(2 c_f K_f0) is below a micro-radian (here 1.9e-8 rad).
-        let e = FlexsplineParams::try_new(8.3e7, 1.0).unwrap_err();
+        let e = FlexsplineParams::try_new(FlexsplineSettings {
+            k_f0: 8.3e7,
+            c_f: 1.0,
+        })
+        .unwrap_err();
         let domain = core::f64::consts::FRAC_PI_2 / 8.3e7;
         assert_eq!(
             e,
@@ -780,8 +889,16 @@ mod tests {
         );
         // A drive whose wave generator twists by more than a radian on the
         // output side.
-        let fl = FlexsplineParams::try_new(8.3e3, 0.045).unwrap();
-        let wg = WaveGeneratorParams::try_new(1e-3, 1e-3).unwrap();
+        let fl = FlexsplineParams::try_new(FlexsplineSettings {
+            k_f0: 8.3e3,
+            c_f: 0.045,
+        })
+        .unwrap();
+        let wg = WaveGeneratorParams::try_new(WaveGeneratorSettings {
+            k_w0: 1e-3,
+            c_w: 1e-3,
+        })
+        .unwrap();
         let e = HarmonicDriveParams::try_new(fl, wg, 2.0).unwrap_err();
         assert!(
             matches!(e, ParamError::CombinationOutOfRange { name: "1/(c_w·ratio·k_w0)", value, .. } if value == 1.0 / (1e-3 * 2.0 * 1e-3)),
@@ -789,7 +906,11 @@ mod tests {
         );
         let e = HarmonicDriveParams::try_new(
             fl,
-            WaveGeneratorParams::try_new(0.83, 83.0).unwrap(),
+            WaveGeneratorParams::try_new(WaveGeneratorSettings {
+                k_w0: 0.83,
+                c_w: 83.0,
+            })
+            .unwrap(),
             0.5,
         )
         .unwrap_err();
@@ -823,7 +944,11 @@ mod tests {
             let e = t.abs().mul_coef(&w.c_w).neg().exp();
             t.sgn().mul(S::ONE.sub(e)).mul_coef(&w.amplitude)
         }
-        let p = WaveGeneratorParams::try_new(0.8276, 83.33).unwrap();
+        let p = WaveGeneratorParams::try_new(WaveGeneratorSettings {
+            k_w0: 0.8276,
+            c_w: 83.33,
+        })
+        .unwrap();
         let w = WaveGeneratorConfig::<I16F16>::new(&p, 100.0);
         for bits in (i32::MIN..=i32::MAX)
             .step_by(97)
@@ -864,7 +989,7 @@ mod tests {
         /// Eq. (2.28): same for the wave generator and eq. (2.27).
         #[test]
         fn wave_generator_torsion_derivative_is_inverse_local_stiffness(t in 0.001f64..0.1) {
-            let p = WaveGeneratorParams::try_new(0.8276, 83.33).unwrap();
+            let p = WaveGeneratorParams::try_new(WaveGeneratorSettings { k_w0: 0.8276, c_w: 83.33 }).unwrap();
             let h = 1e-7;
             for t in [t, -t] {
                 let fd = (p.torsion(t + h) - p.torsion(t - h)) / (2.0 * h);
@@ -885,7 +1010,7 @@ mod tests {
         /// The cubic's inverse is exact to rounding.
         #[test]
         fn cubic_round_trip(t in -100.0f64..100.0) {
-            let q = CubicStiffness::try_new(8.0e3, 2.0e9).unwrap();
+            let q = CubicStiffness::try_new(CubicStiffnessSettings { a1: 8.0e3, a3: 2.0e9 }).unwrap();
             prop_assert!((q.torque(q.torsion(t)) - t).abs() <= 1e-9 * (1.0 + t.abs()));
         }
 

@@ -43,7 +43,10 @@
 //! # Ok::<(), mrr_control::ParamError>(())
 //! ```
 
-use super::compliance::{FlexsplineParams, HarmonicDriveParams, WaveGeneratorParams};
+use super::compliance::{
+    FlexsplineParams, FlexsplineSettings, HarmonicDriveParams, WaveGeneratorParams,
+    WaveGeneratorSettings,
+};
 use crate::error::{gear_ratio, increasing, positive, ParamError};
 
 /// Catalogue data of a harmonic drive and two measured friction torques.
@@ -156,8 +159,8 @@ impl CatalogueData {
         let k_w0 = 2.0 * tau_fs / (n * psi); // eq. (2.35)
         let c_w = 2.0 / (n * k_w0 * psi); // eq. (2.37)
         HarmonicDriveParams::try_new(
-            FlexsplineParams::try_new(k_f0, c_f)?,
-            WaveGeneratorParams::try_new(k_w0, c_w)?,
+            FlexsplineParams::try_new(FlexsplineSettings { k_f0, c_f })?,
+            WaveGeneratorParams::try_new(WaveGeneratorSettings { k_w0, c_w })?,
             n,
         )
     }

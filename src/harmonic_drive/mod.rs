@@ -12,10 +12,12 @@ pub mod two_spring;
 pub mod wave_generator_torque;
 
 pub use compliance::{
-    CatalogueCurve, CataloguePiecewise, CubicStiffness, FlexsplineConfig, FlexsplineParams,
-    FlexsplineTorque, HarmonicDriveParams, WaveGeneratorConfig, WaveGeneratorParams,
+    CatalogueCurve, CataloguePiecewise, CubicStiffness, CubicStiffnessSettings, FlexsplineConfig,
+    FlexsplineParams, FlexsplineSettings, FlexsplineTorque, HarmonicDriveParams,
+    WaveGeneratorConfig, WaveGeneratorParams, WaveGeneratorSettings,
 };
 pub use identification::CatalogueData;
 pub use wave_generator_torque::{
-    WaveGeneratorTorqueConfig, WaveGeneratorTorqueParams, WaveGeneratorTorqueState,
+    WaveGeneratorTorqueConfig, WaveGeneratorTorqueParams, WaveGeneratorTorqueSettings,
+    WaveGeneratorTorqueState,
 };

@@ -18,6 +18,18 @@
 
 use crate::error::{non_negative, positive, ParamError};
 
+/// The two-spring system by name, for [`TwoSpringParams::try_new`] (three `f64`: named so that none
+/// can be swapped).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TwoSpringSettings {
+    /// Stiffness of spring (a), `K_a` (N/m or N·m/rad), > 0.
+    pub k_a: f64,
+    /// Stiffness of spring (b), `K_b`, same unit, > 0.
+    pub k_b: f64,
+    /// Friction force `F_fr` on spring (b), N or N·m, ≥ 0.
+    pub friction: f64,
+}
+
 /// Parameters of the two-spring system; built only by
 /// [`try_new`](Self::try_new).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -30,11 +42,21 @@ pub struct TwoSpringParams {
 impl TwoSpringParams {
     /// Validate: stiffnesses finite and positive, friction finite and not
     /// negative.
-    pub fn try_new(k_a: f64, k_b: f64, friction: f64) -> Result<Self, ParamError> {
+    pub fn try_new(settings: TwoSpringSettings) -> Result<Self, ParamError> {
+        let TwoSpringSettings { k_a, k_b, friction } = settings;
         let k_a = positive("k_a", k_a)?;
         let k_b = positive("k_b", k_b)?;
         let friction = non_negative("friction", friction)?;
         Ok(TwoSpringParams { k_a, k_b, friction })
+    }
+
+    /// The settings, by name (`try_new(p.settings()) == Ok(p)`).
+    pub fn settings(&self) -> TwoSpringSettings {
+        TwoSpringSettings {
+            k_a: self.k_a,
+            k_b: self.k_b,
+            friction: self.friction,
+        }
     }
 
     /// Stiffness of spring (a), `K_a` (N/m or N·m/rad), > 0.
@@ -95,6 +117,20 @@ mod tests {
     use super::*;
     use proptest::prelude::*;
 
+    /// Each named setting reaches its own getter (three `f64` that used to
+    /// be positional).
+    #[test]
+    fn named_settings_reach_their_getters() {
+        let s = TwoSpringSettings {
+            k_a: 3.0,
+            k_b: 5.0,
+            friction: 0.7,
+        };
+        let p = TwoSpringParams::try_new(s).unwrap();
+        assert_eq!((p.k_a(), p.k_b(), p.friction()), (3.0, 5.0, 0.7));
+        assert_eq!(p.settings(), s);
+    }
+
     proptest! {
         /// While the contact slides (loading past `F_fr` from rest, then
         /// unloading past `2 F_fr` below the turning point; `F_fr < peak/4`
@@ -105,7 +141,7 @@ mod tests {
         fn play_form_matches_eq_2_16_while_sliding(
             k_a in 10.0f64..1e4, k_b in 10.0f64..1e4, fr in 0.1f64..6.0, peak in 25.0f64..100.0,
         ) {
-            let p = TwoSpringParams::try_new(k_a, k_b, fr).unwrap();
+            let p = TwoSpringParams::try_new(TwoSpringSettings { k_a, k_b, friction: fr }).unwrap();
             let mut st = TwoSpringState::default();
             let steps = 400;
             let mut rising_at_half = 0.0;
@@ -137,7 +173,12 @@ mod tests {
     /// displacement below `F/K_a`.
     #[test]
     fn spring_b_rests_below_the_friction_force() {
-        let p = TwoSpringParams::try_new(100.0, 50.0, 4.0).unwrap();
+        let p = TwoSpringParams::try_new(TwoSpringSettings {
+            k_a: 100.0,
+            k_b: 50.0,
+            friction: 4.0,
+        })
+        .unwrap();
         let mut st = TwoSpringState::default();
         let x = st.apply(&p, 2.0);
         assert_eq!(st.spring_b_force, 0.0);
@@ -148,21 +189,38 @@ mod tests {
     #[test]
     fn invalid_parameters_are_named() {
         assert!(matches!(
-            TwoSpringParams::try_new(0.0, 1.0, 1.0),
+            TwoSpringParams::try_new(TwoSpringSettings {
+                k_a: 0.0,
+                k_b: 1.0,
+                friction: 1.0
+            }),
             Err(ParamError::NotPositive { name: "k_a", .. })
         ));
         assert!(matches!(
-            TwoSpringParams::try_new(1.0, f64::NAN, 1.0),
+            TwoSpringParams::try_new(TwoSpringSettings {
+                k_a: 1.0,
+                k_b: f64::NAN,
+                friction: 1.0
+            }),
             Err(ParamError::NotFinite { name: "k_b", .. })
         ));
         assert!(matches!(
-            TwoSpringParams::try_new(1.0, 1.0, -1.0),
+            TwoSpringParams::try_new(TwoSpringSettings {
+                k_a: 1.0,
+                k_b: 1.0,
+                friction: -1.0
+            }),
             Err(ParamError::Negative {
                 name: "friction",
                 ..
             })
         ));
-        let p = TwoSpringParams::try_new(1.0, 1.0, 1.0).unwrap();
+        let p = TwoSpringParams::try_new(TwoSpringSettings {
+            k_a: 1.0,
+            k_b: 1.0,
+            friction: 1.0,
+        })
+        .unwrap();
         let mut st = TwoSpringState::default();
         assert!(st.apply(&p, f64::NAN).is_finite());
     }

@@ -18,6 +18,16 @@
 use crate::error::{gear_ratio, positive, ParamError};
 use crate::scalar::{Coef, Scalar};
 
+/// The back-driving friction play of eq. (2.40) by name, for [`WaveGeneratorTorqueParams::try_new`]
+/// (two `f64`: named so that they cannot be swapped).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WaveGeneratorTorqueSettings {
+    /// Back-driving friction torque at the flexspline `τ_fb`, N·m (> 0).
+    pub backdrive_friction: f64,
+    /// Gear ratio `N` (≥ 1).
+    pub ratio: f64,
+}
+
 /// Parameters of the back-driving friction play, eq. (2.40); built only by
 /// [`try_new`](Self::try_new).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -28,13 +38,25 @@ pub struct WaveGeneratorTorqueParams {
 
 impl WaveGeneratorTorqueParams {
     /// Validates `τ_fb > 0` and `N ≥ 1`.
-    pub fn try_new(backdrive_friction: f64, ratio: f64) -> Result<Self, ParamError> {
+    pub fn try_new(settings: WaveGeneratorTorqueSettings) -> Result<Self, ParamError> {
+        let WaveGeneratorTorqueSettings {
+            backdrive_friction,
+            ratio,
+        } = settings;
         let backdrive_friction = positive("backdrive_friction", backdrive_friction)?;
         let ratio = gear_ratio(ratio)?;
         Ok(WaveGeneratorTorqueParams {
             backdrive_friction,
             ratio,
         })
+    }
+
+    /// The settings, by name (`try_new(p.settings()) == Ok(p)`).
+    pub fn settings(&self) -> WaveGeneratorTorqueSettings {
+        WaveGeneratorTorqueSettings {
+            backdrive_friction: self.backdrive_friction,
+            ratio: self.ratio,
+        }
     }
 
     /// Back-driving friction torque at the flexspline `τ_fb`, N·m (> 0).
@@ -104,11 +126,28 @@ mod tests {
     use crate::scalar::I16F16;
     use proptest::prelude::*;
 
+    /// Each named setting reaches its own getter (two `f64` that used to
+    /// be positional; `τ_fb = 100`, `N = 2` would have validated swapped).
+    #[test]
+    fn named_settings_reach_their_getters() {
+        let s = WaveGeneratorTorqueSettings {
+            backdrive_friction: 2.0,
+            ratio: 100.0,
+        };
+        let p = WaveGeneratorTorqueParams::try_new(s).unwrap();
+        assert_eq!((p.backdrive_friction(), p.ratio()), (2.0, 100.0));
+        assert_eq!(p.settings(), s);
+    }
+
     /// A NaN or infinite torque used to turn the state into NaN or ±∞ for
     /// good; now it is skipped and the state stays finite.
     #[test]
     fn non_finite_torque_leaves_the_state_unchanged() {
-        let p = WaveGeneratorTorqueParams::try_new(2.0, 100.0).unwrap();
+        let p = WaveGeneratorTorqueParams::try_new(WaveGeneratorTorqueSettings {
+            backdrive_friction: 2.0,
+            ratio: 100.0,
+        })
+        .unwrap();
         let c = WaveGeneratorTorqueConfig::<f32>::new(&p);
         let mut st = WaveGeneratorTorqueState::default();
         let before = c.update(&mut st, 10.0);
@@ -134,14 +173,20 @@ mod tests {
     #[test]
     fn rejects_bad_parameters_by_name() {
         assert!(matches!(
-            WaveGeneratorTorqueParams::try_new(0.0, 100.0),
+            WaveGeneratorTorqueParams::try_new(WaveGeneratorTorqueSettings {
+                backdrive_friction: 0.0,
+                ratio: 100.0
+            }),
             Err(ParamError::NotPositive {
                 name: "backdrive_friction",
                 ..
             })
         ));
         assert!(matches!(
-            WaveGeneratorTorqueParams::try_new(2.0, 0.5),
+            WaveGeneratorTorqueParams::try_new(WaveGeneratorTorqueSettings {
+                backdrive_friction: 2.0,
+                ratio: 0.5
+            }),
             Err(ParamError::OutOfRange { name: "ratio", .. })
         ));
     }
@@ -157,7 +202,11 @@ mod tests {
         assert!(tf - n * prev > -tfb); // the printed condition holds
         assert_eq!(reference(prev, tf, tfb, n), prev); // but the drive sticks
         let cfg = WaveGeneratorTorqueConfig::<f64>::new(
-            &WaveGeneratorTorqueParams::try_new(tfb, n).unwrap(),
+            &WaveGeneratorTorqueParams::try_new(WaveGeneratorTorqueSettings {
+                backdrive_friction: tfb,
+                ratio: n,
+            })
+            .unwrap(),
         );
         let mut st = WaveGeneratorTorqueState { torque: prev };
         assert_eq!(cfg.update(&mut st, tf), prev);
@@ -171,7 +220,7 @@ mod tests {
             torques in proptest::collection::vec(-40.0f64..40.0, 1..200),
             tfb in 0.1f64..5.0, n in 30.0f64..200.0,
         ) {
-            let cfg = WaveGeneratorTorqueConfig::<f64>::new(&WaveGeneratorTorqueParams::try_new(tfb, n).unwrap());
+            let cfg = WaveGeneratorTorqueConfig::<f64>::new(&WaveGeneratorTorqueParams::try_new(WaveGeneratorTorqueSettings { backdrive_friction: tfb, ratio: n }).unwrap());
             let mut st = WaveGeneratorTorqueState::default();
             let mut prev = 0.0;
             for tf in torques {
@@ -187,7 +236,7 @@ mod tests {
         /// Fixed point follows f64 within the quantization of its inputs.
         #[test]
         fn fixed_follows_f64(torques in proptest::collection::vec(-40.0f64..40.0, 1..100)) {
-            let p = WaveGeneratorTorqueParams::try_new(2.0, 100.0).unwrap();
+            let p = WaveGeneratorTorqueParams::try_new(WaveGeneratorTorqueSettings { backdrive_friction: 2.0, ratio: 100.0 }).unwrap();
             let (cf, cx) = (WaveGeneratorTorqueConfig::<f64>::new(&p), WaveGeneratorTorqueConfig::<I16F16>::new(&p));
             let (mut sf, mut sx) = (WaveGeneratorTorqueState::default(), WaveGeneratorTorqueState::default());
             for tf in torques {

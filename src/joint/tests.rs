@@ -1,19 +1,20 @@
 use super::*;
+use crate::control::PassiveSettings;
 use crate::control::{ModeOutput, RobustAdaptiveParams};
-use crate::estimation::collision::{CollisionParams, CollisionReaction};
+use crate::estimation::collision::{CollisionParams, CollisionReaction, CollisionSettings};
 use crate::scalar::I16F16;
 
 /// The firmware's joint (the estimator and manager of
 /// `embedded/src/joint.rs`): Table 4.1 laws with passive gain 2000, a
 /// collision detector stopping the joint above 4 N·m.
 fn firmware_params() -> JointParams {
-    let estimator = TorqueEstimatorParams::try_new(
-        CatalogueData::SHD_17_100.identify().unwrap(),
-        Some(KinematicErrorModel::table_3_2()),
-        1 << 17,
-        2000,
-        60.0,
-    )
+    let estimator = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+        drive: CatalogueData::SHD_17_100.identify().unwrap(),
+        kinematic_error: Some(KinematicErrorModel::table_3_2()),
+        link_counts_per_rev: 1 << 17,
+        motor_counts_per_rev: 2000,
+        max_torque: 60.0,
+    })
     .unwrap();
     let mode = ModeParams::try_new(ModeSettings {
         active: RobustAdaptiveParams::table_4_1().unwrap(),
@@ -24,7 +25,16 @@ fn firmware_params() -> JointParams {
         dwell: 5,
         rejoin_bandwidth: 10.0,
         bias_time_constant: 0.1,
-        collision: Some(CollisionParams::try_new(4.0, 3.0, 2, 2, CollisionReaction::Stop).unwrap()),
+        collision: Some(
+            CollisionParams::try_new(CollisionSettings {
+                threshold: 4.0,
+                release_threshold: 3.0,
+                debounce: 2,
+                release: 2,
+                reaction: CollisionReaction::Stop,
+            })
+            .unwrap(),
+        ),
     })
     .unwrap();
     JointParams::try_new(JointSettings {
@@ -229,6 +239,41 @@ fn motor_position_and_speed_follow_the_counter() {
     assert_eq!(st.motor_position_counts(), total);
 }
 
+/// `measure` is the first half of `update`: on twin states fed the same
+/// readings it returns the fields `update` reports, and it leaves the mode
+/// manager's state as it was.
+#[test]
+fn measure_is_the_measuring_half_of_update() {
+    let p = firmware_params();
+    let cfg = JointConfig::<f64>::new(&p);
+    let mut a = cfg.state_at(40, 12);
+    let mut b = a;
+    let target = JointTarget::from_si(0.01, 0.0, 0.0);
+    let mut seed = 7u64;
+    let mut counter = 12u32;
+    for k in 0..60 {
+        counter = counter.wrapping_add((sym(&mut seed, 9.0)) as i32 as u32);
+        let link = (xorshift(&mut seed) % 40) as u32;
+        let r = JointReadings {
+            link_count: link,
+            motor_counter: counter,
+            motor_torque: Some(sym(&mut seed, 0.1)),
+        };
+        let mode_before = *b.mode_state();
+        let m = cfg.measure(&mut b, &r);
+        assert_eq!(*b.mode_state(), mode_before, "tick {k}");
+        let o = cfg.update(&mut a, &r, &target);
+        assert_eq!(m.joint_torque, o.joint_torque, "tick {k}");
+        assert_eq!(m.motor_position, o.motor_position, "tick {k}");
+        assert_eq!(m.motor_velocity, o.motor_velocity, "tick {k}");
+        assert_eq!(m.estimate, o.estimate, "tick {k}");
+        assert_eq!(m.joint_torque, -o.estimate.torque);
+        // Keep the twins' mode managers equal so the next tick's `None`
+        // torque (unused here) could not differ either.
+        b = b.with_mode_state(*a.mode_state());
+    }
+}
+
 #[test]
 fn state_starts_the_motor_at_n_times_the_link_angle() {
     let cfg = JointConfig::<f32>::new(&firmware_params());
@@ -318,7 +363,14 @@ fn parameters_are_validated() {
         50.0,
     );
     if let Ok(half) = half {
-        let est = TorqueEstimatorParams::try_new(half, None, 1 << 17, 2000, 60.0).unwrap();
+        let est = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+            drive: half,
+            kinematic_error: None,
+            link_counts_per_rev: 1 << 17,
+            motor_counts_per_rev: 2000,
+            max_torque: 60.0,
+        })
+        .unwrap();
         let e = JointParams::try_new(JointSettings {
             estimator: est,
             ..p
@@ -353,14 +405,14 @@ fn signs_match_the_simulated_joint() {
     let mut design = bound_design(1.0);
     design.sample_period = 1e-4;
     let active = RobustAdaptiveParams::try_new(design).unwrap();
-    let passive = PassiveParams::try_new(
-        design.rotor_inertia,
-        1.0 / design.rotor_inertia,
-        design.ratio,
-        design.eps_velocity,
-        identified_motor_friction(),
-        design.torque_limit,
-    )
+    let passive = PassiveParams::try_new(PassiveSettings {
+        rotor_inertia: design.rotor_inertia,
+        gain: 1.0 / design.rotor_inertia,
+        ratio: design.ratio,
+        eps_velocity: design.eps_velocity,
+        nominal_friction: identified_motor_friction(),
+        torque_limit: design.torque_limit,
+    })
     .unwrap();
     let mode = ModeParams::try_new(ModeSettings {
         active,
@@ -374,13 +426,13 @@ fn signs_match_the_simulated_joint() {
         collision: None,
     })
     .unwrap();
-    let estimator = TorqueEstimatorParams::try_new(
-        crate::sim::experiments::Models::shd_17_100().proposed,
-        Some(KinematicErrorModel::table_3_2()),
-        module.link_encoder.counts_per_rev,
-        module.motor_encoder.counts_per_rev,
-        60.0,
-    )
+    let estimator = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+        drive: crate::sim::experiments::Models::shd_17_100().proposed,
+        kinematic_error: Some(KinematicErrorModel::table_3_2()),
+        link_counts_per_rev: module.link_encoder.counts_per_rev,
+        motor_counts_per_rev: module.motor_encoder.counts_per_rev,
+        max_torque: 60.0,
+    })
     .unwrap();
     let p = JointParams::try_new(JointSettings {
         estimator,

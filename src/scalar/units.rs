@@ -399,7 +399,9 @@ mod tests {
     #[test]
     fn one_generic_function_gives_the_same_si_numbers_on_every_backend() {
         use crate::control::{RobustAdaptiveConfig, RobustAdaptiveParams};
-        use crate::estimation::{TorqueEstimatorConfig, TorqueEstimatorParams};
+        use crate::estimation::{
+            TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorSettings,
+        };
         use crate::harmonic_drive::CatalogueData;
 
         struct Si {
@@ -437,7 +439,14 @@ mod tests {
             expected_joint_torque: 0.1,
         };
         let drive = CatalogueData::SHD_17_100.identify().unwrap();
-        let est = TorqueEstimatorParams::try_new(drive, None, 1 << 17, 2000, 60.0).unwrap();
+        let est = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+            drive,
+            kinematic_error: None,
+            link_counts_per_rev: 1 << 17,
+            motor_counts_per_rev: 2000,
+            max_torque: 60.0,
+        })
+        .unwrap();
         let a = user_code::<f64>(&x, &est);
         assert!((a.limit - 0.188).abs() < 1e-12, "{}", a.limit);
         assert!(

@@ -14,9 +14,11 @@
 //! The plant's motor angle is `q_m = N q_l` at zero torsion (chapter 4),
 //! its transmission torque `τ_t` is the torque the drive applies to the
 //! link (eq. 4.1), which is what the F/T sensor reads and what
-//! [`ControlInput::joint_torque`] expects. The estimator is fed as errata
-//! E2.10 prescribes ([`estimator_counts`]: motor counter negated) and returns
-//! `−τ_t`, so the feedback is `τ̂_t = −estimate`.
+//! [`ControlInput::joint_torque`] expects. The estimate `τ̂_t` comes from
+//! the library joint ([`SimJoint`] around [`crate::joint::JointConfig`]),
+//! which applies the estimator's conventions (errata E2.10: motor counter
+//! negated, `τ̂_t = −estimate`) in one place for the firmware and the
+//! simulator alike.
 //!
 //! # Scenarios
 //! * [`active_tracking`] ([`TrackingConfig`]) — §4.4.1, Fig. 4.2–4.3:
@@ -39,18 +41,24 @@
 //! fixed window `w` (at least one sample): `q̇_m ≈ (c_k − c_{k−w})·Δ/(w T)`
 //! with `Δ = 2π/M`. A window of 4 ms gives the same speed resolution
 //! (`Δ/4 ms = 0.785 rad/s` for the thesis's 2000-count encoder) at every
-//! sample period, with a lag of half the window.
+//! sample period, with a lag of half the window. The loops measure it with
+//! the joint's meter ([`JointConfig::measure`]), which takes the counter
+//! as constant before the start; [`CountSpeed`] is the same meter on an
+//! unwrapped count, except that over its first window it divides the
+//! difference by the samples it has (the two differ only there).
 
-use super::experiments::{estimator_counts, ErrorStats, Models};
+use super::experiments::{ErrorStats, Models};
 use super::mrr::{misaligned, ModuleParams, Mrr, Sensors};
 use crate::control::{
-    ControlInput, RobustAdaptiveConfig, RobustAdaptiveDesign, RobustAdaptiveParams,
-    RobustAdaptiveState,
+    ControlInput, ModeParams, ModeSettings, PassiveParams, PassiveSettings, RobustAdaptiveConfig,
+    RobustAdaptiveDesign, RobustAdaptiveParams, RobustAdaptiveState,
 };
-use crate::estimation::torque::{
-    TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorState,
-};
+use crate::estimation::torque::{TorqueEstimatorParams, TorqueEstimatorSettings};
 use crate::harmonic_drive::kinematic_error::KinematicErrorModel;
+use crate::joint::{
+    JointConfig, JointMeasurement, JointOutput, JointParams, JointReadings, JointSettings,
+    JointState, JointTarget,
+};
 use core::f64::consts::TAU;
 use std::collections::VecDeque;
 use std::vec::Vec;
@@ -77,6 +85,18 @@ impl JointTorqueFeedback {
     }
 }
 
+/// The settings of a [`CountSpeed`] meter by name (three `f64`: named so
+/// that none can be swapped).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CountSpeedSettings {
+    /// Length of the difference window, s (at least one sample is used).
+    pub window: f64,
+    /// Sample period, s.
+    pub period: f64,
+    /// Encoder resolution, rad per count.
+    pub rad_per_count: f64,
+}
+
 /// Windowed count-difference speed of one encoder (module docs).
 #[derive(Debug, Clone)]
 pub struct CountSpeed {
@@ -88,7 +108,12 @@ pub struct CountSpeed {
 impl CountSpeed {
     /// A meter over `window` seconds (at least one sample of `period`) for
     /// an encoder of `rad_per_count`.
-    pub fn new(window: f64, period: f64, rad_per_count: f64) -> Self {
+    pub fn new(settings: CountSpeedSettings) -> Self {
+        let CountSpeedSettings {
+            window,
+            period,
+            rad_per_count,
+        } = settings;
         let w = ((window / period).round() as usize).max(1);
         CountSpeed {
             history: VecDeque::with_capacity(w + 1),
@@ -117,58 +142,144 @@ impl CountSpeed {
     }
 }
 
-/// The ch. 3 estimator on `f64` for the thesis joint (eq. 2.30 model,
-/// Table 3.2 kinematic error, which is the plant's), with its state.
+/// The library joint ([`crate::joint`], `f64`) on joint `i` of the
+/// simulated robot: the loops of this module read the sensors through it,
+/// so the estimator's sign conventions (motor counter negated,
+/// `τ̂_t = −estimate`) are the ones [`JointConfig::update`] applies, not a
+/// second copy of them.
+///
+/// The readings are the plant's unwrapped counts as the firmware gets them:
+/// the link count reduced to `[0, L)` and the motor count as a wrapping
+/// `u32` counter (chapter-4 sign). Loops that run their own law
+/// (active tracking with feedback variants, back-driving, payload drop,
+/// Theorem 1 cases) call [`measure`](Self::measure); the mode-manager
+/// scenarios call [`update`](Self::update).
 #[derive(Debug, Clone)]
-pub struct JointTorqueEstimator {
-    config: TorqueEstimatorConfig<f64>,
-    state: TorqueEstimatorState,
-    module: ModuleParams,
+pub struct SimJoint {
+    config: JointConfig<f64>,
+    state: JointState<f64>,
+    link_counts: i64,
+    index: usize,
 }
 
-impl JointTorqueEstimator {
-    /// An estimator for `module` initialized from the readings `s` of
-    /// joint `i`.
-    pub fn new(module: &ModuleParams, s: &Sensors, i: usize) -> Self {
-        Self::with_kinematic_error(module, s, i, Some(KinematicErrorModel::table_3_2()))
-    }
-
-    /// [`new`](Self::new) with the estimator's kinematic-error model given
-    /// (e.g. the plant's own, `None` when the plant has none).
-    pub fn with_kinematic_error(
-        module: &ModuleParams,
-        s: &Sensors,
-        i: usize,
-        kinematic_error: Option<KinematicErrorModel>,
-    ) -> Self {
-        let models = Models::shd_17_100();
-        let p = TorqueEstimatorParams::try_new(
-            models.proposed,
-            kinematic_error,
-            module.link_encoder.counts_per_rev,
-            module.motor_encoder.counts_per_rev,
-            60.0,
-        )
-        .expect("thesis estimator parameters are valid");
-        let config = TorqueEstimatorConfig::new(&p);
-        let (_, c0) = estimator_counts(module, s, i);
-        let state = config.state(-s.motor_counts[i], c0);
-        JointTorqueEstimator {
+impl SimJoint {
+    /// The joint `params` on joint `i`, started from the readings `s`: the
+    /// motor position at its unwrapped count, the estimator's state from
+    /// the same counter ([`JointConfig::state_at`]).
+    pub fn new(params: &JointParams, s: &Sensors, i: usize) -> Self {
+        let config = JointConfig::new(params);
+        let motor = s.motor_counts[i];
+        let state = config.state_at(motor, motor as u32);
+        SimJoint {
             config,
             state,
-            module: module.clone(),
+            link_counts: params.settings().estimator.link_counts_per_rev() as i64,
+            index: i,
         }
     }
 
-    /// `τ̂_t` (eq. 4.1 sign, N·m) from the readings of joint `i` and the
-    /// motor torque being applied (chapter-4 sign, N·m).
-    pub fn joint_torque(&mut self, s: &Sensors, i: usize, motor_torque: f64) -> f64 {
-        let (cl, cm) = estimator_counts(&self.module, s, i);
-        -self
-            .config
-            .update(&mut self.state, cl, cm, motor_torque)
-            .torque
+    /// This tick's readings from the sensors; `motor_torque` as in
+    /// [`JointReadings::motor_torque`] (N·m, chapter-4 sign).
+    pub fn readings(&self, s: &Sensors, motor_torque: Option<f64>) -> JointReadings<f64> {
+        JointReadings {
+            link_count: s.link_counts[self.index].rem_euclid(self.link_counts) as u32,
+            motor_counter: s.motor_counts[self.index] as u32,
+            motor_torque,
+        }
     }
+
+    /// [`JointConfig::measure`] on the readings `s`, the motor torque being
+    /// applied `motor_torque` (N·m, chapter-4 sign).
+    pub fn measure(&mut self, s: &Sensors, motor_torque: f64) -> JointMeasurement<f64> {
+        let r = self.readings(s, Some(motor_torque));
+        self.config.measure(&mut self.state, &r)
+    }
+
+    /// [`JointConfig::update`] on the readings `s` (the motor torque taken
+    /// as the previous command) and `target`.
+    pub fn update(&mut self, s: &Sensors, target: &JointTarget<f64>) -> JointOutput<f64> {
+        let r = self.readings(s, None);
+        self.config.update(&mut self.state, &r, target)
+    }
+
+    /// The joint's configuration.
+    pub fn config(&self) -> &JointConfig<f64> {
+        &self.config
+    }
+
+    /// The joint's state.
+    pub fn state(&self) -> &JointState<f64> {
+        &self.state
+    }
+}
+
+/// The joint parameters of a simulated `module`: the ch. 3 estimator
+/// (eq. 2.30 model identified from the SHD-17-100 catalogue sheet, the
+/// given kinematic-error model, the module's encoders, ±60 N·m) with the
+/// mode manager `mode`, the motor speed over `speed_window` s
+/// (`round(window/T)` ticks, at least one and at most
+/// [`MAX_SPEED_WINDOW`](crate::joint::MAX_SPEED_WINDOW); `T` the mode's
+/// sample period).
+pub fn joint_params(
+    module: &ModuleParams,
+    kinematic_error: Option<KinematicErrorModel>,
+    mode: ModeParams,
+    speed_window: f64,
+) -> Result<JointParams, crate::ParamError> {
+    let estimator = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+        drive: Models::shd_17_100().proposed,
+        kinematic_error,
+        link_counts_per_rev: module.link_encoder.counts_per_rev,
+        motor_counts_per_rev: module.motor_encoder.counts_per_rev,
+        max_torque: 60.0,
+    })?;
+    let t = mode.settings().active.design().sample_period;
+    let w = ((speed_window / t).round()).clamp(1.0, crate::joint::MAX_SPEED_WINDOW as f64);
+    JointParams::try_new(JointSettings {
+        estimator,
+        mode,
+        speed_window: w as u8,
+    })
+}
+
+/// A mode manager around the active law `design` for a loop that only
+/// measures through the joint ([`SimJoint::measure`]): the passive law of
+/// the same rotor, ratio and torque limit at `Î_m K_p = 1`, the manager
+/// settings of [`ModeSettings::table_4_1`] (rejoin bandwidth capped at
+/// `0.5/T`, bias time constant at least `T`). Never run by those loops.
+pub fn measuring_mode(design: RobustAdaptiveDesign) -> Result<ModeParams, crate::ParamError> {
+    let t = design.sample_period;
+    let passive = PassiveParams::try_new(PassiveSettings {
+        rotor_inertia: design.rotor_inertia,
+        gain: 1.0 / design.rotor_inertia,
+        ratio: design.ratio,
+        eps_velocity: design.eps_velocity,
+        nominal_friction: design.initial_friction,
+        torque_limit: design.torque_limit,
+    })?;
+    let base = ModeSettings::table_4_1(1.0)?;
+    ModeParams::try_new(ModeSettings {
+        active: RobustAdaptiveParams::try_new(design)?,
+        passive,
+        rejoin_bandwidth: base.rejoin_bandwidth.min(0.5 / t),
+        bias_time_constant: base.bias_time_constant.max(t),
+        ..base
+    })
+}
+
+/// A [`SimJoint`] for `module` that measures for a loop running its own
+/// law `design` (its sample period is the tick), with the Table 3.2
+/// kinematic error or `kinematic_error`.
+fn measuring_joint(
+    module: &ModuleParams,
+    kinematic_error: Option<KinematicErrorModel>,
+    design: RobustAdaptiveDesign,
+    speed_window: f64,
+    s: &Sensors,
+) -> SimJoint {
+    let mode = measuring_mode(design).expect("valid measuring mode");
+    let p = joint_params(module, kinematic_error, mode, speed_window).expect("valid joint");
+    SimJoint::new(&p, s, 0)
 }
 
 /// The thesis joint of §4.4.1 carrying joints 2 and 3 and the link as
@@ -325,10 +436,14 @@ pub fn active_tracking(cfg: &TrackingConfig) -> TrackingResult {
     let g0 = robot.gravity_torques()[0];
     let qm0 = robot.motor_angles_for_torque(&[0.0], &[g0])[0];
     robot.set_state(&[0.0], &[qm0], &[0.0], &[0.0]);
-    let rad = module.motor_encoder.rad_per_count();
-    let mut speed = CountSpeed::new(cfg.speed_window, t, rad);
     let s0 = robot.read_sensors();
-    let mut est = JointTorqueEstimator::new(&module, &s0, 0);
+    let mut joint = measuring_joint(
+        &module,
+        Some(KinematicErrorModel::table_3_2()),
+        cfg.design,
+        cfg.speed_window,
+        &s0,
+    );
     let mut last_torque = 0.0;
     let (mut le, mut me, mut fe) = (Vec::new(), Vec::new(), Vec::new());
     let (mut sat, mut count, mut max_r) = (0usize, 0usize, 0.0f64);
@@ -337,9 +452,8 @@ pub fn active_tracking(cfg: &TrackingConfig) -> TrackingResult {
     for k in 0..total {
         let time = k as f64 * t;
         let s = robot.read_sensors();
-        let qm = s.motor_counts[0] as f64 * rad;
-        let vm = speed.update(s.motor_counts[0]);
-        let tau_est = est.joint_torque(&s, 0, last_torque);
+        let m = joint.measure(&s, last_torque);
+        let tau_est = m.joint_torque;
         let fb = match cfg.feedback {
             JointTorqueFeedback::None => 0.0,
             JointTorqueFeedback::Sensor => s.link_torque[0],
@@ -350,8 +464,8 @@ pub fn active_tracking(cfg: &TrackingConfig) -> TrackingResult {
             desired_position: n * qd,
             desired_velocity: n * vd,
             desired_acceleration: n * ad,
-            motor_position: qm,
-            motor_velocity: vm,
+            motor_position: m.motor_position,
+            motor_velocity: m.motor_velocity,
             joint_torque: fb,
             ..Default::default()
         };
@@ -425,7 +539,7 @@ pub struct BoundCase {
     pub error_square_period: f64,
     /// Noise seed.
     pub seed: u64,
-    /// Feed back the ch. 3 estimate (variant C, [`JointTorqueEstimator`]
+    /// Feed back the ch. 3 estimate (variant C, [`SimJoint`]
     /// with the plant's kinematic-error model) instead of the true torque
     /// plus the synthetic error above; the design's `ρ_τt` is then
     /// [`ESTIMATED_TORQUE_ERROR_BOUND`].
@@ -434,7 +548,7 @@ pub struct BoundCase {
 
 /// `ρ_τt` (N·m) under which Theorem 1 is checked for feedback variant C
 /// (the ch. 3 estimate): the estimator's worst-case error in the smooth
-/// (0.1 ms and 50 µs) ch. 3–4 loops, 3.0 N·m as measured by
+/// (0.1 ms and 50 µs) ch. 3–4 loops, 2.9 N·m as measured by
 /// [`estimator_error_survey`](super::experiments::estimator_error_survey),
 /// with a third of margin for the random cases of the property test (the
 /// test `estimator_error_is_within_the_variant_c_bound` keeps the two
@@ -491,8 +605,22 @@ impl BoundCase {
 pub fn bound_design(stribeck: f64) -> RobustAdaptiveDesign {
     use crate::friction::{FrictionBounds, FrictionParams as Fp};
     let bounds = FrictionBounds::try_new(
-        Fp::try_new(0.0, 0.0, 0.0, stribeck).expect("valid"),
-        Fp::try_new(1e-4, 0.012, 0.012, stribeck).expect("valid"),
+        Fp {
+            viscous: 0.0,
+            coulomb: 0.0,
+            stribeck: 0.0,
+            stribeck_shape: stribeck,
+        }
+        .validated()
+        .expect("valid"),
+        Fp {
+            viscous: 1e-4,
+            coulomb: 0.012,
+            stribeck: 0.012,
+            stribeck_shape: stribeck,
+        }
+        .validated()
+        .expect("valid"),
         [1e-4, 1e-2, 1e-2, 1.0],
     )
     .expect("valid box");
@@ -613,9 +741,10 @@ pub fn bound_run(case: &BoundCase, duration: f64) -> BoundRun {
     let g0 = robot.gravity_torques()[0];
     let qm0 = robot.motor_angles_for_torque(&[0.0], &[g0])[0];
     robot.set_state(&[0.0], &[qm0], &[0.0], &[0.0]);
-    let mut estimator = case.estimated_feedback.then(|| {
-        JointTorqueEstimator::with_kinematic_error(&plant, &robot.read_sensors(), 0, None)
-    });
+    // One-sample speed, as the loop below measures it without the joint.
+    let mut estimator = case
+        .estimated_feedback
+        .then(|| measuring_joint(&plant, None, design, t, &robot.read_sensors()));
     let mut applied = 0.0;
     let mut rng = SplitMix64::new(case.seed ^ 0x5EED);
     let mut st = law.initial_state();
@@ -658,7 +787,7 @@ pub fn bound_run(case: &BoundCase, duration: f64) -> BoundRun {
             amp * (2.0 * rng.uniform() - 1.0)
         };
         let fb = match estimator.as_mut() {
-            Some(e) => e.joint_torque(&sens, 0, applied),
+            Some(e) => e.measure(&sens, applied).joint_torque,
             None => tau_t + err,
         };
         let (qd, vd, ad) = raised_cosine(case.amplitude, case.period, time);
@@ -862,26 +991,32 @@ pub struct BackDriveSample {
 /// friction compensation and the feed-forward `τ̂_t/N`, not a lighter
 /// inertia.
 pub fn back_drive(cfg: &BackDriveConfig) -> BackDriveResult {
-    use crate::control::{PassiveConfig, PassiveParams};
+    use crate::control::{PassiveConfig, PassiveParams, PassiveSettings};
     let module = ModuleParams::thesis_joint();
     let t = cfg.sample_period;
-    let p = PassiveParams::try_new(
-        module.rotor_inertia,
-        cfg.gain,
-        module.drive.ratio,
-        0.01,
-        identified_motor_friction(),
-        module.max_motor_torque,
-    )
+    let p = PassiveParams::try_new(PassiveSettings {
+        rotor_inertia: module.rotor_inertia,
+        gain: cfg.gain,
+        ratio: module.drive.ratio,
+        eps_velocity: 0.01,
+        nominal_friction: identified_motor_friction(),
+        torque_limit: module.max_motor_torque,
+    })
     .expect("valid passive parameters");
     let law = PassiveConfig::<f64>::new(&p);
     let steps = ((t / 1e-4).round() as usize).max(1);
     let mut robot =
         Mrr::try_new(vec![module.clone()], [0.0, 0.0, -9.81], t, steps, cfg.seed).expect("plant");
-    let rad = module.motor_encoder.rad_per_count();
-    let mut speed = CountSpeed::new(4e-3, t, rad);
     let s0 = robot.read_sensors();
-    let mut est = JointTorqueEstimator::new(&module, &s0, 0);
+    let mut design = RobustAdaptiveDesign::table_4_1();
+    design.sample_period = t;
+    let mut joint = measuring_joint(
+        &module,
+        Some(KinematicErrorModel::table_3_2()),
+        design,
+        4e-3,
+        &s0,
+    );
     let mut last = 0.0;
     let (mut hand, mut lag, mut jt) = (Vec::new(), Vec::new(), Vec::new());
     let total = (cfg.duration / t).round() as usize;
@@ -895,19 +1030,18 @@ pub fn back_drive(cfg: &BackDriveConfig) -> BackDriveResult {
     for k in 0..total {
         let time = k as f64 * t;
         let s = robot.read_sensors();
-        let vm = speed.update(s.motor_counts[0]);
-        let tau_est = est.joint_torque(&s, 0, last);
+        let m = joint.measure(&s, last);
         let fb = match cfg.mode {
             BackDriveMode::Uncompensated => 0.0,
-            BackDriveMode::Estimated => tau_est,
+            BackDriveMode::Estimated => m.joint_torque,
             BackDriveMode::Sensor => s.link_torque[0],
         };
         let torque = if cfg.mode == BackDriveMode::Uncompensated {
             0.0
         } else {
             law.update(&ControlInput {
-                motor_position: s.motor_counts[0] as f64 * rad,
-                motor_velocity: vm,
+                motor_position: m.motor_position,
+                motor_velocity: m.motor_velocity,
                 joint_torque: fb,
                 ..Default::default()
             })
@@ -1075,26 +1209,29 @@ pub fn payload_drop(cfg: &PayloadDropConfig) -> PayloadDropResult {
     let g0 = robot.gravity_torques()[0] - load(0.0);
     let qm0 = robot.motor_angles_for_torque(&[0.0], &[g0])[0];
     robot.set_state(&[0.0], &[qm0], &[0.0], &[0.0]);
-    let rad = module.motor_encoder.rad_per_count();
     let s0 = robot.read_sensors();
-    let mut est = JointTorqueEstimator::new(&module, &s0, 0);
-    let hold = s0.motor_counts[0] as f64 * rad;
-    let mut speed = CountSpeed::new(FINE_SPEED_WINDOW, t, rad);
+    let mut joint = measuring_joint(
+        &module,
+        Some(KinematicErrorModel::table_3_2()),
+        design,
+        FINE_SPEED_WINDOW,
+        &s0,
+    );
+    let hold = s0.motor_counts[0] as f64 * module.motor_encoder.rad_per_count();
     let mut last = 0.0;
     let mut trace = Vec::new();
     let total = (cfg.duration / t).round() as usize;
     for k in 0..total {
         let time = k as f64 * t;
         let s = robot.read_sensors();
-        let vm = speed.update(s.motor_counts[0]);
-        let tau_est = est.joint_torque(&s, 0, last);
-        trace.push((time, robot.transmission_torques()[0], tau_est));
+        let m = joint.measure(&s, last);
+        trace.push((time, robot.transmission_torques()[0], m.joint_torque));
         let o = law.update(
             &mut st,
             &ControlInput {
                 desired_position: hold,
-                motor_position: s.motor_counts[0] as f64 * rad,
-                motor_velocity: vm,
+                motor_position: m.motor_position,
+                motor_velocity: m.motor_velocity,
                 joint_torque: s.link_torque[0],
                 ..Default::default()
             },
@@ -1263,25 +1400,34 @@ pub fn mode_scenario(
     env: &Environment,
     obstacle: Option<f64>,
 ) -> ModeScenarioResult {
-    use crate::control::{JointMode, ModeConfig, ModeParams, ModeSettings, PassiveParams};
-    use crate::estimation::collision::CollisionParams;
+    use crate::control::{
+        JointMode, ModeConfig, ModeParams, ModeSettings, PassiveParams, PassiveSettings,
+    };
+    use crate::estimation::collision::{CollisionParams, CollisionSettings};
     let module = fine_motor_encoder(ModuleParams::thesis_joint());
     let mut design = bound_design(1.0);
     design.sample_period = cfg.sample_period;
     let t = cfg.sample_period;
     let n = design.ratio;
     let active = RobustAdaptiveParams::try_new(design).expect("valid design");
-    let passive = PassiveParams::try_new(
-        design.rotor_inertia,
-        cfg.passive_gain / design.rotor_inertia,
-        n,
-        design.eps_velocity,
-        identified_motor_friction(),
-        design.torque_limit,
-    )
+    let passive = PassiveParams::try_new(PassiveSettings {
+        rotor_inertia: design.rotor_inertia,
+        gain: cfg.passive_gain / design.rotor_inertia,
+        ratio: n,
+        eps_velocity: design.eps_velocity,
+        nominal_friction: identified_motor_friction(),
+        torque_limit: design.torque_limit,
+    })
     .expect("valid passive");
     let collision = cfg.collision.map(|(th, rel, reaction)| {
-        CollisionParams::try_new(th, rel, 3, 50, reaction).expect("valid detector")
+        CollisionParams::try_new(CollisionSettings {
+            threshold: th,
+            release_threshold: rel,
+            debounce: 3,
+            release: 50,
+            reaction,
+        })
+        .expect("valid detector")
     });
     let params = ModeParams::try_new(ModeSettings {
         active,
@@ -1299,18 +1445,22 @@ pub fn mode_scenario(
         Some(rule) => params.with_release(rule).expect("valid release rule"),
         None => params,
     };
-    let mc = ModeConfig::<f64>::new(&params);
-    let mut st = mc.initial_state();
+    let jump_bound = ModeConfig::<f64>::new(&params).switch_jump_bound();
     let steps = ((t / 1e-4).round() as usize).max(1);
     let mut robot =
         Mrr::try_new(vec![module.clone()], [0.0, 0.0, -9.81], t, steps, cfg.seed).expect("plant");
-    let rad = module.motor_encoder.rad_per_count();
-    let mut speed = CountSpeed::new(FINE_SPEED_WINDOW, t, rad);
     let s0 = robot.read_sensors();
-    let mut est = JointTorqueEstimator::new(&module, &s0, 0);
+    let jp = joint_params(
+        &module,
+        Some(KinematicErrorModel::table_3_2()),
+        params,
+        FINE_SPEED_WINDOW,
+    )
+    .expect("valid joint");
+    let mut joint = SimJoint::new(&jp, &s0, 0);
     let mut res = ModeScenarioResult {
         switches: Vec::new(),
-        jump_bound: mc.switch_jump_bound(),
+        jump_bound,
         final_link_angle: 0.0,
         final_desired: 0.0,
         rejoin_tracking_error: 0.0,
@@ -1327,22 +1477,11 @@ pub fn mode_scenario(
     for k in 0..total {
         let time = k as f64 * t;
         let s = robot.read_sensors();
-        let qm = s.motor_counts[0] as f64 * rad;
-        let vm = speed.update(s.motor_counts[0]);
-        let before = st.last_torque();
-        let tau_est = est.joint_torque(&s, 0, before);
+        let before = joint.state().last_command();
         let (qd, vd, ad) = desired(time);
-        let x = ControlInput {
-            desired_position: n * qd,
-            desired_velocity: n * vd,
-            desired_acceleration: n * ad,
-            motor_position: qm,
-            motor_velocity: vm,
-            joint_torque: tau_est,
-            ..Default::default()
-        };
-        let from = st.mode();
-        let o = mc.update(&mut st, &x);
+        let from = joint.state().mode();
+        let out = joint.update(&s, &JointTarget::from_si(qd, vd, ad));
+        let (o, qm, tau_est) = (out.control, out.motor_position, out.joint_torque);
         if o.switched {
             res.switches.push(SwitchEvent {
                 time,
@@ -1446,4 +1585,25 @@ pub fn collision_scenario(cfg: &ModeScenarioConfig) -> ModeScenarioResult {
         }
     };
     mode_scenario(cfg, 5.0, &desired, &wall, Some(WALL))
+}
+
+#[cfg(test)]
+mod count_speed_tests {
+    use super::*;
+
+    /// The named settings reach their roles: a window of 8 ms at 4 ms is two
+    /// samples, so counts 0, 10, 20 at 0.01 rad/count give
+    /// `(20 − 0)·0.01/(2·0.004) = 25` rad/s. Swapped window and period (both
+    /// `f64`, as positional arguments allowed) would give a one-sample
+    /// window and 12.5 rad/s.
+    #[test]
+    fn named_settings_reach_their_roles() {
+        let mut m = CountSpeed::new(CountSpeedSettings {
+            window: 8e-3,
+            period: 4e-3,
+            rad_per_count: 0.01,
+        });
+        let speeds: std::vec::Vec<f64> = [0, 10, 20].iter().map(|&c| m.update(c)).collect();
+        assert!((speeds[2] - 25.0).abs() < 1e-9, "{speeds:?}");
+    }
 }

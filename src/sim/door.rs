@@ -521,8 +521,16 @@ pub fn door_opening(cfg: &DoorConfig) -> DoorRun {
         desired_torque: [0.0; 2],
     })
     .expect("admittance gain inside its discrete-time range");
-    let mode_params =
-        WristModeParams::try_new(adm, 1.0, 0.5, 0.01, 5, 250, 5.0).expect("valid mode params");
+    let mode_params = WristModeParams::try_new(crate::wrist::modes::WristModeSettings {
+        admittance: adm,
+        enter_passive: 1.0,
+        exit_passive: 0.5,
+        rest_speed: 0.01,
+        debounce: 5,
+        dwell: 250,
+        rejoin_bandwidth: 5.0,
+    })
+    .expect("valid mode params");
     let modes = WristModeConfig::<f64>::new(&mode_params);
     let mut mode_state = modes.initial_state(WristMode::Passive, [0.0, 0.0]);
     let passive = PassiveConfig::<f64>::new(

@@ -13,7 +13,7 @@
 use super::mrr::{ModuleParams, Mrr, Sensors};
 use super::transmission::{BackboneShape, DrivePlantParams, MeshFrictionPlant, SHD_17_100_K3};
 use crate::estimation::torque::{
-    TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorState,
+    TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorSettings, TorqueEstimatorState,
 };
 use crate::harmonic_drive::kinematic_error::{KinematicErrorFit, KinematicErrorModel};
 use crate::harmonic_drive::{
@@ -565,7 +565,11 @@ pub fn back_driven(cfg: &BackDrivenConfig) -> BackDrivenResult {
     .expect("valid plant");
     let n = r.modules()[0].drive.ratio;
     let play = WaveGeneratorTorqueConfig::<f64>::new(
-        &WaveGeneratorTorqueParams::try_new(BACKDRIVE_FRICTION, n).expect("valid"),
+        &WaveGeneratorTorqueParams::try_new(crate::harmonic_drive::WaveGeneratorTorqueSettings {
+            backdrive_friction: BACKDRIVE_FRICTION,
+            ratio: n,
+        })
+        .expect("valid"),
     );
     let mut play_state = WaveGeneratorTorqueState::default();
     let mut dis = Dissipation::new(&r);
@@ -791,7 +795,14 @@ pub fn torque_estimation(cfg: &TorqueEstimationConfig) -> TorqueEstimationResult
         module.motor_encoder.counts_per_rev,
     );
     let params = |ke: Option<KinematicErrorModel>| {
-        TorqueEstimatorParams::try_new(models.proposed, ke, l, m, 60.0).expect("valid")
+        TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+            drive: models.proposed,
+            kinematic_error: ke,
+            link_counts_per_rev: l,
+            motor_counts_per_rev: m,
+            max_torque: 60.0,
+        })
+        .expect("valid")
     };
     let kes = [None, Some(KinematicErrorModel::table_3_2()), Some(fitted)];
     let f64_cfg: Vec<TorqueEstimatorConfig<f64>> = kes

@@ -18,6 +18,10 @@
 //! * [`closed_loop`] — the chapter-4 experiments in closed loop (tracking
 //!   with and without joint-torque feedback, Theorem 1's bound on random
 //!   cases, the passive mode, the payload drop, the mode manager).
+//! * [`door`] — door opening with the compact wrist (§6.4.4).
+//! * [`wrist_bench`] — the wrist alone: active tracking and a finger
+//!   pushing it with the motors off or in admittance-passive mode
+//!   (§6.4.2–6.4.3).
 //! * [`experiments`] — the locked-output (Fig. 2.17–2.20), back-driven
 //!   (Fig. 2.21–2.22) and torque-estimation (Table 3.3) experiments.
 
@@ -33,6 +37,7 @@ pub mod integrator;
 pub mod mrr;
 pub mod sensors;
 pub mod transmission;
+pub mod wrist_bench;
 
 pub use friction::FrictionParams;
 pub use integrator::Rk4;

@@ -57,7 +57,31 @@ pub enum WristMode {
     Passive,
 }
 
-/// Validated parameters of the wrist mode manager, SI.
+/// The wrist mode manager's settings by name, SI, for
+/// [`WristModeParams::try_new`] (four `f64` and two `u16`: named so that
+/// none can be swapped).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WristModeSettings {
+    /// The admittance law of the passive mode (eq. 6.32).
+    pub admittance: AdmittanceParams,
+    /// Interaction torque above which Active turns Passive, N·m, in
+    /// `(exit_passive, 1000]`.
+    pub enter_passive: f64,
+    /// Interaction torque below which Passive may return, N·m, `> 0`.
+    pub exit_passive: f64,
+    /// Reference speed below which the passive wrist counts as at rest,
+    /// rad/s, `> 0`.
+    pub rest_speed: f64,
+    /// Consecutive samples a switching condition must hold (≥ 1).
+    pub debounce: u16,
+    /// Samples a mode is kept at least after a switch.
+    pub dwell: u16,
+    /// Bandwidth `ω` of the rejoin filter, rad/s, `0 < ω T ≤ 0.5`.
+    pub rejoin_bandwidth: f64,
+}
+
+/// Validated parameters of the wrist mode manager, SI; built only by
+/// [`try_new`](Self::try_new).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WristModeParams {
     admittance: AdmittanceParams,
@@ -74,15 +98,16 @@ impl WristModeParams {
     /// `rest_speed > 0` rad/s; `debounce ≥ 1`; a rejoin bandwidth `ω > 0`
     /// rad/s with `ω T ≤ 0.5` (`T` the admittance law's period: the
     /// discrete filter is then stable and not oscillatory).
-    pub fn try_new(
-        admittance: AdmittanceParams,
-        enter_passive: f64,
-        exit_passive: f64,
-        rest_speed: f64,
-        debounce: u16,
-        dwell: u16,
-        rejoin_bandwidth: f64,
-    ) -> Result<Self, ParamError> {
+    pub fn try_new(settings: WristModeSettings) -> Result<Self, ParamError> {
+        let WristModeSettings {
+            admittance,
+            enter_passive,
+            exit_passive,
+            rest_speed,
+            debounce,
+            dwell,
+            rejoin_bandwidth,
+        } = settings;
         positive("exit_passive", exit_passive)?;
         positive("enter_passive", enter_passive)?;
         increasing(
@@ -128,6 +153,19 @@ impl WristModeParams {
     /// The admittance parameters.
     pub fn admittance(&self) -> &AdmittanceParams {
         &self.admittance
+    }
+
+    /// The settings, by name (`try_new(p.settings()) == Ok(p)`).
+    pub fn settings(&self) -> WristModeSettings {
+        WristModeSettings {
+            admittance: self.admittance,
+            enter_passive: self.enter_passive,
+            exit_passive: self.exit_passive,
+            rest_speed: self.rest_speed,
+            debounce: self.debounce,
+            dwell: self.dwell,
+            rejoin_bandwidth: self.rejoin_bandwidth,
+        }
     }
 }
 
@@ -369,9 +407,56 @@ impl<S: Scalar> WristModeConfig<S> {
 mod tests {
     use super::*;
 
+    /// The named settings reach their getters and roles: with `debounce = 3`
+    /// and `dwell = 1` a torque over `enter_passive` switches to Passive at
+    /// the third sample; swapped (`debounce = 1`, `dwell = 3`, both `u16`,
+    /// as positional arguments allowed) it would switch at the fourth.
+    #[test]
+    fn named_settings_reach_their_roles() {
+        let s = WristModeSettings {
+            admittance: AdmittanceParams::thesis(200.0).unwrap(),
+            enter_passive: 1.5,
+            exit_passive: 0.5,
+            rest_speed: 0.01,
+            debounce: 3,
+            dwell: 1,
+            rejoin_bandwidth: 10.0,
+        };
+        let p = WristModeParams::try_new(s).unwrap();
+        assert_eq!(p.settings(), s);
+        let switch_at = |p: &WristModeParams| {
+            let c = WristModeConfig::<f64>::new(p);
+            let mut st = c.initial_state(WristMode::Active, [0.0; 2]);
+            let x = WristModeInput {
+                desired: [0.0; 2],
+                desired_rate: [0.0; 2],
+                interaction: [2.0, 0.0],
+                request: None,
+            };
+            (1..=10).find(|_| c.update(&mut st, &x).switched)
+        };
+        assert_eq!(switch_at(&p), Some(3));
+        let swapped = WristModeParams::try_new(WristModeSettings {
+            debounce: 1,
+            dwell: 3,
+            ..s
+        })
+        .unwrap();
+        assert_eq!(switch_at(&swapped), Some(4));
+    }
+
     fn cfg() -> WristModeConfig<f64> {
         let a = AdmittanceParams::thesis(200.0).unwrap();
-        let p = WristModeParams::try_new(a, 1.5, 0.5, 0.01, 5, 50, 10.0).unwrap();
+        let p = WristModeParams::try_new(WristModeSettings {
+            admittance: a,
+            enter_passive: 1.5,
+            exit_passive: 0.5,
+            rest_speed: 0.01,
+            debounce: 5,
+            dwell: 50,
+            rejoin_bandwidth: 10.0,
+        })
+        .unwrap();
         WristModeConfig::new(&p)
     }
 
@@ -448,7 +533,16 @@ mod tests {
     fn rest_condition_stops_cycling_while_guided() {
         let run = |rest: f64| {
             let a = AdmittanceParams::thesis(200.0).unwrap();
-            let p = WristModeParams::try_new(a, 0.5, 0.45, rest, 5, 25, 10.0).unwrap();
+            let p = WristModeParams::try_new(WristModeSettings {
+                admittance: a,
+                enter_passive: 0.5,
+                exit_passive: 0.45,
+                rest_speed: rest,
+                debounce: 5,
+                dwell: 25,
+                rejoin_bandwidth: 10.0,
+            })
+            .unwrap();
             let c = WristModeConfig::<f64>::new(&p);
             let mut st = c.initial_state(WristMode::Active, [0.0, 0.0]);
             let (mut guided, mut total) = (0, 0);
@@ -509,9 +603,36 @@ mod tests {
         );
         assert!(o.invalid_input && o.reference == [0.2, -0.1]);
         let a = AdmittanceParams::thesis(200.0).unwrap();
-        assert!(WristModeParams::try_new(a, 0.5, 0.6, 0.01, 5, 50, 10.0).is_err());
-        assert!(WristModeParams::try_new(a, 1.0, 0.5, 0.01, 0, 50, 10.0).is_err());
-        assert!(WristModeParams::try_new(a, 1.0, 0.5, 0.01, 1, 50, 200.0).is_err());
+        assert!(WristModeParams::try_new(WristModeSettings {
+            admittance: a,
+            enter_passive: 0.5,
+            exit_passive: 0.6,
+            rest_speed: 0.01,
+            debounce: 5,
+            dwell: 50,
+            rejoin_bandwidth: 10.0
+        })
+        .is_err());
+        assert!(WristModeParams::try_new(WristModeSettings {
+            admittance: a,
+            enter_passive: 1.0,
+            exit_passive: 0.5,
+            rest_speed: 0.01,
+            debounce: 0,
+            dwell: 50,
+            rejoin_bandwidth: 10.0
+        })
+        .is_err());
+        assert!(WristModeParams::try_new(WristModeSettings {
+            admittance: a,
+            enter_passive: 1.0,
+            exit_passive: 0.5,
+            rest_speed: 0.01,
+            debounce: 1,
+            dwell: 50,
+            rejoin_bandwidth: 200.0
+        })
+        .is_err());
     }
 
     /// The guided scenario of `rest_condition_stops_cycling_while_guided`
@@ -522,7 +643,16 @@ mod tests {
         use crate::scalar::I16F16;
         fn run<S: Scalar>() -> (usize, f64) {
             let a = AdmittanceParams::thesis(200.0).unwrap();
-            let p = WristModeParams::try_new(a, 0.5, 0.45, 0.01, 5, 25, 10.0).unwrap();
+            let p = WristModeParams::try_new(WristModeSettings {
+                admittance: a,
+                enter_passive: 0.5,
+                exit_passive: 0.45,
+                rest_speed: 0.01,
+                debounce: 5,
+                dwell: 25,
+                rejoin_bandwidth: 10.0,
+            })
+            .unwrap();
             let c = WristModeConfig::<S>::new(&p);
             let mut st = c.initial_state(WristMode::Active, [S::ZERO; 2]);
             let mut switches = 0;

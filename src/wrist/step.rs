@@ -128,7 +128,9 @@ use super::admittance::{AdmittanceParams, AdmittanceSettings};
 use super::ft_sensor::{DecouplingMatrix, FtSensorConfig, FtSensorParams};
 use super::jacobian::DET_MIN;
 use super::kinematics::{denan, hypot, wrap, MotorAngles, PitchYaw, WristConfig, WristParams};
-use super::modes::{WristMode, WristModeConfig, WristModeInput, WristModeParams, WristModeState};
+use super::modes::{
+    WristMode, WristModeConfig, WristModeInput, WristModeParams, WristModeSettings, WristModeState,
+};
 use crate::control::ActiveOutput;
 use crate::error::ParamError;
 use crate::scalar::units::{dequantize, quantize_keep_non_finite};
@@ -206,7 +208,15 @@ impl WristStepParams {
             kinematics: WristParams::thesis(),
             sensor: FtSensorParams::try_new(DecouplingMatrix::example(), 0.05)?,
             active: WristActiveParams::table_6_1()?,
-            modes: WristModeParams::try_new(admittance, 1.0, 0.5, 0.01, 5, 50, 5.0)?,
+            modes: WristModeParams::try_new(WristModeSettings {
+                admittance,
+                enter_passive: 1.0,
+                exit_passive: 0.5,
+                rest_speed: 0.01,
+                debounce: 5,
+                dwell: 50,
+                rejoin_bandwidth: 5.0,
+            })?,
             initial_mode: WristMode::Active,
         })
     }

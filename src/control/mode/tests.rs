@@ -1,4 +1,5 @@
 use super::*;
+use crate::estimation::CollisionSettings;
 use crate::scalar::I16F16;
 use proptest::prelude::*;
 
@@ -101,7 +102,13 @@ proptest! {
     /// and random switching sequences, on every backend.
     #[test]
     fn switching_is_bumpless(prefix in proptest::collection::vec(sample(), 0..120), tail in sample()) {
-        let p = params(1, 0, Some(CollisionParams::try_new(4.0, 3.0, 2, 2, CollisionReaction::Stop).unwrap()));
+        let p = params(1, 0, Some(CollisionParams::try_new(CollisionSettings {
+            threshold: 4.0,
+            release_threshold: 3.0,
+            debounce: 2,
+            release: 2,
+            reaction: CollisionReaction::Stop,
+        }).unwrap()));
         // Interaction torques beyond ±2 N·m switch to passive, below ±1
         // back; the random prefix leaves a random state, and the tail
         // forces at least two switches from it (Active → Passive →
@@ -273,7 +280,14 @@ fn release_rule_is_validated() {
 
 #[test]
 fn collision_stop_holds_the_position_until_acknowledged() {
-    let col = CollisionParams::try_new(3.0, 1.0, 2, 2, CollisionReaction::Stop).unwrap();
+    let col = CollisionParams::try_new(CollisionSettings {
+        threshold: 3.0,
+        release_threshold: 1.0,
+        debounce: 2,
+        release: 2,
+        reaction: CollisionReaction::Stop,
+    })
+    .unwrap();
     let cfg = ModeConfig::<f64>::new(&params(1, 0, Some(col)));
     let mut st = cfg.initial_state();
     let mut x = ControlInput {
@@ -319,7 +333,14 @@ fn collision_stop_holds_the_position_until_acknowledged() {
 
 #[test]
 fn collision_passive_reaction_latches_passive() {
-    let col = CollisionParams::try_new(3.0, 1.0, 1, 1, CollisionReaction::Passive).unwrap();
+    let col = CollisionParams::try_new(CollisionSettings {
+        threshold: 3.0,
+        release_threshold: 1.0,
+        debounce: 1,
+        release: 1,
+        reaction: CollisionReaction::Passive,
+    })
+    .unwrap();
     let cfg = ModeConfig::<f32>::new(&params(5, 0, Some(col)));
     let mut st = cfg.initial_state();
     let o = step(&cfg, &mut st, 3.5);
@@ -382,6 +403,39 @@ fn invalid_input_gives_zero_and_keeps_state() {
         },
     );
     assert!(o.invalid_input && o.torque == 0.0 && st == before);
+}
+
+/// A NaN or infinite motor position is flagged and no output field is NaN
+/// (the reference position used to echo the NaN reading), on both float
+/// backends; a finite position is echoed.
+#[test]
+fn invalid_position_gives_no_nan_field() {
+    fn check<S: Scalar>() {
+        let cfg = ModeConfig::<S>::new(&params(1, 0, None));
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let mut st = cfg.initial_state();
+            let x = ControlInput::<S>::from_si(&ControlInput {
+                desired_position: bad,
+                motor_position: bad,
+                ..Default::default()
+            });
+            let o = cfg.update(&mut st, &x);
+            assert!(o.invalid_input && o.torque == S::ZERO, "{o:?}");
+            assert!(!o.reference_position.is_nan() && !o.interaction.is_nan());
+            assert_eq!(o.reference_position, S::ZERO);
+        }
+        let mut st = cfg.initial_state();
+        let x = ControlInput::<S>::from_si(&ControlInput {
+            motor_position: 0.25,
+            joint_torque: f64::NAN,
+            ..Default::default()
+        });
+        let o = cfg.update(&mut st, &x);
+        assert!(o.invalid_input);
+        assert_eq!(o.reference_position.to_f64(), 0.25 * S::UNITS.angle);
+    }
+    check::<f64>();
+    check::<f32>();
 }
 
 /// The preset is the settings the tests above use, field by field, and

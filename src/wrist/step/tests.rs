@@ -510,7 +510,11 @@ fn parameters_are_validated() {
         desired_torque: [0.0; 2],
     })
     .unwrap();
-    s.modes = WristModeParams::try_new(adm, 1.0, 0.5, 0.01, 5, 50, 5.0).unwrap();
+    s.modes = WristModeParams::try_new(WristModeSettings {
+        admittance: adm,
+        ..p.settings().modes.settings()
+    })
+    .unwrap();
     match WristStepParams::try_new(s) {
         Err(ParamError::OutOfRange { name, value, .. }) => {
             assert_eq!(name, "modes.admittance.sample_period");
