@@ -135,7 +135,7 @@ run_one() {
     local start end secs result
     start=$(date +%s.%N)
     timeout --kill-after=30 $((timeout_s + 600)) \
-        nice -n "${NICE:-15}" cargo kani --harness "$path" --exact -Z unstable-options \
+        nice -n "${NICE:-15}" cargo kani --harness "$path" --exact -Z unstable-options -Z stubbing \
         --harness-timeout "${timeout_s}s" --output-format terse "${solver_args[@]}" \
         >"$log" 2>&1
     local rc=$?

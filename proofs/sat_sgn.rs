@@ -106,7 +106,8 @@ pub fn sat_bits_match_definition(q: i32, x: i32, y: i32) -> Verdict {
 /// `sat` gives it (`0 < b`, `|a| ≤ b`, bits): `q` is the quotient
 /// `2¹⁶·a/b` rounded to nearest with ties away from zero, i.e. with the
 /// error `e = q·b − 2¹⁶·a` (below 2⁴⁸ in magnitude, exact in `i64`),
-/// `2·|e| < b`, or `2·|e| = b` with `e` of the sign of `a`; and `|q| ≤ 2¹⁶`.
+/// `2·|e| < b`, or `2·|e| = b` with `e` of the sign of `a`; and `|q| ≤ 2¹⁶`,
+/// with `q = ±2¹⁶` exactly at `a = ±b`.
 /// This is the whole of the division that the `sat` Kani harnesses use
 /// (they replace `div_bits` by a value satisfying it); that `div_bits`
 /// meets it is [`div_bits_meets_layer_contract`].
@@ -117,7 +118,10 @@ pub fn div_bits_layer_contract(a: i32, b: i32, q: i32) -> bool {
         return false;
     }
     let e = q * b - ONE * a;
-    2 * e.abs() < b || (2 * e.abs() == b && (e > 0) == (a > 0))
+    let nearest = 2 * e.abs() < b || (2 * e.abs() == b && (e > 0) == (a > 0));
+    // Exact at the ends of the layer (implied by `nearest`, stated for the
+    // solver, which does not factor `(q ∓ 2¹⁶)·b`).
+    nearest && (a != b || q == ONE) && (a != -b || q == -ONE)
 }
 
 /// `div_bits(a, b)` satisfies [`div_bits_layer_contract`] for every
@@ -207,7 +211,7 @@ pub fn sat_monotone_step<S: Scalar>(x: S, x_next: S, y: S) -> Verdict {
 }
 
 #[cfg(kani)]
-mod kani_entries {
+pub(crate) mod kani_entries {
     //! One property per harness (a conjunction is as slow as its hardest
     //! part, and a split result says which part is decided). Every input is
     //! `kani::any()` over the whole type; no assumption cuts the domain
@@ -237,7 +241,7 @@ mod kani_entries {
     /// A second call by the same `b` (the odd and monotone harnesses call
     /// `sat` twice) also assumes [`div_bits_pair_lemma`] relating the two
     /// quotients, which the contract implies but the solver does not derive.
-    fn div_bits_as_contract(a: i32, b: i32) -> i32 {
+    pub(crate) fn div_bits_as_contract(a: i32, b: i32) -> i32 {
         assert!(
             b > 0 && a >= -b && a <= b,
             "div_bits called outside the boundary layer"

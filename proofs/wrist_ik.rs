@@ -217,10 +217,117 @@ pub fn continuity_step<S: Scalar>(
     continuity_step_of(p, a, &ra, b, &rb)
 }
 
+/// The branch selection of the inverse (eq. 5.13–5.15) as logic, for
+/// any pose and any kernel values within the kernels' contracts: the
+/// result's `θ4 ∈ [0, π]` (the non-negative root: `sin(θ4/2) ≥ 0`,
+/// `cos(θ4/2) ≥ 0`), `θ1 ∈ (−π, π]`, `θ1 + θ3 = u ∈ [−3π/2, π/2]` (`u = ε − 2ψ`
+/// with `ψ ∈ [0, π/2]`, `ε ∈ [−π/2, π/2]`; the tight `[−π − ε, ε]` of
+/// [`branch_and_round_trip`] needs the kernels' accuracy and is the
+/// exhaustive engine's), motors zero exactly at the straight pose, and the
+/// flag set for a clamped target. Values in `2⁻¹⁶` (I16F16 bits).
+pub fn branch_logic_of(d: i32, g: i32, r: &Inverse<crate::scalar::I16F16>) -> Verdict {
+    const HALF_PI: i32 = 102_944; // I16F16::FRAC_PI_2 (bits)
+    const PI_B: i32 = 205_887; // I16F16::PI (bits)
+    let (t1, t3, t4) = (
+        r.motors.theta1.to_bits() as i64,
+        r.motors.theta3.to_bits() as i64,
+        r.theta4.to_bits() as i64,
+    );
+    let pi = PI_B as i64;
+    let u = t1 + t3;
+    let clamped = d.abs() > HALF_PI || g.abs() > HALF_PI;
+    let straight_ok = !r.straight || (t1 == 0 && t3 == 0 && t4 == 0);
+    Verdict::logical(
+        (0..=pi + 1).contains(&t4)
+            && t1 > -pi - 1
+            && t1 <= pi + 1
+            && (r.straight || (-3 * pi / 2 - 4..=pi / 2 + 4).contains(&u))
+            && straight_ok
+            && (!clamped || r.saturated),
+    )
+}
+
 #[cfg(kani)]
 mod kani_entries {
     use super::*;
     use crate::scalar::I16F16;
+
+    fn any_bits_in(lo: i32, hi: i32) -> i32 {
+        let v: i32 = kani::any();
+        kani::assume(lo <= v && v <= hi);
+        v
+    }
+
+    const ONE: i32 = 1 << 16;
+    const HALF_PI: i32 = 102_944;
+    const PI_B: i32 = 205_887;
+
+    // Kernel contracts (each proven for the real kernel where noted).
+    /// `sin ∈ [−1, 1]` (`outputs_in_range`, Kani and exhaustive).
+    fn sin_as_contract(_x: I16F16) -> I16F16 {
+        // Postcondition of the stubbed kernel.
+        I16F16::from_bits(any_bits_in(-ONE, ONE))
+    }
+    /// `sin, cos ∈ [−1, 1]`, `cos ≥ 0` for `|x| ≤ π/2` (`outputs_in_range`;
+    /// `cos_is_non_negative_on_the_half_circle`, every input).
+    fn sin_cos_as_contract(x: I16F16) -> (I16F16, I16F16) {
+        // Postcondition of the stubbed kernel.
+        let lo = if x.to_bits().abs() <= HALF_PI {
+            0
+        } else {
+            -ONE
+        };
+        (
+            I16F16::from_bits(any_bits_in(-ONE, ONE)),
+            I16F16::from_bits(any_bits_in(lo, ONE)),
+        )
+    }
+    /// `sqrt ≥ 0`, and `≥ 1` from `1` on (`sqrt_contract_holds`, every
+    /// input; monotone by `exhaustive_sqrt_i16f16`).
+    fn sqrt_as_contract(x: I16F16) -> I16F16 {
+        // Postcondition of the stubbed kernel.
+        let lo = if x.to_bits() >= ONE { ONE } else { 0 };
+        I16F16::from_bits(any_bits_in(lo, i32::MAX))
+    }
+    /// `atan2 ∈ [−π, π]`, in `[0, π/2]` for `y, x ≥ 0`, in `[−π/2, π/2]`
+    /// for `x ≥ 0` (`atan2_contract_holds`, random and on a lattice).
+    fn atan2_as_contract(y: I16F16, x: I16F16) -> I16F16 {
+        // Postcondition of the stubbed kernel.
+        let (y, x) = (y.to_bits(), x.to_bits());
+        let (lo, hi) = if x >= 0 && y >= 0 {
+            (0, HALF_PI)
+        } else if x >= 0 {
+            (-HALF_PI, HALF_PI)
+        } else {
+            (-PI_B, PI_B)
+        };
+        I16F16::from_bits(any_bits_in(lo, hi))
+    }
+
+    /// The branch logic of the inverse for every I16F16 target (all 2⁶⁴
+    /// pairs), the kernels and the division replaced by their contracts
+    /// (above, and `div_bits_as_contract` of `proofs/sat_sgn.rs`, whose
+    /// precondition — a boundary-layer quotient — is asserted at each of
+    /// the inverse's divisions). The products and roundings are the real
+    /// ones.
+    #[kani::proof]
+    #[kani::stub(crate::scalar::kernels::i16f16::sin, sin_as_contract)]
+    #[kani::stub(crate::scalar::kernels::i16f16::sin_cos, sin_cos_as_contract)]
+    #[kani::stub(crate::scalar::kernels::i16f16::sqrt, sqrt_as_contract)]
+    #[kani::stub(crate::scalar::kernels::i16f16::atan2, atan2_as_contract)]
+    #[kani::stub(
+        crate::scalar::fixed::div_bits,
+        crate::proofs::sat_sgn::kani_entries::div_bits_as_contract
+    )]
+    fn kani_wrist_ik_branch_logic_i16f16() {
+        let cfg = WristConfig::<I16F16>::new(&wrist());
+        let (d, g): (i32, i32) = (kani::any(), kani::any());
+        let r = cfg.inverse(PitchYaw {
+            delta: I16F16::from_bits(d),
+            gamma: I16F16::from_bits(g),
+        });
+        assert!(branch_logic_of(d, g, &r).holds);
+    }
 
     /// The branch property at every point of the 16-bit grid, I16F16.
     #[kani::proof]
