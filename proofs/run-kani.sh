@@ -67,7 +67,7 @@ solver_label=${solver:-default}
 list_harnesses() {
     for f in proofs/*.rs; do
         awk -v f="$f" '
-            /^[[:space:]]*(pub )?mod [a-z_0-9]+ \{/ { match($0, /mod [a-z_0-9]+/); m = substr($0, RSTART + 4, RLENGTH - 4) }
+            /^[[:space:]]*(pub(\(crate\))? )?mod [a-z_0-9]+ \{/ { match($0, /mod [a-z_0-9]+/); m = substr($0, RSTART + 4, RLENGTH - 4) }
             /#\[kani::proof\]/ { want = 1; next }
             want && /fn kani_[A-Za-z0-9_]*\(/ {
                 match($0, /fn kani_[A-Za-z0-9_]*/)

@@ -235,7 +235,7 @@ pub fn branch_logic_of(d: i32, g: i32, r: &Inverse<crate::scalar::I16F16>) -> Ve
     );
     let pi = PI_B as i64;
     let u = t1 + t3;
-    let clamped = d.abs() > HALF_PI || g.abs() > HALF_PI;
+    let clamped = d.unsigned_abs() > HALF_PI as u32 || g.unsigned_abs() > HALF_PI as u32;
     let straight_ok = !r.straight || (t1 == 0 && t3 == 0 && t4 == 0);
     Verdict::logical(
         (0..=pi + 1).contains(&t4)
@@ -272,7 +272,7 @@ mod kani_entries {
     /// `cos_is_non_negative_on_the_half_circle`, every input).
     fn sin_cos_as_contract(x: I16F16) -> (I16F16, I16F16) {
         // Postcondition of the stubbed kernel.
-        let lo = if x.to_bits().abs() <= HALF_PI {
+        let lo = if x.to_bits().unsigned_abs() <= HALF_PI as u32 {
             0
         } else {
             -ONE
@@ -496,6 +496,131 @@ mod tests {
         assert!(continuity_step_of(&p, a, &ra, b, &rb).holds);
         rb.motors.theta1 += 0.5;
         assert!(!continuity_step_of(&p, a, &ra, b, &rb).holds);
+    }
+
+    /// The kernel contracts `kani_wrist_ik_branch_logic_i16f16` stubs:
+    /// `sin`, `sin_cos` in `[−1, 1]` and `cos ≥ 0` on `|x| ≤ π/2` (every
+    /// input of the half circle; the whole type in steps of 2¹¹ and every
+    /// input of `|x| ≤ 8`), `sqrt ≥ 0` and `≥ 1` from 1 on (`sqrt(1) = 1`
+    /// and the exhaustive monotonicity of `exhaustive_sqrt_i16f16`, spot
+    /// checked here), `atan2` ranges by quadrant (axes, and a lattice).
+    #[test]
+    fn kernel_contracts_of_the_branch_logic_harness() {
+        use crate::scalar::kernels::i16f16 as k;
+        const ONE: i32 = 1 << 16;
+        const HALF_PI: i32 = 102_944;
+        const PI_B: i32 = 205_887;
+        let near = (-(8 * ONE)..=8 * ONE).map(I16F16::from_bits);
+        let coarse = (i32::MIN..=i32::MAX)
+            .step_by(1 << 11)
+            .map(I16F16::from_bits);
+        for x in near.chain(coarse) {
+            let (s, c) = k::sin_cos(x);
+            let one = I16F16::ONE;
+            assert!(
+                s.abs() <= one && c.abs() <= one && k::sin(x).abs() <= one,
+                "{x}"
+            );
+            if x.to_bits().unsigned_abs() <= HALF_PI as u32 {
+                assert!(c >= I16F16::ZERO, "cos({x}) = {c}");
+            }
+            let r = k::sqrt(x);
+            assert!(
+                r >= I16F16::ZERO && (x < one || r >= one),
+                "sqrt({x}) = {r}"
+            );
+        }
+        assert_eq!(k::sqrt(I16F16::ONE), I16F16::ONE);
+        let vals: Vec<i32> = [
+            0,
+            1,
+            2,
+            3,
+            100,
+            ONE - 1,
+            ONE,
+            3 * ONE,
+            i32::MAX - 1,
+            i32::MAX,
+        ]
+        .iter()
+        .flat_map(|&v| [v, -v, v / 7, -(v / 7)])
+        .chain([i32::MIN, i32::MIN + 1])
+        .collect();
+        for &y in &vals {
+            for &x in &vals {
+                let a = k::atan2(I16F16::from_bits(y), I16F16::from_bits(x)).to_bits();
+                let ok = if x >= 0 && y >= 0 {
+                    (0..=HALF_PI).contains(&a)
+                } else if x >= 0 {
+                    (-HALF_PI..=HALF_PI).contains(&a)
+                } else {
+                    (-PI_B..=PI_B).contains(&a)
+                };
+                assert!(ok, "atan2({y}, {x}) = {a} bits");
+            }
+        }
+    }
+
+    /// The branch-logic check can fail: a negative `θ4` (the other root),
+    /// a `θ1` beyond `π`, nonzero motors at the straight pose, and a
+    /// clamped target without the flag are rejected.
+    #[test]
+    fn branch_logic_check_can_fail() {
+        use crate::wrist::MotorAngles;
+        let f = |b: i32| I16F16::from_bits(b);
+        let good = Inverse {
+            motors: MotorAngles {
+                theta1: f(100_000),
+                theta3: f(-150_000),
+            },
+            theta4: f(30_000),
+            pose: PitchYaw {
+                delta: f(1000),
+                gamma: f(2000),
+            },
+            saturated: false,
+            straight: false,
+        };
+        assert!(branch_logic_of(1000, 2000, &good).holds);
+        let mut bad = good;
+        bad.theta4 = f(-1);
+        assert!(!branch_logic_of(1000, 2000, &bad).holds);
+        let mut bad = good;
+        bad.motors.theta1 = f(205_889);
+        assert!(!branch_logic_of(1000, 2000, &bad).holds);
+        let mut bad = good;
+        bad.straight = true;
+        assert!(!branch_logic_of(1000, 2000, &bad).holds);
+        assert!(!branch_logic_of(200_000, 2000, &good).holds);
+        let mut bad = good;
+        bad.motors.theta3 = f(100_000);
+        assert!(!branch_logic_of(1000, 2000, &bad).holds);
+    }
+
+    /// The shipped inverse meets the branch logic with its real kernels,
+    /// at random targets over the whole I16F16 range.
+    #[test]
+    fn branch_logic_holds_at_random_targets() {
+        let cfg = WristConfig::<I16F16>::new(&wrist());
+        let mut state = 0x1234_5678_9abc_def0u64;
+        for _ in 0..200_000 {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let (d, g) = ((state >> 32) as i32, state as i32);
+            // Half of the targets inside the clamp range.
+            let (d, g) = if state & 1 == 0 {
+                (d >> 14, g >> 14)
+            } else {
+                (d, g)
+            };
+            let r = cfg.inverse(PitchYaw {
+                delta: I16F16::from_bits(d),
+                gamma: I16F16::from_bits(g),
+            });
+            assert!(branch_logic_of(d, g, &r).holds, "{d} {g}: {r:?}");
+        }
     }
 
     proptest! {
