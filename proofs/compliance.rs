@@ -225,7 +225,7 @@ mod kani_entries {
     //! exhaustive engine's.
     use super::*;
     use core::sync::atomic::Ordering::Relaxed;
-    use core::sync::atomic::{AtomicBool, AtomicI32};
+    use core::sync::atomic::{AtomicBool, AtomicI32, AtomicUsize};
 
     /// The argument and result of a kernel's first call in a harness.
     struct FirstCall {
@@ -267,6 +267,29 @@ mod kani_entries {
         I16F16::from_bits(y)
     }
 
+    /// Up to two coefficients' first products, keyed by the coefficient's
+    /// address (each harness uses one configuration).
+    static COEF_KEY: [AtomicUsize; 2] = [AtomicUsize::new(0), AtomicUsize::new(0)];
+    static COEF_CALL: [FirstCall; 2] = [FirstCall::new(), FirstCall::new()];
+
+    /// `mul_coef` by a positive coefficient as its contract: the sign of
+    /// `x` (zero at zero), and non-decreasing between two products by the
+    /// same coefficient. Proven for the real product by the four
+    /// coefficients of the configuration at all 2³² inputs
+    /// (`exhaustive_coefficient_products_monotone_i16f16`).
+    fn scale_i32_as_contract(c: &crate::scalar::Coef, x: i32) -> i32 {
+        let key = c as *const crate::scalar::Coef as usize;
+        let slot = if COEF_KEY[0].load(Relaxed) == key || COEF_KEY[0].load(Relaxed) == 0 {
+            0
+        } else {
+            // Precondition of the stub: at most two coefficients.
+            assert!(COEF_KEY[1].load(Relaxed) == key || COEF_KEY[1].load(Relaxed) == 0);
+            1
+        };
+        COEF_KEY[slot].store(key, Relaxed);
+        kernel_as_contract(&COEF_CALL[slot], I16F16::from_bits(x)).to_bits()
+    }
+
     static TAN_CALL: FirstCall = FirstCall::new();
     static ATAN_CALL: FirstCall = FirstCall::new();
 
@@ -289,6 +312,7 @@ mod kani_entries {
 
     #[kani::proof]
     #[kani::stub(crate::scalar::kernels::i16f16::tan, tan_as_contract)]
+    #[kani::stub(crate::scalar::Coef::scale_i32, scale_i32_as_contract)]
     fn kani_inverse_monotone_i16f16() {
         let cfg = FlexsplineConfig::<I16F16>::new(&SHD17);
         let b: i32 = kani::any();
@@ -299,6 +323,7 @@ mod kani_entries {
 
     #[kani::proof]
     #[kani::stub(crate::scalar::kernels::i16f16::atan, atan_as_contract)]
+    #[kani::stub(crate::scalar::Coef::scale_i32, scale_i32_as_contract)]
     fn kani_forward_monotone_i16f16() {
         let cfg = FlexsplineConfig::<I16F16>::new(&SHD17);
         let b: i32 = kani::any();
@@ -340,6 +365,53 @@ mod tests {
             ));
         }
         v
+    }
+
+    /// The `mul_coef` contract of the monotone Kani harnesses: for each of
+    /// the four coefficients `FlexsplineConfig::<I16F16>::new(&SHD17)`
+    /// prepares (recomputed here from their definitions), the product has
+    /// the sign of `x` and is non-decreasing over all 2³² inputs.
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_coefficient_products_monotone_i16f16() {
+        use crate::scalar::Coef;
+        let u = I16F16::UNITS;
+        let ck = SHD17.c_f() * SHD17.k_f0();
+        let coefs = [
+            SHD17.c_f() / u.link_torque,
+            u.torsion / ck,
+            ck / u.torsion,
+            u.link_torque / SHD17.c_f(),
+        ];
+        let bits = |c: u32| (c ^ 0x8000_0000) as i32;
+        for v in coefs {
+            let c = Coef::new(v);
+            let r = exhaustive_u32_chained(
+                0,
+                u32::MAX,
+                |code| I16F16::from_bits(bits(code)).mul_coef(&c).to_bits(),
+                |code, &y, prev| {
+                    let x = bits(code);
+                    let sign = if x > 0 {
+                        y >= 0
+                    } else if x < 0 {
+                        y <= 0
+                    } else {
+                        y == 0
+                    };
+                    Verdict::logical(sign && prev.is_none_or(|&p| p <= y))
+                },
+            );
+            println!(
+                "PROOF kernel=mul_coef({v:e}) backend=I16F16 domain=all bound=sign of x, non-decreasing max_err={} at={:#x} checked={} engine=exhaustive",
+                r.max_error, r.argmax, r.checked
+            );
+            assert_eq!(
+                r.failures, 0,
+                "coefficient {v}: first failure at code {:?}",
+                r.first_failure
+            );
+        }
     }
 
     #[test]
