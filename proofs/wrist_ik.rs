@@ -247,6 +247,18 @@ pub fn branch_logic_of(d: i32, g: i32, r: &Inverse<crate::scalar::I16F16>) -> Ve
     )
 }
 
+/// The part of the `I16F16` product's contract that
+/// `kani_wrist_ik_branch_logic_i16f16` assumes, for operands `a`, `b` and
+/// result `r` (bits): `a, b ≥ 0 ⇒ r ≥ 0`; `a ≥ 0, b ≥ 2¹⁶ ⇒ r ≥ a`;
+/// `a ≤ 0, b ≥ 0 ⇒ r ≤ 0`; `a ≥ 0, b ≤ 0 ⇒ r ≤ 0`; `a, b ≤ 0 ⇒ r ≥ 0`.
+pub fn mul_bits_contract(a: i32, b: i32, r: i32) -> bool {
+    (!(a >= 0 && b >= 0) || r >= 0)
+        && (!(a >= 0 && b >= 1 << 16) || r >= a)
+        && (!(a <= 0 && b >= 0) || r <= 0)
+        && (!(a >= 0 && b <= 0) || r <= 0)
+        && (!(a <= 0 && b <= 0) || r >= 0)
+}
+
 #[cfg(kani)]
 mod kani_entries {
     use super::*;
@@ -304,6 +316,22 @@ mod kani_entries {
         I16F16::from_bits(any_bits_in(lo, hi))
     }
 
+    /// `mul_bits` (the I16F16 product) as the part of its contract the
+    /// branch logic uses: non-negative for non-negative operands, at least
+    /// `a` for `a ≥ 0`, `b ≥ 1`, and exactly the saturated `2b` for
+    /// `a = 2` (`mul_contract_holds`: the real product at random and on
+    /// edge classes; it equals the correctly rounded `mul_bits_reference`,
+    /// tested in `src/scalar/fixed.rs`).
+    fn mul_bits_as_contract(a: i32, b: i32) -> i32 {
+        if a == 2 * ONE {
+            return b.saturating_mul(2);
+        }
+        let r: i32 = kani::any();
+        // Postcondition of the stubbed function.
+        kani::assume(mul_bits_contract(a, b, r));
+        r
+    }
+
     /// The branch logic of the inverse for every I16F16 target (all 2⁶⁴
     /// pairs), the kernels and the division replaced by their contracts
     /// (above, and `div_bits_as_contract` of `proofs/sat_sgn.rs`, whose
@@ -315,6 +343,7 @@ mod kani_entries {
     #[kani::stub(crate::scalar::kernels::i16f16::sin_cos, sin_cos_as_contract)]
     #[kani::stub(crate::scalar::kernels::i16f16::sqrt, sqrt_as_contract)]
     #[kani::stub(crate::scalar::kernels::i16f16::atan2, atan2_as_contract)]
+    #[kani::stub(crate::scalar::fixed::mul_bits, mul_bits_as_contract)]
     #[kani::stub(
         crate::scalar::fixed::div_bits,
         crate::proofs::sat_sgn::kani_entries::div_bits_as_contract
@@ -560,6 +589,45 @@ mod tests {
                 assert!(ok, "atan2({y}, {x}) = {a} bits");
             }
         }
+    }
+
+    /// The product contract of the branch-logic harness holds for the
+    /// real `mul_bits` (random pairs, edge classes, and `2·b` exact), and
+    /// can fail.
+    #[test]
+    fn mul_contract_holds() {
+        use crate::scalar::fixed::mul_bits;
+        let edges = [
+            0,
+            1,
+            2,
+            0x7fff,
+            0x8000,
+            0xffff,
+            1 << 16,
+            (1 << 16) + 1,
+            3 << 16,
+            i32::MAX,
+            i32::MAX - 1,
+        ];
+        let mut vals: Vec<i32> = edges.iter().flat_map(|&v| [v, -v]).collect();
+        vals.push(i32::MIN);
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        for _ in 0..2000 {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            vals.push((state >> 32) as i32 >> (state % 24));
+        }
+        for &a in &vals {
+            for &b in &vals {
+                assert!(mul_bits_contract(a, b, mul_bits(a, b)), "{a} * {b}");
+            }
+            assert_eq!(mul_bits(2 << 16, a), a.saturating_mul(2));
+        }
+        assert!(!mul_bits_contract(5, 7, -1));
+        assert!(!mul_bits_contract(5 << 16, 1 << 16, (5 << 16) - 1));
+        assert!(!mul_bits_contract(-5, 7, 1));
     }
 
     /// The branch-logic check can fail: a negative `θ4` (the other root),
