@@ -502,7 +502,8 @@ mod tests {
         // The pair lemma rejects a non-odd pair and a jump of two slopes.
         assert!(!div_bits_pair_lemma(5, 3, -5, -2, 7));
         assert!(div_bits_pair_lemma(5, 3, -5, -3, 7));
-        assert!(!div_bits_pair_lemma(0, 0, 1, 1 << 15, 2));
+        // b = 2 bits: slope 2¹⁵ per step, so 2¹⁵ + 1 passes, 2¹⁵ + 2 not.
+        assert!(!div_bits_pair_lemma(0, 0, 1, (1 << 15) + 2, 2));
         assert!(div_bits_pair_lemma(0, 0, 1, (1 << 15) + 1, 2));
         assert!(!div_bits_pair_lemma(1, 9, 2, 8, 2));
         // The shipped division meets it, e.g. at a tie and at ±1.
