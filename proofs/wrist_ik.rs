@@ -345,7 +345,7 @@ mod kani_entries {
         );
         let q: i32 = kani::any();
         // Postcondition of the stubbed function.
-        kani::assume(q.abs() <= ONE && (a <= 0 || q >= 0) && (a >= 0 || q <= 0));
+        kani::assume((-ONE..=ONE).contains(&q) && (a <= 0 || q >= 0) && (a >= 0 || q <= 0));
         q
     }
 
