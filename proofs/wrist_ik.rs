@@ -250,13 +250,15 @@ pub fn branch_logic_of(d: i32, g: i32, r: &Inverse<crate::scalar::I16F16>) -> Ve
 /// The part of the `I16F16` product's contract that
 /// `kani_wrist_ik_branch_logic_i16f16` assumes, for operands `a`, `b` and
 /// result `r` (bits): `a, b ≥ 0 ⇒ r ≥ 0`; `a ≥ 0, b ≥ 2¹⁶ ⇒ r ≥ a`;
-/// `a ≤ 0, b ≥ 0 ⇒ r ≤ 0`; `a ≥ 0, b ≤ 0 ⇒ r ≤ 0`; `a, b ≤ 0 ⇒ r ≥ 0`.
+/// `a ≤ 0, b ≥ 0 ⇒ r ≤ 0`; `a ≥ 0, b ≤ 0 ⇒ r ≤ 0`; `a, b ≤ 0 ⇒ r ≥ 0`;
+/// `|b| ≤ 2¹⁶ ⇒ |r| ≤ |a|`.
 pub fn mul_bits_contract(a: i32, b: i32, r: i32) -> bool {
     (!(a >= 0 && b >= 0) || r >= 0)
         && (!(a >= 0 && b >= 1 << 16) || r >= a)
         && (!(a <= 0 && b >= 0) || r <= 0)
         && (!(a >= 0 && b <= 0) || r <= 0)
         && (!(a <= 0 && b <= 0) || r >= 0)
+        && ((b as i64).abs() > 1 << 16 || (r as i64).abs() <= (a as i64).abs())
 }
 
 #[cfg(kani)]
@@ -317,8 +319,8 @@ mod kani_entries {
     }
 
     /// `mul_bits` (the I16F16 product) as the part of its contract the
-    /// branch logic uses: non-negative for non-negative operands, at least
-    /// `a` for `a ≥ 0`, `b ≥ 1`, and exactly the saturated `2b` for
+    /// branch logic uses: the sign rules, at most `|a|` for `|b| ≤ 1`, at
+    /// least `a` for `a ≥ 0`, `b ≥ 1`, and exactly the saturated `2b` for
     /// `a = 2` (`mul_contract_holds`: the real product at random and on
     /// edge classes; it equals the correctly rounded `mul_bits_reference`,
     /// tested in `src/scalar/fixed.rs`).
@@ -641,6 +643,7 @@ mod tests {
         assert!(!mul_bits_contract(5, 7, -1));
         assert!(!mul_bits_contract(5 << 16, 1 << 16, (5 << 16) - 1));
         assert!(!mul_bits_contract(-5, 7, 1));
+        assert!(!mul_bits_contract(5 << 16, 1 << 16, (5 << 16) + 1));
     }
 
     /// The branch-logic check can fail: a negative `θ4` (the other root),
