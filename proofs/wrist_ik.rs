@@ -370,6 +370,19 @@ mod kani_entries {
             delta: I16F16::from_bits(d),
             gamma: I16F16::from_bits(g),
         });
+        let (t1, t3, t4) = (
+            r.motors.theta1.to_bits() as i64,
+            r.motors.theta3.to_bits() as i64,
+            r.theta4.to_bits() as i64,
+        );
+        assert!(t4 >= 0, "theta4 >= 0");
+        assert!(t4 <= PI_B as i64 + 1, "theta4 <= pi");
+        assert!(
+            t1 > -(PI_B as i64) - 1 && t1 <= PI_B as i64 + 1,
+            "theta1 in (-pi, pi]"
+        );
+        assert!(r.straight || t1 + t3 >= -3 * PI_B as i64 / 2 - 4, "u low");
+        assert!(r.straight || t1 + t3 <= PI_B as i64 / 2 + 4, "u high");
         assert!(branch_logic_of(d, g, &r).holds);
     }
 
