@@ -210,9 +210,99 @@ mod kani_entries {
     //! The configuration is [`SHD17`] quantized by the library's own
     //! constructor (concrete values, folded by the solver's front end); the
     //! torsion is `kani::any()` over every `I16F16` or `f32` value.
+    //!
+    //! The `I16F16` harnesses replace the `tan` and `atan` kernels by their
+    //! contract (`kernel_as_contract`): a value with the sign of the
+    //! argument (zero at zero), and, for a second call, ordered like the
+    //! arguments (non-decreasing). Both facts are proven for the real
+    //! kernels at all 2³² inputs by `exhaustive_tan_i16f16` and
+    //! `exhaustive_atan_i16f16` (monotone and odd at every input; odd gives
+    //! `f(0) = 0`, and with monotone the sign), and monotonicity also by
+    //! `kani_tan_monotone_pair_i16f16` / `kani_atan_monotone_pair_i16f16`.
+    //! The harnesses then decide the rest of eq. (3.10) and its inverse —
+    //! the quantized coefficients, the rounding products, the saturation
+    //! flag — bit-precisely; the kernels' accuracy (1 LSB) is the
+    //! exhaustive engine's.
     use super::*;
+    use core::sync::atomic::Ordering::Relaxed;
+    use core::sync::atomic::{AtomicBool, AtomicI32, AtomicUsize};
+
+    /// The argument and result of a kernel's first call in a harness.
+    struct FirstCall {
+        seen: AtomicBool,
+        x: AtomicI32,
+        y: AtomicI32,
+    }
+
+    impl FirstCall {
+        const fn new() -> Self {
+            FirstCall {
+                seen: AtomicBool::new(false),
+                x: AtomicI32::new(0),
+                y: AtomicI32::new(0),
+            }
+        }
+    }
+
+    /// A value the contract of an odd, non-decreasing kernel allows at `x`.
+    fn kernel_as_contract(first: &FirstCall, x: I16F16) -> I16F16 {
+        let (x, y) = (x.to_bits(), kani::any::<i32>());
+        // Postcondition of the stubbed kernel (sign of the argument).
+        kani::assume(if x > 0 {
+            y >= 0
+        } else if x < 0 {
+            y <= 0
+        } else {
+            y == 0
+        });
+        if first.seen.load(Relaxed) {
+            let (x0, y0) = (first.x.load(Relaxed), first.y.load(Relaxed));
+            // Postcondition relating two calls (a function, non-decreasing).
+            kani::assume((x != x0 || y == y0) && (x <= x0 || y >= y0) && (x >= x0 || y <= y0));
+        } else {
+            first.seen.store(true, Relaxed);
+            first.x.store(x, Relaxed);
+            first.y.store(y, Relaxed);
+        }
+        I16F16::from_bits(y)
+    }
+
+    /// Up to two coefficients' first products, keyed by the coefficient's
+    /// address (each harness uses one configuration).
+    static COEF_KEY: [AtomicUsize; 2] = [AtomicUsize::new(0), AtomicUsize::new(0)];
+    static COEF_CALL: [FirstCall; 2] = [FirstCall::new(), FirstCall::new()];
+
+    /// `mul_coef` by a positive coefficient as its contract: the sign of
+    /// `x` (zero at zero), and non-decreasing between two products by the
+    /// same coefficient. Proven for the real product by the four
+    /// coefficients of the configuration at all 2³² inputs
+    /// (`exhaustive_coefficient_products_monotone_i16f16`).
+    fn scale_i32_as_contract(c: &crate::scalar::Coef, x: i32) -> i32 {
+        let key = c as *const crate::scalar::Coef as usize;
+        let slot = if COEF_KEY[0].load(Relaxed) == key || COEF_KEY[0].load(Relaxed) == 0 {
+            0
+        } else {
+            // Precondition of the stub: at most two coefficients.
+            assert!(COEF_KEY[1].load(Relaxed) == key || COEF_KEY[1].load(Relaxed) == 0);
+            1
+        };
+        COEF_KEY[slot].store(key, Relaxed);
+        kernel_as_contract(&COEF_CALL[slot], I16F16::from_bits(x)).to_bits()
+    }
+
+    static TAN_CALL: FirstCall = FirstCall::new();
+    static ATAN_CALL: FirstCall = FirstCall::new();
+
+    fn tan_as_contract(x: I16F16) -> I16F16 {
+        kernel_as_contract(&TAN_CALL, x)
+    }
+
+    fn atan_as_contract(x: I16F16) -> I16F16 {
+        kernel_as_contract(&ATAN_CALL, x)
+    }
 
     #[kani::proof]
+    #[kani::stub(crate::scalar::kernels::i16f16::tan, tan_as_contract)]
     fn kani_inverse_sign_and_saturation_i16f16() {
         let cfg = FlexsplineConfig::<I16F16>::new(&SHD17);
         let edges = SaturationEdges::i16f16(&SHD17);
@@ -221,6 +311,8 @@ mod kani_entries {
     }
 
     #[kani::proof]
+    #[kani::stub(crate::scalar::kernels::i16f16::tan, tan_as_contract)]
+    #[kani::stub(crate::scalar::Coef::scale_i32, scale_i32_as_contract)]
     fn kani_inverse_monotone_i16f16() {
         let cfg = FlexsplineConfig::<I16F16>::new(&SHD17);
         let b: i32 = kani::any();
@@ -230,6 +322,8 @@ mod kani_entries {
     }
 
     #[kani::proof]
+    #[kani::stub(crate::scalar::kernels::i16f16::atan, atan_as_contract)]
+    #[kani::stub(crate::scalar::Coef::scale_i32, scale_i32_as_contract)]
     fn kani_forward_monotone_i16f16() {
         let cfg = FlexsplineConfig::<I16F16>::new(&SHD17);
         let b: i32 = kani::any();
@@ -271,6 +365,53 @@ mod tests {
             ));
         }
         v
+    }
+
+    /// The `mul_coef` contract of the monotone Kani harnesses: for each of
+    /// the four coefficients `FlexsplineConfig::<I16F16>::new(&SHD17)`
+    /// prepares (recomputed here from their definitions), the product has
+    /// the sign of `x` and is non-decreasing over all 2³² inputs.
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_coefficient_products_monotone_i16f16() {
+        use crate::scalar::Coef;
+        let u = I16F16::UNITS;
+        let ck = SHD17.c_f() * SHD17.k_f0();
+        let coefs = [
+            SHD17.c_f() / u.link_torque,
+            u.torsion / ck,
+            ck / u.torsion,
+            u.link_torque / SHD17.c_f(),
+        ];
+        let bits = |c: u32| (c ^ 0x8000_0000) as i32;
+        for v in coefs {
+            let c = Coef::new(v);
+            let r = exhaustive_u32_chained(
+                0,
+                u32::MAX,
+                |code| I16F16::from_bits(bits(code)).mul_coef(&c).to_bits(),
+                |code, &y, prev| {
+                    let x = bits(code);
+                    let sign = if x > 0 {
+                        y >= 0
+                    } else if x < 0 {
+                        y <= 0
+                    } else {
+                        y == 0
+                    };
+                    Verdict::logical(sign && prev.is_none_or(|&p| p <= y))
+                },
+            );
+            println!(
+                "PROOF kernel=mul_coef({v:e}) backend=I16F16 domain=all bound=sign of x, non-decreasing max_err={} at={:#x} checked={} engine=exhaustive",
+                r.max_error, r.argmax, r.checked
+            );
+            assert_eq!(
+                r.failures, 0,
+                "coefficient {v}: first failure at code {:?}",
+                r.first_failure
+            );
+        }
     }
 
     #[test]

@@ -67,7 +67,7 @@ solver_label=${solver:-default}
 list_harnesses() {
     for f in proofs/*.rs; do
         awk -v f="$f" '
-            /^[[:space:]]*(pub )?mod [a-z_0-9]+ \{/ { match($0, /mod [a-z_0-9]+/); m = substr($0, RSTART + 4, RLENGTH - 4) }
+            /^[[:space:]]*(pub(\(crate\))? )?mod [a-z_0-9]+ \{/ { match($0, /mod [a-z_0-9]+/); m = substr($0, RSTART + 4, RLENGTH - 4) }
             /#\[kani::proof\]/ { want = 1; next }
             want && /fn kani_[A-Za-z0-9_]*\(/ {
                 match($0, /fn kani_[A-Za-z0-9_]*/)
@@ -135,7 +135,7 @@ run_one() {
     local start end secs result
     start=$(date +%s.%N)
     timeout --kill-after=30 $((timeout_s + 600)) \
-        nice -n "${NICE:-15}" cargo kani --harness "$path" --exact -Z unstable-options \
+        nice -n "${NICE:-15}" cargo kani --harness "$path" --exact -Z unstable-options -Z stubbing \
         --harness-timeout "${timeout_s}s" --output-format terse "${solver_args[@]}" \
         >"$log" 2>&1
     local rc=$?

@@ -217,10 +217,174 @@ pub fn continuity_step<S: Scalar>(
     continuity_step_of(p, a, &ra, b, &rb)
 }
 
+/// The branch selection of the inverse (eq. 5.13–5.15) as logic, for
+/// any pose and any kernel values within the kernels' contracts: the
+/// result's `θ4 ∈ [0, π]` (the non-negative root: `sin(θ4/2) ≥ 0`,
+/// `cos(θ4/2) ≥ 0`), `θ1 ∈ (−π, π]`, `θ1 + θ3 = u ∈ [−3π/2, π/2]` (`u = ε − 2ψ`
+/// with `ψ ∈ [0, π/2]`, `ε ∈ [−π/2, π/2]`; the tight `[−π − ε, ε]` of
+/// [`branch_and_round_trip`] needs the kernels' accuracy and is the
+/// exhaustive engine's), motors zero exactly at the straight pose, and the
+/// flag set for a clamped target. Values in `2⁻¹⁶` (I16F16 bits).
+pub fn branch_logic_of(d: i32, g: i32, r: &Inverse<crate::scalar::I16F16>) -> Verdict {
+    const HALF_PI: i32 = 102_944; // I16F16::FRAC_PI_2 (bits)
+    const PI_B: i32 = 205_887; // I16F16::PI (bits)
+    let (t1, t3, t4) = (
+        r.motors.theta1.to_bits() as i64,
+        r.motors.theta3.to_bits() as i64,
+        r.theta4.to_bits() as i64,
+    );
+    let pi = PI_B as i64;
+    let u = t1 + t3;
+    let clamped = d.unsigned_abs() > HALF_PI as u32 || g.unsigned_abs() > HALF_PI as u32;
+    let straight_ok = !r.straight || (t1 == 0 && t3 == 0 && t4 == 0);
+    Verdict::logical(
+        (0..=pi + 1).contains(&t4)
+            && t1 > -pi - 1
+            && t1 <= pi + 1
+            && (r.straight || (-3 * pi / 2 - 4..=pi / 2 + 4).contains(&u))
+            && straight_ok
+            && (!clamped || r.saturated),
+    )
+}
+
+/// The part of the `I16F16` product's contract that
+/// `kani_wrist_ik_branch_logic_i16f16` assumes, for operands `a`, `b` and
+/// result `r` (bits): `a, b ≥ 0 ⇒ r ≥ 0`; `a ≥ 0, b ≥ 2¹⁶ ⇒ r ≥ a`;
+/// `a ≤ 0, b ≥ 0 ⇒ r ≤ 0`; `a ≥ 0, b ≤ 0 ⇒ r ≤ 0`; `a, b ≤ 0 ⇒ r ≥ 0`;
+/// `|b| ≤ 2¹⁶ ⇒ |r| ≤ |a|`.
+pub fn mul_bits_contract(a: i32, b: i32, r: i32) -> bool {
+    (!(a >= 0 && b >= 0) || r >= 0)
+        && (!(a >= 0 && b >= 1 << 16) || r >= a)
+        && (!(a <= 0 && b >= 0) || r <= 0)
+        && (!(a >= 0 && b <= 0) || r <= 0)
+        && (!(a <= 0 && b <= 0) || r >= 0)
+        && ((b as i64).abs() > 1 << 16 || (r as i64).abs() <= (a as i64).abs())
+}
+
 #[cfg(kani)]
 mod kani_entries {
     use super::*;
     use crate::scalar::I16F16;
+
+    fn any_bits_in(lo: i32, hi: i32) -> i32 {
+        let v: i32 = kani::any();
+        kani::assume(lo <= v && v <= hi);
+        v
+    }
+
+    const ONE: i32 = 1 << 16;
+    const HALF_PI: i32 = 102_944;
+    const PI_B: i32 = 205_887;
+
+    // Kernel contracts (each proven for the real kernel where noted).
+    /// `sin ∈ [−1, 1]` (`outputs_in_range`, Kani and exhaustive).
+    fn sin_as_contract(_x: I16F16) -> I16F16 {
+        // Postcondition of the stubbed kernel.
+        I16F16::from_bits(any_bits_in(-ONE, ONE))
+    }
+    /// `sin, cos ∈ [−1, 1]`, `cos ≥ 0` for `|x| ≤ π/2` (`outputs_in_range`;
+    /// `cos_is_non_negative_on_the_half_circle`, every input).
+    fn sin_cos_as_contract(x: I16F16) -> (I16F16, I16F16) {
+        // Postcondition of the stubbed kernel.
+        let lo = if x.to_bits().unsigned_abs() <= HALF_PI as u32 {
+            0
+        } else {
+            -ONE
+        };
+        (
+            I16F16::from_bits(any_bits_in(-ONE, ONE)),
+            I16F16::from_bits(any_bits_in(lo, ONE)),
+        )
+    }
+    /// `sqrt ≥ 0`, and `≥ 1` from `1` on (`sqrt_contract_holds`, every
+    /// input; monotone by `exhaustive_sqrt_i16f16`).
+    fn sqrt_as_contract(x: I16F16) -> I16F16 {
+        // Postcondition of the stubbed kernel.
+        let lo = if x.to_bits() >= ONE { ONE } else { 0 };
+        I16F16::from_bits(any_bits_in(lo, i32::MAX))
+    }
+    /// `atan2 ∈ [−π, π]`, in `[0, π/2]` for `y, x ≥ 0`, in `[−π/2, π/2]`
+    /// for `x ≥ 0` (`atan2_contract_holds`, random and on a lattice).
+    fn atan2_as_contract(y: I16F16, x: I16F16) -> I16F16 {
+        // Postcondition of the stubbed kernel.
+        let (y, x) = (y.to_bits(), x.to_bits());
+        let (lo, hi) = if x >= 0 && y >= 0 {
+            (0, HALF_PI)
+        } else if x >= 0 {
+            (-HALF_PI, HALF_PI)
+        } else {
+            (-PI_B, PI_B)
+        };
+        I16F16::from_bits(any_bits_in(lo, hi))
+    }
+
+    /// `mul_bits` (the I16F16 product) as the part of its contract the
+    /// branch logic uses: the sign rules, at most `|a|` for `|b| ≤ 1`, at
+    /// least `a` for `a ≥ 0`, `b ≥ 1`, and exactly the saturated `2b` for
+    /// `a = 2` (`mul_contract_holds`: the real product at random and on
+    /// edge classes; it equals the correctly rounded `mul_bits_reference`,
+    /// tested in `src/scalar/fixed.rs`).
+    fn mul_bits_as_contract(a: i32, b: i32) -> i32 {
+        if a == 2 * ONE {
+            return b.saturating_mul(2);
+        }
+        let r: i32 = kani::any();
+        // Postcondition of the stubbed function.
+        kani::assume(mul_bits_contract(a, b, r));
+        r
+    }
+
+    /// `div_bits` as the part of its boundary-layer contract the branch
+    /// logic uses: the precondition `0 < b`, `|a| ≤ b` asserted at each
+    /// call; the quotient in `[−1, 1]` with the sign of `a` (implied by
+    /// `div_bits_layer_contract` of `proofs/sat_sgn.rs`, which
+    /// `exhaustive_div_bits_layer_contract` proves; the products of the
+    /// full contract are what the solver does not finish here).
+    fn div_bits_as_range_contract(a: i32, b: i32) -> i32 {
+        assert!(
+            b > 0 && a >= -b && a <= b,
+            "div_bits called outside the boundary layer"
+        );
+        let q: i32 = kani::any();
+        // Postcondition of the stubbed function.
+        kani::assume((-ONE..=ONE).contains(&q) && (a <= 0 || q >= 0) && (a >= 0 || q <= 0));
+        q
+    }
+
+    /// The branch logic of the inverse for every I16F16 target (all 2⁶⁴
+    /// pairs), the kernels and the division replaced by their contracts
+    /// (above; the division's precondition, a boundary-layer quotient, is
+    /// asserted at each of the inverse's divisions). The sums, clamps,
+    /// `wrap` and the branch choice itself are the real code.
+    #[kani::proof]
+    #[kani::stub(crate::scalar::kernels::i16f16::sin, sin_as_contract)]
+    #[kani::stub(crate::scalar::kernels::i16f16::sin_cos, sin_cos_as_contract)]
+    #[kani::stub(crate::scalar::kernels::i16f16::sqrt, sqrt_as_contract)]
+    #[kani::stub(crate::scalar::kernels::i16f16::atan2, atan2_as_contract)]
+    #[kani::stub(crate::scalar::fixed::mul_bits, mul_bits_as_contract)]
+    #[kani::stub(crate::scalar::fixed::div_bits, div_bits_as_range_contract)]
+    fn kani_wrist_ik_branch_logic_i16f16() {
+        let cfg = WristConfig::<I16F16>::new(&wrist());
+        let (d, g): (i32, i32) = (kani::any(), kani::any());
+        let r = cfg.inverse(PitchYaw {
+            delta: I16F16::from_bits(d),
+            gamma: I16F16::from_bits(g),
+        });
+        let (t1, t3, t4) = (
+            r.motors.theta1.to_bits() as i64,
+            r.motors.theta3.to_bits() as i64,
+            r.theta4.to_bits() as i64,
+        );
+        assert!(t4 >= 0, "theta4 >= 0");
+        assert!(t4 <= PI_B as i64 + 1, "theta4 <= pi");
+        assert!(
+            t1 > -(PI_B as i64) - 1 && t1 <= PI_B as i64 + 1,
+            "theta1 in (-pi, pi]"
+        );
+        assert!(r.straight || t1 + t3 >= -3 * PI_B as i64 / 2 - 4, "u low");
+        assert!(r.straight || t1 + t3 <= PI_B as i64 / 2 + 4, "u high");
+        assert!(branch_logic_of(d, g, &r).holds);
+    }
 
     /// The branch property at every point of the 16-bit grid, I16F16.
     #[kani::proof]
@@ -389,6 +553,171 @@ mod tests {
         assert!(continuity_step_of(&p, a, &ra, b, &rb).holds);
         rb.motors.theta1 += 0.5;
         assert!(!continuity_step_of(&p, a, &ra, b, &rb).holds);
+    }
+
+    /// The kernel contracts `kani_wrist_ik_branch_logic_i16f16` stubs:
+    /// `sin`, `sin_cos` in `[−1, 1]` and `cos ≥ 0` on `|x| ≤ π/2` (every
+    /// input of the half circle; the whole type in steps of 2¹¹ and every
+    /// input of `|x| ≤ 8`), `sqrt ≥ 0` and `≥ 1` from 1 on (`sqrt(1) = 1`
+    /// and the exhaustive monotonicity of `exhaustive_sqrt_i16f16`, spot
+    /// checked here), `atan2` ranges by quadrant (axes, and a lattice).
+    #[test]
+    fn kernel_contracts_of_the_branch_logic_harness() {
+        use crate::scalar::kernels::i16f16 as k;
+        const ONE: i32 = 1 << 16;
+        const HALF_PI: i32 = 102_944;
+        const PI_B: i32 = 205_887;
+        let near = (-(8 * ONE)..=8 * ONE).map(I16F16::from_bits);
+        let coarse = (i32::MIN..=i32::MAX)
+            .step_by(1 << 11)
+            .map(I16F16::from_bits);
+        for x in near.chain(coarse) {
+            let (s, c) = k::sin_cos(x);
+            let one = I16F16::ONE;
+            assert!(
+                s.abs() <= one && c.abs() <= one && k::sin(x).abs() <= one,
+                "{x}"
+            );
+            if x.to_bits().unsigned_abs() <= HALF_PI as u32 {
+                assert!(c >= I16F16::ZERO, "cos({x}) = {c}");
+            }
+            let r = k::sqrt(x);
+            assert!(
+                r >= I16F16::ZERO && (x < one || r >= one),
+                "sqrt({x}) = {r}"
+            );
+        }
+        assert_eq!(k::sqrt(I16F16::ONE), I16F16::ONE);
+        let vals: Vec<i32> = [
+            0,
+            1,
+            2,
+            3,
+            100,
+            ONE - 1,
+            ONE,
+            3 * ONE,
+            i32::MAX - 1,
+            i32::MAX,
+        ]
+        .iter()
+        .flat_map(|&v| [v, -v, v / 7, -(v / 7)])
+        .chain([i32::MIN, i32::MIN + 1])
+        .collect();
+        for &y in &vals {
+            for &x in &vals {
+                let a = k::atan2(I16F16::from_bits(y), I16F16::from_bits(x)).to_bits();
+                let ok = if x >= 0 && y >= 0 {
+                    (0..=HALF_PI).contains(&a)
+                } else if x >= 0 {
+                    (-HALF_PI..=HALF_PI).contains(&a)
+                } else {
+                    (-PI_B..=PI_B).contains(&a)
+                };
+                assert!(ok, "atan2({y}, {x}) = {a} bits");
+            }
+        }
+    }
+
+    /// The product contract of the branch-logic harness holds for the
+    /// real `mul_bits` (random pairs, edge classes, and `2·b` exact), and
+    /// can fail.
+    #[test]
+    fn mul_contract_holds() {
+        use crate::scalar::fixed::mul_bits;
+        let edges = [
+            0,
+            1,
+            2,
+            0x7fff,
+            0x8000,
+            0xffff,
+            1 << 16,
+            (1 << 16) + 1,
+            3 << 16,
+            i32::MAX,
+            i32::MAX - 1,
+        ];
+        let mut vals: Vec<i32> = edges.iter().flat_map(|&v| [v, -v]).collect();
+        vals.push(i32::MIN);
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        for _ in 0..2000 {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            vals.push((state >> 32) as i32 >> (state % 24));
+        }
+        for &a in &vals {
+            for &b in &vals {
+                assert!(mul_bits_contract(a, b, mul_bits(a, b)), "{a} * {b}");
+            }
+            assert_eq!(mul_bits(2 << 16, a), a.saturating_mul(2));
+        }
+        assert!(!mul_bits_contract(5, 7, -1));
+        assert!(!mul_bits_contract(5 << 16, 1 << 16, (5 << 16) - 1));
+        assert!(!mul_bits_contract(-5, 7, 1));
+        assert!(!mul_bits_contract(5 << 16, 1 << 16, (5 << 16) + 1));
+    }
+
+    /// The branch-logic check can fail: a negative `θ4` (the other root),
+    /// a `θ1` beyond `π`, nonzero motors at the straight pose, and a
+    /// clamped target without the flag are rejected.
+    #[test]
+    fn branch_logic_check_can_fail() {
+        use crate::wrist::MotorAngles;
+        let f = |b: i32| I16F16::from_bits(b);
+        let good = Inverse {
+            motors: MotorAngles {
+                theta1: f(100_000),
+                theta3: f(-150_000),
+            },
+            theta4: f(30_000),
+            pose: PitchYaw {
+                delta: f(1000),
+                gamma: f(2000),
+            },
+            saturated: false,
+            straight: false,
+        };
+        assert!(branch_logic_of(1000, 2000, &good).holds);
+        let mut bad = good;
+        bad.theta4 = f(-1);
+        assert!(!branch_logic_of(1000, 2000, &bad).holds);
+        let mut bad = good;
+        bad.motors.theta1 = f(205_889);
+        assert!(!branch_logic_of(1000, 2000, &bad).holds);
+        let mut bad = good;
+        bad.straight = true;
+        assert!(!branch_logic_of(1000, 2000, &bad).holds);
+        assert!(!branch_logic_of(200_000, 2000, &good).holds);
+        let mut bad = good;
+        bad.motors.theta3 = f(100_000);
+        assert!(!branch_logic_of(1000, 2000, &bad).holds);
+    }
+
+    /// The shipped inverse meets the branch logic with its real kernels,
+    /// at random targets over the whole I16F16 range.
+    #[test]
+    fn branch_logic_holds_at_random_targets() {
+        let cfg = WristConfig::<I16F16>::new(&wrist());
+        let mut state = 0x1234_5678_9abc_def0u64;
+        for _ in 0..200_000 {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let (d, g) = ((state >> 32) as i32, state as i32);
+            // Half of the targets inside the clamp range.
+            let (d, g) = if state & 1 == 0 {
+                (d >> 14, g >> 14)
+            } else {
+                (d, g)
+            };
+            let r = cfg.inverse(PitchYaw {
+                delta: I16F16::from_bits(d),
+                gamma: I16F16::from_bits(g),
+            });
+            assert!(branch_logic_of(d, g, &r).holds, "{d} {g}: {r:?}");
+        }
     }
 
     proptest! {
