@@ -695,6 +695,29 @@ impl<S: Scalar> ModeConfig<S> {
         }
     }
 
+    /// On floats, an offset whose next reference acceleration
+    /// `−(2ω ȯ + ω² o)` is not a finite number (readings and desired
+    /// positions of opposite sign near the float range) is dropped: the
+    /// Active reference is then the desired trajectory itself, so the
+    /// state never holds an infinity or a NaN. Fixed point saturates
+    /// instead (folded at compile time).
+    #[inline]
+    fn drop_overflowing_offset(&self, st: &mut ModeState<S>) {
+        if S::RESOLUTION.to_f64() >= 1e-6 {
+            return;
+        }
+        let acc = self
+            .two_omega
+            .apply(st.offset_rate)
+            .add(self.omega_sq.apply(st.offset));
+        // `v − v` is 0 exactly when `v` is finite; a finite `acc` proves
+        // both terms, and so `o` and `ȯ`, finite.
+        if acc.sub(acc) != S::ZERO {
+            st.offset = S::ZERO;
+            st.offset_rate = S::ZERO;
+        }
+    }
+
     /// Enter mode `to`: reset the counters and seed the reference
     /// (Active: the rejoin offset; Hold: the hold point) and the integral
     /// (to 0, re-seeded in `update` once the law is known).
@@ -707,6 +730,7 @@ impl<S: Scalar> ModeConfig<S> {
             JointMode::Active => {
                 st.offset = x.motor_position.sub(x.desired_position);
                 st.offset_rate = x.motor_velocity.sub(x.desired_velocity);
+                self.drop_overflowing_offset(st);
             }
             JointMode::Hold => st.hold = x.motor_position,
         }
@@ -793,6 +817,7 @@ impl<S: Scalar> ModeConfig<S> {
                     let rate = st.offset_rate.add(acc.mul_coef(&self.step_rate));
                     st.offset_rate = rate;
                     st.offset = st.offset.add(rate.mul_coef(&self.step_position));
+                    self.drop_overflowing_offset(st);
                 }
                 (t.law, xr.desired_position)
             }

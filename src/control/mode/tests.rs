@@ -719,3 +719,52 @@ fn rejoin_offset_stall_is_within_its_bound() {
         assert!(run::<f64>(&p).abs() < 1e-9);
     }
 }
+
+/// Entering Active with a measured and a desired position of opposite
+/// sign near the `f32` range: `q_m − q_m^d` overflows to infinity. The
+/// offset is dropped (the reference is the desired trajectory), so no
+/// later sample carries an infinity or a NaN out of the state. Before
+/// the offset was checked, the next sample's reference was NaN.
+#[test]
+fn overflowing_rejoin_offset_is_dropped() {
+    let cfg = ModeConfig::<f32>::new(&params(1, 0, None));
+    let mut st = cfg.initial_state();
+    let push = ControlInput {
+        joint_torque: 3000.0,
+        ..Default::default()
+    };
+    cfg.update(&mut st, &push);
+    assert_eq!(st.mode(), JointMode::Passive);
+    let far = ControlInput {
+        motor_position: 3.0e38,
+        desired_position: -3.0e38,
+        ..Default::default()
+    };
+    let o = cfg.update(&mut st, &far);
+    assert!(o.switched && o.mode == JointMode::Active);
+    assert_eq!(st.rejoin_offset(), (0.0, 0.0));
+    // A finite offset whose ω² o overflows is dropped too.
+    let mut st2 = cfg.initial_state();
+    cfg.update(&mut st2, &push);
+    let big = ControlInput {
+        motor_position: 3.0e38,
+        ..Default::default()
+    };
+    cfg.update(&mut st2, &big);
+    assert!(st2.rejoin_offset().0.is_finite());
+    for _ in 0..50 {
+        let o = cfg.update(&mut st, &far);
+        assert!(o.torque.is_finite() && o.reference_position.is_finite());
+        let (a, b) = st.rejoin_offset();
+        assert!(a.is_finite() && b.is_finite());
+    }
+    // An offset that fits is kept (the check does not drop ordinary ones).
+    let mut st3 = cfg.initial_state();
+    cfg.update(&mut st3, &push);
+    let near = ControlInput {
+        motor_position: 500.0,
+        ..Default::default()
+    };
+    cfg.update(&mut st3, &near);
+    assert!(st3.rejoin_offset().0 > 490.0);
+}
