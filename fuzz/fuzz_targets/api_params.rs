@@ -15,7 +15,7 @@ use mrr_control::estimation::{
 use mrr_control::harmonic_drive::kinematic_error::KinematicErrorModel;
 use mrr_control::harmonic_drive::two_spring::{TwoSpringParams, TwoSpringSettings, TwoSpringState};
 use mrr_control::harmonic_drive::{
-    CatalogueCurve, CataloguePiecewise, CubicStiffness, FlexsplineParams, FlexsplineSettings,
+    CatalogueCurve, CataloguePiecewise, CubicStiffness, CubicStiffnessSettings, FlexsplineParams, FlexsplineSettings,
     HarmonicDriveParams, WaveGeneratorParams, WaveGeneratorSettings, WaveGeneratorTorqueConfig,
     WaveGeneratorTorqueParams, WaveGeneratorTorqueSettings, WaveGeneratorTorqueState,
 };
@@ -223,6 +223,27 @@ fn check_others(raw: &[u64; 8], mode: u8, readings: &[Reading]) {
                     }
                 }
                 Err(e) => typed(e),
+            }
+        }
+        Err(e) => typed(e),
+    }
+    // Eq. (2.10) from raw coefficients: a typed error, or a torsion that is
+    // never NaN, has the torque's sign, and round-trips where the cubic is
+    // well inside f64 (relative 1e-9).
+    match CubicStiffness::try_new(CubicStiffnessSettings {
+        a1: value(raw[6], flag(6), 1e2, 1e6, true),
+        a3: value(raw[7], flag(6), 1e2, 1e9, false),
+    }) {
+        Ok(q) => {
+            assert_eq!(CubicStiffness::try_new(q.settings()), Ok(q));
+            for &(_, _, t) in readings {
+                let d = q.torsion(t);
+                assert!(!d.is_nan(), "{q:?} {t}");
+                assert!(!t.is_finite() || d == 0.0 || (d > 0.0) == (t > 0.0), "{q:?} {t} {d}");
+                if !flag(6) && t.is_finite() && t.abs() < 1e6 {
+                    let back = q.torque(d);
+                    assert!((back - t).abs() <= 1e-9 * (1.0 + t.abs()), "{q:?} {t} {back}");
+                }
             }
         }
         Err(e) => typed(e),
