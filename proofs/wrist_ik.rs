@@ -261,6 +261,17 @@ pub fn mul_bits_contract(a: i32, b: i32, r: i32) -> bool {
         && ((b as i64).abs() > 1 << 16 || (r as i64).abs() <= (a as i64).abs())
 }
 
+/// The part of the `I16F16` quotient's contract that
+/// `kani_wrist_ik_branch_logic_i16f16` assumes, for a numerator `a` and
+/// the result `q` (bits) of a division by `b` with `0 < b`, `|a| ≤ b`: `q ∈ [−2¹⁶, 2¹⁶]` (`[−1, 1]`),
+/// `q ≥ 0` for `a > 0`, `q ≤ 0` for `a < 0`, and `q = 0` for `a = 0`.
+/// (A form that allowed any `q ∈ [−1, 1]` at `a = 0` let the harness pick
+/// `sin(θ4/2) < 0` at the straight pose and fail, although the real
+/// `div_bits(0, b)` is 0.)
+pub fn div_bits_range_contract(a: i32, q: i32) -> bool {
+    (-(1 << 16)..=1 << 16).contains(&q) && (a < 0 || q >= 0) && (a > 0 || q <= 0)
+}
+
 #[cfg(kani)]
 mod kani_entries {
     use super::*;
@@ -336,7 +347,7 @@ mod kani_entries {
 
     /// `div_bits` as the part of its boundary-layer contract the branch
     /// logic uses: the precondition `0 < b`, `|a| ≤ b` asserted at each
-    /// call; the quotient in `[−1, 1]` with the sign of `a` (implied by
+    /// call; [`div_bits_range_contract`] for the quotient (implied by
     /// `div_bits_layer_contract` of `proofs/sat_sgn.rs`, which
     /// `exhaustive_div_bits_layer_contract` proves; the products of the
     /// full contract are what the solver does not finish here).
@@ -347,7 +358,7 @@ mod kani_entries {
         );
         let q: i32 = kani::any();
         // Postcondition of the stubbed function.
-        kani::assume((-ONE..=ONE).contains(&q) && (a <= 0 || q >= 0) && (a >= 0 || q <= 0));
+        kani::assume(div_bits_range_contract(a, q));
         q
     }
 
@@ -657,6 +668,45 @@ mod tests {
         assert!(!mul_bits_contract(5 << 16, 1 << 16, (5 << 16) - 1));
         assert!(!mul_bits_contract(-5, 7, 1));
         assert!(!mul_bits_contract(5 << 16, 1 << 16, (5 << 16) + 1));
+    }
+
+    /// The quotient contract of the branch-logic harness holds for the
+    /// real `div_bits` (every numerator of a few divisors, including the
+    /// configured `sin φ`, and random pairs), and can fail: it rejects a
+    /// nonzero quotient of `a = 0` (the counterexample Kani found for the
+    /// earlier, weaker form: `div_bits(0, sin φ) = −1` bit, which made
+    /// `sin(θ4/2) < 0` at the straight pose), a wrong sign and `|q| > 1`.
+    #[test]
+    fn div_range_contract_holds() {
+        use crate::scalar::fixed::div_bits;
+        let sin_phi = WristConfig::<I16F16>::new(&wrist()).sin_phi.to_bits();
+        for b in [1, 2, 3, 255, 1 << 16, sin_phi, (1 << 20) + 7] {
+            for a in -b.min(1 << 16)..=b.min(1 << 16) {
+                assert!(div_bits_range_contract(a, div_bits(a, b)), "{a} / {b}");
+                assert!(div_bits_range_contract(-b + a.abs(), div_bits(-b + a.abs(), b)));
+            }
+            assert_eq!(div_bits(0, b), 0);
+        }
+        for b in [i32::MAX, i32::MAX - 1] {
+            for a in [-b, -1, 0, 1, b, b / 3] {
+                assert!(div_bits_range_contract(a, div_bits(a, b)), "{a} / {b}");
+            }
+        }
+        let mut state = 0x0123_4567_89ab_cdefu64;
+        for _ in 0..200_000 {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let b = ((state >> 33) as i32).max(1);
+            let a = ((state as i32 as i64) % (b as i64 + 1)) as i32;
+            assert!(div_bits_range_contract(a, div_bits(a, b)), "{a} / {b}");
+        }
+        assert!(!div_bits_range_contract(0, -1));
+        assert!(!div_bits_range_contract(0, 1));
+        assert!(!div_bits_range_contract(5, -1));
+        assert!(!div_bits_range_contract(-5, 1));
+        assert!(!div_bits_range_contract(5, (1 << 16) + 1));
+        assert!(div_bits_range_contract(0, 0) && div_bits_range_contract(-5, -(1 << 16)));
     }
 
     /// The branch-logic check can fail: a negative `θ4` (the other root),
