@@ -270,7 +270,8 @@ fn kinematics<S: Scalar>(p: &WristParams, samples: &[[u64; 6]], thesis: bool) {
         assert!(abp.beta.to_f64() <= PI + tol, "{abp:?}");
         let any_ab = AlphaBeta {
             alpha: q::<S>(value(w[4], 4.0)),
-            beta: q::<S>(value(w[5], 2.5 * phi)),
+            // Around the workspace's bends, or anywhere up to past ±π/2.
+            beta: q::<S>(value(w[5], if w[4] & 8 == 0 { 2.5 * phi } else { 1.7 })),
         };
         let pp = cfg.pose_of_alpha_beta(any_ab);
         assert!(finite(pp.delta) && finite(pp.gamma), "{any_ab:?} -> {pp:?}");
@@ -668,7 +669,8 @@ fn step<S: Scalar>(p: &WristStepParams, samples: &[[u64; 6]]) {
         // `wrist::jacobian`): a reference bent so little that this is
         // below DET_MIN/2 must be flagged singular.
         let b = bend(rd, rg) + tol;
-        if phi.sin() * b.sin() / ((3.0 * phi).cos() - 2.0 * tol) < DET_MIN / 2.0 {
+        let d_min = (3.0 * phi).cos() - 2.0 * tol;
+        if d_min > 0.0 && phi.sin() * b.sin() / d_min < DET_MIN / 2.0 {
             assert!(o.singular, "straight reference {o:?}");
         }
         if o.torque_saturated {
@@ -686,7 +688,13 @@ fuzz_target!(|data: (u32, [u64; 16], Vec<[u64; 6]>)| {
     // The kinematics: φ raw, or 16° times a factor in [1/20, 2.5]
     // (0.8°–40°, a quarter of it outside the accepted [1°, 30°]).
     let phi_in = field(raw[0], flag(0), 16f64.to_radians(), 0.05, 2.5);
-    let phi_in = if flag(1) { 16f64.to_radians() } else { phi_in };
+    // The thesis's wrist, and both edges of the accepted range exactly.
+    let phi_in = match (flag(1), flag(18), flag(19)) {
+        (true, _, _) => 16f64.to_radians(),
+        (_, true, false) => 30f64.to_radians(),
+        (_, false, true) => 1f64.to_radians(),
+        _ => phi_in,
+    };
     let params = match WristParams::try_new(phi_in) {
         Ok(p) => {
             assert!(phi_in >= 1f64.to_radians() && phi_in <= 30f64.to_radians());
