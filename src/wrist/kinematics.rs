@@ -241,6 +241,8 @@ pub struct WristConfig<S> {
     pub(crate) tan_phi: S,
     pub(crate) sin_max_bend: S,
     pub(crate) cos_max_bend: S,
+    /// `2φ` (rad).
+    pub(crate) max_bend: S,
     phi: f64,
 }
 
@@ -302,6 +304,7 @@ impl<S: Scalar> WristConfig<S> {
             tan_phi: S::from_f64(libm::tan(phi)),
             sin_max_bend: S::from_f64(libm::sin(2.0 * phi)),
             cos_max_bend: S::from_f64(libm::cos(2.0 * phi)),
+            max_bend: S::from_f64(2.0 * phi),
             phi,
         }
     }
