@@ -681,11 +681,15 @@ fn step<S: Scalar>(p: &WristStepParams, samples: &[[u64; 6]]) {
 fuzz_target!(|data: (u32, [u64; 16], Vec<[u64; 6]>)| {
     let (flags, raw, samples) = data;
     let flag = |k: u32| flags & (1 << k) != 0;
+    // Raw parameter fields in half of the inputs only, so that the other
+    // half reaches the maps with accepted parameters.
+    let raw_ok = flag(31);
+    let rflag = |k: u32| raw_ok && flag(k);
     let samples = &samples[..samples.len().min(16)];
 
     // The kinematics: φ raw, or 16° times a factor in [1/20, 2.5]
     // (0.8°–40°, a quarter of it outside the accepted [1°, 30°]).
-    let phi_in = field(raw[0], flag(0), 16f64.to_radians(), 0.05, 2.5);
+    let phi_in = field(raw[0], rflag(0), 16f64.to_radians(), 0.05, 2.5);
     // The thesis's wrist, and both edges of the accepted range exactly.
     let phi_in = match (flag(1), flag(18), flag(19)) {
         (true, _, _) => 16f64.to_radians(),
@@ -710,7 +714,7 @@ fuzz_target!(|data: (u32, [u64; 16], Vec<[u64; 6]>)| {
     kinematics::<I16F16>(&params, samples, thesis);
 
     // The gauge amplifier: G ∈ [1, 10⁴].
-    let gain = field(raw[1], flag(2), 100.0, 1e-3, 1e3);
+    let gain = field(raw[1], rflag(2), 100.0, 1e-3, 1e3);
     match GaugeAmplifier::try_new(gain) {
         Ok(a) => {
             assert!((1.0..=1e4).contains(&gain));
@@ -736,7 +740,7 @@ fuzz_target!(|data: (u32, [u64; 16], Vec<[u64; 6]>)| {
     for (i, row) in mat.iter_mut().enumerate() {
         for (j, v) in row.iter_mut().enumerate() {
             let b = raw[(i * 6 + j) % 16].rotate_left((i * 6 + j) as u32);
-            *v = if flag(3) && b & 0x3f == 0 {
+            *v = if rflag(3) && b & 0x3f == 0 {
                 f64::from_bits(b)
             } else if flag(4) {
                 field(b, false, *v, 0.25, 4.0)
@@ -745,7 +749,7 @@ fuzz_target!(|data: (u32, [u64; 16], Vec<[u64; 6]>)| {
             };
         }
     }
-    let maxc = if flag(5) { f64::from_bits(raw[4]) } else { DEFAULT_MAX_CONDITION };
+    let maxc = if rflag(5) { f64::from_bits(raw[4]) } else { DEFAULT_MAX_CONDITION };
     let dm = match DecouplingMatrix::try_new(mat, maxc) {
         Ok(d) => {
             assert!(mat.iter().flatten().all(|v| v.is_finite()));
@@ -757,7 +761,7 @@ fuzz_target!(|data: (u32, [u64; 16], Vec<[u64; 6]>)| {
             DecouplingMatrix::example()
         }
     };
-    let offset = field(raw[5], flag(6), 0.05, 0.01, 40.0);
+    let offset = field(raw[5], rflag(6), 0.05, 0.01, 40.0);
     let sensor = match FtSensorParams::try_new(dm, offset) {
         Ok(s) => {
             assert!((0.0..=1.0).contains(&offset));
@@ -774,24 +778,24 @@ fuzz_target!(|data: (u32, [u64; 16], Vec<[u64; 6]>)| {
     ft::<I16F16>(&sensor, samples);
 
     // The admittance law: the gain drawn around its discrete-time limit.
-    let lag = if flag(7) { (raw[6] & 0xff) as u8 } else { (raw[6] % 4) as u8 };
-    let stiffness = field(raw[7], flag(8), 200.0, 0.01, 100.0);
-    let period = if flag(9) { f64::from_bits(raw[8]) } else { 0.004 };
+    let lag = if rflag(7) { (raw[6] & 0xff) as u8 } else { (raw[6] % 4) as u8 };
+    let stiffness = field(raw[7], rflag(8), 200.0, 0.01, 100.0);
+    let period = if rflag(9) { f64::from_bits(raw[8]) } else { 0.004 };
     let a = 2.0 * (PI / (2.0 * (2.0 * lag as f64 + 1.0))).sin();
     let kmax = a / (period * stiffness);
-    let lim = field(raw[9], flag(10), 0.5, 0.25, 4.0);
+    let lim = field(raw[9], rflag(10), 0.5, 0.25, 4.0);
     let adm = AdmittanceSettings {
         gain: [
-            field(raw[10], flag(11), kmax, 0.25, 2.0),
-            field(raw[10].rotate_left(32), flag(11), kmax, 0.1, 1.5),
+            field(raw[10], rflag(11), kmax, 0.25, 2.0),
+            field(raw[10].rotate_left(32), rflag(11), kmax, 0.1, 1.5),
         ],
         stiffness,
         sample_period: period,
         lag_samples: lag,
-        limits: [lim, field(raw[9].rotate_left(32), flag(10), 0.5, 0.25, 4.0)],
-        max_rate: field(raw[11], flag(12), 1.0, 0.01, 100.0),
-        deadband: field(raw[12], flag(12), 0.05, 0.01, 100.0) - if flag(13) { 0.1 } else { 0.0 },
-        desired_torque: [0.0, field(raw[13], flag(12), 0.5, 0.1, 1e4) * if flag(14) { -1.0 } else { 1.0 }],
+        limits: [lim, field(raw[9].rotate_left(32), rflag(10), 0.5, 0.25, 4.0)],
+        max_rate: field(raw[11], rflag(12), 1.0, 0.01, 100.0),
+        deadband: field(raw[12], rflag(12), 0.05, 0.01, 100.0) - if flag(13) { 0.1 } else { 0.0 },
+        desired_torque: [0.0, field(raw[13], rflag(12), 0.5, 0.1, 1e4) * if flag(14) { -1.0 } else { 1.0 }],
     };
     let rule = admittance_rules(&adm);
     let adm_params = match AdmittanceParams::try_new(adm) {
@@ -814,12 +818,12 @@ fuzz_target!(|data: (u32, [u64; 16], Vec<[u64; 6]>)| {
     let t = adm_p.sample_period();
     let ms = WristModeSettings {
         admittance: adm_p,
-        enter_passive: field(raw[14], flag(15), 1.0, 0.25, 4.0),
-        exit_passive: field(raw[14].rotate_left(32), flag(15), 0.5, 0.25, 4.0),
-        rest_speed: field(raw[15], flag(16), 0.01, 0.1, 10.0),
+        enter_passive: field(raw[14], rflag(15), 1.0, 0.25, 4.0),
+        exit_passive: field(raw[14].rotate_left(32), rflag(15), 0.5, 0.25, 4.0),
+        rest_speed: field(raw[15], rflag(16), 0.01, 0.1, 10.0),
         debounce: (raw[15] & 0xf) as u16,
         dwell: ((raw[15] >> 4) & 0x3f) as u16,
-        rejoin_bandwidth: field(raw[15].rotate_left(32), flag(16), 0.1 / t, 0.1, 8.0),
+        rejoin_bandwidth: field(raw[15].rotate_left(32), rflag(16), 0.1 / t, 0.1, 8.0),
     };
     let mode_rules = ms.exit_passive.is_finite()
         && ms.exit_passive > 0.0
