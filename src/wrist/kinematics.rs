@@ -453,12 +453,7 @@ impl<S: Scalar> WristConfig<S> {
         let hb = sdh * sdh + libm::cos(d) * sgh * sgh;
         let sp = libm::sin(self.phi);
         let tol = 2.0 * S::RESOLUTION.to_f64() * libm::sin(2.0 * self.phi);
-        if d.is_nan()
-            || g.is_nan()
-            || d.abs() > h
-            || g.abs() > h
-            || hb > sp * sp + tol
-        {
+        if d.is_nan() || g.is_nan() || d.abs() > h || g.abs() > h || hb > sp * sp + tol {
             return Err(Unreachable {
                 delta: d,
                 gamma: g,
