@@ -330,7 +330,10 @@ pub struct FtReading<S> {
     /// `[τ_δ, τ_γ]` of eq. (6.3) (corrected), N·m, positive when tending
     /// to increase `δ`, `γ`.
     pub interaction: [S; 2],
-    /// An input was NaN or infinite: every output is 0.
+    /// An input was NaN or infinite, or finite but so large that the
+    /// wrench overflows the backend's range (floats only; gauge signals
+    /// of order `f32::MAX / ‖M‖`, far beyond any amplifier's output):
+    /// every output is 0.
     pub invalid_input: bool,
 }
 
@@ -359,7 +362,8 @@ impl<S: Scalar> FtSensorConfig<S> {
 
     /// Eq. (6.35) then eq. (6.3): gauge signals `SG` (V, stored as plain
     /// volts) and the current yaw `γ` (rad) to the wrench and
-    /// `(τ_δ, τ_γ)`. A NaN or infinite input gives zeros, flagged.
+    /// `(τ_δ, τ_γ)`. A NaN or infinite input, or a wrench that overflows
+    /// the backend's range, gives zeros, flagged.
     ///
     /// ```
     /// use mrr_control::wrist::ft_sensor::{DecouplingMatrix, FtSensorConfig, FtSensorParams};

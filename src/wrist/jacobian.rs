@@ -128,10 +128,16 @@ impl<S: Scalar> WristConfig<S> {
     }
 
     /// `J_2 = ∂(δ, γ)/∂(α, β)`, eq. (5.26)–(5.27) corrected (E5.9): the
-    /// derivative of `sin δ = cos α sin β`, `tan γ = sin α tan β`.
+    /// derivative of `sin δ = cos α sin β`, `tan γ = sin α tan β`, for a
+    /// signed bend `β` in the workspace's `[−2φ, 2φ]`; a bend beyond it
+    /// (not a pose of the wrist; at `β = ±π/2`, `α = 0` the map is
+    /// singular) is limited to it, and NaN is read as 0. Every entry is
+    /// then at most `1/cos²(2φ)` in magnitude (`cos δ ≥ cos β`,
+    /// `cos²β + sin²α sin²β ≥ cos²β`).
     pub fn j2(&self, ab: AlphaBeta<S>) -> [[S; 2]; 2] {
         let (sa, ca) = denan(ab.alpha).sin_cos();
-        let (sb, cb) = denan(ab.beta).sin_cos();
+        let b = denan(ab.beta).clamp(self.max_bend.neg(), self.max_bend);
+        let (sb, cb) = b.sin_cos();
         // cos δ = √(1 − cos²α sin²β) ≥ cos β > 0 in the workspace.
         let x = ca.mul(sb);
         let cd = S::ONE.sub(x.mul(x)).sqrt();
@@ -479,6 +485,41 @@ mod tests {
         }
         std::println!("thesis vs exact force mapping: max relative Frobenius error {:.2} % at (delta, gamma) = ({:.3}, {:.3}) rad", 100.0 * worst, at.0, at.1);
         assert!(worst < 0.10 && worst > 0.005, "{worst}");
+    }
+
+    /// `J_2` (eq. 5.27 corrected) at any `(α, β)`: finite on every
+    /// backend, also where `(α, β) ↦ (δ, γ)` itself is singular
+    /// (`β = ±π/2` with `α = 0`: `cos δ = 0`), bounded by
+    /// `1/cos²(2φ)` per entry, and unchanged inside the workspace.
+    #[test]
+    fn j2_is_finite_and_bounded_everywhere() {
+        fn check<S: Scalar>() {
+            let p = WristParams::thesis();
+            let c = WristConfig::<S>::new(&p);
+            let bound = 1.0 / (2.0 * p.phi()).cos().powi(2) * (1.0 + 1e-3);
+            for &(a, b) in &[
+                (0.0, PI / 2.0),
+                (0.0, -PI / 2.0),
+                (PI, PI / 2.0),
+                (PI / 2.0, PI),
+                (0.3, 1.5),
+                (0.0, 1e30),
+                (f64::NAN, 0.2),
+            ] {
+                let ab = AlphaBeta {
+                    alpha: S::from_f64(a),
+                    beta: S::from_f64(b),
+                };
+                let j = c.j2(ab);
+                for x in j.iter().flatten() {
+                    assert!(x.to_f64().is_finite(), "{} {ab:?} {j:?}", S::NAME);
+                    assert!(x.to_f64().abs() <= bound, "{} {ab:?} {j:?}", S::NAME);
+                }
+            }
+        }
+        check::<f64>();
+        check::<f32>();
+        check::<I16F16>();
     }
 
     #[test]

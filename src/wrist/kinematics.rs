@@ -241,6 +241,8 @@ pub struct WristConfig<S> {
     pub(crate) tan_phi: S,
     pub(crate) sin_max_bend: S,
     pub(crate) cos_max_bend: S,
+    /// `2φ` (rad).
+    pub(crate) max_bend: S,
     phi: f64,
 }
 
@@ -302,6 +304,7 @@ impl<S: Scalar> WristConfig<S> {
             tan_phi: S::from_f64(libm::tan(phi)),
             sin_max_bend: S::from_f64(libm::sin(2.0 * phi)),
             cos_max_bend: S::from_f64(libm::cos(2.0 * phi)),
+            max_bend: S::from_f64(2.0 * phi),
             phi,
         }
     }
@@ -438,20 +441,19 @@ impl<S: Scalar> WristConfig<S> {
     }
 
     /// Inverse kinematics that rejects an unreachable pose with a typed
-    /// error instead of saturating (tolerance: 4 resolution steps of the
-    /// backend on `sin²(β/2)`, so the boundary itself is accepted).
+    /// error instead of saturating. The test is in `f64` on the stored
+    /// pose, against the exact `sin²φ`, with a tolerance of 4 resolution
+    /// steps of the backend on the bend at the edge (`2 q sin 2φ` on
+    /// `sin²(β/2)`, whose derivative is `½ sin β`), so that the boundary
+    /// as the backend rounds it is accepted.
     pub fn try_inverse(&self, target: PitchYaw<S>) -> Result<Inverse<S>, Unreachable> {
         let (d, g) = (target.delta.to_f64(), target.gamma.to_f64());
         let h = core::f64::consts::FRAC_PI_2;
         let (sdh, sgh) = (libm::sin(d / 2.0), libm::sin(g / 2.0));
         let hb = sdh * sdh + libm::cos(d) * sgh * sgh;
-        let tol = 4.0 * S::RESOLUTION.to_f64();
-        if d.is_nan()
-            || g.is_nan()
-            || d.abs() > h
-            || g.abs() > h
-            || hb > self.sin_phi_sq.to_f64() + tol
-        {
+        let sp = libm::sin(self.phi);
+        let tol = 2.0 * S::RESOLUTION.to_f64() * libm::sin(2.0 * self.phi);
+        if d.is_nan() || g.is_nan() || d.abs() > h || g.abs() > h || hb > sp * sp + tol {
             return Err(Unreachable {
                 delta: d,
                 gamma: g,
@@ -977,6 +979,45 @@ pub(crate) mod tests {
             })
             .unwrap_err();
         assert!(e.bend > e.max_bend);
+    }
+
+    /// `try_inverse` accepts the workspace boundary as the backend rounds
+    /// it and rejects a pose 1 % of `2φ` (plus 8 resolution steps)
+    /// beyond it, for every backend and the whole range of `φ`. Before,
+    /// its tolerance was 4 resolution steps on `sin²(β/2)` compared with
+    /// the backend's rounded `sin²φ`: on `I16F16` with `φ = 1°` it accepted
+    /// the pose `(0, −0.0378)`, 8 % beyond the edge (found by the
+    /// `wrist_maps` fuzz target), as exact.
+    #[test]
+    fn try_inverse_rejects_just_beyond_the_edge_on_every_backend() {
+        fn check<S: Scalar>() {
+            for deg in [1.0f64, 4.0, 16.0, 30.0] {
+                let p = WristParams::try_new(deg.to_radians()).unwrap();
+                let cfg = WristConfig::<S>::new(&p);
+                let res = S::RESOLUTION.to_f64();
+                for k in 0..16 {
+                    let tau = 2.0 * PI * k as f64 / 16.0;
+                    let at = |b: f64| {
+                        let z = [b.sin() * tau.cos(), b.sin() * tau.sin(), b.cos()];
+                        PitchYaw {
+                            delta: S::from_f64(z[0].atan2(z[2])),
+                            gamma: S::from_f64((-z[1]).atan2(z[0].hypot(z[2]))),
+                        }
+                    };
+                    let edge = at(p.max_bend());
+                    assert!(cfg.try_inverse(edge).is_ok(), "{} {deg}° {edge:?}", S::NAME);
+                    let beyond = at(p.max_bend() * 1.01 + 8.0 * res);
+                    assert!(
+                        cfg.try_inverse(beyond).is_err(),
+                        "{} {deg}° {beyond:?}",
+                        S::NAME
+                    );
+                }
+            }
+        }
+        check::<f64>();
+        check::<f32>();
+        check::<I16F16>();
     }
 
     #[test]

@@ -368,10 +368,24 @@ impl<S: Scalar> WristModeConfig<S> {
                     let od = st.offset_rate[i]
                         .mul_coef(&self.rate_keep)
                         .sub(st.offset[i].mul_coef(&self.rate_pull));
+                    let o = st.offset[i].add(od.mul_coef(&self.step));
+                    // On floats an offset whose next step is not a finite
+                    // number (desired values near the float range) is
+                    // dropped: the reference is then the desired
+                    // trajectory, and the state never holds an infinity
+                    // or a NaN. `v − v` is 0 exactly when `v` is finite
+                    // (always 0 on fixed point, which saturates instead).
+                    let (o, od) = if od.sub(od).add(o.sub(o)) == S::ZERO {
+                        (o, od)
+                    } else {
+                        (S::ZERO, S::ZERO)
+                    };
                     st.offset_rate[i] = od;
-                    st.offset[i] = st.offset[i].add(od.mul_coef(&self.step));
-                    r[i] = x.desired[i].add(st.offset[i]);
-                    v[i] = x.desired_rate[i].add(od);
+                    st.offset[i] = o;
+                    r[i] = x.desired[i].add(o);
+                    // A sum beyond the float range reads as the largest
+                    // finite value (a no-op on fixed point).
+                    v[i] = x.desired_rate[i].add(od).clamp(S::MAX.neg(), S::MAX);
                 }
                 (r, v, false)
             }
@@ -633,6 +647,84 @@ mod tests {
             rejoin_bandwidth: 200.0
         })
         .is_err());
+    }
+
+    /// Entering Active from Passive with a desired rate near the `f32`
+    /// range: the rejoin offset's rate `ẋ_r − ẋ_d` is finite, but within a
+    /// few samples the filter `ȯ ← (1 − 2ωT) ȯ − ω² T o`, `o ← o + T ȯ`
+    /// overflows to an infinity, and `∞ − ∞` then makes the offset NaN
+    /// (the state was found holding `−∞` by the `wrist_maps` fuzz
+    /// target). The offset is dropped (the
+    /// reference is the desired trajectory), so the state never holds an
+    /// infinity or a NaN and the reference follows the desired pose again
+    /// once it is back in range. Before, the NaN offset held the reference
+    /// at the workspace edge for as long as the wrist stayed Active.
+    #[test]
+    fn overflowing_rejoin_offset_is_dropped() {
+        let a = AdmittanceParams::thesis(200.0).unwrap();
+        let p = WristModeParams::try_new(WristModeSettings {
+            admittance: a,
+            enter_passive: 1.5,
+            exit_passive: 0.5,
+            rest_speed: 0.01,
+            debounce: 5,
+            dwell: 50,
+            rejoin_bandwidth: 10.0,
+        })
+        .unwrap();
+        let c = WristModeConfig::<f32>::new(&p);
+        let finite = |st: &WristModeState<f32>| {
+            st.offset
+                .iter()
+                .chain(st.offset_rate.iter())
+                .chain(st.reference.iter())
+                .all(|v| v.is_finite())
+        };
+        let mut st = c.initial_state(WristMode::Passive, [0.1, -0.1]);
+        let far = WristModeInput {
+            desired: [-3.0e38, 0.0],
+            desired_rate: [-3.0e38, 3.0e38],
+            interaction: [0.0; 2],
+            request: Some(WristMode::Active),
+        };
+        let o = c.update(&mut st, &far);
+        assert!(o.switched && o.mode == WristMode::Active);
+        assert!(finite(&st), "{st:?}");
+        let o = c.update(
+            &mut st,
+            &WristModeInput {
+                request: None,
+                ..far
+            },
+        );
+        assert!(finite(&st), "{st:?}");
+        assert!(o.reference_rate.iter().all(|v| v.is_finite()), "{o:?}");
+        // Back in range: the reference rejoins the desired pose.
+        let home = WristModeInput {
+            desired: [0.2, -0.1],
+            ..Default::default()
+        };
+        let mut last = c.update(&mut st, &home);
+        // (The finite part of the offset, up to 1e37 rad here, decays by
+        // about 1 − ωT = 0.96 per sample: 4000 samples are ample.)
+        for _ in 0..4000 {
+            last = c.update(&mut st, &home);
+            assert!(finite(&st), "{st:?}");
+        }
+        assert_eq!(last.mode, WristMode::Active);
+        assert!((last.reference[0] - 0.2).abs() < 1e-3, "{last:?}");
+        assert!((last.reference[1] + 0.1).abs() < 1e-3, "{last:?}");
+        // An ordinary offset is kept: entering Active 0.3 rad from the
+        // desired pose, the reference starts where the wrist is.
+        let mut st2 = c.initial_state(WristMode::Passive, [0.3, 0.0]);
+        let o = c.update(
+            &mut st2,
+            &WristModeInput {
+                request: Some(WristMode::Active),
+                ..Default::default()
+            },
+        );
+        assert!(o.switched && (o.reference[0] - 0.3).abs() < 0.01, "{o:?}");
     }
 
     /// The guided scenario of `rest_condition_stops_cycling_while_guided`

@@ -423,7 +423,12 @@ pub struct WristOutput<S> {
     pub singular: bool,
     /// An input was NaN or infinite: a gauge signal (the interaction reads
     /// 0), the target (the reference holds), or a measured position or
-    /// speed (that motor's torque is 0 and its law's state is kept).
+    /// speed (that motor's torque is 0 and its law's state is kept). On
+    /// floats, finite readings so large that a product overflows (a
+    /// wrench beyond the float range, or a motor law whose value turns
+    /// NaN — e.g. a speed above about `1.8e19` rad/s on `f32`, whose square
+    /// overflows) are flagged and handled the same way: the safe reaction
+    /// to an encoder or gauge fault.
     pub invalid_input: bool,
     /// The two motor laws' outputs.
     pub laws: [ActiveOutput<S>; 2],
