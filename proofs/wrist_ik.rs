@@ -362,6 +362,20 @@ mod kani_entries {
         q
     }
 
+    /// The quotient contract `div_bits_as_range_contract` stands for: the
+    /// real `div_bits` meets [`div_bits_range_contract`] on every operand
+    /// pair of its precondition.
+    #[kani::proof]
+    fn kani_div_bits_range_contract() {
+        let (a, b): (i32, i32) = (kani::any(), kani::any());
+        // Precondition of the contract (asserted at each stubbed call).
+        kani::assume(b > 0 && a >= -b && a <= b);
+        assert!(div_bits_range_contract(
+            a,
+            crate::scalar::fixed::div_bits(a, b)
+        ));
+    }
+
     /// The branch logic of the inverse for every I16F16 target (all 2⁶⁴
     /// pairs), the kernels and the division replaced by their contracts
     /// (above; the division's precondition, a boundary-layer quotient, is
@@ -683,7 +697,10 @@ mod tests {
         for b in [1, 2, 3, 255, 1 << 16, sin_phi, (1 << 20) + 7] {
             for a in -b.min(1 << 16)..=b.min(1 << 16) {
                 assert!(div_bits_range_contract(a, div_bits(a, b)), "{a} / {b}");
-                assert!(div_bits_range_contract(-b + a.abs(), div_bits(-b + a.abs(), b)));
+                assert!(div_bits_range_contract(
+                    -b + a.abs(),
+                    div_bits(-b + a.abs(), b)
+                ));
             }
             assert_eq!(div_bits(0, b), 0);
         }
