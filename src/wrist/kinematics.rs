@@ -195,8 +195,8 @@ pub struct Inverse<S> {
     /// workspace boundary when `saturated`.
     pub pose: PitchYaw<S>,
     /// The input was outside the workspace (`|δ|` or `|γ| > π/2`, a bend
-    /// above `2φ`, or NaN, which is read as 0): `pose` is the nearest
-    /// reachable pose in the same bend direction.
+    /// above `2φ`, or NaN or infinite, which is read as 0): `pose` is the
+    /// nearest reachable pose in the same bend direction.
     pub saturated: bool,
     /// The pose is the straight pose (bend below the backend's
     /// resolution): the motor angles are the representative
@@ -367,7 +367,8 @@ impl<S: Scalar> WristConfig<S> {
         let half_pi = S::FRAC_PI_2;
         let d0 = denan(target.delta);
         let g0 = denan(target.gamma);
-        let nan = target.delta.is_nan() || target.gamma.is_nan();
+        // NaN and ±∞ (read as 0 above) are outside the workspace.
+        let nan = d0 != target.delta || g0 != target.gamma;
         let mut d = d0.clamp(half_pi.neg(), half_pi);
         let mut g = g0.clamp(half_pi.neg(), half_pi);
         let mut saturated = nan || d != d0 || g != g0;
@@ -979,6 +980,30 @@ pub(crate) mod tests {
             })
             .unwrap_err();
         assert!(e.bend > e.max_bend);
+    }
+
+    /// An infinite pitch or yaw is outside the workspace (`|δ| > π/2`):
+    /// it is read as 0, like NaN, and flagged. Before, the infinity was
+    /// replaced by 0 ahead of the workspace test, and `(−∞, −3.6e−132)`
+    /// came back unflagged (found by the `wrist_maps` fuzz target).
+    #[test]
+    fn infinite_pose_is_flagged() {
+        fn check<S: Scalar>(inf: S) {
+            let cfg = WristConfig::<S>::new(&WristParams::thesis());
+            for (d, g) in [
+                (inf.neg(), S::ZERO),
+                (inf, S::from_f64(0.1)),
+                (S::ZERO, inf.neg()),
+                (inf, inf),
+            ] {
+                let r = cfg.inverse(PitchYaw { delta: d, gamma: g });
+                assert!(r.saturated, "{} ({d:?}, {g:?}): {r:?}", S::NAME);
+                assert!(r.motors.theta1.to_f64().is_finite());
+                assert!(cfg.try_inverse(PitchYaw { delta: d, gamma: g }).is_err());
+            }
+        }
+        check::<f64>(f64::INFINITY);
+        check::<f32>(f32::INFINITY);
     }
 
     /// `try_inverse` accepts the workspace boundary as the backend rounds

@@ -373,9 +373,11 @@ impl<S: Scalar> WristModeConfig<S> {
                     // number (desired values near the float range) is
                     // dropped: the reference is then the desired
                     // trajectory, and the state never holds an infinity
-                    // or a NaN. `v − v` is 0 exactly when `v` is finite
-                    // (always 0 on fixed point, which saturates instead).
-                    let (o, od) = if od.sub(od).add(o.sub(o)) == S::ZERO {
+                    // or a NaN (`v − v` is 0 exactly when `v` is finite).
+                    // Fixed point saturates instead (folded at compile
+                    // time).
+                    let float = S::RESOLUTION.to_f64() < 1e-6;
+                    let (o, od) = if !float || od.sub(od).add(o.sub(o)) == S::ZERO {
                         (o, od)
                     } else {
                         (S::ZERO, S::ZERO)
@@ -383,9 +385,14 @@ impl<S: Scalar> WristModeConfig<S> {
                     st.offset_rate[i] = od;
                     st.offset[i] = o;
                     r[i] = x.desired[i].add(o);
-                    // A sum beyond the float range reads as the largest
-                    // finite value (a no-op on fixed point).
-                    v[i] = x.desired_rate[i].add(od).clamp(S::MAX.neg(), S::MAX);
+                    // On floats a sum beyond the float range reads as the
+                    // largest finite value.
+                    let rate = x.desired_rate[i].add(od);
+                    v[i] = if float {
+                        rate.clamp(S::MAX.neg(), S::MAX)
+                    } else {
+                        rate
+                    };
                 }
                 (r, v, false)
             }
