@@ -873,13 +873,20 @@ def main():
                 cur.append(line)
 
         def short(f):
-            parts = [p for p in f.split("::") if not (p.startswith("h") and len(p) == 17)]
+            # drop generic arguments (balanced <...>) and the hash suffix
+            out, depth = [], 0
+            for ch in f:
+                depth += ch == "<"
+                if depth == 0:
+                    out.append(ch)
+                depth -= ch == ">" and depth > 0
+            parts = [p for p in "".join(out).split("::") if p and not (p.startswith("h") and len(p) == 17)]
             return "::".join(parts[-2:])
 
         for a in addrs:
             r = groups.get(a, [])
             frames = [(r[k], r[k + 1].split("/")[-1]) for k in range(0, len(r) - 1, 2)]
-            inner = " <- ".join(f"{short(f)}@{l}" for f, l in frames[:4])
+            inner = " <- ".join(f"{short(f)}@{l}" for f, l in frames[: 12 if "--frames" in sys.argv else 4])
             print(f"  {a:#x} x{prof[a]}  {prog.decode(a).mn} {prog.decode(a).op}   {inner}")
 
 
