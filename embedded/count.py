@@ -518,11 +518,13 @@ EST_T_F32 = [f32w(v) for v in (0.0, 0.05, -0.188, 2.0, -2.0)]  # N·m
 EST_T_X = [xw(v) for v in (0.0, 50.0, -188.0, 2000.0, -2000.0)]  # mN·m
 
 
-# The per-joint control step: (prepare: motor position lo/hi, counter,
-# scenario, seed) + (link count, motor counter, desired position, speed,
-# acceleration, measured position, speed, expected joint torque). Counter
-# and position in the ch. 4 sense (`q_m = N q_l`); the firmware negates them
-# for the estimator. Scenarios (embedded/src/joint.rs `warm_up`): 0 initial,
+# The per-joint control step (the library's `JointConfig::update`):
+# (prepare: motor position lo/hi, counter, scenario, seed) + (link count,
+# motor counter, desired link position, speed, acceleration, expected joint
+# torque). Counter and position in the ch. 4 sense (`q_m = N q_l`); the
+# step measures the motor position and speed from the counts, and
+# `joint_args` places the target a tracking error `e` (and `ė`) from them.
+# Scenarios (embedded/src/joint.rs `warm_up`): 0 initial,
 # 1 Active about to switch to Passive, 2 Passive about to return, 3 collision
 # one sample from detection, 4 Hold latched, 5 Hold about to return, 6 Active
 # just after a switch (offset and bias), 7+ random walks. Torsions from tiny
@@ -559,9 +561,32 @@ def joint_est_case(rng, kind):
     return pos, c0, lc, (c0 + step) & 0xFFFFFFFF
 
 
+# The Table 4.1 joint of the firmware: gear ratio, motor angle per count,
+# motor speed per count (one-tick window at T = 4 ms).
+JOINT_N = 100
+MOTOR_RAD_PER_COUNT = 2 * math.pi / 2000
+MOTOR_SPEED_PER_COUNT = MOTOR_RAD_PER_COUNT / 0.004
+
+
+def joint_args(pos, c0, lc, m, e, ev, ad, te, f):
+    """Entry words of the joint step: link count, motor counter, then the
+    link-side target whose motor-side position and speed are `e` rad and
+    `ev` rad/s behind the motor position and speed the step measures from
+    the counts (`pos` + the counter change since `c0`, the change over one
+    tick), `ad` rad/s² (motor side), expected joint torque `te` N·m."""
+    delta = ((m - c0 + (1 << 31)) & 0xFFFFFFFF) - (1 << 31)
+    qm = (pos + delta) * MOTOR_RAD_PER_COUNT
+    vm = delta * MOTOR_SPEED_PER_COUNT
+    return [lc & 0xFFFFFFFF, m & 0xFFFFFFFF] + [f(x) for x in ((qm - e) / JOINT_N, (vm - ev) / JOINT_N,
+                                                               ad / JOINT_N, te)]
+
+
 def joint_vectors(f):
+    """The joint step's vectors and, from the same draws, the stand-alone
+    laws' (desired position, speed, acceleration, measured position, speed,
+    joint torque; motor side)."""
     rng = random.Random(45)
-    out = []
+    out, laws = [], []
     for i in range(900):
         scen = i % JOINT_SCENARIOS
         pos, c0, lc, m = joint_est_case(rng, 0 if rng.random() < 0.7 else 1)
@@ -572,12 +597,13 @@ def joint_vectors(f):
         ad = rng.choice([0.0, rng.uniform(-2000, 2000), 3e4])
         te = rng.choice(JOINT_TE) + rng.uniform(-0.3, 0.3)
         pre = [pos & 0xFFFFFFFF, (pos >> 32) & 0xFFFFFFFF, c0, scen, rng.getrandbits(32)]
-        out.append((pre, [lc, m] + [f(x) for x in (qd, vd, ad, q, v, te)]))
-    return out
+        out.append((pre, joint_args(pos, c0, lc, m, q - qd, v - vd, ad, te, f)))
+        laws.append((pre, [f(x) for x in (qd, vd, ad, q, v, te)]))
+    return out, laws
 
 
-JOINT_F32 = joint_vectors(f32w)
-JOINT_X = joint_vectors(xw)
+JOINT_F32, LAW_F32 = joint_vectors(f32w)
+JOINT_X, LAW_X = joint_vectors(xw)
 
 
 @dataclass
@@ -716,8 +742,8 @@ def joint_steps(quick=False):
     # f32 on the M0+: soft float (compiler_builtins), no budget.
     steps.append(Step("joint step (soft float)", "M0+", "f32", "joint_f32", None, JOINT_F32[::9] + found_vectors("M0+", ["joint_f32"]),
                       prepare="prepare_joint", per_joint=True, prep_mask=MASK[("f32", "stop")], note="informative"))
-    for backend, core, vecs, xs, key in (("f32", "M4F", JOINT_F32, "f32", "f32"), ("I16F16", "M0+", JOINT_X, "i16f16", "x")):
-        law = [(pre, args[2:]) for pre, args in vecs[::3]]
+    for backend, core, vecs, xs, key in (("f32", "M4F", LAW_F32, "f32", "f32"), ("I16F16", "M0+", LAW_X, "i16f16", "x")):
+        law = vecs[::3]
         steps.append(Step("active law", core, backend, f"active_{xs}", None, law, prepare="prepare_joint",
                           per_joint=True, prep_mask=MASK[(key, "stop")], image="variants"))
         steps.append(Step("passive law", core, backend, f"passive_{xs}", None, [args for _, args in law], per_joint=True,

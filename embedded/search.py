@@ -3,8 +3,8 @@
 
 Maximises the executed instructions of a joint-step entry over the reading
 space (mode-state scenario, motor position and counter, counter jump, link
-count or torsion, desired and measured motion, expected torque) on the
-emulator of `count.py`: seeded random restarts, each followed by coordinate
+count or torsion, the target's tracking errors and acceleration, expected
+torque) on the emulator of `count.py`: seeded random restarts, each followed by coordinate
 hill-climbing (one reading at a time, a few mutations per reading, a
 mutation kept when the count grows), for a bounded time. The best vectors
 found are written to `found_vectors.json`, which every `count.py` run
@@ -35,7 +35,7 @@ LINKS = [L, L + 1, 0xFFFFFFFF, 0x80000000, 0, L - 1]
 # The readings and their ranges (SI: rad, rad/s, rad/s², N·m; the step
 # stores I16F16 values in the crate's stored units, which for these fields
 # are the same).
-COORDS = ["scenario", "seed", "pos", "c0", "jump", "link", "wrap", "qd", "vd", "ad", "e", "ev", "te"]
+COORDS = ["scenario", "seed", "pos", "c0", "jump", "link", "wrap", "ad", "e", "ev", "te"]
 
 
 def random_point(rng):
@@ -50,8 +50,6 @@ def random_point(rng):
         # a consistent link count made invalid by adding wrap * L (the
         # estimator reduces it modulo L and flags it)
         "wrap": rng.choice([0, 0, 1, rng.randrange(1 << 15)]),
-        "qd": rng.uniform(-30, 30),
-        "vd": rng.uniform(-50, 50),
         "ad": rng.choice([0.0, rng.uniform(-2000, 2000), 3e4]),
         "e": rng.choice(count.JOINT_E) * rng.uniform(0.5, 1.0),
         "ev": rng.choice(count.JOINT_EV),
@@ -83,7 +81,7 @@ def mutate(p, k, rng):
         else:
             q[k] = ("raw", rng.choice(LINKS + [rng.getrandbits(32), L + rng.getrandbits(20)]))
     else:
-        span = {"qd": 30, "vd": 50, "ad": 3e4, "e": 30, "ev": 40, "te": 60}[k]
+        span = {"ad": 3e4, "e": 30, "ev": 40, "te": 60}[k]
         menu = {"e": count.JOINT_E, "ev": count.JOINT_EV, "te": count.JOINT_TE, "ad": [0.0, 3e4, -3e4]}.get(k, [0.0])
         q[k] = (rng.choice(menu) if r < 0.3 else v * rng.uniform(0.7, 1.3) if r < 0.7
                 else rng.uniform(-span, span))
@@ -103,7 +101,9 @@ def words(p, f):
     else:
         lc, pos, m = p["link"][1], p["pos"], (p["c0"] + p["jump"]) & 0xFFFFFFFF
     pre = [pos & 0xFFFFFFFF, (pos >> 32) & 0xFFFFFFFF, p["c0"], p["scenario"], p["seed"]]
-    args = [lc & 0xFFFFFFFF, m] + [f(x) for x in (p["qd"], p["vd"], p["ad"], p["qd"] + p["e"], p["vd"] + p["ev"], p["te"])]
+    # The target: tracking errors e, ė (motor side) from the position and
+    # speed the step measures from the counts.
+    args = count.joint_args(pos, p["c0"], lc, m, p["e"], p["ev"], p["ad"], p["te"], f)
     return pre, args
 
 

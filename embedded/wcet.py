@@ -39,6 +39,7 @@ Usage: wcet.py ELF ENTRY [--cycles-core M4F|M0+]   (prints the bound)
 
 import os
 import struct
+import subprocess
 import sys
 from dataclasses import dataclass, field
 
@@ -122,6 +123,9 @@ class Bound:
     functions: set = field(default_factory=set)
     panic_sites: int = 0
     addrs: set = field(default_factory=set)  # every instruction analysed
+    # The longest path of this function by instructions: (node, members,
+    # instructions of the node), nodes in path order (a loop is one node).
+    path: list = field(default_factory=list)
 
 
 def _base(mn):
@@ -494,6 +498,7 @@ class Program:
                 if not cb.returns:
                     noret = True
             cost[s] = (n, cyc, noret)
+        res.blocks = blocks
         best = longest_path(self, blocks, entry, cost, fname, res)
         res.insns, res.cycles, res.returns = best
         self.memo[entry] = res
@@ -660,6 +665,7 @@ def longest_path(prog, blocks, entry, cost, fname, res):
     nodes = [n for n in rpo if find(n) == n]
     best = {entry: weight[find(entry)]}
     top = (-1, -1)
+    pred, top_node = {}, None
     for n in nodes:
         if n not in best:
             continue
@@ -667,6 +673,8 @@ def longest_path(prog, blocks, entry, cost, fname, res):
         rets = [m for m in members[n] if blocks[m].ret]
         if rets and not noret[n]:
             ex = max(_taken_extra(prog, blocks[m].insns[-1]) for m in rets)
+            if di > top[0]:
+                top_node = n
             top = (max(top[0], di), max(top[1], dc + ex))
         for m in members[n]:
             for rt, extra, t in succ_edges(m, members):
@@ -677,9 +685,16 @@ def longest_path(prog, blocks, entry, cost, fname, res):
                 w = weight[rt]
                 cand = (di + w[0], dc + extra + w[1])
                 old = best.get(rt, (-1, -1))
+                if cand[0] > old[0]:
+                    pred[rt] = n
                 best[rt] = (max(old[0], cand[0]), max(old[1], cand[1]))
     if top[0] < 0:
         return 0, 0, False
+    n, path = top_node, []
+    while n is not None:
+        path.append((n, sorted(members[n]), weight[n][0]))
+        n = pred.get(n)
+    res.path = list(reversed(path))
     return top[0], top[1], True
 
 
@@ -800,6 +815,27 @@ def counted_loop(blocks, L, preds, fname):
     return worst
 
 
+def path_profile(prog, entry, out=None, mult=1):
+    """The instructions of the bound's longest path (by instructions), by
+    address: {address: count}. A collapsed loop's whole weight is put on its
+    header's address; callees are expanded along their own longest path."""
+    import collections
+    out = collections.Counter() if out is None else out
+    b = prog.bound(entry)
+    for node, members, w in b.path:
+        if len(members) > 1 or any(t == node for m in members for t, _ in b.blocks[m].succs):
+            out[node] += mult * w
+            continue
+        blk = b.blocks[node]
+        for i in blk.insns:
+            out[i.addr] += mult
+        for t in blk.calls:
+            path_profile(prog, t, out, mult)
+        if blk.tail is not None:
+            path_profile(prog, blk.tail, out, mult)
+    return out
+
+
 def analyze(elf, entry, cycles):
     prog = Program(elf, cycles)
     if entry not in prog.syms:
@@ -820,6 +856,38 @@ def main():
         print("  ", f)
     for lp in b.loops:
         print("   loop", lp[0], hex(lp[1]), [hex(x) for x in lp[2]], "bound", lp[3], lp[4])
+    if "--path" in sys.argv:
+        # The longest path's instructions by source (needs line tables: the
+        # `release-lines` profile builds the same code with them).
+        prof = path_profile(prog, prog.syms[entry])
+        assert sum(prof.values()) == b.insns, (sum(prof.values()), b.insns)
+        addrs = sorted(prof)
+        print(f"longest path: {b.insns} instructions")
+        out = subprocess.run(["llvm-addr2line", "-a", "-i", "-f", "-C", "-e", elf] + [hex(a) for a in addrs],
+                             capture_output=True, text=True).stdout.split("\n")
+        groups, cur = {}, None
+        for line in out:
+            if line.startswith("0x") and all(c in "0123456789abcdefx" for c in line):
+                cur = groups.setdefault(int(line, 16), [])
+            elif cur is not None and line:
+                cur.append(line)
+
+        def short(f):
+            # drop generic arguments (balanced <...>) and the hash suffix
+            out, depth = [], 0
+            for ch in f:
+                depth += ch == "<"
+                if depth == 0:
+                    out.append(ch)
+                depth -= ch == ">" and depth > 0
+            parts = [p for p in "".join(out).split("::") if p and not (p.startswith("h") and len(p) == 17)]
+            return "::".join(parts[-2:])
+
+        for a in addrs:
+            r = groups.get(a, [])
+            frames = [(r[k], r[k + 1].split("/")[-1]) for k in range(0, len(r) - 1, 2)]
+            inner = " <- ".join(f"{short(f)}@{l}" for f, l in frames[: 12 if "--frames" in sys.argv else 4])
+            print(f"  {a:#x} x{prof[a]}  {prog.decode(a).mn} {prog.decode(a).op}   {inner}")
 
 
 if __name__ == "__main__":

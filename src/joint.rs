@@ -507,8 +507,10 @@ impl<S: Scalar> JointConfig<S> {
         let delta = counter.wrapping_sub(st.last_counter) as i32;
         st.last_counter = counter;
         st.motor_count = st.motor_count.wrapping_add(delta as i64);
-        // Speed: difference to the counter `w` ticks ago.
-        let w = self.speed_window.clamp(1, MAX_SPEED_WINDOW);
+        // Speed: difference to the counter `w` ticks ago (`w` is validated
+        // in [1, MAX_SPEED_WINDOW]; the ring's reads and writes are checked
+        // anyway, so no reading can index past it).
+        let w = self.speed_window;
         let head = if st.head < w { st.head } else { 0 };
         let old = st.history.get(head as usize).copied().unwrap_or(counter);
         if let Some(slot) = st.history.get_mut(head as usize) {

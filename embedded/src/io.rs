@@ -141,6 +141,21 @@ impl<S: Put + Copy> Put for mrr_control::control::ModeOutput<S> {
             .put(out);
     }
 }
+impl<S: Put + Copy> Put for mrr_control::joint::JointOutput<S> {
+    /// As the mode manager's output, with the joint's `invalid_input`
+    /// (estimator or manager).
+    #[inline(always)]
+    fn put(self, out: &mut Out) {
+        self.motor_torque.put(out);
+        self.control.interaction.put(out);
+        (self.mode as u32
+            | (self.control.switched as u32) << 2
+            | (self.control.saturated as u32) << 3
+            | (self.invalid_input as u32) << 4
+            | (self.control.collision as u32) << 5)
+            .put(out);
+    }
+}
 impl<S: Put + Copy> Put for mrr_control::control::ActiveOutput<S> {
     #[inline(always)]
     fn put(self, out: &mut Out) {

@@ -1,14 +1,17 @@
-//! The per-joint control step of the firmware: the torque estimate of
-//! eq. (3.8)–(3.10) feeding the mode manager of ch. 4 (robust adaptive law
-//! eq. 4.19 with the adaptation of Theorem 1, passive law eq. 4.32,
-//! switching and collision reaction), with the Table 4.1 joint on the
-//! SHD-17-100 drive (Table 3.2 kinematic error, L = 2¹⁷, M = 2000).
+//! The per-joint control step of the firmware: the library's
+//! [`JointConfig::update`] — the torque estimate of eq. (3.8)–(3.10), the
+//! motor position and speed from the counts, and the mode manager of ch. 4
+//! (robust adaptive law eq. 4.19 with the adaptation of Theorem 1, passive
+//! law eq. 4.32, switching and collision reaction) — with the Table 4.1
+//! joint on the SHD-17-100 drive (Table 3.2 kinematic error, L = 2¹⁷,
+//! M = 2000, speed over one tick).
 //!
-//! Sign conventions (errata E2.10): the ch. 4 motor angle `q_m = N q_l` runs
-//! against the estimator's `θ_wi`, so the motor counter is negated for the
-//! estimator; the motor torque `τ_w` of eq. (3.9) is the previous command
-//! (positive driving the link forward in both conventions); the joint
-//! torque of eq. (4.1) is `τ̂_t = −torque`.
+//! Sign conventions (errata E2.10) are the joint type's: the readings and
+//! the target are in the ch. 4 sense (`q_m = N q_l`), the step negates the
+//! motor counter for the estimator, takes the previous command as the
+//! motor torque `τ_w` of eq. (3.9), and feeds the manager `τ̂_t = −torque`.
+//! The libm / cordic references are the same tick written from the
+//! components ([`ref_step`]).
 
 use core::mem::MaybeUninit;
 use fixed::types::I16F16;
@@ -19,9 +22,11 @@ use mrr_control::control::{
     PassiveParams, RobustAdaptiveParams, RobustAdaptiveState,
 };
 use mrr_control::estimation::collision::{CollisionParams, CollisionReaction, CollisionSettings};
-use mrr_control::estimation::torque::{
-    TorqueEstimatorConfig, TorqueEstimatorParams, TorqueEstimatorState,
+use mrr_control::estimation::torque::TorqueEstimatorParams;
+use mrr_control::joint::{
+    JointConfig, JointOutput, JointParams, JointReadings, JointSettings, JointState, JointTarget,
 };
+use mrr_control::scalar::Coef;
 use mrr_control::Scalar;
 
 use crate::reference::{Cordic, Libm, RefEstimator, RefState};
@@ -72,16 +77,28 @@ pub const STOP: usize = 0;
 /// Collision reaction Passive (switch to the passive law).
 pub const PASSIVE: usize = 1;
 
-static mut EST_F32: MaybeUninit<[TorqueEstimatorConfig<f32>; 2]> = MaybeUninit::uninit();
-static mut EST_X: MaybeUninit<[TorqueEstimatorConfig<I16F16>; 2]> = MaybeUninit::uninit();
+/// The joint configurations, `[estimator][reaction]`.
+static mut JOINT_F32: MaybeUninit<[[JointConfig<f32>; 2]; 2]> = MaybeUninit::uninit();
+static mut JOINT_X: MaybeUninit<[[JointConfig<I16F16>; 2]; 2]> = MaybeUninit::uninit();
+/// The joint states, per reaction (the estimator configurations share the
+/// drive and encoders, so one state serves both).
+static mut JST_F32: MaybeUninit<[JointState<f32>; 2]> = MaybeUninit::uninit();
+static mut JST_X: MaybeUninit<[JointState<I16F16>; 2]> = MaybeUninit::uninit();
 static mut REF_F32: MaybeUninit<RefEstimator<f32>> = MaybeUninit::uninit();
 static mut REF_X: MaybeUninit<RefEstimator<I16F16>> = MaybeUninit::uninit();
+/// The mode managers alone (warm-up, the stand-alone laws), the same
+/// parameters as the joints'.
 static mut MODE_F32: MaybeUninit<[ModeConfig<f32>; 2]> = MaybeUninit::uninit();
 static mut MODE_X: MaybeUninit<[ModeConfig<I16F16>; 2]> = MaybeUninit::uninit();
 static mut PASSIVE_F32: MaybeUninit<PassiveConfig<f32>> = MaybeUninit::uninit();
 static mut PASSIVE_X: MaybeUninit<PassiveConfig<I16F16>> = MaybeUninit::uninit();
-static mut EST_ST: MaybeUninit<TorqueEstimatorState> = MaybeUninit::uninit();
 static mut REF_ST: MaybeUninit<RefState> = MaybeUninit::uninit();
+/// The reference's motor count and last counter (ch. 4 sense), and its
+/// `N`, angle per count and speed per count.
+static mut REF_MOTOR: (i64, u32) = (0, 0);
+static mut REF_COEF: MaybeUninit<[Coef; 3]> = MaybeUninit::uninit();
+/// The warmed-up mode states per reaction; the references run the Stop
+/// one.
 static mut ST_F32: MaybeUninit<[ModeState<f32>; 2]> = MaybeUninit::uninit();
 static mut ST_X: MaybeUninit<[ModeState<I16F16>; 2]> = MaybeUninit::uninit();
 /// States of the stand-alone active law (copied from the warmed-up Stop
@@ -92,22 +109,36 @@ static mut ACT_X: MaybeUninit<RobustAdaptiveState<I16F16>> = MaybeUninit::uninit
 /// volatile so the step does not specialise on it.
 static mut DESIRED_TORQUE: [u32; 2] = [0; 2];
 
+/// The joint of estimator parameters `p` and collision reaction `r`.
+fn joint_params(p: &TorqueEstimatorParams, r: CollisionReaction) -> JointParams {
+    ok(JointParams::try_new(JointSettings {
+        estimator: *p,
+        mode: mode_params(r),
+        speed_window: 1,
+    }))
+}
+
 /// Builds the configurations (not counted).
 /// `p` carries the kinematic-error model, `p_no_ke` is the same drive
 /// and encoders without it.
 pub unsafe fn init(p: &TorqueEstimatorParams, p_no_ke: &TorqueEstimatorParams) {
     let stop = mode_params(CollisionReaction::Stop);
     let passive = mode_params(CollisionReaction::Passive);
-    EST_F32.write([
-        TorqueEstimatorConfig::new(p),
-        TorqueEstimatorConfig::new(p_no_ke),
-    ]);
-    EST_X.write([
-        TorqueEstimatorConfig::new(p),
-        TorqueEstimatorConfig::new(p_no_ke),
-    ]);
+    let jp = [p, p_no_ke]
+        .map(|e| [CollisionReaction::Stop, CollisionReaction::Passive].map(|r| joint_params(e, r)));
+    JOINT_F32.write(jp.map(|row| row.map(|j| JointConfig::new(&j))));
+    JOINT_X.write(jp.map(|row| row.map(|j| JointConfig::new(&j))));
+    let (jf, jx) = (JOINT_F32.assume_init_ref(), JOINT_X.assume_init_ref());
+    JST_F32.write([jf[KE][STOP].state_at(0, 0), jf[KE][PASSIVE].state_at(0, 0)]);
+    JST_X.write([jx[KE][STOP].state_at(0, 0), jx[KE][PASSIVE].state_at(0, 0)]);
     REF_F32.write(RefEstimator::new(p));
     REF_X.write(RefEstimator::new(p));
+    let j = &jp[KE][STOP];
+    REF_COEF.write([
+        Coef::new(j.ratio()),
+        Coef::new(j.motor_rad_per_count()),
+        Coef::new(j.speed_resolution()),
+    ]);
     MODE_F32.write([ModeConfig::new(&stop), ModeConfig::new(&passive)]);
     MODE_X.write([ModeConfig::new(&stop), ModeConfig::new(&passive)]);
     let (mf, mx) = (MODE_F32.assume_init_ref(), MODE_X.assume_init_ref());
@@ -212,15 +243,11 @@ fn warm_up<S: Scalar>(cfg: &ModeConfig<S>, scenario: u32, seed: u32) -> ModeStat
     st
 }
 
-/// Estimator states at motor position `lo, hi` (i64, motor counts) and
-/// counter `counter` (both in the ch. 4 sense of the step's counter), and the mode states of `scenario` (see [`warm_up`]).
+/// Joint states at motor position `lo, hi` (i64, motor counts, ch. 4
+/// sense) while the counter reads `counter`, with the mode states of
+/// `scenario` (see [`warm_up`]).
 pub unsafe fn prepare(lo: u32, hi: u32, counter: u32, scenario: u32, seed: u32) -> u32 {
-    // Position and counter in the ch. 4 sense, negated for the estimator
-    // as in the step.
     let pos = ((hi as u64) << 32 | lo as u64) as i64;
-    let (pos, counter) = (pos.wrapping_neg(), counter.wrapping_neg());
-    EST_ST.write(EST_F32.assume_init_ref()[KE].state(pos, counter));
-    REF_ST.write(REF_F32.assume_init_ref().state(pos, counter));
     // Bits 8-11 of `scenario` select the states to warm up (f32 Stop, f32
     // Passive, I16F16 Stop, I16F16 Passive; none set: all), so that a row
     // does not pay for the others (soft-float warm-ups on the M0+).
@@ -231,6 +258,8 @@ pub unsafe fn prepare(lo: u32, hi: u32, counter: u32, scenario: u32, seed: u32) 
     let scenario = scenario & 0xFF;
     let (mf, mx) = (MODE_F32.assume_init_ref(), MODE_X.assume_init_ref());
     let (sf, sx) = (ST_F32.assume_init_mut(), ST_X.assume_init_mut());
+    let (jf, jx) = (JOINT_F32.assume_init_ref(), JOINT_X.assume_init_ref());
+    let (tf, tx) = (JST_F32.assume_init_mut(), JST_X.assume_init_mut());
     for r in [STOP, PASSIVE] {
         if mask & (1 << r) != 0 {
             sf[r] = warm_up(&mf[r], scenario, seed);
@@ -238,33 +267,19 @@ pub unsafe fn prepare(lo: u32, hi: u32, counter: u32, scenario: u32, seed: u32) 
         if mask & (4 << r) != 0 {
             sx[r] = warm_up(&mx[r], scenario, seed);
         }
+        tf[r] = jf[KE][r].state_at(pos, counter).with_mode_state(sf[r]);
+        tx[r] = jx[KE][r].state_at(pos, counter).with_mode_state(sx[r]);
     }
+    // The reference: the estimator in its own sign, the motor count.
+    REF_ST.write(
+        REF_F32
+            .assume_init_ref()
+            .state(pos.wrapping_neg(), counter.wrapping_neg()),
+    );
+    REF_MOTOR = (pos, counter);
     ACT_F32.write(*sf[STOP].active_state());
     ACT_X.write(*sx[STOP].active_state());
     0
-}
-
-/// The control part: `a` = desired position, speed, acceleration,
-/// measured position, speed, expected joint torque.
-#[inline(always)]
-fn control<S: Scalar>(
-    cfg: &ModeConfig<S>,
-    st: &mut ModeState<S>,
-    torque: S,
-    td: S,
-    a: [S; 6],
-) -> ModeOutput<S> {
-    let x = ControlInput {
-        desired_position: a[0],
-        desired_velocity: a[1],
-        desired_acceleration: a[2],
-        motor_position: a[3],
-        motor_velocity: a[4],
-        joint_torque: torque.neg(),
-        desired_joint_torque: td,
-        expected_joint_torque: a[5],
-    };
-    cfg.update(st, &x)
 }
 
 #[inline(always)]
@@ -275,49 +290,45 @@ unsafe fn desired(i: usize) -> u32 {
         .read_volatile()
 }
 
-/// The per-joint step of configuration (`E` estimator, `R` reaction).
+/// The tick's target: `a` = desired link position, speed, acceleration,
+/// expected joint torque; `td` the desired joint torque.
+#[inline(always)]
+fn target<S: Scalar>(a: [S; 4], td: S) -> JointTarget<S> {
+    JointTarget {
+        position: a[0],
+        velocity: a[1],
+        acceleration: a[2],
+        joint_torque: td,
+        expected_joint_torque: a[3],
+    }
+}
+
+/// The per-joint step of configuration (`E` estimator, `R` reaction):
+/// link count, motor counter, then `a` as in [`target`].
 #[inline(always)]
 pub unsafe fn step_f32<const E: usize, const R: usize>(
     l: u32,
     m: u32,
-    a: [f32; 6],
-) -> ModeOutput<f32> {
-    let st = &mut ST_F32.assume_init_mut()[R];
-    let e = EST_F32.assume_init_ref()[E].update(
-        EST_ST.assume_init_mut(),
-        l,
-        m.wrapping_neg(),
-        st.last_torque(),
-    );
-    control(
-        &MODE_F32.assume_init_ref()[R],
-        st,
-        e.torque,
-        f32::from_bits(desired(0)),
-        a,
+    a: [f32; 4],
+) -> JointOutput<f32> {
+    JOINT_F32.assume_init_ref()[E][R].update(
+        &mut JST_F32.assume_init_mut()[R],
+        &JointReadings::counts(l, m),
+        &target(a, f32::from_bits(desired(0))),
     )
 }
 
-/// The per-joint step of configuration (`E` estimator, `R` reaction).
+/// As [`step_f32`], I16F16.
 #[inline(always)]
 pub unsafe fn step_x<const E: usize, const R: usize>(
     l: u32,
     m: u32,
-    a: [I16F16; 6],
-) -> ModeOutput<I16F16> {
-    let st = &mut ST_X.assume_init_mut()[R];
-    let e = EST_X.assume_init_ref()[E].update(
-        EST_ST.assume_init_mut(),
-        l,
-        m.wrapping_neg(),
-        st.last_torque(),
-    );
-    control(
-        &MODE_X.assume_init_ref()[R],
-        st,
-        e.torque,
-        I16F16::from_bits(desired(1) as i32),
-        a,
+    a: [I16F16; 4],
+) -> JointOutput<I16F16> {
+    JOINT_X.assume_init_ref()[E][R].update(
+        &mut JST_X.assume_init_mut()[R],
+        &JointReadings::counts(l, m),
+        &target(a, I16F16::from_bits(desired(1) as i32)),
     )
 }
 
@@ -375,38 +386,67 @@ pub unsafe fn passive_x(a: [I16F16; 6]) -> PassiveOutput<I16F16> {
     PASSIVE_X.assume_init_ref().update(&x)
 }
 
+/// The reference tick, written from the components as a user without the
+/// joint type would: the estimate with kernels `K` (motor counter
+/// negated), the motor position and speed from the counts (speed over one
+/// tick), the target times `N`, `τ̂_t = −torque`, the mode manager.
 #[inline(always)]
-pub unsafe fn step_libm_f32(l: u32, m: u32, a: [f32; 6]) -> ModeOutput<f32> {
-    let st = &mut ST_F32.assume_init_mut()[STOP];
-    let e = REF_F32.assume_init_ref().update::<Libm>(
+unsafe fn ref_step<S: Scalar, K>(
+    est: &RefEstimator<S>,
+    mode: &ModeConfig<S>,
+    st: &mut ModeState<S>,
+    l: u32,
+    m: u32,
+    a: [S; 4],
+    td: S,
+) -> ModeOutput<S>
+where
+    K: crate::reference::RefKernels<S>,
+{
+    let e = est.update::<K>(
         REF_ST.assume_init_mut(),
         l,
         m.wrapping_neg(),
         st.last_torque(),
     );
-    control(
+    let delta = m.wrapping_sub(REF_MOTOR.1) as i32;
+    REF_MOTOR = (REF_MOTOR.0.wrapping_add(delta as i64), m);
+    let [n, angle, speed] = REF_COEF.assume_init_ref();
+    let x = ControlInput {
+        desired_position: a[0].mul_coef(n),
+        desired_velocity: a[1].mul_coef(n),
+        desired_acceleration: a[2].mul_coef(n),
+        motor_position: S::from_counts(REF_MOTOR.0, angle),
+        motor_velocity: S::from_counts(delta as i64, speed),
+        joint_torque: e.torque.neg(),
+        desired_joint_torque: td,
+        expected_joint_torque: a[3],
+    };
+    mode.update(st, &x)
+}
+
+#[inline(always)]
+pub unsafe fn step_libm_f32(l: u32, m: u32, a: [f32; 4]) -> ModeOutput<f32> {
+    ref_step::<f32, Libm>(
+        REF_F32.assume_init_ref(),
         &MODE_F32.assume_init_ref()[STOP],
-        st,
-        e.torque,
-        f32::from_bits(desired(0)),
+        &mut ST_F32.assume_init_mut()[STOP],
+        l,
+        m,
         a,
+        f32::from_bits(desired(0)),
     )
 }
 
 #[inline(always)]
-pub unsafe fn step_cordic_x(l: u32, m: u32, a: [I16F16; 6]) -> ModeOutput<I16F16> {
-    let st = &mut ST_X.assume_init_mut()[STOP];
-    let e = REF_X.assume_init_ref().update::<Cordic>(
-        REF_ST.assume_init_mut(),
-        l,
-        m.wrapping_neg(),
-        st.last_torque(),
-    );
-    control(
+pub unsafe fn step_cordic_x(l: u32, m: u32, a: [I16F16; 4]) -> ModeOutput<I16F16> {
+    ref_step::<I16F16, Cordic>(
+        REF_X.assume_init_ref(),
         &MODE_X.assume_init_ref()[STOP],
-        st,
-        e.torque,
-        I16F16::from_bits(desired(1) as i32),
+        &mut ST_X.assume_init_mut()[STOP],
+        l,
+        m,
         a,
+        I16F16::from_bits(desired(1) as i32),
     )
 }

@@ -135,18 +135,20 @@ entry!(est_libm_f32(l: u32, m: u32, t: f32) => unsafe { steps::REF_F32.assume_in
 entry!(est_cordic_i16f16(l: u32, m: u32, t: I16F16) => unsafe { steps::REF_X.assume_init_ref().update::<Cordic>(steps::REF_ST.assume_init_mut(), l, m, t) });
 entry!(prepare_est(pos_lo: u32, pos_hi: u32, counter: u32) => unsafe { steps::prepare_est(pos_lo, pos_hi, counter) });
 
-// The per-joint control step: torque estimate (eq. 3.8–3.10) → joint
-// torque `τ̂_t = −torque` (errata E2.10) → mode manager (robust adaptive law
-// eq. 4.19 with adaptation, passive law eq. 4.32, switching, collision
+// The per-joint control step, the library's `JointConfig::update`: torque
+// estimate (eq. 3.8–3.10) → joint torque `τ̂_t = −torque` (errata E2.10),
+// motor position and speed from the counts → mode manager (robust adaptive
+// law eq. 4.19 with adaptation, passive law eq. 4.32, switching, collision
 // reaction). Arguments: link count, motor counter (ch. 4 sense, `q_m =
-// N q_l`; negated for the estimator), desired position, speed and
-// acceleration, measured position and speed, expected joint torque (stored
-// units). The motor torque `τ_w` of eq. (3.9) is the previous command;
-// `prepare_joint` sets the estimator state and drives the mode state into
-// one of the scenarios of `joint::warm_up`. The reference variants replace
-// the estimator's `sin_cos`, `exp`, `tan` by libm / cordic.
-entry!(joint_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, q: f32, v: f32, te: f32) => unsafe { joint::step_f32::<{ joint::KE }, { joint::STOP }>(l, m, [qd, vd, ad, q, v, te]) });
-entry!(joint_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, te: I16F16) => unsafe { joint::step_x::<{ joint::KE }, { joint::STOP }>(l, m, [qd, vd, ad, q, v, te]) });
+// N q_l`), desired link position, speed and acceleration, expected joint
+// torque (stored units). The motor torque `τ_w` of eq. (3.9) is the
+// previous command; `prepare_joint` sets the joint state (motor position
+// and counter) and drives the mode state into one of the scenarios of
+// `joint::warm_up`. The reference variants are the same tick written from
+// the components with the estimator's `sin_cos`, `exp`, `tan` by libm /
+// cordic.
+entry!(joint_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, te: f32) => unsafe { joint::step_f32::<{ joint::KE }, { joint::STOP }>(l, m, [qd, vd, ad, te]) });
+entry!(joint_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, te: I16F16) => unsafe { joint::step_x::<{ joint::KE }, { joint::STOP }>(l, m, [qd, vd, ad, te]) });
 // The entries below are built only with the `variants` feature, into a
 // second image: each added caller of a library function changes LLVM's
 // inlining decisions, and the image above must stay the firmware a user of
@@ -156,17 +158,17 @@ entry!(joint_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, q: I16F1
 // The other configurations a user can choose: collision reaction Passive,
 // and no kinematic-error model (same readings, same prepare).
 #[cfg(feature = "variants")]
-entry!(joint_passive_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, q: f32, v: f32, te: f32) => unsafe { joint::step_f32::<{ joint::KE }, { joint::PASSIVE }>(l, m, [qd, vd, ad, q, v, te]) });
+entry!(joint_passive_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, te: f32) => unsafe { joint::step_f32::<{ joint::KE }, { joint::PASSIVE }>(l, m, [qd, vd, ad, te]) });
 #[cfg(feature = "variants")]
-entry!(joint_noke_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, q: f32, v: f32, te: f32) => unsafe { joint::step_f32::<{ joint::NO_KE }, { joint::STOP }>(l, m, [qd, vd, ad, q, v, te]) });
+entry!(joint_noke_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, te: f32) => unsafe { joint::step_f32::<{ joint::NO_KE }, { joint::STOP }>(l, m, [qd, vd, ad, te]) });
 #[cfg(feature = "variants")]
-entry!(joint_passive_noke_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, q: f32, v: f32, te: f32) => unsafe { joint::step_f32::<{ joint::NO_KE }, { joint::PASSIVE }>(l, m, [qd, vd, ad, q, v, te]) });
+entry!(joint_passive_noke_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, te: f32) => unsafe { joint::step_f32::<{ joint::NO_KE }, { joint::PASSIVE }>(l, m, [qd, vd, ad, te]) });
 #[cfg(feature = "variants")]
-entry!(joint_passive_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, te: I16F16) => unsafe { joint::step_x::<{ joint::KE }, { joint::PASSIVE }>(l, m, [qd, vd, ad, q, v, te]) });
+entry!(joint_passive_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, te: I16F16) => unsafe { joint::step_x::<{ joint::KE }, { joint::PASSIVE }>(l, m, [qd, vd, ad, te]) });
 #[cfg(feature = "variants")]
-entry!(joint_noke_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, te: I16F16) => unsafe { joint::step_x::<{ joint::NO_KE }, { joint::STOP }>(l, m, [qd, vd, ad, q, v, te]) });
+entry!(joint_noke_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, te: I16F16) => unsafe { joint::step_x::<{ joint::NO_KE }, { joint::STOP }>(l, m, [qd, vd, ad, te]) });
 #[cfg(feature = "variants")]
-entry!(joint_passive_noke_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, te: I16F16) => unsafe { joint::step_x::<{ joint::NO_KE }, { joint::PASSIVE }>(l, m, [qd, vd, ad, q, v, te]) });
+entry!(joint_passive_noke_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, te: I16F16) => unsafe { joint::step_x::<{ joint::NO_KE }, { joint::PASSIVE }>(l, m, [qd, vd, ad, te]) });
 
 // The stand-alone laws (arguments: desired position, speed, acceleration,
 // measured position, speed, joint torque; `prepare_joint` sets the active
@@ -209,8 +211,8 @@ entry!(wrist_libm_f32(g0: f32, g1: f32, g2: f32, g3: f32, g4: f32, g5: f32, t1: 
 entry!(wrist_cordic_i16f16(g0: I16F16, g1: I16F16, g2: I16F16, g3: I16F16, g4: I16F16, g5: I16F16, t1: I16F16, t3: I16F16) => unsafe { wrist::step_cordic_x([g0, g1, g2, g3, g4, g5], [t1, t3]) });
 #[cfg(feature = "wrist")]
 entry!(prepare_wrist(scenario: u32, seed: u32, w0: u32, w1: u32, w2: u32, w3: u32, w4: u32, w5: u32) => unsafe { wrist::prepare(scenario, seed, [w0, w1, w2, w3, w4, w5]) });
-entry!(joint_libm_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, q: f32, v: f32, te: f32) => unsafe { joint::step_libm_f32(l, m, [qd, vd, ad, q, v, te]) });
-entry!(joint_cordic_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, te: I16F16) => unsafe { joint::step_cordic_x(l, m, [qd, vd, ad, q, v, te]) });
+entry!(joint_libm_f32(l: u32, m: u32, qd: f32, vd: f32, ad: f32, te: f32) => unsafe { joint::step_libm_f32(l, m, [qd, vd, ad, te]) });
+entry!(joint_cordic_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, te: I16F16) => unsafe { joint::step_cordic_x(l, m, [qd, vd, ad, te]) });
 entry!(prepare_joint(pos_lo: u32, pos_hi: u32, counter: u32, scenario: u32, seed: u32) => unsafe { joint::prepare(pos_lo, pos_hi, counter, scenario, seed) });
 
 mod joint;

@@ -116,17 +116,31 @@ use crate::scalar::{turn_from_radians, Coef, CountToTurn, Scalar};
 use core::f64::consts::TAU;
 use core::num::NonZeroU32;
 
-/// `a·b` exactly, for `0 ≤ b < 2⁴⁸` (callers: products below 2⁶³). When
-/// `b` fits 32 bits on Armv6-M, one 32×32 → 64 product
-/// ([`crate::scalar::fixed`]'s split form, no `__aeabi_lmul`); elsewhere
-/// the plain product.
+/// `a·b` exactly, for `0 ≤ b < 2⁴⁸` (callers: products below 2⁶³). On
+/// Armv6-M the split form [`mul_wide_split`] (no `__aeabi_lmul`, no
+/// branch); elsewhere the plain product.
 #[inline(always)]
 fn mul_wide(a: u32, b: i64) -> i64 {
     // Cores with a long multiply (`umull`, x86) take the plain product.
-    if cfg!(not(all(target_arch = "arm", not(target_has_atomic = "32")))) || b >> 32 != 0 {
+    if cfg!(not(all(target_arch = "arm", not(target_has_atomic = "32")))) {
         return a as i64 * b;
     }
+    mul_wide_split(a, b)
+}
+
+/// [`mul_wide`] from one 32×32 → 64 product ([`crate::scalar::fixed`]'s
+/// split form on Armv6-M) of the low word of `b` and one 32-bit product
+/// of its high word: `a·b = a·b_lo + a·b_hi·2³²`, and `a·b < 2⁶³` makes
+/// `a·b_hi < 2³¹`, so that product and the high-word sum are exact in 32
+/// bits. Built on every target so the host tests check it.
+#[inline(always)]
+#[cfg_attr(
+    not(any(test, all(target_arch = "arm", not(target_has_atomic = "32")))),
+    allow(dead_code)
+)]
+fn mul_wide_split(a: u32, b: i64) -> i64 {
     let (hi, lo) = crate::scalar::fixed::wide_mul(a, b as u32);
+    let hi = hi.wrapping_add(a.wrapping_mul((b >> 32) as u32));
     ((hi as u64) << 32 | lo as u64) as i64
 }
 
@@ -1243,6 +1257,15 @@ mod tests {
             // Products below 2⁶⁴, as at the call sites.
             let (a, b) = if narrow { (a >> 1, b & 0xFFFF_FFFF) } else { (a >> 17, b) };
             prop_assert_eq!(mul_wide(a, b) as u128, a as u128 * b as u128);
+        }
+
+        /// The Armv6-M form of `mul_wide` is the exact product (bits of the
+        /// 64-bit product) for a 32-bit `b` and for every product below
+        /// 2⁶³ (the call sites' range).
+        #[test]
+        fn mul_wide_split_is_exact(a in any::<u32>(), b in 0i64..1 << 48, narrow: bool) {
+            let (a, b) = if narrow { (a, b & 0xFFFF_FFFF) } else { (a >> 17, b) };
+            prop_assert_eq!(mul_wide_split(a, b) as u64 as u128, a as u128 * b as u128);
         }
     }
 

@@ -11,7 +11,8 @@ use super::{kernels, Scalar};
 /// `__aeabi_l2f` library call on 32-bit cores: for `|c| < 2⁴⁸` (every
 /// estimator torsion count, `|D| < 2⁴⁶`) the high part `⌊c/2²⁴⌋` and the
 /// low part `c mod 2²⁴` are exact in `f32`, and so is `hi·2²⁴`, so the one
-/// rounding of their sum is the rounding of `c` itself.
+/// rounding of their sum is the rounding of `c` itself; larger counts
+/// take the same split of their magnitude over 2¹⁶ with a sticky bit.
 #[inline]
 fn count_to_f32(c: i64) -> f32 {
     // −2⁴⁷ ≤ c < 2⁴⁷ exactly when the high word `⌊c/2³²⌋` is in
@@ -22,7 +23,21 @@ fn count_to_f32(c: i64) -> f32 {
         let lo = (c & 0xFF_FFFF) as i32 as f32;
         hi * 16_777_216.0 + lo
     } else {
-        c as f32
+        // |c| ≥ 2⁴⁷: the rounding position of the 24-bit mantissa is at
+        // bit 24 or above, so the magnitude shifted right by 16, with the
+        // lost bits kept as a sticky bit (at least 7 bits below the
+        // rounding half), rounds the same way; `t ≤ 2⁴⁷` splits exactly as
+        // above, and the scaling back by 2¹⁶ is exact. No `__aeabi_l2f`.
+        let a = c.unsigned_abs();
+        let t = (a >> 16) | (a & 0xFFFF != 0) as u64;
+        let hi = (t >> 24) as u32 as f32;
+        let lo = (t & 0xFF_FFFF) as u32 as f32;
+        let m = (hi * 16_777_216.0 + lo) * 65_536.0;
+        if c < 0 {
+            -m
+        } else {
+            m
+        }
     }
 }
 
@@ -252,6 +267,12 @@ mod tests {
                 xs.extend([
                     (1i64 << k) + (1 << (k - 24)),
                     (1i64 << k) + 3 * (1 << (k - 25)),
+                    // just above and below the halfway point, by one
+                    (1i64 << k) + (1 << (k - 24)) + 1,
+                    (1i64 << k) + (1 << (k - 24)) - 1,
+                    -(1i64 << k) - (1 << (k - 24)) - 1,
+                    // an odd mantissa at the halfway point (ties to even up)
+                    (1i64 << k) + (1 << (k - 23)) + (1 << (k - 24)),
                 ]);
             }
         }

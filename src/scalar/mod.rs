@@ -427,8 +427,13 @@ pub struct Coef {
     mag: u32,
     negative: bool,
     /// The prepared signed path of [`scale_i32`](Self::scale_i32), when it
-    /// applies (`1 ≤ shift ≤ 62` and `|mult| < 2³¹`).
+    /// applies: every coefficient below `2³⁰` in magnitude, zero included
+    /// (see [`SignedCoef::new`]).
     signed: Option<SignedCoef>,
+    /// The results of [`scale_i32`](Self::scale_i32) for `x = 1` and
+    /// `x = −1` when `signed` is `None` (`|c| ≥ 2³⁰`: every larger `|x|`
+    /// saturates).
+    units: [i32; 2],
 }
 
 /// `mult` as an `i32` with its rounding constant and shift amounts prepared
@@ -446,7 +451,29 @@ struct SignedCoef {
 }
 
 impl SignedCoef {
+    /// The signed form of `mult · 2^−shift`, exact, for every coefficient
+    /// below `2³⁰` in magnitude:
+    /// * `1 ≤ shift ≤ 62` and `|mult| < 2³¹`: `mult` itself;
+    /// * `|mult| = 2³¹` (a mantissa rounded up to the next power of two)
+    ///   with `2 ≤ shift ≤ 62`: `±2³⁰ · 2^−(shift−1)`, the same value;
+    /// * `shift ≥ 63` (below `2⁻³²`, where `|x·mult| ≤ 2⁶²` rounds to 0
+    ///   for every `x`) and the zero coefficient: `m = 0`.
+    ///
+    /// `None` for `shift ≤ 0` or `2³¹ · 2⁻¹` (`|c| ≥ 2³⁰`).
     fn new(mult: i64, shift: i32) -> Option<Self> {
+        if shift >= 63 || mult == 0 {
+            return Some(SignedCoef {
+                m: 0,
+                high_only: true,
+                round: 0,
+                rs: 1,
+            });
+        }
+        let (mult, shift) = if mult.unsigned_abs() == 1 << 31 && shift >= 2 {
+            (mult / 2, shift - 1)
+        } else {
+            (mult, shift)
+        };
         if !(1..=62).contains(&shift) || mult.unsigned_abs() >= 1 << 31 {
             return None;
         }
@@ -499,7 +526,8 @@ impl Coef {
                 shift: 0,
                 mag: 0,
                 negative: false,
-                signed: None,
+                signed: SignedCoef::new(0, 0),
+                units: [0; 2],
             };
         }
         // |value| · 2^shift ∈ [2^30, 2^31). Beyond 2^40 the fixed-point
@@ -508,14 +536,27 @@ impl Coef {
         let e = libm::floor(libm::log2(value.abs())) as i32;
         let shift = (30 - e).clamp(-10, 90);
         let mult = libm::round(value.abs() * libm::exp2(shift as f64)).min(2_147_483_648.0) as i64;
+        let signed_mult = if value < 0.0 { -mult } else { mult };
+        // ±mult·2^−shift saturated (used only when `shift ≤ 1`, where it
+        // is an integer or 2³⁰).
+        let unit = |s: i64| -> i32 {
+            let v = (s * signed_mult) as i128;
+            let v = if shift <= 0 {
+                v << (-shift).min(64)
+            } else {
+                v >> shift.min(127)
+            };
+            v.clamp(i32::MIN as i128, i32::MAX as i128) as i32
+        };
         Coef {
             value,
             value_f32: (value as f32).clamp(f32::MIN, f32::MAX),
-            mult: if value < 0.0 { -mult } else { mult },
+            mult: signed_mult,
             shift,
             mag: mult as u32,
             negative: value < 0.0,
-            signed: SignedCoef::new(if value < 0.0 { -mult } else { mult }, shift),
+            signed: SignedCoef::new(signed_mult, shift),
+            units: [unit(1), unit(-1)],
         }
     }
 
@@ -562,17 +603,21 @@ impl Coef {
     /// * `sh ≤ 32`: [`fixed::round_shift_sat`].
     ///
     /// No absolute values and no sign fix-up of the result; the rounding
-    /// constant and shift are prepared per coefficient. Other coefficients
-    /// take [`fixed::scaled_product`].
+    /// constant and shift are prepared per coefficient (a mantissa of 2³¹
+    /// halved, a coefficient below 2⁻³² or zero as `m = 0`:
+    /// [`SignedCoef::new`]). The coefficients of `|c| ≥ 2³⁰` saturate
+    /// every product with `|x| ≥ 2`; their products with 0 and ±1 are
+    /// prepared (`units`): a few comparisons, no multiply.
     #[inline(always)]
     pub(crate) fn scale_i32(&self, x: i32) -> i32 {
         let Some(c) = self.signed else {
-            return fixed::scaled_product(
-                (x < 0) != self.negative,
-                x.unsigned_abs(),
-                self.mag,
-                self.shift,
-            );
+            return match x {
+                0 => 0,
+                1 => self.units[0],
+                -1 => self.units[1],
+                _ if (x < 0) != self.negative => i32::MIN,
+                _ => i32::MAX,
+            };
         };
         let (hi, lo) = fixed::signed_wide_mul(x, c.m);
         if c.high_only {
@@ -585,17 +630,14 @@ impl Coef {
     /// `round(x · c · 2^extra)` (ties up) saturated to `i64`: the
     /// increment of a Q16.48 accumulator for `extra = 32` and `x` the bits
     /// of an `I16F16` ([`Scalar::integrate`]). The product `x·mult` is
-    /// exact (`|x·mult| ≤ 2⁶²`; [`fixed::signed_wide_mul`] when the
-    /// mantissa fits an `i32`, which keeps `__aeabi_lmul` off Armv6-M).
+    /// exact (`|x·mult| ≤ 2⁶²`): the unsigned [`fixed::wide_mul`] of the
+    /// magnitudes with the sign applied, one form for every coefficient
+    /// (no `__aeabi_lmul` on Armv6-M).
     #[inline]
     pub(crate) fn scale_wide(&self, x: i32, extra: i32) -> i64 {
-        let v = match self.signed {
-            Some(c) => {
-                let (hi, lo) = fixed::signed_wide_mul(x, c.m);
-                ((hi as i64) << 32) | lo as i64
-            }
-            None => x as i64 * self.mult,
-        };
+        let (hi, lo) = fixed::wide_mul(x.unsigned_abs(), self.mag);
+        let p = ((hi as u64) << 32 | lo as u64) as i64;
+        let v = if (x < 0) != self.negative { -p } else { p };
         let sh = self.shift - extra;
         if sh > 0 {
             if sh >= 63 {
@@ -856,6 +898,52 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The coefficient classes `scale_i32` prepares apart (zero, below
+    /// 2⁻³², a mantissa rounded up to 2³¹, 2³⁰ and beyond) against the
+    /// 64-bit formula, and `scale_wide` against the exact product, at
+    /// every edge argument.
+    #[test]
+    fn scale_i32_and_scale_wide_on_every_coefficient_class() {
+        let mut xs = vec![0i32, 1, -1, 2, -2, 3, i32::MAX, i32::MIN, i32::MIN + 1];
+        for k in 0..31 {
+            xs.extend([
+                1i32 << k,
+                -(1i32 << k),
+                (1i32 << k).wrapping_add(1),
+                -(1i32 << k) - 1,
+            ]);
+        }
+        let mut values = vec![0.0, f64::NAN, f64::INFINITY, 1e-300, -1e-300];
+        for e in -100..=60 {
+            for m in [1.0, 1.5, 2.0 - 1e-12, 2.0 - 1e-9] {
+                values.extend([m * 2f64.powi(e), -m * 2f64.powi(e)]);
+            }
+        }
+        let mut halved = 0;
+        for &v in &values {
+            let c = Coef::new(v);
+            if c.mag == 1 << 31 && c.signed.is_some() {
+                halved += 1;
+            }
+            for &x in &xs {
+                assert_eq!(
+                    c.scale_i32(x),
+                    c.scale_int_reference(x as i64, 0),
+                    "{v} {x}"
+                );
+                for extra in [0, 16, 32] {
+                    assert_eq!(
+                        c.scale_wide(x, extra),
+                        scale_wide_reference(&c, x, extra),
+                        "{v} {x} {extra}"
+                    );
+                }
+            }
+        }
+        // The halved-mantissa form was exercised.
+        assert!(halved > 10, "{halved}");
     }
 
     fn sat_examples<S: Scalar>() {
