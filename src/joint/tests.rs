@@ -1,5 +1,4 @@
 use super::*;
-use crate::control::PassiveSettings;
 use crate::control::{ModeOutput, RobustAdaptiveParams};
 use crate::estimation::collision::{CollisionParams, CollisionReaction, CollisionSettings};
 use crate::scalar::I16F16;
@@ -399,6 +398,7 @@ fn parameters_are_validated() {
 #[cfg(feature = "sim")]
 #[test]
 fn signs_match_the_simulated_joint() {
+    use crate::control::PassiveSettings;
     use crate::sim::closed_loop::{bound_design, fine_motor_encoder, identified_motor_friction};
     use crate::sim::mrr::{ModuleParams, Mrr};
     let module = fine_motor_encoder(ModuleParams::thesis_joint());
