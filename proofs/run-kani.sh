@@ -148,6 +148,9 @@ run_one() {
         result=VERIFIED
     elif grep -qi 'timed out\|harness-timeout\|TIMEOUT' "$log" || [ $rc -eq 124 ] || [ $rc -eq 137 ] || [ $rc -eq 143 ]; then
         result=TIMEOUT
+    elif grep -q 'run out of memory' "$log"; then
+        # CBMC's exit, not a failed check.
+        result="OUT OF MEMORY"
     elif grep -q 'VERIFICATION:- FAILED' "$log"; then
         result=FAILED
     else
