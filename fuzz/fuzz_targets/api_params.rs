@@ -15,9 +15,10 @@ use mrr_control::estimation::{
 use mrr_control::harmonic_drive::kinematic_error::KinematicErrorModel;
 use mrr_control::harmonic_drive::two_spring::{TwoSpringParams, TwoSpringSettings, TwoSpringState};
 use mrr_control::harmonic_drive::{
-    CatalogueCurve, CataloguePiecewise, CubicStiffness, CubicStiffnessSettings, FlexsplineParams, FlexsplineSettings,
-    HarmonicDriveParams, WaveGeneratorParams, WaveGeneratorSettings, WaveGeneratorTorqueConfig,
-    WaveGeneratorTorqueParams, WaveGeneratorTorqueSettings, WaveGeneratorTorqueState,
+    CatalogueCurve, CataloguePiecewise, CubicStiffness, CubicStiffnessSettings, FlexsplineParams,
+    FlexsplineSettings, HarmonicDriveParams, WaveGeneratorParams, WaveGeneratorSettings,
+    WaveGeneratorTorqueConfig, WaveGeneratorTorqueParams, WaveGeneratorTorqueSettings,
+    WaveGeneratorTorqueState,
 };
 use mrr_control::scalar::units::quantize_keep_non_finite;
 use mrr_control::scalar::{Scalar, I16F16};
@@ -239,10 +240,16 @@ fn check_others(raw: &[u64; 8], mode: u8, readings: &[Reading]) {
             for &(_, _, t) in readings {
                 let d = q.torsion(t);
                 assert!(!d.is_nan(), "{q:?} {t}");
-                assert!(!t.is_finite() || d == 0.0 || (d > 0.0) == (t > 0.0), "{q:?} {t} {d}");
+                assert!(
+                    !t.is_finite() || d == 0.0 || (d > 0.0) == (t > 0.0),
+                    "{q:?} {t} {d}"
+                );
                 if !flag(6) && t.is_finite() && t.abs() < 1e6 {
                     let back = q.torque(d);
-                    assert!((back - t).abs() <= 1e-9 * (1.0 + t.abs()), "{q:?} {t} {back}");
+                    assert!(
+                        (back - t).abs() <= 1e-9 * (1.0 + t.abs()),
+                        "{q:?} {t} {back}"
+                    );
                 }
             }
         }
