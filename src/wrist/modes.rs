@@ -466,9 +466,9 @@ mod tests {
         assert_eq!(switch_at(&swapped), Some(4));
     }
 
-    fn cfg() -> WristModeConfig<f64> {
+    fn params() -> WristModeParams {
         let a = AdmittanceParams::thesis(200.0).unwrap();
-        let p = WristModeParams::try_new(WristModeSettings {
+        WristModeParams::try_new(WristModeSettings {
             admittance: a,
             enter_passive: 1.5,
             exit_passive: 0.5,
@@ -477,8 +477,11 @@ mod tests {
             dwell: 50,
             rejoin_bandwidth: 10.0,
         })
-        .unwrap();
-        WristModeConfig::new(&p)
+        .unwrap()
+    }
+
+    fn cfg() -> WristModeConfig<f64> {
+        WristModeConfig::new(&params())
     }
 
     /// A scripted run: the active wrist follows a sine, a torque pulse
@@ -668,18 +671,7 @@ mod tests {
     /// at the workspace edge for as long as the wrist stayed Active.
     #[test]
     fn overflowing_rejoin_offset_is_dropped() {
-        let a = AdmittanceParams::thesis(200.0).unwrap();
-        let p = WristModeParams::try_new(WristModeSettings {
-            admittance: a,
-            enter_passive: 1.5,
-            exit_passive: 0.5,
-            rest_speed: 0.01,
-            debounce: 5,
-            dwell: 50,
-            rejoin_bandwidth: 10.0,
-        })
-        .unwrap();
-        let c = WristModeConfig::<f32>::new(&p);
+        let c = WristModeConfig::<f32>::new(&params());
         let finite = |st: &WristModeState<f32>| {
             st.offset
                 .iter()
