@@ -453,15 +453,7 @@ fn ft<S: Scalar>(p: &FtSensorParams, samples: &[[u64; 6]]) {
             // `(2 + l)·B`, `B = max_i Σ_j |M_ij||SG_j|`, up to a relative
             // rounding far below 1 %: below `S::MAX` nothing overflows.
             if !bad_in {
-                let b = mat
-                    .iter()
-                    .map(|row| {
-                        row.iter()
-                            .zip(sg.iter())
-                            .map(|(m, g)| m.abs() * g.to_f64().abs())
-                            .sum::<f64>()
-                    })
-                    .fold(0.0, f64::max);
+                let b = largest_row_sum(&mat, &sg);
                 let reach = (2.0 + p.offset()) * b * 1.01;
                 assert!(
                     reach >= S::MAX.to_f64(),
@@ -723,15 +715,7 @@ fn step<S: Scalar>(p: &WristStepParams, samples: &[[u64; 6]]) {
                 .map(|v| v.to_f64().abs())
                 .fold(0.0, f64::max);
             let mat = s.sensor.decoupling().matrix();
-            let b = mat
-                .iter()
-                .map(|row| {
-                    row.iter()
-                        .zip(sg.iter())
-                        .map(|(m, g)| m.abs() * g.to_f64().abs())
-                        .sum::<f64>()
-                })
-                .fold(0.0, f64::max);
+            let b = largest_row_sum(&mat, &sg);
             let reach = 2.0 * (2.0 + s.sensor.offset()) * b;
             assert!(
                 largest > x || reach > x,
@@ -767,6 +751,19 @@ fn step<S: Scalar>(p: &WristStepParams, samples: &[[u64; 6]]) {
         }
         clean_state(&st);
     }
+}
+
+/// `B = max_i Σ_j |M_ij| |SG_j|`: the largest decoupled wrench component
+/// the gauge signals can reach through the matrix (eq. 6.35).
+fn largest_row_sum<S: Scalar>(mat: &[[f64; 6]; 6], sg: &[S; 6]) -> f64 {
+    mat.iter()
+        .map(|row| {
+            row.iter()
+                .zip(sg.iter())
+                .map(|(m, g)| m.abs() * g.to_f64().abs())
+                .sum::<f64>()
+        })
+        .fold(0.0, f64::max)
 }
 
 fuzz_target!(|data: (u32, [u64; 16], Vec<[u64; 6]>)| {
