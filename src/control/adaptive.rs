@@ -678,15 +678,24 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
             let z = st.integral.add(self.integral_step.apply(t.r));
             st.integral = clamp_or_keep_symmetric(z, st.integral, self.integral_limit);
         }
-        for j in 0..4 {
-            (st.friction[j], st.friction_residual[j]) = st.friction[j].integrate(
-                st.friction_residual[j],
-                t.ry[j],
-                &self.adapt[j],
-                self.lower[j],
-                self.upper[j],
-            );
-        }
+        // Written out for the four parameters (straight-line code: no loop
+        // counter, constant offsets).
+        self.adapt_one(st, t, 0);
+        self.adapt_one(st, t, 1);
+        self.adapt_one(st, t, 2);
+        self.adapt_one(st, t, 3);
+    }
+
+    /// `F̂_j ← Proj(F̂_j − μ_j T r Y_j)` with its residual.
+    #[inline(always)]
+    fn adapt_one(&self, st: &mut RobustAdaptiveState<S>, t: &ActiveTerms<S>, j: usize) {
+        (st.friction[j], st.friction_residual[j]) = st.friction[j].integrate(
+            st.friction_residual[j],
+            t.ry[j],
+            &self.adapt[j],
+            self.lower[j],
+            self.upper[j],
+        );
     }
 
     /// One control step: eq. (4.19) on the sample, then the integral and
