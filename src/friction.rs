@@ -304,25 +304,13 @@ fn sat_in_layer<S: Scalar>(x: S, eps: S, scale: impl Fn(S) -> S) -> S {
     }
 }
 
-/// `x · s` for a factor `s ∈ [−1, 1]` that is often exactly `±1` (a
-/// saturated `sat`): those cases skip the multiply (on a Cortex-M0+ an
-/// `I16F16` product is a 64-bit multiply); floats always multiply.
-/// Bit-identical to `x.mul(s)` on
-/// every backend (`x·1 = x` and `x·(−1) = −x` exactly, with the same
-/// saturation of `−MIN`).
+/// `x · s` for a factor `s ∈ [−1, 1]` (a `sat` value, often exactly `±1`):
+/// [`Scalar::mul_unit_range`], bit-identical to `x.mul(s)` on every
+/// backend (on `I16F16` a short product for every such `s`, `±1`
+/// included; floats multiply).
 #[inline]
 pub(crate) fn mul_unit<S: Scalar>(x: S, s: S) -> S {
-    if S::RESOLUTION.to_f64() < 1e-6 {
-        // Floats: a multiply is cheaper than the branches (folded at
-        // compile time).
-        x.mul(s)
-    } else if s == S::ONE {
-        x
-    } else if s == S::ONE.neg() {
-        x.neg()
-    } else {
-        x.mul(s)
-    }
+    x.mul_unit_range(s)
 }
 
 /// The nominal friction model of eq. (4.17) and its boundary layer,
@@ -433,7 +421,8 @@ impl<S: Scalar> FrictionConfig<S> {
         // Outside the velocity layer s = ±1 and its products are free.
         let es = mul_unit(e, s);
         // f̂_s e s, shared by the torque and Y_4 = −f̂_s q̇² e s.
-        let stribeck = theta[2].mul(es);
+        // |es| ≤ 1: the unit-range product.
+        let stribeck = theta[2].mul_unit_range(es);
         let y4 = q2.mul(stribeck).neg();
         let torque = theta[0].mul(qd).add(mul_unit(theta[1], s)).add(stribeck);
         FrictionEval {

@@ -598,8 +598,15 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
         // Written out for the four parameters (a counted loop is not
         // unrolled on Armv6-M, where its iterator costs more than the body).
         let y = fr.regressor;
-        // Y_2 = sat(q̇, ε_q̇) is usually ±1.
-        let ry = [r.mul(y[0]), mul_unit(r, y[1]), r.mul(y[2]), r.mul(y[3])];
+        // Y_2 = sat(q̇, ε_q̇) is in [−1, 1] (usually ±1): the unit-range
+        // product.
+        // Y_3 = e^{−f̂_τ q̇²} sat(q̇, ε_q̇) is in [−1, 1] too.
+        let ry = [
+            r.mul(y[0]),
+            mul_unit(r, y[1]),
+            mul_unit(r, y[2]),
+            r.mul(y[3]),
+        ];
         let param_robust = self
             .param_robust_term(0, y[0], ry[0])
             .add(self.param_robust_term(1, y[1], ry[1]))

@@ -818,10 +818,11 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
                         .add(r[0].mul(S::cos_turn(link.wrapping_sub(phi[0]))))
                         .add(c.mul(r[1].add(a.mul(c).add(b.mul(s)))));
                 }
+                // |cos| ≤ 1 on every backend: the unit-range product.
                 k.offset
-                    .add(r[0].mul(S::cos_turn(link.wrapping_sub(phi[0]))))
-                    .add(r[1].mul(S::cos_turn(motor.wrapping_sub(phi[1]))))
-                    .add(r[2].mul(S::cos_turn((motor << 1).wrapping_sub(phi[2]))))
+                    .add(r[0].mul_unit_range(S::cos_turn(link.wrapping_sub(phi[0]))))
+                    .add(r[1].mul_unit_range(S::cos_turn(motor.wrapping_sub(phi[1]))))
+                    .add(r[2].mul_unit_range(S::cos_turn((motor << 1).wrapping_sub(phi[2]))))
             }
             None => S::ZERO,
         }

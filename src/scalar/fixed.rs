@@ -99,6 +99,36 @@ fn mul_bits_short(a: i32, b: i32) -> i32 {
     h * b + ((l * b + (1 << 15)) >> 16)
 }
 
+/// [`mul_bits`] for `u ∈ [−2¹⁶, 2¹⁶]` (a factor of magnitude at most 1;
+/// `u` is clamped to that range), from one [`mul_bits_short`]-style product
+/// by `t ≤ 2¹⁵`. With `x·u = x·2¹⁶ − x·t` (`t = 2¹⁶ − u`, `u ≥ 2¹⁵`):
+/// `⌊(x·u + 2¹⁵)/2¹⁶⌋ = x − ⌊(x·t + 2¹⁵ − 1)/2¹⁶⌋`; with `x·u = −x·2¹⁶ +
+/// x·t` (`t = 2¹⁶ + u`, `u < −2¹⁵`): `−x + ⌊(x·t + 2¹⁵)/2¹⁶⌋`. `|x·u| ≤
+/// |x|`, so only `x = MIN, u = −2¹⁶` leaves the range (saturated); every
+/// other sum is exact in wrapping 32-bit arithmetic.
+#[inline(always)]
+pub(crate) fn mul_bits_unit(a: i32, u: i32) -> i32 {
+    let u = u.clamp(-(1 << 16), 1 << 16);
+    if u >= 1 << 15 {
+        a.wrapping_sub(mul_bits_short_with(a, (1 << 16) - u, (1 << 15) - 1))
+    } else if u >= -(1 << 15) {
+        mul_bits_short(a, u)
+    } else if a == i32::MIN && u == -(1 << 16) {
+        i32::MAX
+    } else {
+        a.wrapping_neg()
+            .wrapping_add(mul_bits_short_with(a, (1 << 16) + u, 1 << 15))
+    }
+}
+
+/// `⌊(a·b + c)/2¹⁶⌋` for `b ∈ [0, 2¹⁵]` and `c < 2¹⁶`, as in
+/// [`mul_bits_short`] (`l·b + c < 2³¹`).
+#[inline(always)]
+fn mul_bits_short_with(a: i32, b: i32, c: i32) -> i32 {
+    let (h, l) = (a >> 16, a & 0xFFFF);
+    h * b + ((l * b + c) >> 16)
+}
+
 /// The straightforward 64-bit form of [`mul_bits`], the reference of its
 /// tests.
 #[cfg(test)]
@@ -319,6 +349,10 @@ impl Scalar for I16F16 {
         I16F16::from_bits(mul_bits(self.to_bits(), rhs.to_bits()))
     }
     #[inline]
+    fn mul_unit_range(self, u: Self) -> Self {
+        I16F16::from_bits(mul_bits_unit(self.to_bits(), u.to_bits()))
+    }
+    #[inline]
     fn div(self, rhs: Self) -> Self {
         I16F16::from_bits(div_bits(self.to_bits(), rhs.to_bits()))
     }
@@ -411,6 +445,24 @@ mod tests {
         }
     }
 
+    /// The unit-range product equals the general one for every factor of
+    /// `[−1, 1]` (and one LSB beyond each end, clamped) against every edge
+    /// word.
+    #[test]
+    fn mul_bits_unit_equals_mul_bits_on_the_unit_range() {
+        let mut w = edge_words();
+        w.extend([0xFFFF, -0xFFFF, 0x7FFF_FFFF, 0x1_FFFF, -0x1_0001]);
+        for u in -65536..=65536 {
+            for &a in &w {
+                assert_eq!(mul_bits_unit(a, u), mul_bits_reference(a, u), "{a} {u}");
+            }
+        }
+        for &a in &w {
+            assert_eq!(mul_bits_unit(a, 65537), a, "{a}");
+            assert_eq!(mul_bits_unit(a, -65537), mul_bits_reference(a, -65536));
+        }
+    }
+
     #[test]
     fn mul_bits_equals_the_64_bit_formula_on_edge_classes() {
         let w = edge_words();
@@ -427,6 +479,12 @@ mod tests {
         #[test]
         fn mul_bits_equals_the_64_bit_formula(a in proptest::prelude::any::<i32>(), b in proptest::prelude::any::<i32>()) {
             proptest::prop_assert_eq!(mul_bits(a, b), mul_bits_reference(a, b));
+        }
+
+        /// The unit-range product for random operands.
+        #[test]
+        fn mul_bits_unit_equals_the_64_bit_formula(a in proptest::prelude::any::<i32>(), u in -65536i32..=65536) {
+            proptest::prop_assert_eq!(mul_bits_unit(a, u), mul_bits_reference(a, u));
         }
 
         /// The same with one operand in the short range (the fast path).

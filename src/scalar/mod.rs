@@ -123,6 +123,15 @@ pub trait Scalar:
     fn sub(self, rhs: Self) -> Self;
     /// `self * rhs` (fixed: saturating, rounded to nearest).
     fn mul(self, rhs: Self) -> Self;
+    /// `self * u` for a factor `|u| ≤ 1` (a `sat` value, a cosine, an
+    /// `e^{−x}`): the value of [`mul`](Self::mul), bit for bit, for every
+    /// such `u`. Fixed point takes a short product for every `u` of that
+    /// range (two 32-bit multiplies on Armv6-M instead of the general
+    /// product's four) and uses `u` clamped to `[−1, 1]`; floats multiply.
+    #[inline]
+    fn mul_unit_range(self, u: Self) -> Self {
+        self.mul(u)
+    }
     /// `self / rhs`; division by zero gives `±MAX` with the sign of `self`,
     /// and `0 / 0 = 0` (fixed: saturating).
     fn div(self, rhs: Self) -> Self;
