@@ -59,14 +59,39 @@ fn mul_bits_long(a: i32, b: i32) -> i32 {
 /// `|V| ≤ 2⁶²`, so `|high| ≤ 2³⁰`.
 #[inline(always)]
 pub(crate) fn signed_wide_mul(a: i32, b: i32) -> (i32, u32) {
-    let (hi, lo) = wide_mul(a as u32, b as u32);
-    let mut hi = hi as i32;
-    if a < 0 {
-        hi = hi.wrapping_sub(b);
+    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    {
+        signed_wide_mul_split(a, b)
     }
-    if b < 0 {
-        hi = hi.wrapping_sub(a);
+    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    {
+        let p = a as i64 * b as i64;
+        ((p >> 32) as i32, p as u32)
     }
+}
+
+/// [`signed_wide_mul`] from four 16×16 partial products of the signed
+/// high halves and unsigned low halves (`a = a_h·2¹⁶ + a_l`, `a_h = a >> 16`
+/// arithmetic, `a_l ∈ [0, 2¹⁶)`): `a·b = a_h b_h·2³² + (a_h b_l + a_l b_h)·2¹⁶
+/// + a_l b_l`, where `|a_h b_h| ≤ 2³⁰`, each middle product is in
+/// `(−2³¹, 2³¹)` and `a_l b_l < 2³²`, so every partial product is exact in
+/// 32 bits; each middle product enters the low word shifted up (with its
+/// carry) and the high word shifted down arithmetically. No sign fix-up
+/// (the Armv6-M path; built on every target so the host tests check it).
+#[inline(always)]
+#[cfg_attr(
+    not(any(test, all(target_arch = "arm", not(target_has_atomic = "32")))),
+    allow(dead_code)
+)]
+pub(crate) fn signed_wide_mul_split(a: i32, b: i32) -> (i32, u32) {
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    let ll = (al as u32).wrapping_mul(bl as u32);
+    let m1 = ah * bl;
+    let m2 = al * bh;
+    let (lo, c1) = ll.overflowing_add((m1 as u32) << 16);
+    let (lo, c2) = lo.overflowing_add((m2 as u32) << 16);
+    let hi = (ah * bh) + (m1 >> 16) + (m2 >> 16) + c1 as i32 + c2 as i32;
     (hi, lo)
 }
 
@@ -524,8 +549,32 @@ mod tests {
         }
     }
 
+    /// The signed four-partial-product form is the exact signed product on
+    /// every pair of edge words.
+    #[test]
+    fn signed_wide_mul_split_is_exact_on_edges() {
+        let w = edge_words();
+        for &a in &w {
+            for &b in &w {
+                let (hi, lo) = signed_wide_mul_split(a, b);
+                assert_eq!(
+                    ((hi as i64) << 32) | lo as i64,
+                    a as i64 * b as i64,
+                    "{a} {b}"
+                );
+            }
+        }
+    }
+
     proptest::proptest! {
         #![proptest_config(proptest::prelude::ProptestConfig::with_cases(50_000))]
+        /// The signed four-partial-product form is exact.
+        #[test]
+        fn signed_wide_mul_split_is_exact(a in proptest::prelude::any::<i32>(), b in proptest::prelude::any::<i32>()) {
+            let (hi, lo) = signed_wide_mul_split(a, b);
+            proptest::prop_assert_eq!(((hi as i64) << 32) | lo as i64, a as i64 * b as i64);
+        }
+
         /// The four-partial-product form (the Armv6-M path) is exact.
         #[test]
         fn wide_mul_split_is_exact(a in proptest::prelude::any::<u32>(), b in proptest::prelude::any::<u32>()) {
