@@ -90,7 +90,7 @@ use crate::estimation::torque::{
 use crate::harmonic_drive::identification::CatalogueData;
 use crate::harmonic_drive::kinematic_error::KinematicErrorModel;
 use crate::scalar::units::{dequantize, quantize_keep_non_finite};
-use crate::scalar::{Coef, Scalar};
+use crate::scalar::{Coef, IntFactor, Scalar};
 use core::f64::consts::TAU;
 
 /// Longest speed window, ticks.
@@ -213,8 +213,8 @@ impl JointParams {
 pub struct JointConfig<S> {
     estimator: TorqueEstimatorConfig<S>,
     mode: ModeConfig<S>,
-    /// `N`, link → motor side.
-    ratio: Coef,
+    /// `N` (a validated integer), link → motor side.
+    ratio: IntFactor,
     /// `2π/M` in stored angle units per count.
     angle_per_count: Coef,
     /// `2π/(M w T)` in stored speed units per count.
@@ -426,7 +426,7 @@ impl<S: Scalar> JointConfig<S> {
         JointConfig {
             estimator: TorqueEstimatorConfig::new(&s.estimator),
             mode: ModeConfig::new(&s.mode),
-            ratio: Coef::new(p.ratio()),
+            ratio: IntFactor::new(p.ratio()),
             angle_per_count: Coef::new(p.motor_rad_per_count() * u.angle),
             speed_per_count: Coef::new(p.speed_resolution() * u.speed),
             speed_window: s.speed_window,
@@ -543,9 +543,9 @@ impl<S: Scalar> JointConfig<S> {
             estimate,
         } = self.measure(st, readings);
         let x = ControlInput {
-            desired_position: target.position.mul_coef(&self.ratio),
-            desired_velocity: target.velocity.mul_coef(&self.ratio),
-            desired_acceleration: target.acceleration.mul_coef(&self.ratio),
+            desired_position: target.position.mul_int(&self.ratio),
+            desired_velocity: target.velocity.mul_int(&self.ratio),
+            desired_acceleration: target.acceleration.mul_int(&self.ratio),
             motor_position,
             motor_velocity,
             joint_torque,

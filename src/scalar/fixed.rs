@@ -374,6 +374,20 @@ impl Scalar for I16F16 {
         I16F16::from_bits(mul_bits(self.to_bits(), rhs.to_bits()))
     }
     #[inline]
+    fn mul_int(self, n: &super::IntFactor) -> Self {
+        // Equal to `mul_coef(&n.coef)` for an integer `n < 2³¹` (its
+        // coefficient is exact and the product rounds nothing); `new`
+        // rounds any other value, which the callers' validation excludes.
+        let x = self.to_bits();
+        I16F16::from_bits(if x > n.high {
+            i32::MAX
+        } else if x < n.low {
+            i32::MIN
+        } else {
+            x * n.n
+        })
+    }
+    #[inline]
     fn mul_unit_range(self, u: Self) -> Self {
         I16F16::from_bits(mul_bits_unit(self.to_bits(), u.to_bits()))
     }

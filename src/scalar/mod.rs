@@ -123,6 +123,15 @@ pub trait Scalar:
     fn sub(self, rhs: Self) -> Self;
     /// `self * rhs` (fixed: saturating, rounded to nearest).
     fn mul(self, rhs: Self) -> Self;
+    /// `self · n` for an integer factor prepared as an [`IntFactor`]: the
+    /// value of [`mul_coef`](Self::mul_coef) by its coefficient, bit for
+    /// bit. Fixed point multiplies the bits by the integer after one range
+    /// comparison per side (saturating outside it); floats use the
+    /// coefficient product.
+    #[inline]
+    fn mul_int(self, n: &IntFactor) -> Self {
+        self.mul_coef(&n.coef)
+    }
     /// `self * u` for a factor `|u| ≤ 1` (a `sat` value, a cosine, an
     /// `e^{−x}`): the value of [`mul`](Self::mul), bit for bit, for every
     /// such `u`. Fixed point takes a short product for every `u` of that
@@ -374,6 +383,42 @@ pub fn turn_from_radians(rad: f64) -> u32 {
     let turns = rad / core::f64::consts::TAU;
     let frac = turns - libm::floor(turns); // [0, 1]
     (libm::round(frac * 4_294_967_296.0) as u64 & 0xFFFF_FFFF) as u32
+}
+
+/// A positive integer factor (a gear ratio `N`), prepared once: its
+/// [`Coef`] and, for the `I16F16` product of [`Scalar::mul_int`], the
+/// integer (saturated to `i32`) and the range of bit patterns whose product
+/// by it fits `i32`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct IntFactor {
+    pub(crate) coef: Coef,
+    /// `n` (at least 1, at most `i32::MAX`).
+    pub(crate) n: i32,
+    /// `⌊i32::MAX / n⌋` and `⌈i32::MIN / n⌉`: `x·n` fits `i32` exactly for
+    /// `x` in `[low, high]`.
+    pub(crate) high: i32,
+    pub(crate) low: i32,
+}
+
+impl IntFactor {
+    /// Prepare `n ≥ 1` (an integer; validated by the caller). A value
+    /// that is not an integer in `[1, 2³¹)` is rounded and clamped for the
+    /// integer form; the coefficient keeps `n` as given.
+    pub fn new(n: f64) -> Self {
+        let i = if n.is_nan() {
+            1
+        } else {
+            libm::round(n).clamp(1.0, i32::MAX as f64) as i32
+        };
+        IntFactor {
+            coef: Coef::new(n),
+            n: i,
+            high: i32::MAX / i,
+            // Division truncates toward zero: the ceiling for a negative
+            // quotient.
+            low: i32::MIN / i,
+        }
+    }
 }
 
 /// A constant factor of a control law: a [`Coef`], plus the backend's own
@@ -943,6 +988,44 @@ mod tests {
                         );
                     }
                 }
+            }
+        }
+    }
+
+    /// `mul_int` is `mul_coef` by the same integer, bit for bit, on every
+    /// backend, at edge words and both ends of the fitting range.
+    #[test]
+    fn mul_int_equals_mul_coef_by_the_integer() {
+        let mut xs = vec![0i32, 1, -1, i32::MAX, i32::MIN, i32::MIN + 1];
+        for k in 0..31 {
+            xs.extend([1i32 << k, -(1i32 << k), (1i32 << k) - 1, -(1i32 << k) + 1]);
+        }
+        for n in [
+            1.0,
+            2.0,
+            3.0,
+            50.0,
+            100.0,
+            101.0,
+            160.0,
+            32768.0,
+            65535.0,
+            1e6,
+            2147483647.0,
+        ] {
+            let f = IntFactor::new(n);
+            let mut all = xs.clone();
+            all.extend([
+                f.high,
+                f.high.saturating_add(1),
+                f.low,
+                f.low.saturating_sub(1),
+            ]);
+            for &x in &all {
+                let v = I16F16::from_bits(x);
+                assert_eq!(v.mul_int(&f), v.mul_coef(&f.coef), "{n} {x}");
+                let y = x as f32 * 1e-3;
+                assert_eq!(y.mul_int(&f), y.mul_coef(&f.coef), "{n} {y}");
             }
         }
     }
