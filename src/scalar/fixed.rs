@@ -332,33 +332,28 @@ impl Scalar for I16F16 {
         I16F16::from_bits(c.scale_i32(self.to_bits()))
     }
     type Residual = i32;
-    #[inline]
+    #[inline(always)]
     fn integrate(self, residual: i32, x: Self, c: &super::Coef, lo: Self, hi: Self) -> (Self, i32) {
-        // The Q16.48 sum; its saturation at the i64 range is the I16F16
-        // range.
-        let total = ((self.to_bits() as i64) << 32)
-            .saturating_add(residual as i64)
-            .saturating_add(c.scale_wide(x.to_bits(), 32));
-        // Round to nearest (ties up): the high word, plus one when the low
-        // word is at least ½ LSB; the residual is then the low word read
-        // as signed (`low − 2³²` in the second case).
-        let high = (total >> 32) as i32;
-        let low = total as u32 as i32;
-        let (v, rest) = if low < 0 {
-            match high.checked_add(1) {
-                Some(h) => (h, low),
-                None => (i32::MAX, i32::MAX),
-            }
-        } else {
-            (high, low)
-        };
-        let v = I16F16::from_bits(v);
-        if v > hi || (v == hi && rest > 0) {
+        // The Q16.48 sum `self·2³² + residual + step`, exactly: the low
+        // words with their carry, the high words (and the residual's
+        // sign) in i64, so nothing saturates but the step itself.
+        let step = c.scale_wide(x.to_bits(), 32);
+        let (low, carry) = (residual as u32).overflowing_add(step as u32);
+        let high = self.to_bits() as i64 + (step >> 32) + (residual >> 31) as i64 + carry as i64;
+        // Outside the box exactly when the sum is above `hi·2³²` or below
+        // `lo·2³²`: the end, residual 0.
+        let (h, l) = (hi.to_bits() as i64, lo.to_bits() as i64);
+        if high > h || (high == h && low > 0) {
             (hi, 0)
-        } else if v < lo || (v == lo && rest < 0) {
+        } else if high < l {
             (lo, 0)
         } else {
-            (v, rest)
+            // Round to nearest (ties up): the high word, plus one when the
+            // low word is at least ½ LSB (then `high < h`, so it fits); the
+            // residual is the low word read as signed (`low − 2³²` in the
+            // second case).
+            let v = high as i32 + (low >> 31) as i32;
+            (I16F16::from_bits(v), low as i32)
         }
     }
     #[inline]

@@ -98,8 +98,8 @@ pub trait Scalar:
     /// keeps `self`, clamped.
     ///
     /// * `I16F16`: `x·c` is rounded to `2⁻⁴⁸` (the coefficient's 31-bit
-    ///   mantissa) and added to the Q16.48 value `self·2³² + residual`
-    ///   (saturating); the new value is that sum rounded to nearest
+    ///   mantissa; saturated to the `i64` range) and added exactly to the
+    ///   Q16.48 value `self·2³² + residual`; the new value is that sum rounded to nearest
     ///   `I16F16`, the residual what rounding left. So an increment far
     ///   below one LSB (Table 4.1's `f̂_τ` step, `≈ 4e-7·r·Y₄` stored) is
     ///   kept and accumulates instead of being rounded away at every
@@ -1213,6 +1213,48 @@ mod tests {
             let got = v.integrate(res, x, &c, lo, hi);
             let want = integrate_reference(v, res, x, &c, lo, hi);
             proptest::prop_assert_eq!(got, want);
+        }
+    }
+
+    /// The exact Q16.48 sum at the ends of the range: extreme values and
+    /// residuals, steps that saturate, boxes at the range's ends.
+    #[test]
+    fn fixed_integrate_is_exact_at_the_range_ends() {
+        let words = [
+            i32::MIN,
+            i32::MIN + 1,
+            -65536,
+            -1,
+            0,
+            1,
+            65536,
+            i32::MAX - 1,
+            i32::MAX,
+        ];
+        let boxes = [
+            (i32::MIN, i32::MAX),
+            (i32::MIN, 0),
+            (0, i32::MAX),
+            (-65536, 65536),
+        ];
+        for c in [1e-12, -3e-7, 0.4, -0.4, 1.0, 1e6, -1e6, 1e11] {
+            let c = Coef::new(c);
+            for (lo, hi) in boxes {
+                let (lo, hi) = (I16F16::from_bits(lo), I16F16::from_bits(hi));
+                for v in words {
+                    let v = Scalar::clamp(I16F16::from_bits(v), lo, hi);
+                    for res in words {
+                        for x in words {
+                            let x = I16F16::from_bits(x);
+                            assert_eq!(
+                                v.integrate(res, x, &c, lo, hi),
+                                integrate_reference(v, res, x, &c, lo, hi),
+                                "{v} {res} {x} {c:?}"
+                            );
+                        }
+                    }
+                }
+            }
         }
     }
 
