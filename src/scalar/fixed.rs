@@ -133,16 +133,20 @@ fn mul_bits_short(a: i32, b: i32) -> i32 {
 /// other sum is exact in wrapping 32-bit arithmetic.
 #[inline(always)]
 pub(crate) fn mul_bits_unit(a: i32, u: i32) -> i32 {
-    let u = u.clamp(-(1 << 16), 1 << 16);
+    // The clamp of `u` is `t ≥ 0` in the two outer cases.
     if u >= 1 << 15 {
-        a.wrapping_sub(mul_bits_short_with(a, (1 << 16) - u, (1 << 15) - 1))
+        let t = ((1 << 16) - u).max(0);
+        a.wrapping_sub(mul_bits_short_with(a, t, (1 << 15) - 1))
     } else if u >= -(1 << 15) {
         mul_bits_short(a, u)
-    } else if a == i32::MIN && u == -(1 << 16) {
-        i32::MAX
     } else {
-        a.wrapping_neg()
-            .wrapping_add(mul_bits_short_with(a, (1 << 16) + u, 1 << 15))
+        let t = ((1 << 16) + u).max(0);
+        if a == i32::MIN && t == 0 {
+            i32::MAX
+        } else {
+            a.wrapping_neg()
+                .wrapping_add(mul_bits_short_with(a, t, 1 << 15))
+        }
     }
 }
 
