@@ -597,21 +597,24 @@ impl<S: Scalar> ModeConfig<S> {
         }
     }
 
-    /// `v` limited to `±limit`: one magnitude comparison on the common
-    /// path. Equal to `v.clamp(−limit, limit)` for every non-NaN `v` (the
-    /// limit is at most 16 N·m, inside every backend's range, so `|v| >
-    /// limit` is `v > limit || v < −limit`).
-    #[inline]
+    /// `v` limited to `±limit` ([`limit_flag`](Self::limit_flag)'s value;
+    /// its test checks it against the two-sided clamp).
+    #[cfg(test)]
     fn limit(&self, v: S) -> S {
+        self.limit_flag(v).0
+    }
+
+    /// `v` limited to `±limit`, and whether it was limited: one magnitude
+    /// comparison. Equal to `v.clamp(−limit, limit)` for every non-NaN `v`
+    /// (the limit is at most 16 N·m, inside every backend's range, so
+    /// `|v| > limit` is `v > limit || v < −limit`).
+    #[inline(always)]
+    fn limit_flag(&self, v: S) -> (S, bool) {
         let l = self.limit;
         if v.abs() > l {
-            if v > S::ZERO {
-                l
-            } else {
-                l.neg()
-            }
+            (if v > S::ZERO { l } else { l.neg() }, true)
         } else {
-            v
+            (v, false)
         }
     }
 
@@ -619,36 +622,19 @@ impl<S: Scalar> ModeConfig<S> {
     /// an overflow on floats, counts as 0), plus the bias, limited again.
     /// At a switch the bias is first re-seeded so that the command starts
     /// at `before`, the previous one. Returns the torque, whether anything
-    /// was limited or overflowed, and whether the law overflowed.
+    /// was limited or overflowed, and whether the law overflowed. One
+    /// straight sequence (no common-path attempt with a general fallback,
+    /// which the static bound would pay twice).
     #[inline(always)]
     fn command(&self, law: S, before: S, switched: bool, bias: &mut S) -> (S, bool, bool) {
-        // The common path: neither the law nor the law plus the bias
-        // reaches the limit (one magnitude test each; a NaN law fails the
-        // first), and nothing is flagged.
-        let mut within = None;
-        if law.abs() <= self.limit {
-            if switched {
-                *bias = before.sub(law);
-            }
-            let sum = law.add(*bias);
-            if sum.abs() <= self.limit {
-                within = Some(sum);
-            }
+        let overflow = law.is_nan();
+        let law = if overflow { S::ZERO } else { law };
+        let (limited, cut_law) = self.limit_flag(law);
+        if switched {
+            *bias = before.sub(limited);
         }
-        // Otherwise something is limited (or the law overflowed): the
-        // general form, which is `saturated` on every path.
-        match within {
-            Some(sum) => (sum, false, false),
-            None => {
-                let overflow = law.is_nan();
-                let law = if overflow { S::ZERO } else { law };
-                let limited = self.limit(law);
-                if switched {
-                    *bias = before.sub(limited);
-                }
-                (self.limit(limited.add(*bias)), true, overflow)
-            }
-        }
+        let (torque, cut_sum) = self.limit_flag(limited.add(*bias));
+        (torque, cut_law || cut_sum || overflow, overflow)
     }
 
     /// What the current mode commands on this sample, without advancing
