@@ -72,8 +72,8 @@ pub(crate) fn signed_wide_mul(a: i32, b: i32) -> (i32, u32) {
 
 /// [`signed_wide_mul`] from four 16×16 partial products of the signed
 /// high halves and unsigned low halves (`a = a_h·2¹⁶ + a_l`, `a_h = a >> 16`
-/// arithmetic, `a_l ∈ [0, 2¹⁶)`): `a·b = a_h b_h·2³² + (a_h b_l + a_l b_h)·2¹⁶
-/// + a_l b_l`, where `|a_h b_h| ≤ 2³⁰`, each middle product is in
+/// arithmetic, `a_l ∈ [0, 2¹⁶)`):
+/// `a·b = a_h b_h·2³² + (a_h b_l + a_l b_h)·2¹⁶ + a_l b_l`, where `|a_h b_h| ≤ 2³⁰`, each middle product is in
 /// `(−2³¹, 2³¹)` and `a_l b_l < 2³²`, so every partial product is exact in
 /// 32 bits; each middle product enters the low word shifted up (with its
 /// carry) and the high word shifted down arithmetically. No sign fix-up
