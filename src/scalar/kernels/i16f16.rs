@@ -257,7 +257,7 @@ fn div_frac_wide_steps(n: u32, d: u32, k: u32) -> (u32, u32) {
 /// steps 2–5 of [`div_frac_wide`], whose proof covers every such
 /// `(u₁, u₀, D)`.
 #[inline(always)]
-fn div_norm_steps(u1: u32, u0: u32, dn: u32) -> (u32, u32) {
+pub(crate) fn div_norm_steps(u1: u32, u0: u32, dn: u32) -> (u32, u32) {
     // x₀ = 2³² + seed·2¹⁶; e = (2⁶⁴ − x₀·D)/2³² rounded down, |e| ≤ 2²³ + 1:
     // x₀·D/2³² = D + seed·D/2¹⁶ < D + seed·⌊D/2¹⁶⌋ + ⌊seed·(D mod 2¹⁶)/2¹⁶⌋ + 1.
     let seed = RECIP_SEED[((dn >> 23) & 0xFF) as usize] as u32;
@@ -677,7 +677,7 @@ fn leading_zeros_16(h: u32) -> u32 {
 /// or the low half (one more comparison). Checked against the library
 /// count by `leading_zeros_32_is_exact`.
 #[inline(always)]
-fn leading_zeros_32(d: u32) -> u32 {
+pub(crate) fn leading_zeros_32(d: u32) -> u32 {
     if d >= 1 << 16 {
         leading_zeros_16(d >> 16) - 16
     } else {
