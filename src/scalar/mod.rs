@@ -633,29 +633,73 @@ impl Coef {
     /// exact (`|x·mult| ≤ 2⁶²`): the unsigned [`fixed::wide_mul`] of the
     /// magnitudes with the sign applied, one form for every coefficient
     /// (no `__aeabi_lmul` on Armv6-M).
+    ///
+    /// The shifts by `sh = shift − extra` are done on the two 32-bit words
+    /// of the magnitude `P` (no variable 64-bit shift, which Armv6-M calls
+    /// `__aeabi_llsl`/`__aeabi_llsr`/`__aeabi_lasr` for):
+    /// * `sh > 0`: `⌊(±P + 2^(sh−1))/2^sh⌋ = ±⌊(P + h)/2^sh⌋` with
+    ///   `h = 2^(sh−1)` for `+` and `h = 2^(sh−1) − 1` for `−` (as in
+    ///   [`fixed::scaled_product`]); `P + h < 2⁶³`;
+    /// * `sh ≤ 0`: `±P·2^−sh`, saturated when `P ≥ 2^(63+sh)`.
     #[inline]
     pub(crate) fn scale_wide(&self, x: i32, extra: i32) -> i64 {
         let (hi, lo) = fixed::wide_mul(x.unsigned_abs(), self.mag);
-        let p = ((hi as u64) << 32 | lo as u64) as i64;
-        let v = if (x < 0) != self.negative { -p } else { p };
+        let neg = (x < 0) != self.negative;
         let sh = self.shift - extra;
-        if sh > 0 {
+        let (mh, ml) = if sh > 0 {
             if sh >= 63 {
                 // |v| ≤ 2⁶²: |v/2^sh| ≤ ½, rounded (ties up) to 1 only
                 // for v = 2⁶², sh = 63.
-                return (sh == 63 && v == 1 << 62) as i64;
+                return (sh == 63 && !neg && hi == 1 << 30 && lo == 0) as i64;
             }
-            (v + (1i64 << (sh - 1))) >> sh
-        } else if v == 0 {
-            0
-        } else if -sh >= 63 || v.unsigned_abs() > (i64::MAX as u64 >> -sh) {
-            if v > 0 {
-                i64::MAX
+            // (hi, lo) += h.
+            let (hi, lo) = if sh <= 32 {
+                let (l, c) = lo.overflowing_add((1u32 << (sh - 1)) - neg as u32);
+                (hi + c as u32, l)
             } else {
-                i64::MIN
+                let h = 1u32 << (sh - 33);
+                if neg {
+                    // h·2³² − 1 = (h − 1)·2³² + (2³² − 1).
+                    let (l, c) = lo.overflowing_add(u32::MAX);
+                    (hi + (h - 1) + c as u32, l)
+                } else {
+                    (hi + h, lo)
+                }
+            };
+            if sh >= 32 {
+                (0, hi >> (sh - 32))
+            } else {
+                (hi >> sh, (lo >> sh) | (hi << (32 - sh)))
             }
         } else {
-            v << -sh
+            if hi == 0 && lo == 0 {
+                return 0;
+            }
+            let s = -sh;
+            // P·2^s ≤ i64::MAX ⇔ P < 2^k, k = 63 − s.
+            let fits = if s >= 63 {
+                false
+            } else if s <= 31 {
+                hi >> (31 - s) == 0
+            } else {
+                hi == 0 && lo >> (63 - s) == 0
+            };
+            if !fits {
+                return if neg { i64::MIN } else { i64::MAX };
+            }
+            if s >= 32 {
+                (lo << (s - 32), 0)
+            } else if s == 0 {
+                (hi, lo)
+            } else {
+                ((hi << s) | (lo >> (32 - s)), lo << s)
+            }
+        };
+        let m = ((mh as u64) << 32 | ml as u64) as i64;
+        if neg {
+            m.wrapping_neg()
+        } else {
+            m
         }
     }
 

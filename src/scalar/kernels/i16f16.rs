@@ -311,8 +311,57 @@ fn div_ratio_steps(n: u32, d: u32) -> (u32, u32) {
 
 /// `(⌊√(n·2¹⁶)⌋, n·2¹⁶ − root²)`: digit-by-digit square root of a 48-bit
 /// operand in 32-bit registers (`root < 2²⁴`, remainder `≤ 2·root < 2²⁵`).
+///
+/// Two phases with one compare and one conditional subtraction per root
+/// bit (the branch is taken or not; Armv6-M has no conditional select, so
+/// a branch-free mask costs more on the longest path):
+///
+/// 1. the 16 bits of `⌊√n⌋` from the 32-bit `n` by the bit-pair method
+///    (`op` holds the running remainder, `res` the root scaled by the
+///    current power of four `one`): after it `res = ⌊√n⌋` and
+///    `op = n − res²`;
+/// 2. eight more root bits of `n·2¹⁶`, whose eight low digit pairs are 0:
+///    the remainder shifts in two zero bits per step.
+///
+/// The same root and remainder as the plain 24-step recurrence
+/// [`sqrt_q16_digit_by_digit`] (the root and remainder of `⌊n·2¹⁶/4ᵏ⌋`
+/// after each step are unique); `sqrt_q16_equals_the_digit_by_digit_form`
+/// compares them.
 #[inline]
 pub(crate) fn sqrt_q16(n: u32) -> (u32, u32) {
+    let mut op = n;
+    let mut res = 0u32;
+    let mut one = 1u32 << 30;
+    let mut i = 0u32;
+    while i < 16 {
+        let t = res + one;
+        if op >= t {
+            op -= t;
+            res = (res >> 1) + one;
+        } else {
+            res >>= 1;
+        }
+        one >>= 2;
+        i += 1;
+    }
+    let (mut root, mut rem) = (res, op);
+    while i < 24 {
+        rem <<= 2;
+        let trial = (root << 2) | 1;
+        root <<= 1;
+        if rem >= trial {
+            rem -= trial;
+            root |= 1;
+        }
+        i += 1;
+    }
+    (root, rem)
+}
+
+/// [`sqrt_q16`] as the plain 24-step digit-by-digit recurrence (two bits of
+/// `n·2¹⁶` per step): the reference of its tests.
+#[cfg(test)]
+fn sqrt_q16_digit_by_digit(n: u32) -> (u32, u32) {
     let mut root = 0u32;
     let mut rem = 0u32;
     let mut i = 0u32;
@@ -966,6 +1015,42 @@ mod tests {
             }
         }
         assert_eq!(seen, [true, true]);
+    }
+
+    /// [`sqrt_q16`] equals the 24-step recurrence and the exact 64-bit
+    /// definition: every `n` below 2²⁰, every power of two with its
+    /// neighbours, perfect squares and their neighbours, and a stride over
+    /// the whole range.
+    #[test]
+    fn sqrt_q16_equals_the_digit_by_digit_form() {
+        let check = |n: u32| {
+            let (root, rem) = sqrt_q16(n);
+            assert_eq!((root, rem), sqrt_q16_digit_by_digit(n), "n = {n}");
+            let v = (n as u64) << 16;
+            let r = root as u64;
+            assert!(r * r + rem as u64 == v && v < (r + 1) * (r + 1), "n = {n}");
+        };
+        for n in 0..1u32 << 20 {
+            check(n);
+        }
+        for i in 0..32 {
+            let p = 1u32 << i;
+            for n in [p - 1, p, p + 1, u32::MAX >> (31 - i)] {
+                check(n);
+            }
+        }
+        for r in (0u32..1 << 16).step_by(13).chain([(1 << 16) - 1]) {
+            let sq = r * r;
+            for n in [sq.wrapping_sub(1), sq, sq + 1] {
+                check(n);
+            }
+        }
+        let mut n = 0u32;
+        while let Some(m) = n.checked_add(4093) {
+            check(m);
+            n = m;
+        }
+        check(u32::MAX);
     }
 
     /// Every divisor below 2²⁰ and every power of two with its neighbours.
