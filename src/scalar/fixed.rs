@@ -164,6 +164,16 @@ pub(crate) fn wide_mul_split(a: u32, b: u32) -> (u32, u32) {
 #[inline(always)]
 pub(crate) fn scaled_product(neg: bool, a: u32, b: u32, sh: i32) -> i32 {
     let (hi, lo) = wide_mul(a, b);
+    scaled_magnitude(neg, hi, lo, sh)
+}
+
+/// [`scaled_product`] of a magnitude given as two words:
+/// `sat(⌊(s·P + 2^(sh−1)) / 2^sh⌋)` for `sh > 0` (`sh ≥ 63`: 0) and
+/// `sat(s·P·2^−sh)` for `sh ≤ 0`, `P = hi·2³² + lo`, `s = −1` when `neg`.
+/// Exact for `P < 2⁶³` and `sh ≤ 62` (then `P + 2^(sh−1) < 2⁶⁴`; the
+/// shortcut for `sh ≥ 63` assumes `P ≤ 2⁶²`).
+#[inline(always)]
+pub(crate) fn scaled_magnitude(neg: bool, hi: u32, lo: u32, sh: i32) -> i32 {
     let mag: u32; // the magnitude, or > 2³¹ when it saturates
     if sh > 0 {
         if sh >= 63 {
@@ -328,6 +338,34 @@ impl Scalar for I16F16 {
     #[inline(always)]
     fn mul_coef(self, c: &super::Coef) -> Self {
         I16F16::from_bits(c.scale_i32(self.to_bits()))
+    }
+    #[inline(always)]
+    fn dot_coef<const N: usize>(x: &[Self; N], row: &super::CoefRow<N>) -> Self {
+        // x = xh·2¹⁶ + xl and M = h·2¹⁶ + l (|xh| ≤ 2¹⁵, |h| ≤ 2¹², xl, l <
+        // 2¹⁶): x·M = xh·h·2³² + (xh·l + xl·h)·2¹⁶ + xl·l, each partial
+        // product a 32-bit multiply. Over N ≤ 6 terms: |Σ xh·h| ≤ 1.5·2²⁹
+        // and |Σ xl·h| < 1.5·2³⁰ (i32), |Σ xh·l| < 6·2³¹ (i64),
+        // Σ xl·l < 6·2³² (u64); the total is below 2⁶³.
+        let mut hh = 0i32;
+        let mut hl = 0i64;
+        let mut lh = 0i32;
+        let mut ll = 0u64;
+        for (x, &(h, l)) in x.iter().zip(row.split().iter()) {
+            let b = x.to_bits();
+            let (xh, xl) = (b >> 16, b & 0xFFFF);
+            hh += xh * h;
+            hl += (xh * l) as i64;
+            lh += xl * h;
+            ll += (xl as u32 * l as u32) as u64;
+        }
+        let acc = ((hh as i64) << 32) + ((hl + lh as i64) << 16) + ll as i64;
+        let p = acc.unsigned_abs();
+        I16F16::from_bits(scaled_magnitude(
+            acc < 0,
+            (p >> 32) as u32,
+            p as u32,
+            row.fixed().1,
+        ))
     }
     type Residual = i32;
     #[inline]
