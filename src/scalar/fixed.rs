@@ -665,7 +665,7 @@ mod tests {
             // c·2ʲ ≤ 2³¹ and c·(2q + 1)·2^(j−17) ≤ 2³¹.
             let c = 1 + c % (1 << (31 - j));
             let q = q % ((((1i64 << (48 - j)) / c - 1) / 2) + 1);
-            let (a, b) = (c * (2 * q + 1) << (j - 17), c << j);
+            let (a, b) = ((c * (2 * q + 1)) << (j - 17), c << j);
             for a in [a - 1, a, a + 1] {
                 let x = if neg_a { -a } else { a };
                 let y = if neg_b { -b } else { b };
