@@ -312,14 +312,13 @@ fn div_ratio_steps(n: u32, d: u32) -> (u32, u32) {
 /// `(⌊√(n·2¹⁶)⌋, n·2¹⁶ − root²)`: digit-by-digit square root of a 48-bit
 /// operand in 32-bit registers (`root < 2²⁴`, remainder `≤ 2·root < 2²⁵`).
 ///
-/// Two phases with one compare and one conditional subtraction per root
-/// bit (the branch is taken or not; Armv6-M has no conditional select, so
-/// a branch-free mask costs more on the longest path):
+/// Two phases with one compare and one conditional move or subtraction
+/// per root bit (the branch is taken or not; Armv6-M has no conditional
+/// select, so a branch-free mask costs more on the longest path):
 ///
-/// 1. the 16 bits of `⌊√n⌋` from the 32-bit `n` by the bit-pair method
-///    (`op` holds the running remainder, `res` the root scaled by the
-///    current power of four `one`): after it `res = ⌊√n⌋` and
-///    `op = n − res²`;
+/// 1. the 16 bits of `⌊√n⌋` from the 32-bit `n`, highest first: a bit is
+///    kept when the square of the root with it is at most `n` (a 32-bit
+///    `MULS`); then the remainder `n − root²`;
 /// 2. eight more root bits of `n·2¹⁶`, whose eight low digit pairs are 0:
 ///    the remainder shifts in two zero bits per step.
 ///
@@ -329,22 +328,18 @@ fn div_ratio_steps(n: u32, d: u32) -> (u32, u32) {
 /// compares them.
 #[inline]
 pub(crate) fn sqrt_q16(n: u32) -> (u32, u32) {
-    let mut op = n;
-    let mut res = 0u32;
-    let mut one = 1u32 << 30;
+    let mut root = 0u32;
     let mut i = 0u32;
     while i < 16 {
-        let t = res + one;
-        if op >= t {
-            op -= t;
-            res = (res >> 1) + one;
-        } else {
-            res >>= 1;
+        // The next bit of ⌊√n⌋ is set when the square stays ≤ n
+        // (t < 2¹⁶, so t² < 2³²).
+        let t = root | (1 << (15 - i));
+        if t * t <= n {
+            root = t;
         }
-        one >>= 2;
         i += 1;
     }
-    let (mut root, mut rem) = (res, op);
+    let mut rem = n - root * root;
     while i < 24 {
         rem <<= 2;
         let trial = (root << 2) | 1;
@@ -883,9 +878,10 @@ pub fn acos(x: I16F16) -> I16F16 {
 /// * Proven bound: **≤ 0.5 LSB** — correctly rounded (to nearest) at all
 ///   2³² inputs, measured max 0.500000 LSB, and monotone
 ///   (`exhaustive_sqrt_i16f16`).
-/// * Algorithm: digit-by-digit integer root of `bits·2¹⁶` (24 steps of
-///   shift/compare/subtract, `sqrt_q16`); round up iff remainder `> root`.
-///   No multiply, no division.
+/// * Algorithm: digit-by-digit integer root of `bits·2¹⁶` (`sqrt_q16`:
+///   16 root bits by squaring trial roots in 32-bit `MULS`, 8 by
+///   shift/compare/subtract); round up iff remainder `> root`. No
+///   division.
 pub fn sqrt(x: I16F16) -> I16F16 {
     let bits = x.to_bits();
     if bits <= 0 {
