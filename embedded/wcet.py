@@ -74,9 +74,10 @@ LOOP_BOUNDS = {
     "__aeabi_idiv": (32, "one iteration per quotient bit of a 32-bit division"),
     "__aeabi_idivmod": (32, "one iteration per quotient bit of a 32-bit division"),
     "__udivmodsi4": (32, "one iteration per quotient bit of a 32-bit division"),
-    # The 64-bit division of the I16F16 quotient (`div_bits`, src/scalar/fixed.rs)
-    # reaches compiler_builtins' `specialized_div_rem::u32_div_rem` on Armv6-M:
-    # shift-and-subtract, at most one iteration per quotient bit.
+    # A 64-bit division reaches compiler_builtins' `specialized_div_rem` on
+    # Armv6-M: shift-and-subtract, at most one iteration per quotient bit. The
+    # I16F16 quotient (`div_bits`, src/scalar/fixed.rs) no longer does (it is
+    # loop-free); the reference steps and the set-up code still link them.
     ("specialized_div_rem", "u32_div_rem"): (32, "one iteration per quotient bit of a 32-bit division (compiler_builtins u32_div_rem)"),
     ("specialized_div_rem", "u64_div_rem"): (64, "one iteration per quotient bit of a 64-bit division (compiler_builtins u64_div_rem)"),
 }

@@ -223,6 +223,16 @@ pub(crate) fn wide_mul_split(a: u32, b: u32) -> (u32, u32) {
 #[inline(always)]
 pub(crate) fn scaled_product(neg: bool, a: u32, b: u32, sh: i32) -> i32 {
     let (hi, lo) = wide_mul(a, b);
+    scaled_magnitude(neg, hi, lo, sh)
+}
+
+/// [`scaled_product`] of a magnitude given as two words:
+/// `sat(⌊(s·P + 2^(sh−1)) / 2^sh⌋)` for `sh > 0` (`sh ≥ 63`: 0) and
+/// `sat(s·P·2^−sh)` for `sh ≤ 0`, `P = hi·2³² + lo`, `s = −1` when `neg`.
+/// Exact for `P < 2⁶³` and `sh ≤ 62` (then `P + 2^(sh−1) < 2⁶⁴`; the
+/// shortcut for `sh ≥ 63` assumes `P ≤ 2⁶²`).
+#[inline(always)]
+pub(crate) fn scaled_magnitude(neg: bool, hi: u32, lo: u32, sh: i32) -> i32 {
     let mag: u32; // the magnitude, or > 2³¹ when it saturates
     if sh > 0 {
         if sh >= 63 {
@@ -278,8 +288,61 @@ pub(crate) fn scaled_product(neg: bool, a: u32, b: u32, sh: i32) -> i32 {
 
 /// Rounded (to nearest, ties away from zero), saturating Q16.16 quotient of
 /// two raw bit patterns; `x/0` saturates with the sign of `x`, `0/0 = 0`.
+///
+/// Equal to the 64-bit formula [`div_bits_reference`] for every pair of
+/// operands (checked at random and over edge classes in the tests below),
+/// without its 64-bit division (on Armv6-M a call of `__aeabi_ldivmod`,
+/// thousands of instructions): on the magnitudes `A = |a|`, `B = |b|`,
+///
+/// 1. `A ≥ B·2¹⁵` (`⌊A/2¹⁵⌋ ≥ B`, which includes `B = 0`): the quotient
+///    `A·2¹⁶/B` is at least `2³¹`, so the result saturates (to 0 for
+///    `A = 0`, which with `B = 0` is `0/0`);
+/// 2. otherwise `Q = ⌊A·2¹⁶/B⌋ < 2³¹` by the exact normalized reciprocal
+///    division of the kernels (`div_norm_steps`, loop-free: a table seed,
+///    one Newton step, one correction): the divisor is shifted to
+///    `D = B·2ˢ ∈ [2³¹, 2³²)` and the 48-bit dividend by the same `s` into
+///    two words `u₁·2³² + u₀` with `u₁ < D` (because `Q < 2³¹`);
+/// 3. the remainder `R = A·2¹⁶ − Q·B < B ≤ 2³¹` is exact in wrapping 32-bit
+///    arithmetic, and `Q + 1` when `2R ≥ B` (`R ≥ B − R`) is the rounding,
+///    applied to the magnitude, so ties go away from zero;
+/// 4. the sign, then saturation (`Q + 1 ≤ 2³¹`: only `+2³¹` saturates).
 #[inline]
-pub(crate) const fn div_bits(a: i32, b: i32) -> i32 {
+pub(crate) fn div_bits(a: i32, b: i32) -> i32 {
+    let neg = (a < 0) != (b < 0);
+    let (ua, ub) = (a.unsigned_abs(), b.unsigned_abs());
+    if ua >> 15 >= ub {
+        return if ua == 0 {
+            0
+        } else if neg {
+            i32::MIN
+        } else {
+            i32::MAX
+        };
+    }
+    // 1 ≤ B ≤ 2³¹ and A < B·2¹⁵ from here on.
+    let s = kernels::i16f16::leading_zeros_32(ub);
+    let (u1, u0) = if s < 16 {
+        (ua >> (16 - s), ua << (16 + s))
+    } else {
+        (ua << (s - 16), 0)
+    };
+    let q = kernels::i16f16::div_norm_steps(u1, u0, ub << s).0;
+    let r = (ua << 16).wrapping_sub(q.wrapping_mul(ub));
+    let q = q + (r >= ub - r) as u32;
+    if neg {
+        // q ≤ 2³¹: 2³¹ reads as i32::MIN, whose negation wraps to itself.
+        (q as i32).wrapping_neg()
+    } else if q > i32::MAX as u32 {
+        i32::MAX
+    } else {
+        q as i32
+    }
+}
+
+/// [`div_bits`] by its definition in 64-bit arithmetic (the reference of
+/// the tests).
+#[cfg(test)]
+pub(crate) const fn div_bits_reference(a: i32, b: i32) -> i32 {
     if b == 0 {
         return if a > 0 {
             i32::MAX
@@ -334,6 +397,34 @@ impl Scalar for I16F16 {
     #[inline(always)]
     fn mul_coef(self, c: &super::Coef) -> Self {
         I16F16::from_bits(c.scale_i32(self.to_bits()))
+    }
+    #[inline(always)]
+    fn dot_coef<const N: usize>(x: &[Self; N], row: &super::CoefRow<N>) -> Self {
+        // x = xh·2¹⁶ + xl and M = h·2¹⁶ + l (|xh| ≤ 2¹⁵, |h| ≤ 2¹², xl, l <
+        // 2¹⁶): x·M = xh·h·2³² + (xh·l + xl·h)·2¹⁶ + xl·l, each partial
+        // product a 32-bit multiply. Over N ≤ 6 terms: |Σ xh·h| ≤ 1.5·2²⁹
+        // and |Σ xl·h| < 1.5·2³⁰ (i32), |Σ xh·l| < 6·2³¹ (i64),
+        // Σ xl·l < 6·2³² (u64); the total is below 2⁶³.
+        let mut hh = 0i32;
+        let mut hl = 0i64;
+        let mut lh = 0i32;
+        let mut ll = 0u64;
+        for (x, &(h, l)) in x.iter().zip(row.split().iter()) {
+            let b = x.to_bits();
+            let (xh, xl) = (b >> 16, b & 0xFFFF);
+            hh += xh * h;
+            hl += (xh * l) as i64;
+            lh += xl * h;
+            ll += (xl as u32 * l as u32) as u64;
+        }
+        let acc = ((hh as i64) << 32) + ((hl + lh as i64) << 16) + ll as i64;
+        let p = acc.unsigned_abs();
+        I16F16::from_bits(scaled_magnitude(
+            acc < 0,
+            (p >> 32) as u32,
+            p as u32,
+            row.fixed().1,
+        ))
     }
     type Residual = i32;
     #[inline(always)]
@@ -593,6 +684,116 @@ mod tests {
         fn wide_mul_split_is_exact(a in proptest::prelude::any::<u32>(), b in proptest::prelude::any::<u32>()) {
             let (hi, lo) = wide_mul_split(a, b);
             proptest::prop_assert_eq!((hi as u64) << 32 | lo as u64, a as u64 * b as u64);
+        }
+    }
+
+    /// Signed edge values of the `i32` bit range: 0, ±1, the extremes and
+    /// every power of two with its neighbours.
+    fn div_edges() -> Vec<i32> {
+        let mut v = vec![
+            0,
+            1,
+            -1,
+            2,
+            -2,
+            3,
+            -3,
+            i32::MIN,
+            i32::MIN + 1,
+            i32::MAX,
+            i32::MAX - 1,
+        ];
+        for k in 1..31 {
+            let p = 1i32 << k;
+            v.extend([p - 1, p, p + 1, -(p - 1), -p, -(p + 1)]);
+        }
+        v.sort_unstable();
+        v.dedup();
+        v
+    }
+
+    /// Every pair of edge values, and every operand next to the
+    /// saturation boundary `|a| = |b|·2¹⁵` (the quotient `2³¹`).
+    #[test]
+    fn div_bits_equals_the_64_bit_formula_on_edges() {
+        let e = div_edges();
+        for &a in &e {
+            for &b in &e {
+                assert_eq!(div_bits(a, b), div_bits_reference(a, b), "{a} / {b}");
+            }
+        }
+        for b in (1i32..1 << 16)
+            .step_by(7)
+            .chain([1, 2, 3, (1 << 16) - 1, 1 << 16])
+        {
+            let edge = (b as i64) << 15;
+            for a in [edge - 2, edge - 1, edge, edge + 1] {
+                if a <= i32::MAX as i64 {
+                    let a = a as i32;
+                    for (x, y) in [(a, b), (-a, b), (a, -b), (-a, -b)] {
+                        assert_eq!(div_bits(x, y), div_bits_reference(x, y), "{x} / {y}");
+                    }
+                }
+            }
+        }
+    }
+
+    /// Every numerator in `[−2¹², 2¹²]` over every divisor in `[−2⁹, 2⁹]`
+    /// and the edge divisors.
+    #[test]
+    fn div_bits_equals_the_64_bit_formula_on_small_operands() {
+        let divisors: Vec<i32> = (-512..=512).chain(div_edges()).collect();
+        for a in -4096..=4096 {
+            for &b in &divisors {
+                assert_eq!(div_bits(a, b), div_bits_reference(a, b), "{a} / {b}");
+            }
+        }
+    }
+
+    /// The rounding ties `|a|·2¹⁶/|b| = q + ½` (`|b| = c·2¹⁷`,
+    /// `|a| = c·(2q + 1)`) round away from zero, as the reference does;
+    /// their neighbours round to the nearer quotient.
+    #[test]
+    fn div_bits_rounds_ties_away_from_zero() {
+        assert_eq!(div_bits(1, 1 << 17), 1); // ½ LSB
+        assert_eq!(div_bits(-1, 1 << 17), -1);
+        assert_eq!(div_bits(3, 1 << 17), 2); // 1½ LSB
+        assert_eq!(div_bits(3, -(1 << 17)), -2);
+        assert_eq!(div_bits(1, (1 << 17) + 1), 0); // just under ½ LSB
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(100_000))]
+        /// Any operands; divisors drawn over every magnitude (a random
+        /// word shifted right by a random amount).
+        #[test]
+        fn div_bits_equals_the_64_bit_formula(
+            a in proptest::prelude::any::<i32>(), b in proptest::prelude::any::<i32>(),
+            sa in 0u32..32, sb in 0u32..32,
+        ) {
+            for (x, y) in [(a, b), (a >> sa, b >> sb), (a >> sa, b), (a, b >> sb)] {
+                proptest::prop_assert_eq!(div_bits(x, y), div_bits_reference(x, y), "{} / {}", x, y);
+            }
+        }
+
+        /// Ties and their neighbours at every scale: `|b| = c·2ʲ`,
+        /// `|a| = c·(2q + 1)·2^(j−17)` (`j ≥ 17`) is a tie, `a ± 1` are not.
+        #[test]
+        fn div_bits_equals_the_64_bit_formula_at_ties(
+            c in 0i64..(1 << 14), j in 17u32..32, q in 0i64..(1 << 31), neg_a: bool, neg_b: bool,
+        ) {
+            // c·2ʲ ≤ 2³¹ and c·(2q + 1)·2^(j−17) ≤ 2³¹.
+            let c = 1 + c % (1 << (31 - j));
+            let q = q % ((((1i64 << (48 - j)) / c - 1) / 2) + 1);
+            let (a, b) = ((c * (2 * q + 1)) << (j - 17), c << j);
+            for a in [a - 1, a, a + 1] {
+                let x = if neg_a { -a } else { a };
+                let y = if neg_b { -b } else { b };
+                if (i32::MIN as i64..=i32::MAX as i64).contains(&x) && (i32::MIN as i64..=i32::MAX as i64).contains(&y) {
+                    let (x, y) = (x as i32, y as i32);
+                    proptest::prop_assert_eq!(div_bits(x, y), div_bits_reference(x, y), "{} / {}", x, y);
+                }
+            }
         }
     }
 

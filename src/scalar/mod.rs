@@ -79,6 +79,22 @@ pub trait Scalar:
     /// `self · c` for a prepared constant `c`; in fixed point with the
     /// coefficient's full 31-bit precision, rounded to nearest, saturating.
     fn mul_coef(self, c: &Coef) -> Self;
+    /// `Σⱼ xⱼ·cⱼ` for a prepared row of constants ([`CoefRow`]).
+    ///
+    /// * floats: `mul_coef` of each term, summed in order;
+    /// * `I16F16`: the exact sum of the products with the row's common
+    ///   mantissas, rounded once (to nearest, ties up) and saturated:
+    ///   error `≤ ½ LSB + 2⁻²⁸·max|cⱼ|·Σ|xⱼ|` (the mantissas' rounding,
+    ///   [`CoefRow::new`]; `2⁻⁶³·Σ|xⱼ|` for a row below `2⁻³⁵`),
+    ///   instead of `½ LSB` per term.
+    #[inline]
+    fn dot_coef<const N: usize>(x: &[Self; N], row: &CoefRow<N>) -> Self {
+        let mut acc = Self::ZERO;
+        for (x, c) in x.iter().zip(row.coefs.iter()) {
+            acc = acc.add(x.mul_coef(c));
+        }
+        acc
+    }
 
     /// The part of a slowly integrated value below this backend's
     /// resolution, carried between samples by
@@ -542,6 +558,64 @@ impl SignedCoef {
             },
             rs: if high_only { shift - 32 } else { shift - 1 } as u32,
         })
+    }
+}
+
+/// A row of constants for [`Scalar::dot_coef`]: each as a [`Coef`] (the
+/// floats' products) and, for `I16F16`, as integer mantissas `Mⱼ` on one
+/// common shift `S`: `cⱼ ≈ Mⱼ·2^−S` with `S = 27 − ⌊log₂ max|cⱼ|⌋`
+/// (clamped to `[−62, 62]`), so `|Mⱼ| ≤ 2²⁸`, split once into
+/// `Mⱼ = hⱼ·2¹⁶ + lⱼ` (`|hⱼ| ≤ 2¹²`, `0 ≤ lⱼ < 2¹⁶`) for the 32-bit
+/// partial products of [`Scalar::dot_coef`]. The mantissas round each
+/// constant to `2^−(S+1)`, at most `2⁻²⁸·max|cⱼ|` (`2⁻⁶³` for a row below
+/// `2⁻³⁵`): a constant far below
+/// the largest of its row loses relative precision, and one below
+/// `2^−(S+1)` acts as 0. Rows above `2⁹⁰` are clamped (every non-zero
+/// product of such a constant saturates).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CoefRow<const N: usize> {
+    coefs: [Coef; N],
+    mant: [i32; N],
+    /// `(hⱼ, lⱼ)`: `Mⱼ >> 16` and `Mⱼ mod 2¹⁶`.
+    split: [(i32, i32); N],
+    shift: i32,
+}
+
+impl<const N: usize> CoefRow<N> {
+    /// Prepare a row (at most six constants: the sum's headroom). A zero
+    /// or non-finite value acts as 0, as in [`Coef::new`].
+    pub fn new(values: [f64; N]) -> Self {
+        const { assert!(N <= 6, "CoefRow holds at most six constants") };
+        let v = values.map(|c| if c.is_finite() { c } else { 0.0 });
+        let max = v.iter().fold(0.0f64, |m, c| m.max(c.abs()));
+        let shift = if max == 0.0 {
+            0
+        } else {
+            (27 - libm::floor(libm::log2(max)) as i32).clamp(-62, 62)
+        };
+        let lim = (1u32 << 28) as f64;
+        let mant = v.map(|c| libm::round(c * libm::exp2(shift as f64)).clamp(-lim, lim) as i32);
+        CoefRow {
+            coefs: values.map(Coef::new),
+            mant,
+            split: mant.map(|m| (m >> 16, m & 0xFFFF)),
+            shift,
+        }
+    }
+
+    /// The constants as given to [`new`](Self::new).
+    pub fn values(&self) -> [f64; N] {
+        self.coefs.map(|c| c.value())
+    }
+
+    /// The `I16F16` form: the mantissas and the common shift.
+    pub(crate) fn fixed(&self) -> (&[i32; N], i32) {
+        (&self.mant, self.shift)
+    }
+
+    /// The mantissas split into `(Mⱼ >> 16, Mⱼ mod 2¹⁶)`.
+    pub(crate) fn split(&self) -> &[(i32, i32); N] {
+        &self.split
     }
 }
 
@@ -1129,6 +1203,79 @@ mod tests {
             let bound = 0.5 / 65536.0 + exact.abs() * 2f64.powi(-30);
             proptest::prop_assert!((got - exact).abs() <= bound, "{got} vs {exact}");
         }
+    }
+
+    proptest::proptest! {
+        /// `dot_coef` on `I16F16` is the exact sum of the products with the
+        /// row's mantissas, rounded once (ties up) and saturated, and
+        /// within its stated bound of the exact sum with the given
+        /// constants; on floats it is the sum of `mul_coef` products.
+        #[test]
+        fn dot_coef_is_the_once_rounded_sum(
+            mant in proptest::collection::vec(-2.0f64..2.0, 6),
+            exps in proptest::collection::vec(-40i32..30, 6),
+            bits in proptest::collection::vec(proptest::prelude::any::<i32>(), 6),
+            narrow in 0u32..28,
+        ) {
+            let c: [f64; 6] = core::array::from_fn(|j| mant[j] * 2f64.powi(exps[j]));
+            let x: [I16F16; 6] = core::array::from_fn(|j| I16F16::from_bits(bits[j] >> narrow));
+            let row = CoefRow::new(c);
+            let (m, s) = row.fixed();
+            proptest::prop_assert!(m.iter().all(|m| m.unsigned_abs() <= 1 << 28));
+            let sum: i128 = (0..6).map(|j| x[j].to_bits() as i128 * m[j] as i128).sum();
+            let want = if s > 0 { (sum + (1i128 << (s - 1))) >> s } else { sum << -s };
+            let want = want.clamp(i32::MIN as i128, i32::MAX as i128) as i32;
+            let got = I16F16::dot_coef(&x, &row);
+            proptest::prop_assert_eq!(got.to_bits(), want);
+            // Against the exact sum with the given constants (bits).
+            let exact: f64 = (0..6).map(|j| x[j].to_bits() as f64 * c[j]).sum();
+            let max = c.iter().fold(0.0f64, |a, c| a.max(c.abs()));
+            let sx: f64 = x.iter().map(|x| (x.to_bits() as f64).abs()).sum();
+            if exact.abs() < 2e9 {
+                let bound = 0.5 + 2f64.powi(-28) * max * sx + 1e-9 * exact.abs();
+                proptest::prop_assert!((got.to_bits() as f64 - exact).abs() <= bound, "{} vs {}", got.to_bits(), exact);
+            }
+            // Floats: the default, term by term.
+            let xf: [f64; 6] = core::array::from_fn(|j| x[j].to_f64());
+            let mut acc = 0.0f64;
+            for j in 0..6 {
+                acc += xf[j].mul_coef(&Coef::new(c[j]));
+            }
+            proptest::prop_assert_eq!(f64::dot_coef(&xf, &row), acc);
+        }
+    }
+
+    /// Rows of zeros, of non-finite values (read as 0), of one huge and of
+    /// tiny constants keep the `I16F16` sum exact or saturated.
+    #[test]
+    fn dot_coef_edge_rows() {
+        let one = I16F16::ONE;
+        let x = [
+            one,
+            one.neg(),
+            I16F16::MAX,
+            I16F16::MIN,
+            I16F16::ZERO,
+            I16F16::DELTA,
+        ];
+        assert_eq!(I16F16::dot_coef(&x, &CoefRow::new([0.0; 6])), I16F16::ZERO);
+        let nan = CoefRow::new([f64::NAN, f64::INFINITY, 0.0, 0.0, 0.0, 1.0]);
+        assert_eq!(I16F16::dot_coef(&x, &nan), I16F16::DELTA);
+        // 1·3 − 1·3 + 0·1e12 = 0 (beside 1e12 the 3s quantize to 0; the
+        // rounding bound, 2⁻²⁸·1e12 per unit of x, allows it).
+        let big = CoefRow::new([3.0, 3.0, 0.0, 0.0, 1e12, 0.0]);
+        assert_eq!(I16F16::dot_coef(&x, &big), I16F16::ZERO);
+        let sat = CoefRow::new([1e12, 0.0, 0.0, 0.0, 0.0, 0.0]);
+        assert_eq!(I16F16::dot_coef(&x, &sat), I16F16::MAX);
+        assert_eq!(I16F16::dot_coef(&[one.neg(); 6], &sat), I16F16::MIN);
+        // MAX·2 + MIN·2 = −2 LSB·… exactly: (2³¹ − 1)·2 − 2³¹·2 = −2 bits.
+        let two = CoefRow::new([0.0, 0.0, 2.0, 2.0, 0.0, 0.0]);
+        assert_eq!(I16F16::dot_coef(&x, &two).to_bits(), -2);
+        // A constant far below the resolution: ½·2⁻¹⁶ rounds up (ties up).
+        let half = CoefRow::new([0.0, 0.0, 0.0, 0.0, 0.0, 0.5]);
+        assert_eq!(I16F16::dot_coef(&x, &half).to_bits(), 1);
+        let tiny = CoefRow::new([1e-25; 6]);
+        assert_eq!(I16F16::dot_coef(&x, &tiny), I16F16::ZERO);
     }
 
     /// `round(x·c·2^extra)` in exact (`i128`) arithmetic, saturated.

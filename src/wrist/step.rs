@@ -134,7 +134,7 @@ use super::modes::{
 use crate::control::ActiveOutput;
 use crate::error::ParamError;
 use crate::scalar::units::{dequantize, quantize_keep_non_finite};
-use crate::scalar::{Coef, Scalar};
+use crate::scalar::{Coef, CoefRow, Scalar};
 
 /// The settings of a wrist by name, for [`WristStepParams::try_new`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -242,8 +242,10 @@ pub struct WristStepConfig<S> {
     initial_mode: WristMode,
     /// The three rows of eq. (6.35) that eq. (6.3) needs, combined once:
     /// `M₃ − l M₁` (moment `m_x` about the wrist centre), `M₄ + l M₀`
-    /// (`m_y`) and `M₅` (`τ_z`), in stored link-torque units per volt.
-    rows: [[Coef; 6]; 3],
+    /// (`m_y`) and `M₅` (`τ_z`), in stored link-torque units per volt;
+    /// on `I16F16` each row's six products are summed exactly and rounded
+    /// once ([`Scalar::dot_coef`]).
+    rows: [CoefRow<6>; 3],
     cos_phi: S,
     sin_2phi: S,
     cos_2phi: S,
@@ -509,12 +511,13 @@ impl<S: Scalar> WristStepConfig<S> {
         let phi = s.kinematics.phi();
         let m = s.sensor.decoupling().matrix();
         let l = s.sensor.offset();
-        let mut rows = [[Coef::new(0.0); 6]; 3];
+        let mut rows = [[0.0; 6]; 3];
         for j in 0..6 {
-            rows[0][j] = Coef::new((m[3][j] - l * m[1][j]) * u.link_torque);
-            rows[1][j] = Coef::new((m[4][j] + l * m[0][j]) * u.link_torque);
-            rows[2][j] = Coef::new(m[5][j] * u.link_torque);
+            rows[0][j] = (m[3][j] - l * m[1][j]) * u.link_torque;
+            rows[1][j] = (m[4][j] + l * m[0][j]) * u.link_torque;
+            rows[2][j] = m[5][j] * u.link_torque;
         }
+        let rows = rows.map(CoefRow::new);
         let sin_phi = libm::sin(phi);
         WristStepConfig {
             kinematics: WristConfig::new(&s.kinematics),
@@ -590,14 +593,11 @@ impl<S: Scalar> WristStepConfig<S> {
     /// `None` when an input or the result is NaN or infinite.
     #[inline]
     fn interaction(&self, gauges: &[S; 6], (s, c): (S, S)) -> Option<[S; 2]> {
-        let mut m = [S::ZERO; 3];
-        for (mi, row) in m.iter_mut().zip(self.rows.iter()) {
-            let mut acc = S::ZERO;
-            for (g, k) in gauges.iter().zip(row.iter()) {
-                acc = acc.add(g.mul_coef(k));
-            }
-            *mi = acc;
-        }
+        let m = [
+            S::dot_coef(gauges, &self.rows[0]),
+            S::dot_coef(gauges, &self.rows[1]),
+            S::dot_coef(gauges, &self.rows[2]),
+        ];
         let tau = [c.mul(m[0]).sub(s.mul(m[2])), m[1].neg()];
         // `v − v` is 0 for a finite value and NaN for NaN and ±∞.
         let d = |v: S| v.sub(v);

@@ -257,7 +257,7 @@ fn div_frac_wide_steps(n: u32, d: u32, k: u32) -> (u32, u32) {
 /// steps 2–5 of [`div_frac_wide`], whose proof covers every such
 /// `(u₁, u₀, D)`.
 #[inline(always)]
-fn div_norm_steps(u1: u32, u0: u32, dn: u32) -> (u32, u32) {
+pub(crate) fn div_norm_steps(u1: u32, u0: u32, dn: u32) -> (u32, u32) {
     // x₀ = 2³² + seed·2¹⁶; e = (2⁶⁴ − x₀·D)/2³² rounded down, |e| ≤ 2²³ + 1:
     // x₀·D/2³² = D + seed·D/2¹⁶ < D + seed·⌊D/2¹⁶⌋ + ⌊seed·(D mod 2¹⁶)/2¹⁶⌋ + 1.
     let seed = RECIP_SEED[((dn >> 23) & 0xFF) as usize] as u32;
@@ -311,8 +311,52 @@ fn div_ratio_steps(n: u32, d: u32) -> (u32, u32) {
 
 /// `(⌊√(n·2¹⁶)⌋, n·2¹⁶ − root²)`: digit-by-digit square root of a 48-bit
 /// operand in 32-bit registers (`root < 2²⁴`, remainder `≤ 2·root < 2²⁵`).
+///
+/// Two phases with one compare and one conditional move or subtraction
+/// per root bit (the branch is taken or not; Armv6-M has no conditional
+/// select, so a branch-free mask costs more on the longest path):
+///
+/// 1. the 16 bits of `⌊√n⌋` from the 32-bit `n`, highest first: a bit is
+///    kept when the square of the root with it is at most `n` (a 32-bit
+///    `MULS`); then the remainder `n − root²`;
+/// 2. eight more root bits of `n·2¹⁶`, whose eight low digit pairs are 0:
+///    the remainder shifts in two zero bits per step.
+///
+/// The same root and remainder as the plain 24-step recurrence
+/// [`sqrt_q16_digit_by_digit`] (the root and remainder of `⌊n·2¹⁶/4ᵏ⌋`
+/// after each step are unique); `sqrt_q16_equals_the_digit_by_digit_form`
+/// compares them.
 #[inline]
 pub(crate) fn sqrt_q16(n: u32) -> (u32, u32) {
+    let mut root = 0u32;
+    let mut i = 0u32;
+    while i < 16 {
+        // The next bit of ⌊√n⌋ is set when the square stays ≤ n
+        // (t < 2¹⁶, so t² < 2³²).
+        let t = root | (1 << (15 - i));
+        if t * t <= n {
+            root = t;
+        }
+        i += 1;
+    }
+    let mut rem = n - root * root;
+    while i < 24 {
+        rem <<= 2;
+        let trial = (root << 2) | 1;
+        root <<= 1;
+        if rem >= trial {
+            rem -= trial;
+            root |= 1;
+        }
+        i += 1;
+    }
+    (root, rem)
+}
+
+/// [`sqrt_q16`] as the plain 24-step digit-by-digit recurrence (two bits of
+/// `n·2¹⁶` per step): the reference of its tests.
+#[cfg(test)]
+fn sqrt_q16_digit_by_digit(n: u32) -> (u32, u32) {
     let mut root = 0u32;
     let mut rem = 0u32;
     let mut i = 0u32;
@@ -677,7 +721,7 @@ fn leading_zeros_16(h: u32) -> u32 {
 /// or the low half (one more comparison). Checked against the library
 /// count by `leading_zeros_32_is_exact`.
 #[inline(always)]
-fn leading_zeros_32(d: u32) -> u32 {
+pub(crate) fn leading_zeros_32(d: u32) -> u32 {
     if d >= 1 << 16 {
         leading_zeros_16(d >> 16) - 16
     } else {
@@ -834,9 +878,10 @@ pub fn acos(x: I16F16) -> I16F16 {
 /// * Proven bound: **≤ 0.5 LSB** — correctly rounded (to nearest) at all
 ///   2³² inputs, measured max 0.500000 LSB, and monotone
 ///   (`exhaustive_sqrt_i16f16`).
-/// * Algorithm: digit-by-digit integer root of `bits·2¹⁶` (24 steps of
-///   shift/compare/subtract, `sqrt_q16`); round up iff remainder `> root`.
-///   No multiply, no division.
+/// * Algorithm: digit-by-digit integer root of `bits·2¹⁶` (`sqrt_q16`:
+///   16 root bits by squaring trial roots in 32-bit `MULS`, 8 by
+///   shift/compare/subtract); round up iff remainder `> root`. No
+///   division.
 pub fn sqrt(x: I16F16) -> I16F16 {
     let bits = x.to_bits();
     if bits <= 0 {
@@ -966,6 +1011,42 @@ mod tests {
             }
         }
         assert_eq!(seen, [true, true]);
+    }
+
+    /// [`sqrt_q16`] equals the 24-step recurrence and the exact 64-bit
+    /// definition: every `n` below 2²⁰, every power of two with its
+    /// neighbours, perfect squares and their neighbours, and a stride over
+    /// the whole range.
+    #[test]
+    fn sqrt_q16_equals_the_digit_by_digit_form() {
+        let check = |n: u32| {
+            let (root, rem) = sqrt_q16(n);
+            assert_eq!((root, rem), sqrt_q16_digit_by_digit(n), "n = {n}");
+            let v = (n as u64) << 16;
+            let r = root as u64;
+            assert!(r * r + rem as u64 == v && v < (r + 1) * (r + 1), "n = {n}");
+        };
+        for n in 0..1u32 << 20 {
+            check(n);
+        }
+        for i in 0..32 {
+            let p = 1u32 << i;
+            for n in [p - 1, p, p + 1, u32::MAX >> (31 - i)] {
+                check(n);
+            }
+        }
+        for r in (0u32..1 << 16).step_by(13).chain([(1 << 16) - 1]) {
+            let sq = r * r;
+            for n in [sq.wrapping_sub(1), sq, sq + 1] {
+                check(n);
+            }
+        }
+        let mut n = 0u32;
+        while let Some(m) = n.checked_add(4093) {
+            check(m);
+            n = m;
+        }
+        check(u32::MAX);
     }
 
     /// Every divisor below 2²⁰ and every power of two with its neighbours.
