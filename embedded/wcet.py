@@ -52,13 +52,7 @@ from elftools.elf.elffile import ELFFile
 # header per entry into the loop, and why. `count.py` records, for every
 # vector it runs, the back-edge traversals per loop entry in the emulator and
 # fails if one exceeds its bound here.
-_ADAPT = (3, "the adaptation of the four friction parameters, `for j in 0..4` in "
-              "RobustAdaptiveConfig::commit_valid (src/control/adaptive.rs): four passes, three jumps back")
 LOOP_BOUNDS = {
-    ("ModeConfig", "6update"): _ADAPT,
-    ("RobustAdaptiveConfig", "6update"): _ADAPT,
-    "active_i16f16": _ADAPT,
-    "active_f32": _ADAPT,
     ("WristStepConfig", "6update"): (5, "the wrist step (src/wrist/step.rs) when not inlined: the six gauge "
                                          "products of each sensing row and the gauge probe (six passes, five "
                                          "jumps back), the two axes, and the laws' four friction parameters "
