@@ -45,12 +45,55 @@ pub(crate) fn mul_bits(a: i32, b: i32) -> i32 {
     }
 }
 
-/// [`mul_bits`] for any operands: [`signed_wide_mul`], then
-/// [`round_shift_sat`] by 16.
+/// [`mul_bits`] for any operands. On Armv6-M [`mul_bits_long_split`];
+/// elsewhere [`signed_wide_mul`], then [`round_shift_sat`] by 16.
 #[inline(always)]
 fn mul_bits_long(a: i32, b: i32) -> i32 {
-    let (hi, lo) = signed_wide_mul(a, b);
-    round_shift_sat(hi, lo, 1 << 15, 15)
+    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    {
+        mul_bits_long_split(a, b)
+    }
+    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    {
+        let (hi, lo) = signed_wide_mul(a, b);
+        round_shift_sat(hi, lo, 1 << 15, 15)
+    }
+}
+
+/// [`mul_bits`] for any operands, formed directly at the Q16.16 scale
+/// (the Armv6-M path; built on every target so the host tests check it).
+/// With `a = a_h·2¹⁶ + a_l`, `b = b_h·2¹⁶ + b_l` (`a_h = a >> 16`
+/// arithmetic, `a_l ∈ [0, 2¹⁶)`):
+///
+/// ```text
+/// ⌊(a·b + 2¹⁵)/2¹⁶⌋ = a_h b_h·2¹⁶ + a_h b_l + a_l b_h + ⌊(a_l b_l + 2¹⁵)/2¹⁶⌋
+/// ```
+///
+/// exactly, because every other term is a multiple of 2¹⁶. Each partial
+/// product is exact in 32 bits (`|a_h b_h| ≤ 2³⁰`, the middle ones in
+/// `(−2³¹, 2³¹)`, `a_l b_l + 2¹⁵ < 2³²`). Splitting each middle product
+/// `m = m_h·2¹⁶ + m_l` the same way, the sum is `t·2¹⁶ + f` with
+/// `t = a_h b_h + m1_h + m2_h + ⌊s/2¹⁶⌋`, `s = m1_l + m2_l + ⌊(a_l b_l +
+/// 2¹⁵)/2¹⁶⌋ < 3·2¹⁶` and `f = s mod 2¹⁶`; `|t| < 2³¹`, and the result
+/// fits `i32` exactly when `t ∈ [−2¹⁵, 2¹⁵)`, else it saturates with the
+/// sign of `t`. All in 32-bit words: four multiplies, no 64-bit addition
+/// or shift.
+#[inline(always)]
+#[cfg_attr(
+    not(any(test, all(target_arch = "arm", not(target_has_atomic = "32")))),
+    allow(dead_code)
+)]
+pub(crate) fn mul_bits_long_split(a: i32, b: i32) -> i32 {
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    let (m1, m2) = (ah * bl, al * bh);
+    let low = ((al as u32) * (bl as u32) + (1 << 15)) >> 16;
+    let s = (m1 & 0xFFFF) as u32 + (m2 & 0xFFFF) as u32 + low;
+    let t = ah * bh + (m1 >> 16) + (m2 >> 16) + (s >> 16) as i32;
+    if (t + (1 << 15)) as u32 >= 1 << 16 {
+        return if t < 0 { i32::MIN } else { i32::MAX };
+    }
+    (t << 16) | (s & 0xFFFF) as i32
 }
 
 /// The signed 64-bit product `V = a·b` as `(high word, low word)`, in
@@ -653,6 +696,22 @@ mod tests {
         }
     }
 
+    /// The Q16.16-scale form is the rounded, saturated 64-bit formula on
+    /// every pair of edge words.
+    #[test]
+    fn mul_bits_long_split_equals_the_64_bit_formula_on_edges() {
+        let w = edge_words();
+        for &a in &w {
+            for &b in &w {
+                assert_eq!(
+                    mul_bits_long_split(a, b),
+                    mul_bits_reference(a, b),
+                    "{a} * {b}"
+                );
+            }
+        }
+    }
+
     /// The signed four-partial-product form is the exact signed product on
     /// every pair of edge words.
     #[test]
@@ -673,6 +732,11 @@ mod tests {
     proptest::proptest! {
         #![proptest_config(proptest::prelude::ProptestConfig::with_cases(50_000))]
         /// The signed four-partial-product form is exact.
+        #[test]
+        fn mul_bits_long_split_equals_the_64_bit_formula(a in proptest::prelude::any::<i32>(), b in proptest::prelude::any::<i32>()) {
+            proptest::prop_assert_eq!(mul_bits_long_split(a, b), mul_bits_reference(a, b));
+        }
+
         #[test]
         fn signed_wide_mul_split_is_exact(a in proptest::prelude::any::<i32>(), b in proptest::prelude::any::<i32>()) {
             let (hi, lo) = signed_wide_mul_split(a, b);
