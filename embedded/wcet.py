@@ -347,6 +347,16 @@ class Program:
             next_it = ins.it if ins.it else max(0, it_left - 1)
             seen_it[a] = it_left
             k = ins.kind
+            # Whether a return or branch in an IT block is conditional comes
+            # from the block structure found here, not from the decoder: each
+            # instruction is decoded on its own, so capstone's IT state may be
+            # stale. A return (`bx lr`, `pop {.., pc}`) is conditional exactly
+            # in an IT slot (it may also fall through); an unconditional `b`
+            # in an IT slot is conditional too.
+            if k in ("ret", "cret"):
+                k = "cret" if ins.in_it else "ret"
+            elif k == "jump" and ins.in_it:
+                k = "cjump"
             out = []
             if k == "seq":
                 out = [(nxt, False)]
