@@ -90,7 +90,7 @@ use crate::estimation::torque::{
 use crate::harmonic_drive::identification::CatalogueData;
 use crate::harmonic_drive::kinematic_error::KinematicErrorModel;
 use crate::scalar::units::{dequantize, quantize_keep_non_finite};
-use crate::scalar::{Coef, IntFactor, Scalar};
+use crate::scalar::{Coef, CountCoef, IntFactor, Scalar};
 use core::f64::consts::TAU;
 
 /// Longest speed window, ticks.
@@ -217,8 +217,9 @@ pub struct JointConfig<S> {
     ratio: IntFactor,
     /// `2π/M` in stored angle units per count.
     angle_per_count: Coef,
-    /// `2π/(M w T)` in stored speed units per count.
-    speed_per_count: Coef,
+    /// `2π/(M w T)` in stored speed units per count (the count difference
+    /// over the window fits `i32`: the 32-bit count product).
+    speed_per_count: CountCoef,
     speed_window: u8,
     link_counts: u32,
     /// `M·N`, motor counts per output revolution.
@@ -428,7 +429,7 @@ impl<S: Scalar> JointConfig<S> {
             mode: ModeConfig::new(&s.mode),
             ratio: IntFactor::new(p.ratio()),
             angle_per_count: Coef::new(p.motor_rad_per_count() * u.angle),
-            speed_per_count: Coef::new(p.speed_resolution() * u.speed),
+            speed_per_count: CountCoef::new(p.speed_resolution() * u.speed),
             speed_window: s.speed_window,
             link_counts: s.estimator.link_counts_per_rev(),
             motor_counts_per_output_rev: m as i64 * p.ratio() as i64,
@@ -521,7 +522,7 @@ impl<S: Scalar> JointConfig<S> {
         JointMeasurement {
             joint_torque: estimate.torque.neg(),
             motor_position: S::from_counts(st.motor_count, &self.angle_per_count),
-            motor_velocity: S::from_counts(moved as i64, &self.speed_per_count),
+            motor_velocity: S::from_counts_i32(moved, &self.speed_per_count),
             estimate,
         }
     }

@@ -332,6 +332,14 @@ impl Scalar for I16F16 {
         I16F16::from_bits(scale.scale_int(counts, 16))
     }
     #[inline(always)]
+    fn from_counts_i32(counts: i32, scale: &super::CountCoef) -> Self {
+        // `scale_i32(x)` equals `scale_int(x, 0)` for every coefficient
+        // and `i32`, and the factor moved up 16 bits with the same
+        // mantissa makes that `scale_int(x, 16)` of the factor: the value
+        // of `from_counts`.
+        I16F16::from_bits(scale.bits().scale_i32(counts))
+    }
+    #[inline(always)]
     fn mul_coef(self, c: &super::Coef) -> Self {
         I16F16::from_bits(c.scale_i32(self.to_bits()))
     }
