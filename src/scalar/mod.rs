@@ -1197,6 +1197,8 @@ mod tests {
 
     #[test]
     fn from_counts_i32_equals_the_count_product_at_the_edges() {
+        // Small counts, the 16-bit edge, the `i32` ends and counts whose
+        // `f32` conversion rounds (halfway cases of the 24-bit mantissa).
         let counts = [
             0,
             1,
@@ -1209,6 +1211,11 @@ mod tests {
             i32::MAX,
             i32::MIN,
             i32::MIN + 1,
+            (1 << 24) + 1,
+            (1 << 25) + 2,
+            (1 << 25) + 6,
+            -(1 << 25) - 2,
+            (1 << 30) + (1 << 6) + 1,
         ];
         // Zero, a mantissa rounded up to 2³¹ (just below a power of two),
         // the range ends of `Coef::new`, factors whose `2¹⁶` multiple
