@@ -85,6 +85,16 @@ pub trait Scalar:
     fn from_counts_i32(counts: i32, scale: &CountCoef) -> Self {
         Self::from_counts(counts as i64, &scale.coef)
     }
+    /// [`from_counts`](Self::from_counts) by a factor prepared as a
+    /// [`CountCoef`]: the same value, bit for bit. `I16F16` takes the
+    /// product of [`from_counts_i32`](Self::from_counts_i32) for every count
+    /// below `2³¹` (`from_counts` clamps the ones below `−2³¹` to `−2³¹`)
+    /// and the prepared value of `2³¹` counts, where `from_counts` clamps
+    /// the larger ones, above.
+    #[inline]
+    fn from_counts_prepared(counts: i64, scale: &CountCoef) -> Self {
+        Self::from_counts(counts, &scale.coef)
+    }
     /// `self · c` for a prepared constant `c`; in fixed point with the
     /// coefficient's full 31-bit precision, rounded to nearest, saturating.
     fn mul_coef(self, c: &Coef) -> Self;
@@ -507,6 +517,8 @@ pub struct Coef {
 pub struct CountCoef {
     coef: Coef,
     bits: Coef,
+    /// `scale_int(2³¹, 16)` of `coef`: the `I16F16` bits of `2³¹` counts.
+    top: i32,
 }
 
 impl CountCoef {
@@ -516,6 +528,7 @@ impl CountCoef {
         CountCoef {
             coef,
             bits: coef.times_pow2(16),
+            top: coef.scale_int(1 << 31, 16),
         }
     }
 
@@ -528,6 +541,11 @@ impl CountCoef {
     /// is `scale_int(count, 16)` by [`coef`](Self::coef).
     pub(crate) fn bits(&self) -> &Coef {
         &self.bits
+    }
+
+    /// The `I16F16` bits of `2³¹` counts.
+    pub(crate) fn top(&self) -> i32 {
+        self.top
     }
 }
 
@@ -1243,6 +1261,78 @@ mod tests {
             for f in factors {
                 check_from_counts_i32(c, f);
             }
+        }
+    }
+
+    /// `from_counts_prepared` against `from_counts` (itself tested against
+    /// the 64-bit count formula) on every backend.
+    fn check_from_counts_prepared(counts: i64, factor: f64) {
+        let cc = CountCoef::new(factor);
+        assert_eq!(
+            I16F16::from_counts_prepared(counts, &cc),
+            I16F16::from_counts(counts, cc.coef()),
+            "{counts} × {factor}"
+        );
+        assert_eq!(
+            I16F16::from_counts_prepared(counts, &cc).to_bits(),
+            cc.coef().scale_int_reference(counts, 16)
+        );
+        assert_eq!(
+            f32::from_counts_prepared(counts, &cc).to_bits(),
+            f32::from_counts(counts, cc.coef()).to_bits()
+        );
+        assert_eq!(
+            f64::from_counts_prepared(counts, &cc).to_bits(),
+            f64::from_counts(counts, cc.coef()).to_bits()
+        );
+    }
+
+    #[test]
+    fn from_counts_prepared_equals_the_count_product_at_the_edges() {
+        let t = 1i64 << 31;
+        let counts = [
+            0,
+            1,
+            -1,
+            t - 1,
+            t,
+            t + 1,
+            -t,
+            -t - 1,
+            -t + 1,
+            1 << 32,
+            -(1 << 32),
+            1 << 47,
+            i64::MAX,
+            i64::MIN,
+        ];
+        let factors = [
+            0.0,
+            1.0,
+            -1.0,
+            2.0 - 1e-12,
+            1e-18,
+            1e-13,
+            0.5 / 65536.0,
+            3e-6,
+            2f64.powi(14),
+            2f64.powi(40),
+            -7.25,
+        ];
+        for c in counts {
+            for f in factors {
+                check_from_counts_prepared(c, f);
+            }
+        }
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn from_counts_prepared_equals_the_count_product(
+            bits in proptest::prelude::any::<i64>(), sh in 0u32..40,
+            mant in 1.0f64..2.0, exp in -60i32..42, neg: bool,
+        ) {
+            check_from_counts_prepared(bits >> sh, if neg { -mant } else { mant } * 2f64.powi(exp));
         }
     }
 
