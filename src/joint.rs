@@ -90,7 +90,7 @@ use crate::estimation::torque::{
 use crate::harmonic_drive::identification::CatalogueData;
 use crate::harmonic_drive::kinematic_error::KinematicErrorModel;
 use crate::scalar::units::{dequantize, quantize_keep_non_finite};
-use crate::scalar::{Coef, CountCoef, IntFactor, Scalar};
+use crate::scalar::{CountCoef, IntFactor, Scalar};
 use core::f64::consts::TAU;
 
 /// Longest speed window, ticks.
