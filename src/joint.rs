@@ -90,7 +90,7 @@ use crate::estimation::torque::{
 use crate::harmonic_drive::identification::CatalogueData;
 use crate::harmonic_drive::kinematic_error::KinematicErrorModel;
 use crate::scalar::units::{dequantize, quantize_keep_non_finite};
-use crate::scalar::{Coef, IntFactor, Scalar};
+use crate::scalar::{CountCoef, IntFactor, Scalar};
 use core::f64::consts::TAU;
 
 /// Longest speed window, ticks.
@@ -216,9 +216,10 @@ pub struct JointConfig<S> {
     /// `N` (a validated integer), link → motor side.
     ratio: IntFactor,
     /// `2π/M` in stored angle units per count.
-    angle_per_count: Coef,
-    /// `2π/(M w T)` in stored speed units per count.
-    speed_per_count: Coef,
+    angle_per_count: CountCoef,
+    /// `2π/(M w T)` in stored speed units per count (the count difference
+    /// over the window fits `i32`: the 32-bit count product).
+    speed_per_count: CountCoef,
     speed_window: u8,
     link_counts: u32,
     /// `M·N`, motor counts per output revolution.
@@ -427,8 +428,8 @@ impl<S: Scalar> JointConfig<S> {
             estimator: TorqueEstimatorConfig::new(&s.estimator),
             mode: ModeConfig::new(&s.mode),
             ratio: IntFactor::new(p.ratio()),
-            angle_per_count: Coef::new(p.motor_rad_per_count() * u.angle),
-            speed_per_count: Coef::new(p.speed_resolution() * u.speed),
+            angle_per_count: CountCoef::new(p.motor_rad_per_count() * u.angle),
+            speed_per_count: CountCoef::new(p.speed_resolution() * u.speed),
             speed_window: s.speed_window,
             link_counts: s.estimator.link_counts_per_rev(),
             motor_counts_per_output_rev: m as i64 * p.ratio() as i64,
@@ -520,8 +521,8 @@ impl<S: Scalar> JointConfig<S> {
         let moved = counter.wrapping_sub(old) as i32;
         JointMeasurement {
             joint_torque: estimate.torque.neg(),
-            motor_position: S::from_counts(st.motor_count, &self.angle_per_count),
-            motor_velocity: S::from_counts(moved as i64, &self.speed_per_count),
+            motor_position: S::from_counts_prepared(st.motor_count, &self.angle_per_count),
+            motor_velocity: S::from_counts_i32(moved, &self.speed_per_count),
             estimate,
         }
     }

@@ -802,7 +802,11 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     /// Eq. (3.7) in phase form from the link count `c_l < L` and the motor
     /// count within the motor revolution `p < M` (stored torsion units; the
     /// error bound is in the module docs).
-    #[inline]
+    // Armv6-M: its own function (a fresh register allocation; inlined,
+    // the estimator spills many more prepared field offsets). Elsewhere
+    // inlined.
+    #[cfg_attr(all(target_arch = "arm", not(target_has_atomic = "32")), inline(never))]
+    #[cfg_attr(not(all(target_arch = "arm", not(target_has_atomic = "32"))), inline)]
     pub(crate) fn kinematic_error_from_counts(&self, c_l: u32, p: u32) -> S {
         match &self.kinematic_error_phase {
             Some(k) => {
@@ -833,7 +837,11 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     /// [`TorqueEstimate::invalid_input`]: a torsion beyond `±torsion_range`
     /// (or NaN) is clamped to it (NaN to 0), a non-finite motor torque is
     /// taken as 0, and either sets `invalid_input`.
-    #[inline]
+    // Armv6-M: its own function (a fresh register allocation; inlined,
+    // the estimator spills many more prepared field offsets). Elsewhere
+    // inlined.
+    #[cfg_attr(all(target_arch = "arm", not(target_has_atomic = "32")), inline(never))]
+    #[cfg_attr(not(all(target_arch = "arm", not(target_has_atomic = "32"))), inline)]
     fn finish(
         &self,
         torsion: S,

@@ -428,7 +428,10 @@ impl<S: Scalar> FlexsplineConfig<S> {
 
     /// Eq. (3.10) without the branch test, for a caller that has already
     /// bounded the torsion (see [`torsion_within`](Self::torsion_within)).
-    #[inline]
+    // Armv6-M: its own function (inlined into the estimator's finish step
+    // it adds spills there). Elsewhere inlined.
+    #[cfg_attr(all(target_arch = "arm", not(target_has_atomic = "32")), inline(never))]
+    #[cfg_attr(not(all(target_arch = "arm", not(target_has_atomic = "32"))), inline)]
     pub(crate) fn torque_in_branch(&self, torsion: S) -> S {
         self.torque_of_angle(torsion.mul_coef(&self.angle_per_torsion))
     }

@@ -1,7 +1,7 @@
 use super::*;
 use crate::control::{ModeOutput, RobustAdaptiveParams};
 use crate::estimation::collision::{CollisionParams, CollisionReaction, CollisionSettings};
-use crate::scalar::I16F16;
+use crate::scalar::{Coef, I16F16};
 
 /// The firmware's joint (the estimator and manager of
 /// `embedded/src/joint.rs`): Table 4.1 laws with passive gain 2000, a

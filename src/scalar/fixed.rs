@@ -438,6 +438,24 @@ impl Scalar for I16F16 {
         I16F16::from_bits(scale.scale_int(counts, 16))
     }
     #[inline(always)]
+    fn from_counts_i32(counts: i32, scale: &super::CountCoef) -> Self {
+        // `scale_i32(x)` equals `scale_int(x, 0)` for every coefficient
+        // and `i32`, and the factor moved up 16 bits with the same
+        // mantissa makes that `scale_int(x, 16)` of the factor: the value
+        // of `from_counts`.
+        I16F16::from_bits(scale.bits().scale_i32(counts))
+    }
+    #[inline(always)]
+    fn from_counts_prepared(counts: i64, scale: &super::CountCoef) -> Self {
+        // `from_counts` clamps the count to [−2³¹, 2³¹]: below 2³¹ the
+        // clamped count fits `i32`; above, the clamp's value is prepared.
+        if counts > i32::MAX as i64 {
+            I16F16::from_bits(scale.top())
+        } else {
+            Self::from_counts_i32(counts.max(i32::MIN as i64) as i32, scale)
+        }
+    }
+    #[inline(always)]
     fn mul_coef(self, c: &super::Coef) -> Self {
         I16F16::from_bits(c.scale_i32(self.to_bits()))
     }

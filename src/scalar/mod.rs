@@ -76,6 +76,25 @@ pub trait Scalar:
     /// reading keeps its full resolution even when one count is far below
     /// one LSB of the scaled unit. Rounded to nearest; saturates.
     fn from_counts(counts: i64, scale: &Coef) -> Self;
+    /// [`from_counts`](Self::from_counts) for a count that fits `i32` (a
+    /// difference of two wrapping counter readings) and a factor prepared
+    /// as a [`CountCoef`]: the same value, bit for bit. `I16F16` takes the
+    /// 32-bit product of [`mul_coef`](Self::mul_coef) by the factor moved
+    /// up 16 bits instead of the general 64-bit count product.
+    #[inline]
+    fn from_counts_i32(counts: i32, scale: &CountCoef) -> Self {
+        Self::from_counts(counts as i64, &scale.coef)
+    }
+    /// [`from_counts`](Self::from_counts) by a factor prepared as a
+    /// [`CountCoef`]: the same value, bit for bit. `I16F16` takes the
+    /// product of [`from_counts_i32`](Self::from_counts_i32) for every count
+    /// below `2³¹` (`from_counts` clamps the ones below `−2³¹` to `−2³¹`)
+    /// and the prepared value of `2³¹` counts, where `from_counts` clamps
+    /// the larger ones, above.
+    #[inline]
+    fn from_counts_prepared(counts: i64, scale: &CountCoef) -> Self {
+        Self::from_counts(counts, &scale.coef)
+    }
     /// `self · c` for a prepared constant `c`; in fixed point with the
     /// coefficient's full 31-bit precision, rounded to nearest, saturating.
     fn mul_coef(self, c: &Coef) -> Self;
@@ -506,6 +525,46 @@ pub struct Coef {
     units: [i32; 2],
 }
 
+/// A count-to-value factor for [`Scalar::from_counts_i32`]: the
+/// [`Coef`] of [`Scalar::from_counts`] and, for fixed point, the same
+/// mantissa 16 bits up (so a count read as `I16F16` bits times it is the
+/// count product).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CountCoef {
+    coef: Coef,
+    bits: Coef,
+    /// `scale_int(2³¹, 16)` of `coef`: the `I16F16` bits of `2³¹` counts.
+    top: i32,
+}
+
+impl CountCoef {
+    /// Prepare the factor `value` (as [`Coef::new`]).
+    pub fn new(value: f64) -> Self {
+        let coef = Coef::new(value);
+        CountCoef {
+            coef,
+            bits: coef.times_pow2(16),
+            top: coef.scale_int(1 << 31, 16),
+        }
+    }
+
+    /// The factor as a [`Coef`] (for [`Scalar::from_counts`]).
+    pub fn coef(&self) -> &Coef {
+        &self.coef
+    }
+
+    /// The factor times `2¹⁶`, same mantissa: `scale_i32` of a count by it
+    /// is `scale_int(count, 16)` by [`coef`](Self::coef).
+    pub(crate) fn bits(&self) -> &Coef {
+        &self.bits
+    }
+
+    /// The `I16F16` bits of `2³¹` counts.
+    pub(crate) fn top(&self) -> i32 {
+        self.top
+    }
+}
+
 /// `mult` as an `i32` with its rounding constant and shift amounts prepared
 /// for [`Coef::scale_i32`] (`sh` = `shift`).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -665,6 +724,13 @@ impl Coef {
         let shift = (30 - e).clamp(-10, 90);
         let mult = libm::round(value.abs() * libm::exp2(shift as f64)).min(2_147_483_648.0) as i64;
         let signed_mult = if value < 0.0 { -mult } else { mult };
+        Self::from_mantissa(value, signed_mult, shift)
+    }
+
+    /// The coefficient `signed_mult · 2^−shift` (fixed point) built from
+    /// `value` (floats), with its prepared products.
+    fn from_mantissa(value: f64, signed_mult: i64, shift: i32) -> Self {
+        let mult = signed_mult.abs();
         // ±mult·2^−shift saturated (used only when `shift ≤ 1`, where it
         // is an integer or 2³⁰).
         let unit = |s: i64| -> i32 {
@@ -686,6 +752,19 @@ impl Coef {
             signed: SignedCoef::new(signed_mult, shift),
             units: [unit(1), unit(-1)],
         }
+    }
+
+    /// `self · 2^k` with the same mantissa (the fixed-point exponent
+    /// moved by `k`, the float value scaled by `2^k`): the fixed-point
+    /// products of the result are those of `self` with `k` more bits of
+    /// scale, exactly (`scale_int(x, e + k)` of `self` equals
+    /// `scale_int(x, e)` of the result), which [`Coef::new`] of the scaled
+    /// value does not promise (its exponent comes from a rounded `log2`).
+    pub(crate) fn times_pow2(&self, k: i32) -> Coef {
+        if self.mult == 0 {
+            return *self;
+        }
+        Self::from_mantissa(self.value * libm::exp2(k as f64), self.mult, self.shift - k)
     }
 
     /// The value this coefficient was built from.
@@ -1186,6 +1265,158 @@ mod tests {
             let got = I16F16::from_counts(counts, &sc).to_f64();
             let bound = 0.5 / 65536.0 + exact.abs() * 2f64.powi(-30);
             proptest::prop_assert!((got - exact).abs() <= bound, "{got} vs {exact}");
+        }
+    }
+
+    /// `from_counts_i32` against the 64-bit count formula
+    /// (`scale_int_reference` with 16 extra bits) of the unshifted factor,
+    /// and against `from_counts`, on every backend.
+    fn check_from_counts_i32(counts: i32, factor: f64) {
+        let cc = CountCoef::new(factor);
+        let want = cc.coef().scale_int_reference(counts as i64, 16);
+        let got = I16F16::from_counts_i32(counts, &cc);
+        assert_eq!(got.to_bits(), want, "{counts} × {factor}");
+        assert_eq!(got, I16F16::from_counts(counts as i64, cc.coef()));
+        assert_eq!(
+            f32::from_counts_i32(counts, &cc).to_bits(),
+            f32::from_counts(counts as i64, cc.coef()).to_bits()
+        );
+        assert_eq!(
+            f64::from_counts_i32(counts, &cc).to_bits(),
+            f64::from_counts(counts as i64, cc.coef()).to_bits()
+        );
+    }
+
+    #[test]
+    fn from_counts_i32_equals_the_count_product_at_the_edges() {
+        // Small counts, the 16-bit edge, the `i32` ends and counts whose
+        // `f32` conversion rounds (halfway cases of the 24-bit mantissa).
+        let counts = [
+            0,
+            1,
+            -1,
+            2,
+            -2,
+            3,
+            1 << 15,
+            -(1 << 15),
+            i32::MAX,
+            i32::MIN,
+            i32::MIN + 1,
+            (1 << 24) + 1,
+            (1 << 25) + 2,
+            (1 << 25) + 6,
+            -(1 << 25) - 2,
+            (1 << 30) + (1 << 6) + 1,
+        ];
+        // Zero, a mantissa rounded up to 2³¹ (just below a power of two),
+        // the range ends of `Coef::new`, factors whose `2¹⁶` multiple
+        // reaches `2³⁰` (the unit products) and ordinary ones.
+        let factors = [
+            0.0,
+            1.0,
+            -1.0,
+            2.0 - 1e-12,
+            -(2.0 - 1e-12),
+            1e-18,
+            1e-13,
+            3e-5,
+            0.5 / 65536.0,
+            1.0 / 65536.0,
+            2f64.powi(14),
+            2f64.powi(14) * (1.0 - 1e-12),
+            -(2f64.powi(14)),
+            2f64.powi(40),
+            1e13,
+            0.001_234_567,
+            -7.25,
+        ];
+        for c in counts {
+            for f in factors {
+                check_from_counts_i32(c, f);
+            }
+        }
+    }
+
+    /// `from_counts_prepared` against `from_counts` (itself tested against
+    /// the 64-bit count formula) on every backend.
+    fn check_from_counts_prepared(counts: i64, factor: f64) {
+        let cc = CountCoef::new(factor);
+        assert_eq!(
+            I16F16::from_counts_prepared(counts, &cc),
+            I16F16::from_counts(counts, cc.coef()),
+            "{counts} × {factor}"
+        );
+        assert_eq!(
+            I16F16::from_counts_prepared(counts, &cc).to_bits(),
+            cc.coef().scale_int_reference(counts, 16)
+        );
+        assert_eq!(
+            f32::from_counts_prepared(counts, &cc).to_bits(),
+            f32::from_counts(counts, cc.coef()).to_bits()
+        );
+        assert_eq!(
+            f64::from_counts_prepared(counts, &cc).to_bits(),
+            f64::from_counts(counts, cc.coef()).to_bits()
+        );
+    }
+
+    #[test]
+    fn from_counts_prepared_equals_the_count_product_at_the_edges() {
+        let t = 1i64 << 31;
+        let counts = [
+            0,
+            1,
+            -1,
+            t - 1,
+            t,
+            t + 1,
+            -t,
+            -t - 1,
+            -t + 1,
+            1 << 32,
+            -(1 << 32),
+            1 << 47,
+            i64::MAX,
+            i64::MIN,
+        ];
+        let factors = [
+            0.0,
+            1.0,
+            -1.0,
+            2.0 - 1e-12,
+            1e-18,
+            1e-13,
+            0.5 / 65536.0,
+            3e-6,
+            2f64.powi(14),
+            2f64.powi(40),
+            -7.25,
+        ];
+        for c in counts {
+            for f in factors {
+                check_from_counts_prepared(c, f);
+            }
+        }
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn from_counts_prepared_equals_the_count_product(
+            bits in proptest::prelude::any::<i64>(), sh in 0u32..40,
+            mant in 1.0f64..2.0, exp in -60i32..42, neg: bool,
+        ) {
+            check_from_counts_prepared(bits >> sh, if neg { -mant } else { mant } * 2f64.powi(exp));
+        }
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn from_counts_i32_equals_the_count_product(
+            counts in proptest::prelude::any::<i32>(),
+            mant in 1.0f64..2.0, exp in -60i32..42, neg: bool,
+        ) {
+            check_from_counts_i32(counts, if neg { -mant } else { mant } * 2f64.powi(exp));
         }
     }
 
