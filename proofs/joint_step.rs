@@ -113,7 +113,7 @@ pub fn mode_step_bounded<S: Scalar>(
 }
 
 #[cfg(kani)]
-mod kani_entries {
+pub(crate) mod kani_entries {
     use super::*;
     use crate::joint::JointParams;
     use crate::scalar::I16F16;
@@ -134,7 +134,7 @@ mod kani_entries {
     }
 
     /// Postcondition of the stubbed `exp`: `≥ 0`, and `≤ 1` for `x ≤ 0`.
-    fn exp_as_contract(x: I16F16) -> I16F16 {
+    pub(crate) fn exp_as_contract(x: I16F16) -> I16F16 {
         let y = kani::any::<i32>();
         // Postcondition of the stubbed function (exhaustive_exp_i16f16).
         kani::assume(y >= 0 && (x.to_bits() > 0 || y <= 1 << 16));
@@ -153,7 +153,7 @@ mod kani_entries {
     /// the sign of `a·b` (0 when a factor is 0), and no larger in
     /// magnitude than `|a|` when `|b| ≤ 1` (and than `|b|` when
     /// `|a| ≤ 1`).
-    fn mul_bits_as_contract(a: i32, b: i32) -> i32 {
+    pub(crate) fn mul_bits_as_contract(a: i32, b: i32) -> i32 {
         let y = kani::any::<i32>();
         let (ua, ub, uy) = (a.unsigned_abs(), b.unsigned_abs(), y.unsigned_abs());
         // Postcondition of the stubbed function
