@@ -246,6 +246,7 @@ mod kani_entries {
     fn kani_step_bounded_i16f16() {
         let cfg = table_4_1::<I16F16>();
         let mut st = cfg.initial_state();
+        crate::proofs::joint_step::kani_entries::configured();
         // Any state inside the box and the integral limit (precondition:
         // the states the law itself produces).
         for j in 0..4 {
