@@ -46,7 +46,9 @@
 //! saturation and mode logic) on every value the products can take.
 
 use super::engine::Verdict;
-use crate::control::{ControlInput, ModeConfig, ModeParams, ModeSettings, ModeState, PassiveParams};
+use crate::control::{
+    ControlInput, ModeConfig, ModeParams, ModeSettings, ModeState, PassiveParams,
+};
 use crate::joint::{JointConfig, JointReadings, JointState, JointTarget};
 use crate::scalar::Scalar;
 
@@ -72,9 +74,8 @@ pub fn joint_step_bounded<S: Scalar>(
     for j in 0..4 {
         ok &= a.friction[j] >= lo[j] && a.friction[j] <= hi[j];
     }
-    ok &= !out.joint_torque.is_nan()
-        && !out.motor_position.is_nan()
-        && !out.motor_velocity.is_nan();
+    ok &=
+        !out.joint_torque.is_nan() && !out.motor_position.is_nan() && !out.motor_velocity.is_nan();
     Verdict::logical(ok)
 }
 
@@ -252,6 +253,30 @@ pub(crate) mod kani_entries {
     }
 }
 
+/// The `I16F16` product by its 64-bit definition: `a·b·2⁻¹⁶` rounded to
+/// nearest (ties up), saturated; equal to `mul_bits` (tests here and in
+/// `src/scalar/fixed.rs`). The product stub's value while a harness
+/// builds its configuration.
+pub fn mul_bits_formula(a: i32, b: i32) -> i32 {
+    let p = ((a as i64) * (b as i64) + (1 << 15)) >> 16;
+    p.clamp(i32::MIN as i64, i32::MAX as i64) as i32
+}
+
+/// The contract of the `I16F16` product `y = mul_bits(a, b)` used by
+/// `kani_joint_step_products_i16f16`: the sign rule (0 when a factor is
+/// 0), and `|y| ≤ |a|` when `|b| ≤ 1`, `|y| ≤ |b|` when `|a| ≤ 1`.
+pub fn mul_contract(a: i32, b: i32, y: i32) -> bool {
+    let (ua, ub, uy) = (a.unsigned_abs(), b.unsigned_abs(), y.unsigned_abs());
+    let sign = if a == 0 || b == 0 {
+        y == 0
+    } else if (a > 0) == (b > 0) {
+        y >= 0
+    } else {
+        y <= 0
+    };
+    sign && (ub > 1 << 16 || uy <= ua) && (ua > 1 << 16 || uy <= ub)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -357,7 +382,16 @@ mod tests {
     #[test]
     fn joint_step_mul_contract_is_the_products() {
         use crate::scalar::fixed::mul_bits;
-        let mut w = vec![0, 1, -1, i32::MAX, i32::MIN, i32::MIN + 1, 1 << 16, -(1 << 16)];
+        let mut w = vec![
+            0,
+            1,
+            -1,
+            i32::MAX,
+            i32::MIN,
+            i32::MIN + 1,
+            1 << 16,
+            -(1 << 16),
+        ];
         for k in 0..31 {
             let p = 1i32 << k;
             w.extend([p, p - 1, p + 1, -p, -p + 1, -p - 1]);
@@ -369,28 +403,4 @@ mod tests {
             }
         }
     }
-}
-
-/// The `I16F16` product by its 64-bit definition: `a·b·2⁻¹⁶` rounded to
-/// nearest (ties up), saturated; equal to `mul_bits` (tests here and in
-/// `src/scalar/fixed.rs`). The product stub's value while a harness
-/// builds its configuration.
-pub fn mul_bits_formula(a: i32, b: i32) -> i32 {
-    let p = ((a as i64) * (b as i64) + (1 << 15)) >> 16;
-    p.clamp(i32::MIN as i64, i32::MAX as i64) as i32
-}
-
-/// The contract of the `I16F16` product `y = mul_bits(a, b)` used by
-/// `kani_joint_step_products_i16f16`: the sign rule (0 when a factor is
-/// 0), and `|y| ≤ |a|` when `|b| ≤ 1`, `|y| ≤ |b|` when `|a| ≤ 1`.
-pub fn mul_contract(a: i32, b: i32, y: i32) -> bool {
-    let (ua, ub, uy) = (a.unsigned_abs(), b.unsigned_abs(), y.unsigned_abs());
-    let sign = if a == 0 || b == 0 {
-        y == 0
-    } else if (a > 0) == (b > 0) {
-        y >= 0
-    } else {
-        y <= 0
-    };
-    sign && (ub > 1 << 16 || uy <= ua) && (ua > 1 << 16 || uy <= ub)
 }
