@@ -100,6 +100,38 @@ pub fn friction_sign_and_bound<S: Scalar>(
     Verdict::logical(!f.is_nan() && sign_ok && f.to_f64().abs() <= bound)
 }
 
+/// [`friction_sign_and_bound`] on `I16F16`, decided on integers (no `f64`
+/// of the symbolic speed): with `F`, `Q`, `T_j` the bits of `f̂`, `q̇` and
+/// `θ_j`, `F` has the sign of `Q` (0 at 0) and
+/// `|F|·2³² ≤ T₀|Q|·2¹⁶ + (T₁ + T₂)·2³² + 4·2³² + 4·T₀|Q|` — the same bound
+/// times `2⁴⁸` (four roundings of `2⁻¹⁶` each, one of them scaled by
+/// `1 + b̂|q̇|`). Requires `θ ≥ 0`.
+pub fn friction_sign_and_bound_i16f16(
+    cfg: &FrictionConfig<I16F16>,
+    theta: &[I16F16; 4],
+    qd: I16F16,
+) -> Verdict {
+    let f = cfg.evaluate(theta, qd).torque.to_bits();
+    friction_bits_match(f, qd.to_bits(), theta.map(|v| v.to_bits()))
+}
+
+/// The check of [`friction_sign_and_bound_i16f16`] on bits: result `f`,
+/// speed `q`, parameters `t` (`≥ 0`).
+pub fn friction_bits_match(f: i32, q: i32, t: [i32; 4]) -> Verdict {
+    let (f, q) = (f as i128, q as i128);
+    let t = t.map(|v| v as i128);
+    let sign_ok = if q > 0 {
+        f >= 0
+    } else if q < 0 {
+        f <= 0
+    } else {
+        f == 0
+    };
+    let tq = t[0] * q.abs();
+    let bound = (tq << 16) + ((t[1] + t[2] + 4) << 32) + 4 * tq;
+    Verdict::logical(sign_ok && (f.abs() << 32) <= bound)
+}
+
 /// Eq. (4.19) does not increase when the measured motor position
 /// increases, all else fixed: `law(x with q_m) ≥ law(x with q_m')` for
 /// `q_m < q_m'`.
@@ -153,12 +185,30 @@ mod kani_entries {
         I16F16::from_bits(kani::any())
     }
 
+    /// [`sat_reciprocal_i16f16`] inside the layer `|x| ≤ ε` (and one LSB
+    /// beyond it), where the product by `1/ε` decides the value; the
+    /// outside is `kani_sat_reciprocal_outside_i16f16`, and
+    /// `exhaustive_sat_reciprocal_i16f16` covers all 2³² inputs.
     #[kani::proof]
     fn kani_sat_reciprocal_i16f16() {
         // ε_r = 0.1 rad/s of Table 4.1, as the law quantizes it.
         let eps = I16F16::from_f64(0.1);
         let inv = Coef::new(1.0 / eps.to_f64());
-        assert!(sat_reciprocal_i16f16(any_i16f16(), eps, &inv).holds);
+        let x = any_i16f16();
+        // Solver budget: the layer (split domain; outside: the next harness).
+        kani::assume(x.to_bits() >= -eps.to_bits() - 1 && x.to_bits() <= eps.to_bits() + 1);
+        assert!(sat_reciprocal_i16f16(x, eps, &inv).holds);
+    }
+
+    /// [`sat_reciprocal_i16f16`] outside the layer, `|x| > ε`.
+    #[kani::proof]
+    fn kani_sat_reciprocal_outside_i16f16() {
+        let eps = I16F16::from_f64(0.1);
+        let inv = Coef::new(1.0 / eps.to_f64());
+        let x = any_i16f16();
+        // Split domain: the complement of `kani_sat_reciprocal_i16f16`'s.
+        kani::assume(x.to_bits() < -eps.to_bits() - 1 || x.to_bits() > eps.to_bits() + 1);
+        assert!(sat_reciprocal_i16f16(x, eps, &inv).holds);
     }
 
     #[kani::proof]
@@ -168,17 +218,35 @@ mod kani_entries {
         assert!(sat_reciprocal::<f32>(kani::any(), eps, &inv).holds);
     }
 
+    /// [`friction_sign_and_bound_i16f16`] at every speed, with `exp` by
+    /// its contract (`≥ 0`, `≤ 1` at `x ≤ 0`: `exhaustive_exp_i16f16`).
     #[kani::proof]
+    #[kani::stub(
+        crate::scalar::kernels::i16f16::exp,
+        crate::proofs::joint_step::kani_entries::exp_as_contract
+    )]
     fn kani_friction_sign_i16f16() {
         let cfg = FrictionConfig::<I16F16>::new(0.01);
         let theta = table_4_1::<I16F16>().initial_state().friction;
-        assert!(friction_sign_and_bound(&cfg, &theta, any_i16f16()).holds);
+        assert!(friction_sign_and_bound_i16f16(&cfg, &theta, any_i16f16()).holds);
     }
 
+    /// [`step_bounded`] from every state inside the box and the integral
+    /// limit, on every input; `exp` and the `I16F16` product by their
+    /// contracts (`proofs/joint_step.rs`).
     #[kani::proof]
+    #[kani::stub(
+        crate::scalar::kernels::i16f16::exp,
+        crate::proofs::joint_step::kani_entries::exp_as_contract
+    )]
+    #[kani::stub(
+        crate::scalar::fixed::mul_bits,
+        crate::proofs::joint_step::kani_entries::mul_bits_as_contract
+    )]
     fn kani_step_bounded_i16f16() {
         let cfg = table_4_1::<I16F16>();
         let mut st = cfg.initial_state();
+        crate::proofs::joint_step::kani_entries::configured();
         // Any state inside the box and the integral limit (precondition:
         // the states the law itself produces).
         for j in 0..4 {
@@ -263,6 +331,7 @@ mod tests {
             let r = exhaustive_u32(0, (1 << 24) - 1, |c| {
                 let qd = I16F16::from_bits(c as i32 - (1 << 23));
                 friction_sign_and_bound(&cfg, &theta, qd)
+                    .and(friction_sign_and_bound_i16f16(&cfg, &theta, qd))
             });
             println!(
                 "PROOF kernel=friction-nominal(eq. 4.17) backend=I16F16 domain=|qd|<128 rad/s bound=sign and magnitude checked={} engine=exhaustive",
@@ -348,6 +417,20 @@ mod tests {
         ModeConfig::new(&p)
     }
 
+    /// The friction bits check rejects a wrong sign and a value one LSB
+    /// beyond its bound.
+    #[test]
+    fn friction_bits_check_can_fail() {
+        // θ = (1, 2, 3, 0) LSB at q̇ = 2¹⁶ (1 rad/s): bound T₀|Q|/2¹⁶ + T₁ + T₂ + 4
+        // + 4T₀|Q|/2³² = 1 + 5 + 4 + 2⁻¹⁴ → 10 LSB.
+        let t = [1, 2, 3, 0];
+        assert!(friction_bits_match(10, 1 << 16, t).holds);
+        assert!(!friction_bits_match(11, 1 << 16, t).holds);
+        assert!(!friction_bits_match(-1, 1 << 16, t).holds);
+        assert!(!friction_bits_match(1, 0, t).holds);
+        assert!(friction_bits_match(-10, -(1 << 16), t).holds);
+    }
+
     /// The integer check rejects a result one LSB beyond its bound and a
     /// wrong saturation value.
     #[test]
@@ -372,6 +455,19 @@ mod tests {
             let (xi, ei) = (I16F16::from_f64(x), I16F16::from_f64(eps.max(1e-4)));
             prop_assert!(sat_reciprocal(xi, ei, &Coef::new(1.0 / ei.to_f64())).holds);
             prop_assert!(sat_reciprocal_i16f16(xi, ei, &Coef::new(1.0 / ei.to_f64())).holds);
+        }
+
+        #[test]
+        fn friction_integer_check_agrees(qd in -500.0f64..500.0) {
+            let a = table_4_1::<I16F16>();
+            let c = FrictionConfig::<I16F16>::new(0.01);
+            for theta in [a.initial_state().friction, a.upper_bounds()] {
+                let q = I16F16::from_f64(qd);
+                prop_assert_eq!(
+                    friction_sign_and_bound_i16f16(&c, &theta, q).holds,
+                    friction_sign_and_bound(&c, &theta, q).holds
+                );
+            }
         }
 
         #[test]

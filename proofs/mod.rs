@@ -21,6 +21,7 @@ pub mod compliance;
 pub mod control;
 pub mod engine;
 pub mod estimator_sizes;
+pub mod joint_step;
 pub mod kernels_f32;
 pub mod kernels_f64;
 pub mod kernels_i16f16;
