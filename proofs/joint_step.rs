@@ -1,7 +1,7 @@
 //! One tick of the whole joint ([`JointConfig::update`]: torque estimator
 //! of ch. 3, eq. 3.8–3.10, then the mode manager of ch. 4 with the active
 //! law eq. 4.19 and the passive law eq. 4.32), for the Table 4.1 joint
-//! ([`JointParams::table_4_1`]), written once and run by every engine.
+//! ([`JointParams::table_4_1`](crate::joint::JointParams::table_4_1)), written once and run by every engine.
 //!
 //! | property | I16F16 | f32 | f64 |
 //! |---|---|---|---|
