@@ -423,7 +423,8 @@ pub fn turn_from_radians(rad: f64) -> u32 {
 /// A positive integer factor (a gear ratio `N`), prepared once: its
 /// [`Coef`] and, for the `I16F16` product of [`Scalar::mul_int`], the
 /// integer (saturated to `i32`) and the range of bit patterns whose product
-/// by it fits `i32`.
+/// by it fits `i32`. Built by the library from a validated ratio (the
+/// joint's `N`); not constructible outside the crate.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct IntFactor {
     pub(crate) coef: Coef,
@@ -438,8 +439,11 @@ pub struct IntFactor {
 impl IntFactor {
     /// Prepare `n ≥ 1` (an integer; validated by the caller). A value
     /// that is not an integer in `[1, 2³¹)` is rounded and clamped for the
-    /// integer form; the coefficient keeps `n` as given.
-    pub fn new(n: f64) -> Self {
+    /// integer form; the coefficient keeps `n` as given, so the two forms
+    /// would differ: only the library builds an `IntFactor`, from a
+    /// validated gear ratio, which keeps [`Scalar::mul_int`] equal to
+    /// [`Scalar::mul_coef`] bit for bit.
+    pub(crate) fn new(n: f64) -> Self {
         let i = if n.is_nan() {
             1
         } else {
