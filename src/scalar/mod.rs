@@ -758,6 +758,36 @@ impl Coef {
         }
     }
 
+    /// The coefficient [`Coef::new`] prepares from `value`, built from its
+    /// stored quantization instead: `value_f32` (the `f32` rounding),
+    /// `signed_mult` and `shift` (`value ≈ signed_mult·2^−shift`), with
+    /// integer operations only. For proof harnesses, whose solver would
+    /// otherwise evaluate `new`'s `log2`, `exp2` and rounding on its own;
+    /// tests compare every use with `Coef::new` field by field.
+    #[cfg(any(kani, test))]
+    pub(crate) fn from_quantized(value: f64, value_f32: f32, signed_mult: i64, shift: i32) -> Self {
+        let mult = signed_mult.abs();
+        let unit = |s: i64| -> i32 {
+            let v = (s * signed_mult) as i128;
+            let v = if shift <= 0 {
+                v << (-shift).min(64)
+            } else {
+                v >> shift.min(127)
+            };
+            v.clamp(i32::MIN as i128, i32::MAX as i128) as i32
+        };
+        Coef {
+            value,
+            value_f32,
+            mult: signed_mult,
+            shift,
+            mag: mult as u32,
+            negative: signed_mult < 0,
+            signed: SignedCoef::new(signed_mult, shift),
+            units: [unit(1), unit(-1)],
+        }
+    }
+
     /// `self · 2^k` with the same mantissa (the fixed-point exponent
     /// moved by `k`, the float value scaled by `2^k`): the fixed-point
     /// products of the result are those of `self` with `k` more bits of
