@@ -289,7 +289,8 @@ pub(crate) fn hypot<S: Scalar>(a: S, b: S) -> S {
         return S::ZERO;
     }
     let r = n.div(m);
-    m.mul(S::ONE.add(sq(r)).sqrt())
+    // r ≤ 1: the short product (bit for bit `mul`).
+    m.mul(S::ONE.add(r.mul_unit_range(r)).sqrt())
 }
 
 impl<S: Scalar> WristConfig<S> {

@@ -598,7 +598,10 @@ impl<S: Scalar> WristStepConfig<S> {
             S::dot_coef(gauges, &self.rows[1]),
             S::dot_coef(gauges, &self.rows[2]),
         ];
-        let tau = [c.mul(m[0]).sub(s.mul(m[2])), m[1].neg()];
+        let tau = [
+            m[0].mul_unit_range(c).sub(m[2].mul_unit_range(s)),
+            m[1].neg(),
+        ];
         // `v − v` is 0 for a finite value and NaN for NaN and ±∞.
         let d = |v: S| v.sub(v);
         let mut probe = d(tau[0]).add(d(tau[1]));
@@ -627,46 +630,56 @@ impl<S: Scalar> WristStepConfig<S> {
     fn ik(&self, r: PitchYaw<S>) -> Ik<S> {
         let (mut sd, mut cd) = r.delta.sin_cos();
         let (mut sg, mut cg) = r.gamma.sin_cos();
-        let (ax, ay) = (cg.mul(sd), sg.neg());
-        let cb = cd.mul(cg);
+        let (ax, ay) = (sd.mul_unit_range(cg), sg.neg());
+        let cb = cd.mul_unit_range(cg);
         // sin β = |A|.
         let n = hypot(ax, ay);
         let saturated = cb < self.cos_2phi;
         let mut pose = r;
         // −X·P̄ = (−(x px + y py), x py − y px) for X = (x, y).
-        let rot =
-            |x: S, y: S, px: S, py: S| (x.mul(px).add(y.mul(py)).neg(), x.mul(py).sub(y.mul(px)));
+        let rot = |x: S, y: S, px: S, py: S| {
+            (
+                px.mul_unit_range(x).add(py.mul_unit_range(y)).neg(),
+                py.mul_unit_range(x).sub(px.mul_unit_range(y)),
+            )
+        };
         let reduced = if saturated {
             // The boundary pose of the same azimuth: z = (sin 2φ·A/|A|,
             // cos 2φ); there θ4 = π, P = (0, cos φ), |P| = cos(β/2) = cos φ.
             // (|A| = sin β > sin 2φ here: a bend beyond 2φ.)
             let inv_n = if n > S::ZERO { S::ONE.div(n) } else { S::ZERO };
             let (ux, uy) = if n > S::ZERO {
-                (ax.mul(inv_n), ay.mul(inv_n))
+                (inv_n.mul_unit_range(ax), inv_n.mul_unit_range(ay))
             } else {
                 (S::ONE, S::ZERO)
             };
-            let (bx, by) = (ux.mul(self.sin_2phi), uy.mul(self.sin_2phi));
-            cg = S::ONE.sub(by.mul(by)).max(S::ZERO).sqrt();
+            let (bx, by) = (
+                ux.mul_unit_range(self.sin_2phi),
+                uy.mul_unit_range(self.sin_2phi),
+            );
+            cg = S::ONE.sub(by.mul_unit_range(by)).max(S::ZERO).sqrt();
             let inv_cg = S::ONE.div(cg);
             sg = by.neg();
-            sd = bx.mul(inv_cg);
-            cd = self.cos_2phi.mul(inv_cg);
+            sd = inv_cg.mul_unit_range(bx);
+            cd = inv_cg.mul_unit_range(self.cos_2phi);
             pose = PitchYaw {
                 delta: bx.atan2(self.cos_2phi),
                 gamma: sg.atan2(cg),
             };
             // θ1 = arg A + π/2, θ3 = arg B + π/2, (cos θ1, sin θ1) = (−u_y, u_x).
-            let b3 = cd.mul(sg);
+            let b3 = cd.mul_unit_range(sg);
             Some(([ux.atan2(uy.neg()), sd.atan2(b3.neg())], (ux, uy.neg())))
         } else if n < self.min_bend {
             None
         } else {
             // cos(β/2) = √((1 + cos β)/2); sin(θ4/2) = sin β/(2 sin φ cos(β/2));
             // cos(θ4/2) = √((cos β − cos 2φ)/2)/sin φ.
-            let half_cos = cb.mul(self.half).add(self.half).sqrt();
+            let half_cos = cb.mul_unit_range(self.half).add(self.half).sqrt();
             let inv_h = S::ONE.div(half_cos);
-            let sh = n.mul(inv_h).mul_coef(&self.inv_2_sin_phi).min(S::ONE);
+            let sh = inv_h
+                .mul_unit_range(n)
+                .mul_coef(&self.inv_2_sin_phi)
+                .min(S::ONE);
             let ch = cb
                 .sub(self.cos_2phi)
                 .max(S::ZERO)
@@ -674,12 +687,12 @@ impl<S: Scalar> WristStepConfig<S> {
                 .mul_coef(&self.inv_sqrt2_sin_phi);
             let (px, py) = (ch, sh.mul_coef(&self.cos_phi_coef));
             let v1 = rot(ax, ay, px, py);
-            let v3 = rot(sd, cd.mul(sg), px, py);
+            let v3 = rot(sd, cd.mul_unit_range(sg), px, py);
             // |V1| = |A|·|P| = sin β · cos(β/2).
             let k = inv_h.mul(S::ONE.div(n));
             Some((
                 [v1.1.atan2(v1.0), v3.1.atan2(v3.0)],
-                (v1.1.mul(k), v1.0.mul(k)),
+                (k.mul_unit_range(v1.1), k.mul_unit_range(v1.0)),
             ))
         };
         Ik {
@@ -758,13 +771,21 @@ impl<S: Scalar> WristStepConfig<S> {
         let (sd, cd, sg, cg) = (ik.sd, ik.cd, ik.sg, ik.cg);
         let sp_s1 = s1.mul_coef(&self.sin_phi_coef);
         let sp_c1 = c1.mul_coef(&self.sin_phi_coef);
-        let d = sd.mul(sp_s1).add(cd.mul(self.cos_phi));
+        let d = sd
+            .mul_unit_range(sp_s1)
+            .add(cd.mul_unit_range(self.cos_phi));
         let inv_d = S::ONE.div(d);
         let j = [
-            [cd.mul(sp_c1).mul(inv_d), sp_c1.mul(cg).mul(inv_d).sub(sg)],
             [
-                sp_s1.mul(inv_d).neg(),
-                cg.mul(sd.mul(self.cos_phi).sub(cd.mul(sp_s1))).mul(inv_d),
+                inv_d.mul_unit_range(cd.mul_unit_range(sp_c1)),
+                inv_d.mul_unit_range(sp_c1.mul_unit_range(cg)).sub(sg),
+            ],
+            [
+                inv_d.mul_unit_range(sp_s1).neg(),
+                sd.mul_unit_range(self.cos_phi)
+                    .sub(cd.mul_unit_range(sp_s1))
+                    .mul_unit_range(cg)
+                    .mul(inv_d),
             ],
         ];
         let det = j[0][0].mul(j[1][1]).sub(j[0][1].mul(j[1][0]));
