@@ -249,13 +249,12 @@ pub struct WristStepConfig<S> {
     cos_phi: S,
     sin_2phi: S,
     cos_2phi: S,
-    half: S,
+    two: S,
     /// `1/(2 sin φ)`.
     inv_2_sin_phi: Coef,
-    /// `1/(√2 sin φ)`.
-    inv_sqrt2_sin_phi: Coef,
+    /// `cos φ/(2 sin φ)`.
+    cot_phi_half: Coef,
     sin_phi_coef: Coef,
-    cos_phi_coef: Coef,
     /// Below this `sin β` the pose counts as straight.
     min_bend: S,
     det_min: S,
@@ -529,11 +528,10 @@ impl<S: Scalar> WristStepConfig<S> {
             cos_phi: S::from_f64(libm::cos(phi)),
             sin_2phi: S::from_f64(libm::sin(2.0 * phi)),
             cos_2phi: S::from_f64(libm::cos(2.0 * phi)),
-            half: S::from_f64(0.5),
+            two: S::from_f64(2.0),
             inv_2_sin_phi: Coef::new(0.5 / sin_phi),
-            inv_sqrt2_sin_phi: Coef::new(1.0 / (core::f64::consts::SQRT_2 * sin_phi)),
+            cot_phi_half: Coef::new(0.5 * libm::cos(phi) / sin_phi),
             sin_phi_coef: Coef::new(sin_phi),
-            cos_phi_coef: Coef::new(libm::cos(phi)),
             min_bend: S::from_f64((64.0 * S::RESOLUTION.to_f64()).max(1e-6)),
             det_min: S::from_f64(DET_MIN),
             inv_t: Coef::new(u.speed / (t * u.angle)),
@@ -673,23 +671,21 @@ impl<S: Scalar> WristStepConfig<S> {
             None
         } else {
             // cos(β/2) = √((1 + cos β)/2); sin(θ4/2) = sin β/(2 sin φ cos(β/2));
-            // cos(θ4/2) = √((cos β − cos 2φ)/2)/sin φ.
-            let half_cos = cb.mul_unit_range(self.half).add(self.half).sqrt();
-            let inv_h = S::ONE.div(half_cos);
-            let sh = inv_h
-                .mul_unit_range(n)
-                .mul_coef(&self.inv_2_sin_phi)
-                .min(S::ONE);
-            let ch = cb
-                .sub(self.cos_2phi)
-                .max(S::ZERO)
+            // cos(θ4/2) = √((cos β − cos 2φ)/2)/sin φ. The arguments θ1, θ3
+            // do not change when P is scaled by a positive factor: the step
+            // uses P' = P·cos(β/2) = (√((1 + cos β)(cos β − cos 2φ)),
+            // sin β cos φ)/(2 sin φ), of modulus cos²(β/2) = (1 + cos β)/2,
+            // which needs one square root and no quotient.
+            let one_cb = S::ONE.add(cb);
+            let px = one_cb
+                .mul_unit_range(cb.sub(self.cos_2phi).max(S::ZERO))
                 .sqrt()
-                .mul_coef(&self.inv_sqrt2_sin_phi);
-            let (px, py) = (ch, sh.mul_coef(&self.cos_phi_coef));
+                .mul_coef(&self.inv_2_sin_phi);
+            let py = n.mul_coef(&self.cot_phi_half);
             let v1 = rot(ax, ay, px, py);
             let v3 = rot(sd, cd.mul_unit_range(sg), px, py);
-            // |V1| = |A|·|P| = sin β · cos(β/2).
-            let k = inv_h.mul(S::ONE.div(n));
+            // |V1| = |A|·|P'| = sin β (1 + cos β)/2: (sin θ1, cos θ1) = V1/|V1|.
+            let k = self.two.div(one_cb.mul_unit_range(n));
             Some((
                 [v1.1.atan2(v1.0), v3.1.atan2(v3.0)],
                 (k.mul_unit_range(v1.1), k.mul_unit_range(v1.0)),
