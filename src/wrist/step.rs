@@ -630,8 +630,6 @@ impl<S: Scalar> WristStepConfig<S> {
         let (mut sg, mut cg) = r.gamma.sin_cos();
         let (ax, ay) = (sd.mul_unit_range(cg), sg.neg());
         let cb = cd.mul_unit_range(cg);
-        // sin β = |A|.
-        let n = hypot(ax, ay);
         let saturated = cb < self.cos_2phi;
         let mut pose = r;
         // −X·P̄ = (−(x px + y py), x py − y px) for X = (x, y).
@@ -642,21 +640,33 @@ impl<S: Scalar> WristStepConfig<S> {
             )
         };
         let reduced = if saturated {
-            // The boundary pose of the same azimuth: z = (sin 2φ·A/|A|,
-            // cos 2φ); there θ4 = π, P = (0, cos φ), |P| = cos(β/2) = cos φ.
-            // (|A| = sin β > sin 2φ here: a bend beyond 2φ.)
-            let inv_n = if n > S::ZERO { S::ONE.div(n) } else { S::ZERO };
-            let (ux, uy) = if n > S::ZERO {
-                (inv_n.mul_unit_range(ax), inv_n.mul_unit_range(ay))
+            // The boundary pose of the same azimuth: z = (sin 2φ·U, cos 2φ)
+            // with U = A/|A|; there θ4 = π, P = (0, cos φ), and with
+            // w = |A| cos γ_b = √(A_x² + cos²2φ·A_y²) (γ_b the boundary
+            // pose's yaw): 1/|A| = w·r, 1/cos γ_b = |A|²·r and
+            // cos γ_b = w²·r for the one reciprocal r = 1/(|A|·w).
+            // (|A|² = sin²β > sin²2φ here: a bend beyond 2φ.)
+            let ay_c = ay.mul_unit_range(self.cos_2phi);
+            let n2 = ax.mul_unit_range(ax).add(ay.mul_unit_range(ay));
+            let w2 = ax.mul_unit_range(ax).add(ay_c.mul_unit_range(ay_c));
+            let (n, w) = (n2.sqrt(), w2.sqrt());
+            let nw = n.mul_unit_range(w);
+            let (ux, uy, inv_cg) = if nw > S::ZERO {
+                let r = S::ONE.div(nw);
+                cg = r.mul_unit_range(w2);
+                (
+                    r.mul_unit_range(ax.mul_unit_range(w)),
+                    r.mul_unit_range(ay.mul_unit_range(w)),
+                    r.mul_unit_range(n2),
+                )
             } else {
-                (S::ONE, S::ZERO)
+                cg = S::ONE;
+                (S::ONE, S::ZERO, S::ONE)
             };
             let (bx, by) = (
                 ux.mul_unit_range(self.sin_2phi),
                 uy.mul_unit_range(self.sin_2phi),
             );
-            cg = S::ONE.sub(by.mul_unit_range(by)).max(S::ZERO).sqrt();
-            let inv_cg = S::ONE.div(cg);
             sg = by.neg();
             sd = inv_cg.mul_unit_range(bx);
             cd = inv_cg.mul_unit_range(self.cos_2phi);
@@ -664,32 +674,42 @@ impl<S: Scalar> WristStepConfig<S> {
                 delta: bx.atan2(self.cos_2phi),
                 gamma: sg.atan2(cg),
             };
-            // θ1 = arg A + π/2, θ3 = arg B + π/2, (cos θ1, sin θ1) = (−u_y, u_x).
-            let b3 = cd.mul_unit_range(sg);
-            Some(([ux.atan2(uy.neg()), sd.atan2(b3.neg())], (ux, uy.neg())))
-        } else if n < self.min_bend {
-            None
+            // θ1 = arg A + π/2, θ3 = arg B + π/2 with B ∝ (U_x, cos 2φ·U_y)
+            // (B = (sd, cd·sg) scaled by cos γ_b/sin 2φ),
+            // (cos θ1, sin θ1) = (−u_y, u_x).
+            let (y, x1, x3) = if nw > S::ZERO {
+                (ax, ay.neg(), ay_c)
+            } else {
+                (S::ONE, S::ZERO, S::ZERO)
+            };
+            Some(([y.atan2(x1), y.atan2(x3)], (ux, uy.neg())))
         } else {
-            // cos(β/2) = √((1 + cos β)/2); sin(θ4/2) = sin β/(2 sin φ cos(β/2));
-            // cos(θ4/2) = √((cos β − cos 2φ)/2)/sin φ. The arguments θ1, θ3
-            // do not change when P is scaled by a positive factor: the step
-            // uses P' = P·cos(β/2) = (√((1 + cos β)(cos β − cos 2φ)),
-            // sin β cos φ)/(2 sin φ), of modulus cos²(β/2) = (1 + cos β)/2,
-            // which needs one square root and no quotient.
-            let one_cb = S::ONE.add(cb);
-            let px = one_cb
-                .mul_unit_range(cb.sub(self.cos_2phi).max(S::ZERO))
-                .sqrt()
-                .mul_coef(&self.inv_2_sin_phi);
-            let py = n.mul_coef(&self.cot_phi_half);
-            let v1 = rot(ax, ay, px, py);
-            let v3 = rot(sd, cd.mul_unit_range(sg), px, py);
-            // |V1| = |A|·|P'| = sin β (1 + cos β)/2: (sin θ1, cos θ1) = V1/|V1|.
-            let k = self.two.div(one_cb.mul_unit_range(n));
-            Some((
-                [v1.1.atan2(v1.0), v3.1.atan2(v3.0)],
-                (k.mul_unit_range(v1.1), k.mul_unit_range(v1.0)),
-            ))
+            // sin β = |A|.
+            let n = hypot(ax, ay);
+            if n < self.min_bend {
+                None
+            } else {
+                // cos(β/2) = √((1 + cos β)/2); sin(θ4/2) = sin β/(2 sin φ cos(β/2));
+                // cos(θ4/2) = √((cos β − cos 2φ)/2)/sin φ. The arguments θ1, θ3
+                // do not change when P is scaled by a positive factor: the step
+                // uses P' = P·cos(β/2) = (√((1 + cos β)(cos β − cos 2φ)),
+                // sin β cos φ)/(2 sin φ), of modulus cos²(β/2) = (1 + cos β)/2,
+                // which needs one square root and no quotient.
+                let one_cb = S::ONE.add(cb);
+                let px = one_cb
+                    .mul_unit_range(cb.sub(self.cos_2phi).max(S::ZERO))
+                    .sqrt()
+                    .mul_coef(&self.inv_2_sin_phi);
+                let py = n.mul_coef(&self.cot_phi_half);
+                let v1 = rot(ax, ay, px, py);
+                let v3 = rot(sd, cd.mul_unit_range(sg), px, py);
+                // |V1| = |A|·|P'| = sin β (1 + cos β)/2: (sin θ1, cos θ1) = V1/|V1|.
+                let k = self.two.div(one_cb.mul_unit_range(n));
+                Some((
+                    [v1.1.atan2(v1.0), v3.1.atan2(v3.0)],
+                    (k.mul_unit_range(v1.1), k.mul_unit_range(v1.0)),
+                ))
+            }
         };
         Ik {
             pose,
