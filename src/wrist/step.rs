@@ -254,7 +254,7 @@ pub struct WristStepConfig<S> {
     inv_2_sin_phi: Coef,
     /// `cos φ/(2 sin φ)`.
     cot_phi_half: Coef,
-    sin_phi_coef: Coef,
+    sin_phi: S,
     /// Below this `sin β` the pose counts as straight.
     min_bend: S,
     det_min: S,
@@ -531,7 +531,7 @@ impl<S: Scalar> WristStepConfig<S> {
             two: S::from_f64(2.0),
             inv_2_sin_phi: Coef::new(0.5 / sin_phi),
             cot_phi_half: Coef::new(0.5 * libm::cos(phi) / sin_phi),
-            sin_phi_coef: Coef::new(sin_phi),
+            sin_phi: S::from_f64(sin_phi),
             min_bend: S::from_f64((64.0 * S::RESOLUTION.to_f64()).max(1e-6)),
             det_min: S::from_f64(DET_MIN),
             inv_t: Coef::new(u.speed / (t * u.angle)),
@@ -785,31 +785,36 @@ impl<S: Scalar> WristStepConfig<S> {
         // 5. Eq. (6.1): τ_t = −Jᵀ τ, the exact Jacobian at the reference
         // (module docs of `super::jacobian`; D ≥ cos 3φ > 0 on the cone).
         let (sd, cd, sg, cg) = (ik.sd, ik.cd, ik.sg, ik.cg);
-        let sp_s1 = s1.mul_coef(&self.sin_phi_coef);
-        let sp_c1 = c1.mul_coef(&self.sin_phi_coef);
+        let sp_s1 = s1.mul_unit_range(self.sin_phi);
+        let sp_c1 = c1.mul_unit_range(self.sin_phi);
         let d = sd
             .mul_unit_range(sp_s1)
             .add(cd.mul_unit_range(self.cos_phi));
         let inv_d = S::ONE.div(d);
-        let j = [
-            [
-                inv_d.mul_unit_range(cd.mul_unit_range(sp_c1)),
-                inv_d.mul_unit_range(sp_c1.mul_unit_range(cg)).sub(sg),
-            ],
-            [
-                inv_d.mul_unit_range(sp_s1).neg(),
-                sd.mul_unit_range(self.cos_phi)
-                    .sub(cd.mul_unit_range(sp_s1))
-                    .mul_unit_range(cg)
-                    .mul(inv_d),
-            ],
-        ];
-        let det = j[0][0].mul(j[1][1]).sub(j[0][1].mul(j[1][0]));
+        // With a = sin φ cos θ1, b = sin φ sin θ1 and e = sδ cos φ − cδ b:
+        // J = [[cδ a, a cγ − sγ D], [−b, cγ e]]/D, so
+        // τ_t = −Jᵀτ = (−(cδ a τ_δ − b τ_γ)/D, sγ τ_δ − (a cγ τ_δ + cγ e τ_γ)/D)
+        // with one product by 1/D each, and, since cδ e + b = sδ D,
+        // det J = (a cγ sδ − b sγ)/D: singular when |a cγ sδ − b sγ| < DET_MIN·D.
+        let a_cg = sp_c1.mul_unit_range(cg);
+        let cg_e = sd
+            .mul_unit_range(self.cos_phi)
+            .sub(cd.mul_unit_range(sp_s1))
+            .mul_unit_range(cg);
         let [td, tg] = interaction;
         let joint_torque = [
-            j[0][0].mul(td).add(j[1][0].mul(tg)).neg(),
-            j[0][1].mul(td).add(j[1][1].mul(tg)).neg(),
+            td.mul_unit_range(cd.mul_unit_range(sp_c1))
+                .sub(tg.mul_unit_range(sp_s1))
+                .mul(inv_d)
+                .neg(),
+            td.mul_unit_range(sg).sub(
+                td.mul_unit_range(a_cg)
+                    .add(tg.mul_unit_range(cg_e))
+                    .mul(inv_d),
+            ),
         ];
+        let det_num = a_cg.mul_unit_range(sd).sub(sg.mul_unit_range(sp_s1));
+        let singular = det_num.abs() < d.mul_unit_range(self.det_min);
         // 6. Both motor laws.
         let position = [readings.motors.theta1, readings.motors.theta3];
         let sample = |i: usize| WristJointSample {
@@ -837,7 +842,7 @@ impl<S: Scalar> WristStepConfig<S> {
             saturated: reference_saturated || torque_saturated,
             reference_saturated,
             torque_saturated,
-            singular: det.abs() < self.det_min,
+            singular,
             invalid_input: sensed.is_none()
                 || m.invalid_input
                 || laws[0].invalid_input
