@@ -759,7 +759,7 @@ impl<S: Scalar> WristStepConfig<S> {
         let sensed = self.interaction(&readings.gauges, st.yaw_sin_cos);
         let interaction = sensed.unwrap_or([S::ZERO; 2]);
         // 2. Mode manager in task space.
-        let m = self.modes.update(
+        let m = self.modes.update_with(
             &mut st.modes,
             &WristModeInput {
                 desired: [target.pose.delta, target.pose.gamma],
@@ -767,6 +767,7 @@ impl<S: Scalar> WristStepConfig<S> {
                 interaction,
                 request: target.request,
             },
+            false,
         );
         // 3. Inverse kinematics, continuous in time.
         let ik = self.ik(PitchYaw {
