@@ -649,7 +649,7 @@ impl<S: Scalar> WristStepConfig<S> {
             let ay_c = ay.mul_unit_range(self.cos_2phi);
             let n2 = ax.mul_unit_range(ax).add(ay.mul_unit_range(ay));
             let w2 = ax.mul_unit_range(ax).add(ay_c.mul_unit_range(ay_c));
-            let (n, w) = (n2.sqrt(), w2.sqrt());
+            let (n, w) = (n2.sqrt_small(), w2.sqrt_small());
             let nw = n.mul_unit_range(w);
             let (ux, uy, inv_cg) = if nw > S::ZERO {
                 let r = S::ONE.div(nw);
@@ -698,7 +698,7 @@ impl<S: Scalar> WristStepConfig<S> {
                 let one_cb = S::ONE.add(cb);
                 let px = one_cb
                     .mul_unit_range(cb.sub(self.cos_2phi).max(S::ZERO))
-                    .sqrt()
+                    .sqrt_small()
                     .mul_coef(&self.inv_2_sin_phi);
                 let py = n.mul_coef(&self.cot_phi_half);
                 let v1 = rot(ax, ay, px, py);
