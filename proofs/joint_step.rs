@@ -118,20 +118,6 @@ pub(crate) mod kani_entries {
     use super::*;
     use crate::joint::JointParams;
     use crate::scalar::I16F16;
-    use core::sync::atomic::{AtomicBool, Ordering::Relaxed};
-
-    /// Set by a harness once its configuration is built. Until then the
-    /// product stub is the real product ([`mul_bits_formula`]): the
-    /// constructors search their slopes with products
-    /// (`scalar::slope_within`), and a free product there would make the
-    /// configuration itself symbolic instead of the library's own.
-    static CONFIGURED: AtomicBool = AtomicBool::new(false);
-
-    /// From here on the stubs are their contracts.
-    pub(crate) fn configured() {
-        CONFIGURED.store(true, Relaxed);
-    }
-
     /// Postcondition of the stubbed `tan`: the sign of the argument.
     fn tan_as_contract(x: I16F16) -> I16F16 {
         let (x, y) = (x.to_bits(), kani::any::<i32>());
@@ -168,9 +154,6 @@ pub(crate) mod kani_entries {
     /// magnitude than `|a|` when `|b| ≤ 1` (and than `|b|` when
     /// `|a| ≤ 1`).
     pub(crate) fn mul_bits_as_contract(a: i32, b: i32) -> i32 {
-        if !CONFIGURED.load(Relaxed) {
-            return mul_bits_formula(a, b);
-        }
         let y = kani::any::<i32>();
         let (ua, ub, uy) = (a.unsigned_abs(), b.unsigned_abs(), y.unsigned_abs());
         // Postcondition of the stubbed function
@@ -187,9 +170,11 @@ pub(crate) mod kani_entries {
         y
     }
 
-    fn joint() -> JointConfig<I16F16> {
-        // Table 4.1 constants validate (joint tests).
-        JointConfig::new(&JointParams::table_4_1().expect("Table 4.1 joint is valid"))
+    /// `JointConfig::<I16F16>::new(&JointParams::table_4_1())` as stored
+    /// words: a compile-time constant (`joint::prepared`; equal to the
+    /// constructor's value by `prepared_is_the_constructors`).
+    pub(crate) fn joint() -> JointConfig<I16F16> {
+        crate::joint::TABLE_4_1_I16F16
     }
 
     fn any_target() -> JointTarget<I16F16> {
@@ -224,7 +209,6 @@ pub(crate) mod kani_entries {
     fn kani_joint_step_products_i16f16() {
         let cfg = joint();
         let mut st = cfg.state(0, 0);
-        configured();
         assert!(joint_step_bounded(&cfg, &mut st, &any_readings(), &any_target()).holds);
     }
 
@@ -235,9 +219,8 @@ pub(crate) mod kani_entries {
     #[kani::stub(crate::scalar::kernels::i16f16::exp, exp_as_contract)]
     #[kani::stub(crate::scalar::fixed::mul_bits, mul_bits_as_contract)]
     fn kani_joint_mode_step_i16f16() {
-        let cfg = ModeConfig::<I16F16>::new(&joint_mode_params());
+        let cfg = *joint().mode();
         let mut st = cfg.initial_state();
-        configured();
         let any = || I16F16::from_bits(kani::any());
         let x = ControlInput {
             desired_position: any(),
@@ -255,8 +238,8 @@ pub(crate) mod kani_entries {
 
 /// The `I16F16` product by its 64-bit definition: `a·b·2⁻¹⁶` rounded to
 /// nearest (ties up), saturated; equal to `mul_bits` (tests here and in
-/// `src/scalar/fixed.rs`). The product stub's value while a harness
-/// builds its configuration.
+/// `src/scalar/fixed.rs`): the reference the product's contract is
+/// tested against.
 pub fn mul_bits_formula(a: i32, b: i32) -> i32 {
     let p = ((a as i64) * (b as i64) + (1 << 15)) >> 16;
     p.clamp(i32::MIN as i64, i32::MAX as i64) as i32

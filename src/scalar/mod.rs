@@ -32,6 +32,8 @@ pub mod float;
 pub mod kernels;
 pub mod q15;
 pub mod units;
+#[cfg(any(kani, test))]
+pub(crate) mod words;
 
 pub use ::fixed::types::I16F16;
 
