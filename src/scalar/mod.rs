@@ -32,8 +32,6 @@ pub mod float;
 pub mod kernels;
 pub mod q15;
 pub mod units;
-#[cfg(any(kani, test))]
-pub(crate) mod words;
 
 pub use ::fixed::types::I16F16;
 
@@ -960,6 +958,9 @@ mod sealed {
     impl Sealed for f64 {}
     impl Sealed for super::I16F16 {}
 }
+
+#[cfg(any(kani, test))]
+pub(crate) mod words;
 
 #[cfg(test)]
 mod tests {
