@@ -968,6 +968,9 @@ mod sealed {
     impl Sealed for super::I16F16 {}
 }
 
+#[cfg(any(kani, test))]
+pub(crate) mod words;
+
 #[cfg(test)]
 mod tests {
     use super::*;
