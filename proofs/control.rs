@@ -270,9 +270,12 @@ mod kani_entries {
         crate::proofs::joint_step::kani_entries::mul_bits_as_contract
     )]
     fn kani_step_bounded_i16f16() {
-        let cfg = table_4_1::<I16F16>();
+        // `table_4_1::<I16F16>()` as stored words, a compile-time constant
+        // (`table_4_1_is_the_joints_active_law`).
+        let cfg = *crate::proofs::joint_step::kani_entries::joint()
+            .mode()
+            .active();
         let mut st = cfg.initial_state();
-        crate::proofs::joint_step::kani_entries::configured();
         // Any state inside the box and the integral limit (precondition:
         // the states the law itself produces).
         for j in 0..4 {
@@ -281,7 +284,9 @@ mod kani_entries {
             st.friction[j] = v;
         }
         let z = any_i16f16();
-        kani::assume(z.abs() <= cfg.integral_limit());
+        // `Scalar::abs` (saturating): the inherent `I16F16::abs` overflows
+        // at `MIN`, which the precondition excludes anyway.
+        kani::assume(Scalar::abs(z) <= cfg.integral_limit());
         st.integral = z;
         let x = ControlInput {
             desired_position: any_i16f16(),
@@ -343,6 +348,16 @@ mod tests {
     }
     use proptest::prelude::*;
     use std::println;
+
+    /// `kani_step_bounded_i16f16` takes the active law from the joint's
+    /// stored configuration: it is this module's `table_4_1::<I16F16>()`.
+    #[test]
+    fn table_4_1_is_the_joints_active_law() {
+        assert_eq!(
+            crate::joint::TABLE_4_1_I16F16.mode().active(),
+            &table_4_1::<I16F16>()
+        );
+    }
 
     #[test]
     #[ignore = "exhaustive: run in release by .ci/run"]

@@ -5,11 +5,31 @@
 //!
 //! | property | I16F16 | f32 | f64 |
 //! |---|---|---|---|
-//! | `joint_step_bounded` — the step returns (no panic, no integer overflow), the command is within `±L` and is the state's last command, the integral within its limit, the friction estimates inside the projection box | Kani (kernels by contract, see below): TIMEOUT at 600 s, see the notes of `KANI_RESULTS.md`; random | random | random |
+//! | `joint_step_bounded` — the step returns (no panic, no integer overflow), the command is within `±L` and is the state's last command, the integral within its limit, the friction estimates inside the projection box | Kani `kani_joint_step_products_i16f16` (kernels and products by contract, see below): VERIFIED in 594 s (limit 600 s); random | random | random |
+//! | `mode_step_bounded` — the mode manager alone (the second half of the step), the same bounds | Kani `kani_joint_mode_step_i16f16` (`exp` and products by contract): VERIFIED in 237 s; random | in `joint_step_bounded` | in `joint_step_bounded` |
 //!
-//! **The Kani harness.** The configuration is the library's own
-//! `JointConfig::new(&JointParams::table_4_1())` (concrete: the solver's
-//! front end folds it). The state is the joint at rest at link count 0
+//! **The configuration is constant.** Both Kani harnesses take the
+//! configuration from `joint::TABLE_4_1_I16F16`:
+//! the value of `JointConfig::<I16F16>::new(&JointParams::table_4_1())`
+//! stored as 789 `u32` words and read back by `const fn`s that only
+//! reassemble bits (`src/joint/prepared.rs`, `src/scalar/words.rs`; test
+//! and Kani builds only), so the compiler evaluates it and the solver
+//! receives constants. `JointConfig::new` itself runs `f64` and `libm`
+//! code (`turn_from_radians` of the kinematic-error phases reaches
+//! `rem_pio2_large`) and slope searches with products
+//! (`scalar::slope_within`), which the solver's front end did not reduce
+//! to constants: from it the harnesses verified a symbolic configuration
+//! and timed out. The result holds for the constructor's own
+//! configuration because `prepared_is_the_constructors` (a unit test)
+//! checks that the stored words are, word for word, those written from
+//! `JointConfig::new`'s output, and that the two configurations are equal
+//! (`PartialEq` over every field); it fails when a single stored bit is
+//! changed. The mode harness uses the joint's manager (`JointConfig::mode`,
+//! equal to `ModeConfig::new(&joint_mode_params())` by
+//! `joint_mode_params_are_the_joints`).
+//!
+//! **The states and inputs.** The state of the whole-step harness is the
+//! joint at rest at link count 0
 //! and motor counter 0 (`JointConfig::state(0, 0)`), and the tick's
 //! readings and target are symbolic: every link count (also the invalid
 //! ones `≥ L`, which the estimator reduces and flags), every motor
@@ -21,9 +41,11 @@
 //! state it can be in; the motor position reaches `±2³¹` counts, far
 //! beyond `I16F16`'s saturation (`2³¹·2π/2000` rad). The mode manager
 //! starts in its initial state (Active, initial estimates, no bias or
-//! offset) and may switch on this tick. Later mode-manager states are the
-//! random engine's (`joint_step_random`: sequences of up to 60 ticks on
-//! all three backends).
+//! offset) and may switch on this tick; the mode harness gives it every
+//! `I16F16` input (all eight of `ControlInput`). Later mode-manager states
+//! are the random engine's (`joint_step_random`: sequences of up to 60
+//! ticks on all three backends). No `kani::assume` restricts a reading,
+//! a target or an input.
 //!
 //! The transcendental kernels of the step are replaced by their
 //! contracts (`#[kani::stub]`, `-Z stubbing`): each stub returns *any*
@@ -36,14 +58,16 @@
 //! | `kernels::i16f16::exp` (the Stribeck term `e^{−f_τ q̇²}`, eq. 4.17) | `≥ 0`; `≤ 1` for `x ≤ 0` | `exhaustive_exp_i16f16` (≤ 2 LSB and non-decreasing at all 2³² inputs; `exp(0) = 1`) |
 //! | `kernels::i16f16::cos_turn` (kinematic error, eq. 3.7) | `[−1, 1]` | `exhaustive_cos_turn_i16f16` (`|result| ≤ 1` at all 2³² turns) |
 //!
-//! The harness `kani_joint_step_products_i16f16` replaces, in addition,
-//! the fixed-point product `mul_bits` by its contract (any value of the
-//! sign rule `sgn(ab)`, `|ab|` below `|a|` when `|b| ≤ 1`, and 0 when a
-//! factor is 0), proven for the real product by
-//! `joint_step_mul_contract_is_the_products` (edge classes) and
-//! `joint_step_mul_contract_random` (random pairs): that harness decides the composition (the
-//! estimator's integer arithmetic, the coefficient products, the
-//! saturation and mode logic) on every value the products can take.
+//! Both harnesses replace, in addition, the fixed-point product
+//! `mul_bits` by its contract (any value of the sign rule `sgn(ab)`,
+//! `|ab|` below `|a|` when `|b| ≤ 1`, and 0 when a factor is 0), proven
+//! for the real product by `joint_step_mul_contract_is_the_products`
+//! (edge classes) and `joint_step_mul_contract_random` (random pairs): the
+//! harnesses decide the composition (the estimator's integer arithmetic,
+//! the coefficient products, the saturation and mode logic) on every value
+//! the products can take. With the configuration a constant, the stub is
+//! the contract throughout (the configuration is no longer built under
+//! it).
 
 use super::engine::Verdict;
 use crate::control::{
@@ -116,21 +140,7 @@ pub fn mode_step_bounded<S: Scalar>(
 #[cfg(kani)]
 pub(crate) mod kani_entries {
     use super::*;
-    use crate::joint::JointParams;
     use crate::scalar::I16F16;
-    use core::sync::atomic::{AtomicBool, Ordering::Relaxed};
-
-    /// Set by a harness once its configuration is built. Until then the
-    /// product stub is the real product ([`mul_bits_formula`]): the
-    /// constructors search their slopes with products
-    /// (`scalar::slope_within`), and a free product there would make the
-    /// configuration itself symbolic instead of the library's own.
-    static CONFIGURED: AtomicBool = AtomicBool::new(false);
-
-    /// From here on the stubs are their contracts.
-    pub(crate) fn configured() {
-        CONFIGURED.store(true, Relaxed);
-    }
 
     /// Postcondition of the stubbed `tan`: the sign of the argument.
     fn tan_as_contract(x: I16F16) -> I16F16 {
@@ -168,9 +178,6 @@ pub(crate) mod kani_entries {
     /// magnitude than `|a|` when `|b| ≤ 1` (and than `|b|` when
     /// `|a| ≤ 1`).
     pub(crate) fn mul_bits_as_contract(a: i32, b: i32) -> i32 {
-        if !CONFIGURED.load(Relaxed) {
-            return mul_bits_formula(a, b);
-        }
         let y = kani::any::<i32>();
         let (ua, ub, uy) = (a.unsigned_abs(), b.unsigned_abs(), y.unsigned_abs());
         // Postcondition of the stubbed function
@@ -187,9 +194,11 @@ pub(crate) mod kani_entries {
         y
     }
 
-    fn joint() -> JointConfig<I16F16> {
-        // Table 4.1 constants validate (joint tests).
-        JointConfig::new(&JointParams::table_4_1().expect("Table 4.1 joint is valid"))
+    /// `JointConfig::<I16F16>::new(&JointParams::table_4_1())` as stored
+    /// words: a compile-time constant (`joint::prepared`; equal to the
+    /// constructor's value by `prepared_is_the_constructors`).
+    pub(crate) fn joint() -> JointConfig<I16F16> {
+        crate::joint::TABLE_4_1_I16F16
     }
 
     fn any_target() -> JointTarget<I16F16> {
@@ -224,7 +233,6 @@ pub(crate) mod kani_entries {
     fn kani_joint_step_products_i16f16() {
         let cfg = joint();
         let mut st = cfg.state(0, 0);
-        configured();
         assert!(joint_step_bounded(&cfg, &mut st, &any_readings(), &any_target()).holds);
     }
 
@@ -235,9 +243,8 @@ pub(crate) mod kani_entries {
     #[kani::stub(crate::scalar::kernels::i16f16::exp, exp_as_contract)]
     #[kani::stub(crate::scalar::fixed::mul_bits, mul_bits_as_contract)]
     fn kani_joint_mode_step_i16f16() {
-        let cfg = ModeConfig::<I16F16>::new(&joint_mode_params());
+        let cfg = *joint().mode();
         let mut st = cfg.initial_state();
-        configured();
         let any = || I16F16::from_bits(kani::any());
         let x = ControlInput {
             desired_position: any(),
@@ -255,8 +262,8 @@ pub(crate) mod kani_entries {
 
 /// The `I16F16` product by its 64-bit definition: `a·b·2⁻¹⁶` rounded to
 /// nearest (ties up), saturated; equal to `mul_bits` (tests here and in
-/// `src/scalar/fixed.rs`). The product stub's value while a harness
-/// builds its configuration.
+/// `src/scalar/fixed.rs`): the reference the product's contract is
+/// tested against.
 pub fn mul_bits_formula(a: i32, b: i32) -> i32 {
     let p = ((a as i64) * (b as i64) + (1 << 15)) >> 16;
     p.clamp(i32::MIN as i64, i32::MAX as i64) as i32

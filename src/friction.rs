@@ -432,6 +432,75 @@ impl<S: Scalar> FrictionConfig<S> {
     }
 }
 
+#[cfg(any(kani, test))]
+mod words {
+    use super::{FrictionBounds, FrictionConfig, FrictionParams};
+    #[cfg(test)]
+    use crate::scalar::words::Sink;
+    use crate::scalar::{words::Words, Coef, I16F16};
+
+    const fn f64x4(r: &mut Words) -> [f64; 4] {
+        [r.f64(), r.f64(), r.f64(), r.f64()]
+    }
+
+    impl FrictionConfig<I16F16> {
+        pub(crate) const fn take(r: &mut Words) -> Self {
+            FrictionConfig {
+                eps: r.fixed(),
+                inv_eps: Coef::take(r),
+                inv_eps_value: r.option_fixed(),
+            }
+        }
+
+        #[cfg(test)]
+        pub(crate) fn put(&self, s: &mut Sink) {
+            s.fixed(self.eps);
+            self.inv_eps.put(s);
+            s.option_fixed(self.inv_eps_value);
+        }
+    }
+
+    impl FrictionBounds {
+        pub(crate) const fn take(r: &mut Words) -> Self {
+            FrictionBounds {
+                min: f64x4(r),
+                max: f64x4(r),
+                variable: f64x4(r),
+            }
+        }
+
+        #[cfg(test)]
+        pub(crate) fn put(&self, s: &mut Sink) {
+            for v in self.min.iter().chain(&self.max).chain(&self.variable) {
+                s.f64(*v);
+            }
+        }
+    }
+
+    impl FrictionParams {
+        pub(crate) const fn take(r: &mut Words) -> Self {
+            FrictionParams {
+                viscous: r.f64(),
+                coulomb: r.f64(),
+                stribeck: r.f64(),
+                stribeck_shape: r.f64(),
+            }
+        }
+
+        #[cfg(test)]
+        pub(crate) fn put(&self, s: &mut Sink) {
+            for v in [
+                self.viscous,
+                self.coulomb,
+                self.stribeck,
+                self.stribeck_shape,
+            ] {
+                s.f64(v);
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

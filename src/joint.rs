@@ -569,5 +569,10 @@ impl<S: Scalar> JointConfig<S> {
     }
 }
 
+#[cfg(any(kani, test))]
+mod prepared;
+#[cfg(any(kani, test))]
+pub(crate) use prepared::TABLE_4_1_I16F16;
+
 #[cfg(test)]
 mod tests;

@@ -756,5 +756,117 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
     }
 }
 
+#[cfg(any(kani, test))]
+mod words {
+    use super::{FrictionBounds, FrictionConfig, FrictionParams, UncertaintyBounds};
+    use super::{RobustAdaptiveConfig, RobustAdaptiveDesign, RobustAdaptiveParams};
+    #[cfg(test)]
+    use crate::scalar::words::Sink;
+    use crate::scalar::{words::Words, Coef, Gain, I16F16};
+
+    impl RobustAdaptiveParams {
+        pub(crate) const fn take(r: &mut Words) -> Self {
+            RobustAdaptiveParams {
+                design: RobustAdaptiveDesign {
+                    rotor_inertia: r.f64(),
+                    ratio: r.f64(),
+                    lambda: r.f64(),
+                    integral_gain: r.f64(),
+                    adaptation_gain: [r.f64(), r.f64(), r.f64(), r.f64()],
+                    eps_r: r.f64(),
+                    eps_velocity: r.f64(),
+                    eps_f: [r.f64(), r.f64(), r.f64(), r.f64()],
+                    uncertainty: UncertaintyBounds {
+                        boundary_layer: r.f64(),
+                        nonparametric_friction: r.f64(),
+                        base_acceleration: r.f64(),
+                        torque_estimate: r.f64(),
+                    },
+                    friction_bounds: FrictionBounds::take(r),
+                    initial_friction: FrictionParams::take(r),
+                    integral_limit: r.f64(),
+                    torque_limit: r.f64(),
+                    sample_period: r.f64(),
+                },
+            }
+        }
+
+        #[cfg(test)]
+        pub(crate) fn put(&self, s: &mut Sink) {
+            let d = &self.design;
+            for v in [d.rotor_inertia, d.ratio, d.lambda, d.integral_gain] {
+                s.f64(v);
+            }
+            d.adaptation_gain.iter().for_each(|&v| s.f64(v));
+            s.f64(d.eps_r);
+            s.f64(d.eps_velocity);
+            d.eps_f.iter().for_each(|&v| s.f64(v));
+            let u = &d.uncertainty;
+            for v in [
+                u.boundary_layer,
+                u.nonparametric_friction,
+                u.base_acceleration,
+                u.torque_estimate,
+            ] {
+                s.f64(v);
+            }
+            d.friction_bounds.put(s);
+            d.initial_friction.put(s);
+            for v in [d.integral_limit, d.torque_limit, d.sample_period] {
+                s.f64(v);
+            }
+        }
+    }
+
+    impl RobustAdaptiveConfig<I16F16> {
+        pub(crate) const fn take(r: &mut Words) -> Self {
+            RobustAdaptiveConfig {
+                friction: FrictionConfig::take(r),
+                accel_inertia: Coef::take(r),
+                lambda_inertia: Coef::take(r),
+                lambda: Gain::take(r),
+                feedback: Gain::take(r),
+                integral_step: Gain::take(r),
+                robust_gain_value: [r.fixed(), r.fixed()],
+                eps_r: r.fixed(),
+                robust_slope: Coef::take(r),
+                rho_param: Coef::take4(r),
+                eps_f: r.fixed4(),
+                rho_slope: Coef::take4(r),
+                adapt: Coef::take4(r),
+                lower: r.fixed4(),
+                upper: r.fixed4(),
+                initial: r.fixed4(),
+                integral_limit: r.fixed(),
+                torque_limit: r.fixed(),
+                params: RobustAdaptiveParams::take(r),
+            }
+        }
+
+        #[cfg(test)]
+        pub(crate) fn put(&self, s: &mut Sink) {
+            self.friction.put(s);
+            self.accel_inertia.put(s);
+            self.lambda_inertia.put(s);
+            self.lambda.put(s);
+            self.feedback.put(s);
+            self.integral_step.put(s);
+            s.fixeds(&self.robust_gain_value);
+            s.fixed(self.eps_r);
+            self.robust_slope.put(s);
+            Coef::put_all(&self.rho_param, s);
+            s.fixeds(&self.eps_f);
+            Coef::put_all(&self.rho_slope, s);
+            Coef::put_all(&self.adapt, s);
+            s.fixeds(&self.lower);
+            s.fixeds(&self.upper);
+            s.fixeds(&self.initial);
+            s.fixed(self.integral_limit);
+            s.fixed(self.torque_limit);
+            self.params.put(s);
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests;

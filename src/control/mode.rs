@@ -824,5 +824,64 @@ impl<S: Scalar> ModeConfig<S> {
     }
 }
 
+#[cfg(any(kani, test))]
+mod words {
+    use super::ModeConfig;
+    use crate::control::adaptive::RobustAdaptiveConfig;
+    use crate::control::passive::PassiveConfig;
+    use crate::estimation::collision::CollisionConfig;
+    #[cfg(test)]
+    use crate::scalar::words::Sink;
+    use crate::scalar::{words::Words, Coef, Gain, I16F16};
+
+    impl ModeConfig<I16F16> {
+        pub(crate) const fn take(r: &mut Words) -> Self {
+            ModeConfig {
+                active: RobustAdaptiveConfig::take(r),
+                passive: PassiveConfig::take(r),
+                collision: if r.bool() {
+                    Some(CollisionConfig::take(r))
+                } else {
+                    None
+                },
+                enter_passive: r.fixed(),
+                exit_passive: r.fixed(),
+                debounce: r.u16(),
+                dwell: r.u16(),
+                release_speed: r.fixed(),
+                release_samples: r.u16(),
+                two_omega: Gain::take(r),
+                omega_sq: Gain::take(r),
+                step_rate: Coef::take(r),
+                step_position: Coef::take(r),
+                bias_decay: Coef::take(r),
+                limit: r.fixed(),
+            }
+        }
+
+        #[cfg(test)]
+        pub(crate) fn put(&self, s: &mut Sink) {
+            self.active.put(s);
+            self.passive.put(s);
+            s.bool(self.collision.is_some());
+            if let Some(c) = &self.collision {
+                c.put(s);
+            }
+            s.fixed(self.enter_passive);
+            s.fixed(self.exit_passive);
+            s.u32(self.debounce.into());
+            s.u32(self.dwell.into());
+            s.fixed(self.release_speed);
+            s.u32(self.release_samples.into());
+            self.two_omega.put(s);
+            self.omega_sq.put(s);
+            self.step_rate.put(s);
+            self.step_position.put(s);
+            self.bias_decay.put(s);
+            s.fixed(self.limit);
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests;

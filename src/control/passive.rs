@@ -613,6 +613,36 @@ impl<S: Scalar> PassiveConfig<S> {
     }
 }
 
+#[cfg(any(kani, test))]
+mod words {
+    use super::PassiveConfig;
+    use crate::friction::FrictionConfig;
+    #[cfg(test)]
+    use crate::scalar::words::Sink;
+    use crate::scalar::{words::Words, Coef, I16F16};
+
+    impl PassiveConfig<I16F16> {
+        pub(crate) const fn take(r: &mut Words) -> Self {
+            PassiveConfig {
+                friction: FrictionConfig::take(r),
+                nominal: r.fixed4(),
+                feedback: Coef::take(r),
+                torque_gain: Coef::take(r),
+                torque_limit: r.fixed(),
+            }
+        }
+
+        #[cfg(test)]
+        pub(crate) fn put(&self, s: &mut Sink) {
+            self.friction.put(s);
+            s.fixeds(&self.nominal);
+            self.feedback.put(s);
+            self.torque_gain.put(s);
+            s.fixed(self.torque_limit);
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

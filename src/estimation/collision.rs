@@ -228,6 +228,39 @@ impl<S: Scalar> CollisionConfig<S> {
     }
 }
 
+#[cfg(any(kani, test))]
+mod words {
+    use super::{CollisionConfig, CollisionReaction};
+    #[cfg(test)]
+    use crate::scalar::words::Sink;
+    use crate::scalar::{words::Words, I16F16};
+
+    impl CollisionConfig<I16F16> {
+        pub(crate) const fn take(r: &mut Words) -> Self {
+            CollisionConfig {
+                threshold: r.fixed(),
+                release_threshold: r.fixed(),
+                debounce: r.u16(),
+                release: r.u16(),
+                reaction: if r.bool() {
+                    CollisionReaction::Passive
+                } else {
+                    CollisionReaction::Stop
+                },
+            }
+        }
+
+        #[cfg(test)]
+        pub(crate) fn put(&self, s: &mut Sink) {
+            s.fixed(self.threshold);
+            s.fixed(self.release_threshold);
+            s.u32(self.debounce.into());
+            s.u32(self.release.into());
+            s.bool(self.reaction == CollisionReaction::Passive);
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

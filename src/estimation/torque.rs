@@ -1002,6 +1002,117 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     }
 }
 
+#[cfg(any(kani, test))]
+mod words {
+    use super::{Divisor, KinematicErrorPhase, TorqueEstimatorConfig};
+    use crate::harmonic_drive::compliance::{FlexsplineConfig, WaveGeneratorConfig};
+    #[cfg(test)]
+    use crate::scalar::words::Sink;
+    use crate::scalar::{words::Words, Coef, CountToTurn, I16F16};
+    use core::num::NonZeroU32;
+
+    impl Divisor {
+        const fn take(r: &mut Words) -> Self {
+            Divisor {
+                d: match NonZeroU32::new(r.u32()) {
+                    Some(d) => d,
+                    None => NonZeroU32::MIN,
+                },
+                recip: r.u32(),
+            }
+        }
+
+        #[cfg(test)]
+        fn put(&self, s: &mut Sink) {
+            s.u32(self.d.get());
+            s.u32(self.recip);
+        }
+    }
+
+    impl TorqueEstimatorConfig<I16F16> {
+        pub(crate) const fn take(r: &mut Words) -> Self {
+            TorqueEstimatorConfig {
+                flexspline: FlexsplineConfig::take(r),
+                wave_generator: WaveGeneratorConfig::take(r),
+                kinematic_error: if r.bool() {
+                    Some([
+                        r.fixed(),
+                        r.fixed(),
+                        r.fixed(),
+                        r.fixed(),
+                        r.fixed(),
+                        r.fixed(),
+                        r.fixed(),
+                    ])
+                } else {
+                    None
+                },
+                kinematic_error_phase: if r.bool() {
+                    Some(KinematicErrorPhase {
+                        offset: r.fixed(),
+                        amplitudes: [r.fixed(), r.fixed(), r.fixed()],
+                        phases: [r.u32(), r.u32(), r.u32()],
+                    })
+                } else {
+                    None
+                },
+                link_turn: CountToTurn::take(r),
+                motor_turn: CountToTurn::take(r),
+                max_torque: r.fixed(),
+                torsion_per_count: Coef::take(r),
+                torsion_per_angle: Coef::take(r),
+                inv_ratio: Coef::take(r),
+                l: r.u32(),
+                m: r.u32(),
+                n: r.u32(),
+                l_div: Divisor::take(r),
+                m_div: Divisor::take(r),
+                n_div: Divisor::take(r),
+                mn: r.i64(),
+                lmn: r.i64(),
+                half_lmn: r.i64(),
+                double_angle: [r.fixed(), r.fixed(), r.fixed()],
+                torsion_limit: r.fixed(),
+                torsion_range: r.fixed(),
+            }
+        }
+
+        #[cfg(test)]
+        pub(crate) fn put(&self, s: &mut Sink) {
+            self.flexspline.put(s);
+            self.wave_generator.put(s);
+            s.bool(self.kinematic_error.is_some());
+            if let Some(k) = &self.kinematic_error {
+                s.fixeds(k);
+            }
+            s.bool(self.kinematic_error_phase.is_some());
+            if let Some(k) = &self.kinematic_error_phase {
+                s.fixed(k.offset);
+                s.fixeds(&k.amplitudes);
+                k.phases.iter().for_each(|&p| s.u32(p));
+            }
+            self.link_turn.put(s);
+            self.motor_turn.put(s);
+            s.fixed(self.max_torque);
+            self.torsion_per_count.put(s);
+            self.torsion_per_angle.put(s);
+            self.inv_ratio.put(s);
+            s.u32(self.l);
+            s.u32(self.m);
+            s.u32(self.n);
+            self.l_div.put(s);
+            self.m_div.put(s);
+            self.n_div.put(s);
+            s.i64(self.mn);
+            s.i64(self.lmn);
+            s.i64(self.half_lmn);
+            s.fixeds(&self.double_angle);
+            s.fixed(self.torsion_limit);
+            s.fixed(self.torsion_range);
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -672,6 +672,51 @@ impl HarmonicDriveParams {
     }
 }
 
+#[cfg(any(kani, test))]
+mod words {
+    use super::{FlexsplineConfig, WaveGeneratorConfig};
+    #[cfg(test)]
+    use crate::scalar::words::Sink;
+    use crate::scalar::{words::Words, Coef, I16F16};
+    use core::marker::PhantomData;
+
+    impl FlexsplineConfig<I16F16> {
+        pub(crate) const fn take(r: &mut Words) -> Self {
+            FlexsplineConfig {
+                c_f: Coef::take(r),
+                torsion_per_angle: Coef::take(r),
+                angle_per_torsion: Coef::take(r),
+                torque_per_tan: Coef::take(r),
+                _backend: PhantomData,
+            }
+        }
+
+        #[cfg(test)]
+        pub(crate) fn put(&self, s: &mut Sink) {
+            self.c_f.put(s);
+            self.torsion_per_angle.put(s);
+            self.angle_per_torsion.put(s);
+            self.torque_per_tan.put(s);
+        }
+    }
+
+    impl WaveGeneratorConfig<I16F16> {
+        pub(crate) const fn take(r: &mut Words) -> Self {
+            WaveGeneratorConfig {
+                c_w: Coef::take(r),
+                amplitude: Coef::take(r),
+                _backend: PhantomData,
+            }
+        }
+
+        #[cfg(test)]
+        pub(crate) fn put(&self, s: &mut Sink) {
+            self.c_w.put(s);
+            self.amplitude.put(s);
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -594,6 +594,10 @@ impl Scalar for I16F16 {
     fn sqrt(self) -> Self {
         kernels::i16f16::sqrt(self)
     }
+    #[inline]
+    fn sqrt_small(self) -> Self {
+        kernels::i16f16::sqrt_small(self)
+    }
 }
 
 #[cfg(test)]

@@ -281,6 +281,15 @@ pub trait Scalar:
     fn acos(self) -> Self;
     /// Square root; negative inputs return 0.
     fn sqrt(self) -> Self;
+    /// [`sqrt`](Self::sqrt) of a value below 4 (a sum of squares of
+    /// values bounded by 1, `1 + r²` with `|r| ≤ 1`): the value of `sqrt`,
+    /// bit for bit, for every input below 4. `I16F16` takes a shorter root
+    /// (seven trial steps fewer: [`kernels::i16f16::sqrt_small`]) and
+    /// clamps inputs of 4 and above to `4 − 2⁻¹⁶`; floats take `sqrt`.
+    #[inline]
+    fn sqrt_small(self) -> Self {
+        self.sqrt()
+    }
 
     /// Sign function of thesis eq. (2.17): `1` for `x > 0`, `0` for `x = 0`
     /// (including `-0.0` and NaN), `-1` for `x < 0`. Exact on every backend.
@@ -983,6 +992,9 @@ mod sealed {
     impl Sealed for f64 {}
     impl Sealed for super::I16F16 {}
 }
+
+#[cfg(any(kani, test))]
+pub(crate) mod words;
 
 #[cfg(test)]
 mod tests {

@@ -289,7 +289,9 @@ pub(crate) fn hypot<S: Scalar>(a: S, b: S) -> S {
         return S::ZERO;
     }
     let r = n.div(m);
-    m.mul(S::ONE.add(sq(r)).sqrt())
+    // r ≤ 1: the short product (bit for bit `mul`) and the root of a value
+    // below 4 (bit for bit `sqrt`).
+    m.mul(S::ONE.add(r.mul_unit_range(r)).sqrt_small())
 }
 
 impl<S: Scalar> WristConfig<S> {

@@ -303,6 +303,20 @@ impl<S: Scalar> WristModeConfig<S> {
     /// advance the reference of the mode. Never panics; a non-finite input
     /// holds the reference, flagged.
     pub fn update(&self, st: &mut WristModeState<S>, x: &WristModeInput<S>) -> WristModeOutput<S> {
+        self.update_with(st, x, true)
+    }
+
+    /// [`update`](Self::update); with `want_rate` false the output's
+    /// `reference_rate` is not formed on a clamped Active reference (it
+    /// reads the Active rate unclamped): the wrist step, which does not
+    /// read it, saves the two products. Everything else is the same.
+    #[inline(always)]
+    pub(crate) fn update_with(
+        &self,
+        st: &mut WristModeState<S>,
+        x: &WristModeInput<S>,
+        want_rate: bool,
+    ) -> WristModeOutput<S> {
         // `v − v` is 0 for a finite float and NaN otherwise (always 0 on
         // fixed point); written out, so the step has no loop.
         let d = |v: [S; 2]| v[0].sub(v[0]).add(v[1].sub(v[1]));
@@ -398,7 +412,7 @@ impl<S: Scalar> WristModeConfig<S> {
             saturated |= c != out[i];
             out[i] = c;
         }
-        let rate = if st.mode == WristMode::Active && saturated {
+        let rate = if want_rate && st.mode == WristMode::Active && saturated {
             [
                 out[0].sub(st.reference[0]).mul_coef(&self.inv_step),
                 out[1].sub(st.reference[1]).mul_coef(&self.inv_step),

@@ -249,13 +249,12 @@ pub struct WristStepConfig<S> {
     cos_phi: S,
     sin_2phi: S,
     cos_2phi: S,
-    half: S,
+    two: S,
     /// `1/(2 sin φ)`.
     inv_2_sin_phi: Coef,
-    /// `1/(√2 sin φ)`.
-    inv_sqrt2_sin_phi: Coef,
-    sin_phi_coef: Coef,
-    cos_phi_coef: Coef,
+    /// `cos φ/(2 sin φ)`.
+    cot_phi_half: Coef,
+    sin_phi: S,
     /// Below this `sin β` the pose counts as straight.
     min_bend: S,
     det_min: S,
@@ -529,11 +528,10 @@ impl<S: Scalar> WristStepConfig<S> {
             cos_phi: S::from_f64(libm::cos(phi)),
             sin_2phi: S::from_f64(libm::sin(2.0 * phi)),
             cos_2phi: S::from_f64(libm::cos(2.0 * phi)),
-            half: S::from_f64(0.5),
+            two: S::from_f64(2.0),
             inv_2_sin_phi: Coef::new(0.5 / sin_phi),
-            inv_sqrt2_sin_phi: Coef::new(1.0 / (core::f64::consts::SQRT_2 * sin_phi)),
-            sin_phi_coef: Coef::new(sin_phi),
-            cos_phi_coef: Coef::new(libm::cos(phi)),
+            cot_phi_half: Coef::new(0.5 * libm::cos(phi) / sin_phi),
+            sin_phi: S::from_f64(sin_phi),
             min_bend: S::from_f64((64.0 * S::RESOLUTION.to_f64()).max(1e-6)),
             det_min: S::from_f64(DET_MIN),
             inv_t: Coef::new(u.speed / (t * u.angle)),
@@ -598,7 +596,10 @@ impl<S: Scalar> WristStepConfig<S> {
             S::dot_coef(gauges, &self.rows[1]),
             S::dot_coef(gauges, &self.rows[2]),
         ];
-        let tau = [c.mul(m[0]).sub(s.mul(m[2])), m[1].neg()];
+        let tau = [
+            m[0].mul_unit_range(c).sub(m[2].mul_unit_range(s)),
+            m[1].neg(),
+        ];
         // `v − v` is 0 for a finite value and NaN for NaN and ±∞.
         let d = |v: S| v.sub(v);
         let mut probe = d(tau[0]).add(d(tau[1]));
@@ -623,64 +624,102 @@ impl<S: Scalar> WristStepConfig<S> {
     /// at the straight pose. A pose with `cos β < cos 2φ` is projected
     /// along its azimuth onto the cone `β = 2φ` (as
     /// [`WristConfig::inverse`] does).
+    ///
+    /// Evaluated with as few roots and quotients as the arithmetic allows
+    /// (one each inside the cone, where `P` is scaled by `cos(β/2)`; two
+    /// roots and one reciprocal beyond it, see the comments): the same map
+    /// in exact arithmetic, and on `I16F16` and `f32` the same map up to
+    /// rounding. Bound, checked by
+    /// `tests::vector_inverse_kinematics_matches_the_library_inverse` on a
+    /// 121 × 121 grid: motor angles, `(sin θ1, cos θ1)` and the projected
+    /// pose within `2e-5` (`f32`) and `5e-3` (`I16F16`, dominated by bends
+    /// of a few resolution steps) of [`WristConfig::inverse`].
     #[inline]
     fn ik(&self, r: PitchYaw<S>) -> Ik<S> {
         let (mut sd, mut cd) = r.delta.sin_cos();
         let (mut sg, mut cg) = r.gamma.sin_cos();
-        let (ax, ay) = (cg.mul(sd), sg.neg());
-        let cb = cd.mul(cg);
-        // sin β = |A|.
-        let n = hypot(ax, ay);
+        let (ax, ay) = (sd.mul_unit_range(cg), sg.neg());
+        let cb = cd.mul_unit_range(cg);
         let saturated = cb < self.cos_2phi;
         let mut pose = r;
         // −X·P̄ = (−(x px + y py), x py − y px) for X = (x, y).
-        let rot =
-            |x: S, y: S, px: S, py: S| (x.mul(px).add(y.mul(py)).neg(), x.mul(py).sub(y.mul(px)));
+        let rot = |x: S, y: S, px: S, py: S| {
+            (
+                px.mul_unit_range(x).add(py.mul_unit_range(y)).neg(),
+                py.mul_unit_range(x).sub(px.mul_unit_range(y)),
+            )
+        };
         let reduced = if saturated {
-            // The boundary pose of the same azimuth: z = (sin 2φ·A/|A|,
-            // cos 2φ); there θ4 = π, P = (0, cos φ), |P| = cos(β/2) = cos φ.
-            // (|A| = sin β > sin 2φ here: a bend beyond 2φ.)
-            let inv_n = if n > S::ZERO { S::ONE.div(n) } else { S::ZERO };
-            let (ux, uy) = if n > S::ZERO {
-                (ax.mul(inv_n), ay.mul(inv_n))
+            // The boundary pose of the same azimuth: z = (sin 2φ·U, cos 2φ)
+            // with U = A/|A|; there θ4 = π, P = (0, cos φ), and with
+            // w = |A| cos γ_b = √(A_x² + cos²2φ·A_y²) (γ_b the boundary
+            // pose's yaw): 1/|A| = w·r, 1/cos γ_b = |A|²·r and
+            // cos γ_b = w²·r for the one reciprocal r = 1/(|A|·w).
+            // (|A|² = sin²β > sin²2φ here: a bend beyond 2φ.)
+            let ay_c = ay.mul_unit_range(self.cos_2phi);
+            let n2 = ax.mul_unit_range(ax).add(ay.mul_unit_range(ay));
+            let w2 = ax.mul_unit_range(ax).add(ay_c.mul_unit_range(ay_c));
+            let (n, w) = (n2.sqrt_small(), w2.sqrt_small());
+            let nw = n.mul_unit_range(w);
+            let (ux, uy, inv_cg) = if nw > S::ZERO {
+                let r = S::ONE.div(nw);
+                cg = r.mul_unit_range(w2);
+                (
+                    r.mul_unit_range(ax.mul_unit_range(w)),
+                    r.mul_unit_range(ay.mul_unit_range(w)),
+                    r.mul_unit_range(n2),
+                )
             } else {
-                (S::ONE, S::ZERO)
+                cg = S::ONE;
+                (S::ONE, S::ZERO, S::ONE)
             };
-            let (bx, by) = (ux.mul(self.sin_2phi), uy.mul(self.sin_2phi));
-            cg = S::ONE.sub(by.mul(by)).max(S::ZERO).sqrt();
-            let inv_cg = S::ONE.div(cg);
+            let (bx, by) = (
+                ux.mul_unit_range(self.sin_2phi),
+                uy.mul_unit_range(self.sin_2phi),
+            );
             sg = by.neg();
-            sd = bx.mul(inv_cg);
-            cd = self.cos_2phi.mul(inv_cg);
+            sd = inv_cg.mul_unit_range(bx);
+            cd = inv_cg.mul_unit_range(self.cos_2phi);
             pose = PitchYaw {
                 delta: bx.atan2(self.cos_2phi),
                 gamma: sg.atan2(cg),
             };
-            // θ1 = arg A + π/2, θ3 = arg B + π/2, (cos θ1, sin θ1) = (−u_y, u_x).
-            let b3 = cd.mul(sg);
-            Some(([ux.atan2(uy.neg()), sd.atan2(b3.neg())], (ux, uy.neg())))
-        } else if n < self.min_bend {
-            None
+            // θ1 = arg A + π/2, θ3 = arg B + π/2 with B ∝ (U_x, cos 2φ·U_y)
+            // (B = (sd, cd·sg) scaled by cos γ_b/sin 2φ),
+            // (cos θ1, sin θ1) = (−u_y, u_x).
+            let (y, x1, x3) = if nw > S::ZERO {
+                (ax, ay.neg(), ay_c)
+            } else {
+                (S::ONE, S::ZERO, S::ZERO)
+            };
+            Some(([y.atan2(x1), y.atan2(x3)], (ux, uy.neg())))
         } else {
-            // cos(β/2) = √((1 + cos β)/2); sin(θ4/2) = sin β/(2 sin φ cos(β/2));
-            // cos(θ4/2) = √((cos β − cos 2φ)/2)/sin φ.
-            let half_cos = cb.mul(self.half).add(self.half).sqrt();
-            let inv_h = S::ONE.div(half_cos);
-            let sh = n.mul(inv_h).mul_coef(&self.inv_2_sin_phi).min(S::ONE);
-            let ch = cb
-                .sub(self.cos_2phi)
-                .max(S::ZERO)
-                .sqrt()
-                .mul_coef(&self.inv_sqrt2_sin_phi);
-            let (px, py) = (ch, sh.mul_coef(&self.cos_phi_coef));
-            let v1 = rot(ax, ay, px, py);
-            let v3 = rot(sd, cd.mul(sg), px, py);
-            // |V1| = |A|·|P| = sin β · cos(β/2).
-            let k = inv_h.mul(S::ONE.div(n));
-            Some((
-                [v1.1.atan2(v1.0), v3.1.atan2(v3.0)],
-                (v1.1.mul(k), v1.0.mul(k)),
-            ))
+            // sin β = |A|.
+            let n = hypot(ax, ay);
+            if n < self.min_bend {
+                None
+            } else {
+                // cos(β/2) = √((1 + cos β)/2); sin(θ4/2) = sin β/(2 sin φ cos(β/2));
+                // cos(θ4/2) = √((cos β − cos 2φ)/2)/sin φ. The arguments θ1, θ3
+                // do not change when P is scaled by a positive factor: the step
+                // uses P' = P·cos(β/2) = (√((1 + cos β)(cos β − cos 2φ)),
+                // sin β cos φ)/(2 sin φ), of modulus cos²(β/2) = (1 + cos β)/2,
+                // which needs one square root and no quotient.
+                let one_cb = S::ONE.add(cb);
+                let px = one_cb
+                    .mul_unit_range(cb.sub(self.cos_2phi).max(S::ZERO))
+                    .sqrt_small()
+                    .mul_coef(&self.inv_2_sin_phi);
+                let py = n.mul_coef(&self.cot_phi_half);
+                let v1 = rot(ax, ay, px, py);
+                let v3 = rot(sd, cd.mul_unit_range(sg), px, py);
+                // |V1| = |A|·|P'| = sin β (1 + cos β)/2: (sin θ1, cos θ1) = V1/|V1|.
+                let k = self.two.div(one_cb.mul_unit_range(n));
+                Some((
+                    [v1.1.atan2(v1.0), v3.1.atan2(v3.0)],
+                    (k.mul_unit_range(v1.1), k.mul_unit_range(v1.0)),
+                ))
+            }
         };
         Ik {
             pose,
@@ -720,6 +759,12 @@ impl<S: Scalar> WristStepConfig<S> {
 
     /// One tick: sensing, mode manager, inverse kinematics, reference
     /// rates, force mapping and both motor laws (module docs).
+    ///
+    /// The force mapping forms `τ_t = −Jᵀτ` with one product by `1/D` per
+    /// component and tests `|det J| < DET_MIN` through the closed form
+    /// `det J = sin φ (cos θ1 cγ sδ − sin θ1 sγ)/D` (eq. 6.1 with the
+    /// exact Jacobian of [`super::jacobian`]; the same values in exact
+    /// arithmetic, rounding apart on `I16F16` and `f32`).
     pub fn update(
         &self,
         st: &mut WristStepState<S>,
@@ -730,7 +775,7 @@ impl<S: Scalar> WristStepConfig<S> {
         let sensed = self.interaction(&readings.gauges, st.yaw_sin_cos);
         let interaction = sensed.unwrap_or([S::ZERO; 2]);
         // 2. Mode manager in task space.
-        let m = self.modes.update(
+        let m = self.modes.update_with(
             &mut st.modes,
             &WristModeInput {
                 desired: [target.pose.delta, target.pose.gamma],
@@ -738,6 +783,7 @@ impl<S: Scalar> WristStepConfig<S> {
                 interaction,
                 request: target.request,
             },
+            false,
         );
         // 3. Inverse kinematics, continuous in time.
         let ik = self.ik(PitchYaw {
@@ -756,23 +802,36 @@ impl<S: Scalar> WristStepConfig<S> {
         // 5. Eq. (6.1): τ_t = −Jᵀ τ, the exact Jacobian at the reference
         // (module docs of `super::jacobian`; D ≥ cos 3φ > 0 on the cone).
         let (sd, cd, sg, cg) = (ik.sd, ik.cd, ik.sg, ik.cg);
-        let sp_s1 = s1.mul_coef(&self.sin_phi_coef);
-        let sp_c1 = c1.mul_coef(&self.sin_phi_coef);
-        let d = sd.mul(sp_s1).add(cd.mul(self.cos_phi));
+        let sp_s1 = s1.mul_unit_range(self.sin_phi);
+        let sp_c1 = c1.mul_unit_range(self.sin_phi);
+        let d = sd
+            .mul_unit_range(sp_s1)
+            .add(cd.mul_unit_range(self.cos_phi));
         let inv_d = S::ONE.div(d);
-        let j = [
-            [cd.mul(sp_c1).mul(inv_d), sp_c1.mul(cg).mul(inv_d).sub(sg)],
-            [
-                sp_s1.mul(inv_d).neg(),
-                cg.mul(sd.mul(self.cos_phi).sub(cd.mul(sp_s1))).mul(inv_d),
-            ],
-        ];
-        let det = j[0][0].mul(j[1][1]).sub(j[0][1].mul(j[1][0]));
+        // With a = sin φ cos θ1, b = sin φ sin θ1 and e = sδ cos φ − cδ b:
+        // J = [[cδ a, a cγ − sγ D], [−b, cγ e]]/D, so
+        // τ_t = −Jᵀτ = (−(cδ a τ_δ − b τ_γ)/D, sγ τ_δ − (a cγ τ_δ + cγ e τ_γ)/D)
+        // with one product by 1/D each, and, since cδ e + b = sδ D,
+        // det J = (a cγ sδ − b sγ)/D: singular when |a cγ sδ − b sγ| < DET_MIN·D.
+        let a_cg = sp_c1.mul_unit_range(cg);
+        let cg_e = sd
+            .mul_unit_range(self.cos_phi)
+            .sub(cd.mul_unit_range(sp_s1))
+            .mul_unit_range(cg);
         let [td, tg] = interaction;
         let joint_torque = [
-            j[0][0].mul(td).add(j[1][0].mul(tg)).neg(),
-            j[0][1].mul(td).add(j[1][1].mul(tg)).neg(),
+            td.mul_unit_range(cd.mul_unit_range(sp_c1))
+                .sub(tg.mul_unit_range(sp_s1))
+                .mul(inv_d)
+                .neg(),
+            td.mul_unit_range(sg).sub(
+                td.mul_unit_range(a_cg)
+                    .add(tg.mul_unit_range(cg_e))
+                    .mul(inv_d),
+            ),
         ];
+        let det_num = a_cg.mul_unit_range(sd).sub(sg.mul_unit_range(sp_s1));
+        let singular = det_num.abs() < d.mul_unit_range(self.det_min);
         // 6. Both motor laws.
         let position = [readings.motors.theta1, readings.motors.theta3];
         let sample = |i: usize| WristJointSample {
@@ -800,7 +859,7 @@ impl<S: Scalar> WristStepConfig<S> {
             saturated: reference_saturated || torque_saturated,
             reference_saturated,
             torque_saturated,
-            singular: det.abs() < self.det_min,
+            singular,
             invalid_input: sensed.is_none()
                 || m.invalid_input
                 || laws[0].invalid_input

@@ -353,6 +353,37 @@ pub(crate) fn sqrt_q16(n: u32) -> (u32, u32) {
     (root, rem)
 }
 
+/// [`sqrt_q16`] for `n < 2¹⁸`: there `⌊√n⌋ < 2⁹`, so the first seven
+/// trial bits of phase 1 (root bits 15 to 9) are never kept, and the
+/// recurrence starts at bit 8 with the same root and remainder (the state
+/// after the skipped steps is `root = 0`). Nine squared trials instead of
+/// sixteen; `sqrt_q16_small_equals_sqrt_q16` compares the two at every
+/// `n < 2¹⁸`.
+#[inline]
+pub(crate) fn sqrt_q16_small(n: u32) -> (u32, u32) {
+    let mut root = 0u32;
+    let mut i = 7u32;
+    while i < 16 {
+        let t = root | (1 << (15 - i));
+        if t * t <= n {
+            root = t;
+        }
+        i += 1;
+    }
+    let mut rem = n - root * root;
+    while i < 24 {
+        rem <<= 2;
+        let trial = (root << 2) | 1;
+        root <<= 1;
+        if rem >= trial {
+            rem -= trial;
+            root |= 1;
+        }
+        i += 1;
+    }
+    (root, rem)
+}
+
 /// [`sqrt_q16`] as the plain 24-step digit-by-digit recurrence (two bits of
 /// `n·2¹⁶` per step): the reference of its tests.
 #[cfg(test)]
@@ -891,9 +922,48 @@ pub fn sqrt(x: I16F16) -> I16F16 {
     I16F16::from_bits((root + (rem > root) as u32) as i32)
 }
 
+/// [`sqrt`] of a value below 4 (bits below `2¹⁸`): bit for bit [`sqrt`]
+/// there (correctly rounded), from [`sqrt_q16_small`] (seven trial steps
+/// fewer). Inputs of 4 and above are clamped to `4 − 2⁻¹⁶` (whose root
+/// rounds to 2); negative inputs return 0.
+pub fn sqrt_small(x: I16F16) -> I16F16 {
+    let bits = x.to_bits();
+    if bits <= 0 {
+        return I16F16::ZERO;
+    }
+    let (root, rem) = sqrt_q16_small((bits as u32).min((1 << 18) - 1));
+    I16F16::from_bits((root + (rem > root) as u32) as i32)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The shortened root against the full one at every `n < 2¹⁸`, and
+    /// `sqrt_small` against `sqrt` below 4, at the clamp and beyond.
+    #[test]
+    fn sqrt_q16_small_equals_sqrt_q16() {
+        for n in 0u32..1 << 18 {
+            assert_eq!(sqrt_q16_small(n), sqrt_q16(n), "n = {n}");
+        }
+        for b in [i32::MIN, -1, 0, 1, 1 << 16, (1 << 18) - 1] {
+            let x = I16F16::from_bits(b);
+            assert_eq!(sqrt_small(x), sqrt(x), "bits {b}");
+        }
+        let top = sqrt(I16F16::from_bits((1 << 18) - 1));
+        for b in [1 << 18, (1 << 18) + 1, 1 << 20, i32::MAX] {
+            assert_eq!(sqrt_small(I16F16::from_bits(b)), top, "bits {b}");
+        }
+        // Independent: the correctly rounded root of bits·2¹⁶ in f64.
+        for b in (0i32..1 << 18).step_by(37) {
+            let exact = ((b as f64) * 65536.0).sqrt();
+            let got = sqrt_small(I16F16::from_bits(b)).to_bits() as f64;
+            assert!(
+                (got - exact).abs() <= 0.5 + 1e-9,
+                "bits {b}: {got} vs {exact}"
+            );
+        }
+    }
 
     /// `⌊n·2ᵏ/d⌋` in 128-bit arithmetic: the reference of both divisions.
     fn floor_quotient(n: u32, d: u32, k: u32) -> u128 {
