@@ -252,8 +252,14 @@ mod kani_entries {
         crate::proofs::joint_step::kani_entries::exp_as_contract
     )]
     fn kani_friction_sign_i16f16() {
-        let cfg = FrictionConfig::<I16F16>::new(0.01);
-        let theta = table_4_1::<I16F16>().initial_state().friction;
+        // `FrictionConfig::new(0.01)` and the initial estimates of
+        // `table_4_1::<I16F16>()`, from the joint's stored configuration
+        // (a compile-time constant; `friction_harness_config_is_the_constructors`).
+        let law = *crate::proofs::joint_step::kani_entries::joint()
+            .mode()
+            .active();
+        let cfg = *law.friction_config();
+        let theta = law.initial_state().friction;
         assert!(friction_sign_and_bound_i16f16(&cfg, &theta, any_i16f16()).holds);
     }
 
@@ -348,6 +354,20 @@ mod tests {
     }
     use proptest::prelude::*;
     use std::println;
+
+    /// `kani_friction_sign_i16f16` takes its friction model and estimates
+    /// from the joint's stored configuration: they are
+    /// `FrictionConfig::new(0.01)` and this module's `table_4_1` initial
+    /// estimates.
+    #[test]
+    fn friction_harness_config_is_the_constructors() {
+        let law = crate::joint::TABLE_4_1_I16F16.mode().active();
+        assert_eq!(law.friction_config(), &FrictionConfig::<I16F16>::new(0.01));
+        assert_eq!(
+            law.initial_state().friction,
+            table_4_1::<I16F16>().initial_state().friction
+        );
+    }
 
     /// `kani_step_bounded_i16f16` takes the active law from the joint's
     /// stored configuration: it is this module's `table_4_1::<I16F16>()`.
