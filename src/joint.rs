@@ -487,7 +487,13 @@ impl<S: Scalar> JointConfig<S> {
     /// For a loop that runs its own law on the measured joint (a
     /// simulator comparing feedback variants, a test bench); call it once
     /// per tick instead of `update`, never both.
-    #[inline]
+    // Inlined into its caller except on Armv6-M: the joint step is then
+    // one function, without call and argument-struct overhead.
+    #[cfg_attr(
+        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+        inline(always)
+    )]
+    #[cfg_attr(all(target_arch = "arm", not(target_has_atomic = "32")), inline)]
     pub fn measure(
         &self,
         st: &mut JointState<S>,
@@ -531,6 +537,12 @@ impl<S: Scalar> JointConfig<S> {
     /// the readings, eq. 3.8–3.10, motor counter negated; measure the motor
     /// position and speed), then run the mode manager on
     /// `τ̂_t = −estimate` and the target times `N` (module docs).
+    // Inlined into its caller except on Armv6-M: the joint step is then
+    // one function, without call and argument-struct overhead.
+    #[cfg_attr(
+        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+        inline(always)
+    )]
     pub fn update(
         &self,
         st: &mut JointState<S>,

@@ -565,7 +565,12 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
     /// non-finite sample (the mode manager checks its input once, before
     /// it shifts the reference): `valid` then only tests the law and `r`
     /// for NaN.
-    #[inline]
+    // Inlined into its caller except on Armv6-M: the joint step is then
+    // one function, without call and argument-struct overhead.
+    #[cfg_attr(
+        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+        inline(always)
+    )]
     pub(crate) fn law_of_checked_input(
         &self,
         st: &RobustAdaptiveState<S>,

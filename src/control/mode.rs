@@ -725,6 +725,12 @@ impl<S: Scalar> ModeConfig<S> {
 
     /// One sample: collision detection, mode decision (with seeding at a
     /// switch), the mode's law, and the state updates.
+    // Inlined into its caller except on Armv6-M: the joint step is then
+    // one function, without call and argument-struct overhead.
+    #[cfg_attr(
+        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+        inline(always)
+    )]
     pub fn update(&self, st: &mut ModeState<S>, x: &ControlInput<S>) -> ModeOutput<S> {
         let interaction = x.joint_torque.sub(x.expected_joint_torque);
         if !x.is_finite() {

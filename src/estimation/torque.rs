@@ -806,7 +806,10 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     // the estimator spills many more prepared field offsets). Elsewhere
     // inlined.
     #[cfg_attr(all(target_arch = "arm", not(target_has_atomic = "32")), inline(never))]
-    #[cfg_attr(not(all(target_arch = "arm", not(target_has_atomic = "32"))), inline)]
+    #[cfg_attr(
+        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+        inline(always)
+    )]
     pub(crate) fn kinematic_error_from_counts(&self, c_l: u32, p: u32) -> S {
         match &self.kinematic_error_phase {
             Some(k) => {
@@ -841,7 +844,10 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     // the estimator spills many more prepared field offsets). Elsewhere
     // inlined.
     #[cfg_attr(all(target_arch = "arm", not(target_has_atomic = "32")), inline(never))]
-    #[cfg_attr(not(all(target_arch = "arm", not(target_has_atomic = "32"))), inline)]
+    #[cfg_attr(
+        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+        inline(always)
+    )]
     fn finish(
         &self,
         torsion: S,
@@ -906,6 +912,12 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     /// `torque`. For the chapter-4 convention `q_m = N q_l` pass the motor
     /// counter negated; the transmitted torque `τ_t` of eq. (4.1) is then
     /// `−torque`.
+    // Inlined into its caller except on Armv6-M: the joint step is then
+    // one function, without call and argument-struct overhead.
+    #[cfg_attr(
+        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+        inline(always)
+    )]
     pub fn update(
         &self,
         st: &mut TorqueEstimatorState,
