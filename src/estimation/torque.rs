@@ -162,6 +162,10 @@ fn torsion_of_counts<S: Scalar>(d: i64, c: &Coef) -> S {
     }
 }
 
+/// The core divides in hardware (every target but Armv6-M, whose `/` is a
+/// library loop).
+const HAS_DIVIDE: bool = cfg!(not(all(target_arch = "arm", not(target_has_atomic = "32"))));
+
 /// `⌊(2³² − 1)/d⌋` for `d ≥ 1`: the prepared reciprocal of
 /// [`Divisor::div_rem`].
 const fn reciprocal(d: u32) -> u32 {
@@ -197,7 +201,7 @@ impl Divisor {
     /// ([`div_rem_reciprocal`]), elsewhere from the hardware division.
     #[inline(always)]
     fn div_rem(&self, x: u32) -> (u32, u32) {
-        if cfg!(not(all(target_arch = "arm", not(target_has_atomic = "32")))) {
+        if HAS_DIVIDE {
             return (x / self.d, x % self.d);
         }
         div_rem_reciprocal(x, self.d.get(), self.recip)
@@ -735,11 +739,13 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     /// 2³¹ counts per sample).
     ///
     /// 32-bit arithmetic only: the new position is `p + δ mod MN` in the
-    /// canonical form `(turn, in_turn) ∈ [0, N) × [0, M)`; a move of less
-    /// than one motor revolution needs no division, a longer one one
-    /// `u32` division by `M` and at most one by `N` ([`Divisor::div_rem`]: on
-    /// Armv6-M a multiply by a prepared reciprocal; no 64-bit division on
-    /// any path). Equal to the 64-bit formula [`advance_reference`] for
+    /// canonical form `(turn, in_turn) ∈ [0, N) × [0, M)`: one `u32`
+    /// division by `M` and one by `N` ([`Divisor::div_rem`]; no 64-bit
+    /// division on any path). On Armv6-M (a multiply by a prepared
+    /// reciprocal) a move of less than one motor revolution skips both,
+    /// and a longer one skips the one by `N` when the carry is below `N`;
+    /// with a divide instruction the divisions are cheaper than those
+    /// tests. Equal to the 64-bit formula [`advance_reference`] for
     /// every state and counter (tests below).
     #[inline]
     fn advance(&self, st: &mut TorqueEstimatorState, counter: u32) {
@@ -748,10 +754,12 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         let (m, n) = (self.m, self.n);
         let (mut in_turn, turn) = (st.motor_in_turn, st.motor_turn);
         let mag = delta.unsigned_abs();
-        let (q, r) = if mag < m {
-            (0, mag)
-        } else {
+        // With a divide instruction the division is cheaper than the test
+        // that skips it (and the static bound pays both); Armv6-M skips it.
+        let (q, r) = if HAS_DIVIDE || mag >= m {
             self.m_div.div_rem(mag)
+        } else {
+            (0, mag)
         };
         let turn = if delta >= 0 {
             // in_turn + r < 2M, compared without overflow.
@@ -762,10 +770,10 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             } else {
                 in_turn += r;
             }
-            let c = if carry < n {
-                carry
-            } else {
+            let c = if HAS_DIVIDE || carry >= n {
                 self.n_div.div_rem(carry).1
+            } else {
+                carry
             };
             if c >= n - turn {
                 c - (n - turn)
@@ -780,10 +788,10 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             } else {
                 in_turn -= r;
             }
-            let b = if borrow < n {
-                borrow
-            } else {
+            let b = if HAS_DIVIDE || borrow >= n {
                 self.n_div.div_rem(borrow).1
+            } else {
+                borrow
             };
             if b > turn {
                 turn + (n - b)
@@ -945,7 +953,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     ) -> TorqueEstimate<S> {
         self.advance(st, motor_counter);
         let invalid = link_count >= self.l;
-        let c_l = if invalid {
+        let c_l = if HAS_DIVIDE || invalid {
             self.l_div.div_rem(link_count).1
         } else {
             link_count
