@@ -629,6 +629,21 @@ impl<S: Scalar> ModeConfig<S> {
     fn command(&self, law: S, before: S, switched: bool, bias: &mut S) -> (S, bool, bool) {
         let overflow = law.is_nan();
         let law = if overflow { S::ZERO } else { law };
+        self.command_of_number(law, overflow, before, switched, bias)
+    }
+
+    /// [`command`](Self::command) for a law already replaced by 0 where it
+    /// overflowed (`overflow`): the active arm of `update` knows it from
+    /// the law's own validity test, so the law is not tested twice.
+    #[inline(always)]
+    fn command_of_number(
+        &self,
+        law: S,
+        overflow: bool,
+        before: S,
+        switched: bool,
+        bias: &mut S,
+    ) -> (S, bool, bool) {
         let (limited, cut_law) = self.limit_flag(law);
         if switched {
             *bias = before.sub(limited);
@@ -787,12 +802,21 @@ impl<S: Scalar> ModeConfig<S> {
         // τ_before: the previous command.
         let before = st.last_torque;
         // The current mode's law, then its state updates.
-        let (law, reference_position) = match st.mode {
-            JointMode::Passive => (self.passive.law(x, &st.active.friction), x.motor_position),
+        let (law, overflow, reference_position) = match st.mode {
+            JointMode::Passive => {
+                let law = self.passive.law(x, &st.active.friction);
+                let overflow = law.is_nan();
+                let law = if overflow { S::ZERO } else { law };
+                (law, overflow, x.motor_position)
+            }
             mode => {
                 let (xr, acc) = self.reference(st, x);
                 // `x` was checked above; `xr` only shifts its reference.
                 let mut t: ActiveTerms<S> = self.active.law_of_checked_input(&st.active, &xr);
+                // `valid` is false exactly when the law is NaN (a NaN `r`
+                // makes the law NaN): that is the overflow the command
+                // replaces by 0.
+                let overflow = !t.valid;
                 if t.valid {
                     if switched {
                         // Re-seed the integral so the law starts near
@@ -811,10 +835,15 @@ impl<S: Scalar> ModeConfig<S> {
                     st.offset = st.offset.add(rate.mul_coef(&self.step_position));
                     self.drop_overflowing_offset(st);
                 }
-                (t.law, xr.desired_position)
+                (
+                    if overflow { S::ZERO } else { t.law },
+                    overflow,
+                    xr.desired_position,
+                )
             }
         };
-        let (torque, saturated, overflow) = self.command(law, before, switched, &mut st.bias);
+        let (torque, saturated, overflow) =
+            self.command_of_number(law, overflow, before, switched, &mut st.bias);
         st.bias = st.bias.mul_coef(&self.bias_decay);
         st.last_torque = torque;
         ModeOutput {

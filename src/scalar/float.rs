@@ -8,37 +8,33 @@
 use super::{kernels, Scalar};
 
 /// `c as f32`, the same correctly rounded value, without the
-/// `__aeabi_l2f` library call on 32-bit cores: for `|c| < 2⁴⁸` (every
-/// estimator torsion count, `|D| < 2⁴⁶`) the high part `⌊c/2²⁴⌋` and the
-/// low part `c mod 2²⁴` are exact in `f32`, and so is `hi·2²⁴`, so the one
-/// rounding of their sum is the rounding of `c` itself; larger counts
-/// take the same split of their magnitude over 2¹⁶ with a sticky bit.
+/// `__aeabi_l2f` library call on 32-bit cores: for `|c| < 2⁴⁷` the high
+/// part `⌊c/2²⁴⌋` and the low part `c mod 2²⁴` are exact in `f32`, and so
+/// is `hi·2²⁴`, so the one rounding of their sum is the rounding of `c`
+/// itself. Larger counts first take `t = ⌊c/2¹⁶⌋` with the lost bits kept
+/// as a sticky bit (`t | 1` when any is set), which rounds as `c` does,
+/// and scale the rounded `t` back by 2¹⁶ (exact).
 #[inline]
 fn count_to_f32(c: i64) -> f32 {
     // −2⁴⁷ ≤ c < 2⁴⁷ exactly when the high word `⌊c/2³²⌋` is in
     // [−2¹⁵, 2¹⁵): one add and one shift on a 32-bit core.
     let high = (c >> 32) as i32;
-    if ((high as u32).wrapping_add(1 << 15)) >> 16 == 0 {
-        let hi = (c >> 24) as i32 as f32;
-        let lo = (c & 0xFF_FFFF) as i32 as f32;
-        hi * 16_777_216.0 + lo
+    let (t, scale) = if ((high as u32).wrapping_add(1 << 15)) >> 16 == 0 {
+        (c, 1.0)
     } else {
-        // |c| ≥ 2⁴⁷: the rounding position of the 24-bit mantissa is at
-        // bit 24 or above, so the magnitude shifted right by 16, with the
-        // lost bits kept as a sticky bit (at least 7 bits below the
-        // rounding half), rounds the same way; `t ≤ 2⁴⁷` splits exactly as
-        // above, and the scaling back by 2¹⁶ is exact. No `__aeabi_l2f`.
-        let a = c.unsigned_abs();
-        let t = (a >> 16) | (a & 0xFFFF != 0) as u64;
-        let hi = (t >> 24) as u32 as f32;
-        let lo = (t & 0xFF_FFFF) as u32 as f32;
-        let m = (hi * 16_777_216.0 + lo) * 65_536.0;
-        if c < 0 {
-            -m
-        } else {
-            m
-        }
-    }
+        // |c| ≥ 2⁴⁷: the f32 values near `c` are multiples of 2²⁴ and the
+        // rounding midpoints multiples of 2²³, so all are multiples of
+        // 2¹⁶. `t·2¹⁶` is `c` itself, or (a bit lost) an odd multiple of
+        // 2¹⁶ between the same two consecutive multiples of 2¹⁶ as `c`
+        // (the floor when it is odd, one above when it is even): never a
+        // midpoint, and no midpoint or f32 value between it and `c`, so
+        // both round alike. `t ∈ [−2⁴⁷, 2⁴⁷)` splits exactly as below.
+        ((c >> 16) | (c & 0xFFFF != 0) as i64, 65_536.0)
+    };
+    let hi = (t >> 24) as i32 as f32;
+    let lo = (t & 0xFF_FFFF) as i32 as f32;
+    // Times 1 or 2¹⁶: exact.
+    (hi * 16_777_216.0 + lo) * scale
 }
 
 /// `c as f64` (correctly rounded; not on a hot path of any target).
