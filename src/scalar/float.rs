@@ -72,9 +72,18 @@ fn clamp_or_keep<T: Scalar>(v: T, keep: T, lo: T, hi: T) -> (T, bool) {
 fn integrate_f32(v: f32, residual: f32, step: f32, lo: f32, hi: f32) -> (f32, f32) {
     let b = step + residual;
     let s = v + b;
-    let (out, clamped) = clamp_or_keep(s, v, lo, hi);
-    if clamped {
-        (out, 0.0)
+    // `clamp_or_keep(s, v, lo, hi)` with the NaN case first replaced by
+    // `v` (one select), so the range tests serve both: the same value and
+    // flag (`float_integrate_is_clamp_or_keep`).
+    let nan = s.is_nan();
+    let w = if nan { v } else { s };
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    if !(w >= lo) {
+        (lo, 0.0)
+    } else if w > hi {
+        (hi, 0.0)
+    } else if nan {
+        (w, 0.0)
     } else {
         (s, b - (s - v))
     }
@@ -286,6 +295,76 @@ mod tests {
         }
         for c in xs {
             assert_eq!(count_to_f32(c).to_bits(), (c as f32).to_bits(), "{c}");
+        }
+    }
+
+    /// `integrate_f32` as it was first written (`clamp_or_keep` of the
+    /// sum, residual 0 when clamped), the reference of its test.
+    fn integrate_f32_reference(v: f32, residual: f32, step: f32, lo: f32, hi: f32) -> (f32, f32) {
+        let b = step + residual;
+        let s = v + b;
+        let (out, clamped) = clamp_or_keep(s, v, lo, hi);
+        if clamped {
+            (out, 0.0)
+        } else {
+            (s, b - (s - v))
+        }
+    }
+
+    /// Bit for bit the reference on every combination of special and
+    /// ordinary values, inside and outside the range, NaN included, and on
+    /// random ones.
+    #[test]
+    fn integrate_f32_equals_its_reference_bit_for_bit() {
+        let vals = [
+            f32::NAN,
+            -f32::NAN,
+            f32::NEG_INFINITY,
+            f32::MIN,
+            -3.0,
+            -1.0,
+            -0.5,
+            -1e-30,
+            -0.0,
+            0.0,
+            1e-30,
+            0.5,
+            1.0,
+            3.0,
+            f32::MAX,
+            f32::INFINITY,
+        ];
+        let ranges = [
+            (-1.0f32, 1.0f32),
+            (0.0, 0.0),
+            (-0.0, 2.0),
+            (0.5, 1.0),
+            (0.0, 0.012),
+        ];
+        let check = |v: f32, r: f32, x: f32, lo: f32, hi: f32| {
+            let got = integrate_f32(v, r, x, lo, hi);
+            let want = integrate_f32_reference(v, r, x, lo, hi);
+            assert_eq!(
+                (got.0.to_bits(), got.1.to_bits()),
+                (want.0.to_bits(), want.1.to_bits()),
+                "{v} {r} {x} [{lo}, {hi}]"
+            );
+        };
+        for &v in &vals {
+            for &r in &vals {
+                for &x in &vals {
+                    for &(lo, hi) in &ranges {
+                        check(v, r, x, lo, hi);
+                    }
+                }
+            }
+        }
+        let mut state = 0x9E37_79B9_7F4A_7C15u64;
+        for _ in 0..200_000 {
+            let w = crate::scalar::xorshift64(&mut state);
+            let f = |k: u32| f32::from_bits((w >> k) as u32) * 1e-30;
+            let (a, b) = (f(0).abs() * 1e30, f(8).abs() * 1e30 + 1.0);
+            check(f(16) * 1e30, f(24), f(32) * 1e30, a.min(b), a.max(b));
         }
     }
 
