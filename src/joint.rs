@@ -209,7 +209,12 @@ impl JointParams {
 }
 
 /// The joint quantized for backend `S`.
+///
+/// `repr(C)`: the estimator, then the mode manager, whose most read values
+/// come first ([`ModeConfig`]), so that they lie within a single-precision
+/// load's reach of the configuration's base on the Cortex-M4F.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C)]
 pub struct JointConfig<S> {
     estimator: TorqueEstimatorConfig<S>,
     mode: ModeConfig<S>,

@@ -404,30 +404,37 @@ fn passive_limit(p: &PassiveParams) -> f64 {
 }
 
 /// The manager quantized for backend `S`.
+///
+/// `repr(C)`, the values the step reads most first (its own thresholds and
+/// the rejoin filter's gains, then the active law): on the Cortex-M4F a
+/// single-precision load reaches 1020 bytes past its base register, so
+/// the step reads them without forming their addresses (the joint's
+/// configuration is about 3 kB).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C)]
 pub struct ModeConfig<S> {
-    active: RobustAdaptiveConfig<S>,
-    passive: PassiveConfig<S>,
-    collision: Option<CollisionConfig<S>>,
     enter_passive: S,
     exit_passive: S,
-    debounce: u16,
-    dwell: u16,
     /// Passive → Active: motor rest speed (stored speed) and the samples
     /// the release condition must hold.
     release_speed: S,
-    release_samples: u16,
+    limit: S,
     /// `2ω`, speed → speed/s.
     two_omega: Gain<S>,
     /// `ω²`, angle → speed/s.
     omega_sq: Gain<S>,
+    active: RobustAdaptiveConfig<S>,
     /// `T`, speed/s → speed.
     step_rate: Coef,
     /// `T`, speed → angle.
     step_position: Coef,
     /// `1 − T/T_b`.
     bias_decay: Coef,
-    limit: S,
+    passive: PassiveConfig<S>,
+    collision: Option<CollisionConfig<S>>,
+    release_samples: u16,
+    debounce: u16,
+    dwell: u16,
 }
 
 /// The manager's state.
