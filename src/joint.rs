@@ -554,6 +554,25 @@ impl<S: Scalar> JointConfig<S> {
         readings: &JointReadings<S>,
         target: &JointTarget<S>,
     ) -> JointOutput<S> {
+        // The configuration's address made opaque (no code, the same
+        // reference): the step then reads every field at its offset from
+        // the configuration itself. A configuration at a known address
+        // (a static, an element of a static array of configurations) was
+        // otherwise addressed from a base shared with other statics, and
+        // a field kilobytes past that base costs one to three more
+        // instructions per read.
+        let this = core::hint::black_box(self);
+        this.step(st, readings, target)
+    }
+
+    /// [`update`](Self::update)'s body.
+    #[inline(always)]
+    fn step(
+        &self,
+        st: &mut JointState<S>,
+        readings: &JointReadings<S>,
+        target: &JointTarget<S>,
+    ) -> JointOutput<S> {
         let JointMeasurement {
             joint_torque,
             motor_position,
