@@ -589,6 +589,17 @@ impl<S: Scalar> JointConfig<S> {
             desired_joint_torque: target.joint_torque,
             expected_joint_torque: target.expected_joint_torque,
         };
+        // The measured fields are finite (count products, the estimate):
+        // floats test only the other five. (Armv6-M keeps the plain call:
+        // its fixed-point step tests nothing, and the second arm would
+        // change its inlining.)
+        #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+        let control = if S::RESOLUTION.to_f64() < 1e-6 {
+            self.mode.update_measured(&mut st.mode, &x)
+        } else {
+            self.mode.update(&mut st.mode, &x)
+        };
+        #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
         let control = self.mode.update(&mut st.mode, &x);
         JointOutput {
             motor_torque: control.torque,

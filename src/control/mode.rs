@@ -754,8 +754,41 @@ impl<S: Scalar> ModeConfig<S> {
         inline(always)
     )]
     pub fn update(&self, st: &mut ModeState<S>, x: &ControlInput<S>) -> ModeOutput<S> {
+        self.update_checked(st, x, x.is_finite())
+    }
+
+    /// [`update`](Self::update) for a sample whose measured motor position
+    /// and speed and joint torque are finite by construction (the joint
+    /// step's: count products and the estimate), so that only the other
+    /// five fields are tested ([`ControlInput::is_finite_but_measured`]).
+    #[cfg_attr(
+        all(target_arch = "arm", not(target_has_atomic = "32")),
+        allow(dead_code)
+    )]
+    #[inline(always)]
+    pub(crate) fn update_measured(
+        &self,
+        st: &mut ModeState<S>,
+        x: &ControlInput<S>,
+    ) -> ModeOutput<S> {
+        self.update_checked(st, x, x.is_finite_but_measured())
+    }
+
+    /// [`update`](Self::update) given whether the sample is finite.
+    // Armv6-M: the manager's own function, as `update` was.
+    #[cfg_attr(
+        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+        inline(always)
+    )]
+    #[cfg_attr(all(target_arch = "arm", not(target_has_atomic = "32")), inline(never))]
+    fn update_checked(
+        &self,
+        st: &mut ModeState<S>,
+        x: &ControlInput<S>,
+        finite: bool,
+    ) -> ModeOutput<S> {
         let interaction = x.joint_torque.sub(x.expected_joint_torque);
-        if !x.is_finite() {
+        if !finite {
             st.last_torque = S::ZERO;
             return ModeOutput {
                 torque: S::ZERO,
