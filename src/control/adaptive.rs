@@ -321,41 +321,47 @@ impl RobustAdaptiveParams {
 }
 
 /// The active-mode law quantized for backend `S`.
+///
+/// `repr(C)`, the fields in the order the step reads them, the small
+/// backend values first: on the Cortex-M4F a single-precision load reaches
+/// 1020 bytes past its base register, so the step reads them without
+/// forming their addresses (the joint's configuration is about 3 kB).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C)]
 pub struct RobustAdaptiveConfig<S> {
+    /// `±1 · K_r` as the coefficient `K_r` (stored motor torque) rounds
+    /// them: the robust term outside the layer `|r| > ε_r`.
+    robust_gain_value: [S; 2],
+    eps_r: S,
+    eps_f: [S; 4],
+    lower: [S; 4],
+    upper: [S; 4],
+    integral_limit: S,
+    torque_limit: S,
     friction: FrictionConfig<S>,
-    /// `I_m` from stored acceleration to stored motor torque.
-    accel_inertia: Coef,
-    /// `λ I_m` from stored speed to stored motor torque (`I_m a` is
-    /// formed as `I_m q̈_d − λ I_m (ė + r)`, see [`law`](Self::law)).
-    lambda_inertia: Coef,
     /// `λ` from stored angle to stored speed.
     lambda: Gain<S>,
     /// `1/N` from stored link torque to stored motor torque.
     feedback: Gain<S>,
     /// `K_I T` from stored speed to stored motor torque.
     integral_step: Gain<S>,
-    /// `±1 · K_r` as the coefficient `K_r` (stored motor torque) rounds
-    /// them: the robust term outside the layer `|r| > ε_r`.
-    robust_gain_value: [S; 2],
-    eps_r: S,
+    /// `I_m` from stored acceleration to stored motor torque.
+    accel_inertia: Coef,
+    /// `λ I_m` from stored speed to stored motor torque (`I_m a` is
+    /// formed as `I_m q̈_d − λ I_m (ė + r)`, see [`law`](Self::law)).
+    lambda_inertia: Coef,
     /// `K_r / ε_r` from stored speed to stored motor torque: the robust
     /// term inside the layer.
     robust_slope: Coef,
     /// `ρ_Fj` from stored `Y_j` to stored motor torque.
     rho_param: [Coef; 4],
-    eps_f: [S; 4],
-    /// `ρ_Fj / ε_Fj` from stored `Y_j` to stored motor torque per stored
-    /// `r Y_j`: the parametric robust term inside its layer.
-    rho_slope: [Coef; 4],
     /// `−μ_j T` from stored `r Y_j` to stored `F_j` (the step
     /// `F̂_j ← F̂_j − μ_j T r Y_j`).
     adapt: [Coef; 4],
-    lower: [S; 4],
-    upper: [S; 4],
+    /// `ρ_Fj / ε_Fj` from stored `Y_j` to stored motor torque per stored
+    /// `r Y_j`: the parametric robust term inside its layer.
+    rho_slope: [Coef; 4],
     initial: [S; 4],
-    integral_limit: S,
-    torque_limit: S,
     params: RobustAdaptiveParams,
 }
 
@@ -572,7 +578,12 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
     /// non-finite sample (the mode manager checks its input once, before
     /// it shifts the reference): `valid` then only tests the law and `r`
     /// for NaN.
-    #[inline]
+    // Inlined into its caller except on Armv6-M: the joint step is then
+    // one function, without call and argument-struct overhead.
+    #[cfg_attr(
+        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+        inline(always)
+    )]
     pub(crate) fn law_of_checked_input(
         &self,
         st: &RobustAdaptiveState<S>,

@@ -404,30 +404,37 @@ fn passive_limit(p: &PassiveParams) -> f64 {
 }
 
 /// The manager quantized for backend `S`.
+///
+/// `repr(C)`, the values the step reads most first (its own thresholds and
+/// the rejoin filter's gains, then the active law): on the Cortex-M4F a
+/// single-precision load reaches 1020 bytes past its base register, so
+/// the step reads them without forming their addresses (the joint's
+/// configuration is about 3 kB).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C)]
 pub struct ModeConfig<S> {
-    active: RobustAdaptiveConfig<S>,
-    passive: PassiveConfig<S>,
-    collision: Option<CollisionConfig<S>>,
     enter_passive: S,
     exit_passive: S,
-    debounce: u16,
-    dwell: u16,
     /// Passive → Active: motor rest speed (stored speed) and the samples
     /// the release condition must hold.
     release_speed: S,
-    release_samples: u16,
+    limit: S,
     /// `2ω`, speed → speed/s.
     two_omega: Gain<S>,
     /// `ω²`, angle → speed/s.
     omega_sq: Gain<S>,
+    active: RobustAdaptiveConfig<S>,
     /// `T`, speed/s → speed.
     step_rate: Coef,
     /// `T`, speed → angle.
     step_position: Coef,
     /// `1 − T/T_b`.
     bias_decay: Coef,
-    limit: S,
+    passive: PassiveConfig<S>,
+    collision: Option<CollisionConfig<S>>,
+    release_samples: u16,
+    debounce: u16,
+    dwell: u16,
 }
 
 /// The manager's state.
@@ -629,6 +636,21 @@ impl<S: Scalar> ModeConfig<S> {
     fn command(&self, law: S, before: S, switched: bool, bias: &mut S) -> (S, bool, bool) {
         let overflow = law.is_nan();
         let law = if overflow { S::ZERO } else { law };
+        self.command_of_number(law, overflow, before, switched, bias)
+    }
+
+    /// [`command`](Self::command) for a law already replaced by 0 where it
+    /// overflowed (`overflow`): the active arm of `update` knows it from
+    /// the law's own validity test, so the law is not tested twice.
+    #[inline(always)]
+    fn command_of_number(
+        &self,
+        law: S,
+        overflow: bool,
+        before: S,
+        switched: bool,
+        bias: &mut S,
+    ) -> (S, bool, bool) {
         let (limited, cut_law) = self.limit_flag(law);
         if switched {
             *bias = before.sub(limited);
@@ -725,9 +747,48 @@ impl<S: Scalar> ModeConfig<S> {
 
     /// One sample: collision detection, mode decision (with seeding at a
     /// switch), the mode's law, and the state updates.
+    // Inlined into its caller except on Armv6-M: the joint step is then
+    // one function, without call and argument-struct overhead.
+    #[cfg_attr(
+        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+        inline(always)
+    )]
     pub fn update(&self, st: &mut ModeState<S>, x: &ControlInput<S>) -> ModeOutput<S> {
+        self.update_checked(st, x, x.is_finite())
+    }
+
+    /// [`update`](Self::update) for a sample whose measured motor position
+    /// and speed and joint torque are finite by construction (the joint
+    /// step's: count products and the estimate), so that only the other
+    /// five fields are tested ([`ControlInput::is_finite_but_measured`]).
+    #[cfg_attr(
+        all(target_arch = "arm", not(target_has_atomic = "32")),
+        allow(dead_code)
+    )]
+    #[inline(always)]
+    pub(crate) fn update_measured(
+        &self,
+        st: &mut ModeState<S>,
+        x: &ControlInput<S>,
+    ) -> ModeOutput<S> {
+        self.update_checked(st, x, x.is_finite_but_measured())
+    }
+
+    /// [`update`](Self::update) given whether the sample is finite.
+    // Armv6-M: the manager's own function, as `update` was.
+    #[cfg_attr(
+        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+        inline(always)
+    )]
+    #[cfg_attr(all(target_arch = "arm", not(target_has_atomic = "32")), inline(never))]
+    fn update_checked(
+        &self,
+        st: &mut ModeState<S>,
+        x: &ControlInput<S>,
+        finite: bool,
+    ) -> ModeOutput<S> {
         let interaction = x.joint_torque.sub(x.expected_joint_torque);
-        if !x.is_finite() {
+        if !finite {
             st.last_torque = S::ZERO;
             return ModeOutput {
                 torque: S::ZERO,
@@ -781,12 +842,21 @@ impl<S: Scalar> ModeConfig<S> {
         // τ_before: the previous command.
         let before = st.last_torque;
         // The current mode's law, then its state updates.
-        let (law, reference_position) = match st.mode {
-            JointMode::Passive => (self.passive.law(x, &st.active.friction), x.motor_position),
+        let (law, overflow, reference_position) = match st.mode {
+            JointMode::Passive => {
+                let law = self.passive.law(x, &st.active.friction);
+                let overflow = law.is_nan();
+                let law = if overflow { S::ZERO } else { law };
+                (law, overflow, x.motor_position)
+            }
             mode => {
                 let (xr, acc) = self.reference(st, x);
                 // `x` was checked above; `xr` only shifts its reference.
                 let mut t: ActiveTerms<S> = self.active.law_of_checked_input(&st.active, &xr);
+                // `valid` is false exactly when the law is NaN (a NaN `r`
+                // makes the law NaN): that is the overflow the command
+                // replaces by 0.
+                let overflow = !t.valid;
                 if t.valid {
                     if switched {
                         // Re-seed the integral so the law starts near
@@ -805,10 +875,15 @@ impl<S: Scalar> ModeConfig<S> {
                     st.offset = st.offset.add(rate.mul_coef(&self.step_position));
                     self.drop_overflowing_offset(st);
                 }
-                (t.law, xr.desired_position)
+                (
+                    if overflow { S::ZERO } else { t.law },
+                    overflow,
+                    xr.desired_position,
+                )
             }
         };
-        let (torque, saturated, overflow) = self.command(law, before, switched, &mut st.bias);
+        let (torque, saturated, overflow) =
+            self.command_of_number(law, overflow, before, switched, &mut st.bias);
         st.bias = st.bias.mul_coef(&self.bias_decay);
         st.last_torque = torque;
         ModeOutput {

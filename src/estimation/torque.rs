@@ -144,6 +144,28 @@ fn mul_wide_split(a: u32, b: i64) -> i64 {
     ((hi as u64) << 32 | lo as u64) as i64
 }
 
+/// `S::from_counts(d, c)` bit for bit for a torsion count `|d| < 2⁴⁷`
+/// (every reduced count of the estimator: `|D| ≤ LMN/2 ≤ 2⁴⁵`). Floats
+/// convert the two exact parts `d = hi·2²⁴ + lo` (`|hi| < 2²³`,
+/// `0 ≤ lo < 2²⁴`): `hi·2²⁴` is exact, so their sum rounds once, to the
+/// correctly rounded `d`, which is the conversion `from_counts` makes
+/// (`f32`: without its branch for counts of 2⁴⁷ and more; `f64`: every
+/// step is exact). Fixed point takes `from_counts` itself.
+#[inline(always)]
+fn torsion_of_counts<S: Scalar>(d: i64, c: &Coef) -> S {
+    if S::RESOLUTION.to_f64() < 1e-6 {
+        let hi = S::from_i32((d >> 24) as i32);
+        let lo = S::from_i32((d & 0xFF_FFFF) as i32);
+        hi.mul(S::from_f64(16_777_216.0)).add(lo).mul_coef(c)
+    } else {
+        S::from_counts(d, c)
+    }
+}
+
+/// The core divides in hardware (every target but Armv6-M, whose `/` is a
+/// library loop).
+const HAS_DIVIDE: bool = cfg!(not(all(target_arch = "arm", not(target_has_atomic = "32"))));
+
 /// `⌊(2³² − 1)/d⌋` for `d ≥ 1`: the prepared reciprocal of
 /// [`Divisor::div_rem`].
 const fn reciprocal(d: u32) -> u32 {
@@ -179,7 +201,7 @@ impl Divisor {
     /// ([`div_rem_reciprocal`]), elsewhere from the hardware division.
     #[inline(always)]
     fn div_rem(&self, x: u32) -> (u32, u32) {
-        if cfg!(not(all(target_arch = "arm", not(target_has_atomic = "32")))) {
+        if HAS_DIVIDE {
             return (x / self.d, x % self.d);
         }
         div_rem_reciprocal(x, self.d.get(), self.recip)
@@ -717,11 +739,13 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     /// 2³¹ counts per sample).
     ///
     /// 32-bit arithmetic only: the new position is `p + δ mod MN` in the
-    /// canonical form `(turn, in_turn) ∈ [0, N) × [0, M)`; a move of less
-    /// than one motor revolution needs no division, a longer one one
-    /// `u32` division by `M` and at most one by `N` ([`Divisor::div_rem`]: on
-    /// Armv6-M a multiply by a prepared reciprocal; no 64-bit division on
-    /// any path). Equal to the 64-bit formula [`advance_reference`] for
+    /// canonical form `(turn, in_turn) ∈ [0, N) × [0, M)`: one `u32`
+    /// division by `M` and one by `N` ([`Divisor::div_rem`]; no 64-bit
+    /// division on any path). On Armv6-M (a multiply by a prepared
+    /// reciprocal) a move of less than one motor revolution skips both,
+    /// and a longer one skips the one by `N` when the carry is below `N`;
+    /// with a divide instruction the divisions are cheaper than those
+    /// tests. Equal to the 64-bit formula [`advance_reference`] for
     /// every state and counter (tests below).
     #[inline]
     fn advance(&self, st: &mut TorqueEstimatorState, counter: u32) {
@@ -730,10 +754,12 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         let (m, n) = (self.m, self.n);
         let (mut in_turn, turn) = (st.motor_in_turn, st.motor_turn);
         let mag = delta.unsigned_abs();
-        let (q, r) = if mag < m {
-            (0, mag)
-        } else {
+        // With a divide instruction the division is cheaper than the test
+        // that skips it (and the static bound pays both); Armv6-M skips it.
+        let (q, r) = if HAS_DIVIDE || mag >= m {
             self.m_div.div_rem(mag)
+        } else {
+            (0, mag)
         };
         let turn = if delta >= 0 {
             // in_turn + r < 2M, compared without overflow.
@@ -744,10 +770,10 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             } else {
                 in_turn += r;
             }
-            let c = if carry < n {
-                carry
-            } else {
+            let c = if HAS_DIVIDE || carry >= n {
                 self.n_div.div_rem(carry).1
+            } else {
+                carry
             };
             if c >= n - turn {
                 c - (n - turn)
@@ -762,10 +788,10 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             } else {
                 in_turn -= r;
             }
-            let b = if borrow < n {
-                borrow
-            } else {
+            let b = if HAS_DIVIDE || borrow >= n {
                 self.n_div.div_rem(borrow).1
+            } else {
+                borrow
             };
             if b > turn {
                 turn + (n - b)
@@ -806,7 +832,10 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     // the estimator spills many more prepared field offsets). Elsewhere
     // inlined.
     #[cfg_attr(all(target_arch = "arm", not(target_has_atomic = "32")), inline(never))]
-    #[cfg_attr(not(all(target_arch = "arm", not(target_has_atomic = "32"))), inline)]
+    #[cfg_attr(
+        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+        inline(always)
+    )]
     pub(crate) fn kinematic_error_from_counts(&self, c_l: u32, p: u32) -> S {
         match &self.kinematic_error_phase {
             Some(k) => {
@@ -841,7 +870,10 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     // the estimator spills many more prepared field offsets). Elsewhere
     // inlined.
     #[cfg_attr(all(target_arch = "arm", not(target_has_atomic = "32")), inline(never))]
-    #[cfg_attr(not(all(target_arch = "arm", not(target_has_atomic = "32"))), inline)]
+    #[cfg_attr(
+        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+        inline(always)
+    )]
     fn finish(
         &self,
         torsion: S,
@@ -906,6 +938,12 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     /// `torque`. For the chapter-4 convention `q_m = N q_l` pass the motor
     /// counter negated; the transmitted torque `τ_t` of eq. (4.1) is then
     /// `−torque`.
+    // Inlined into its caller except on Armv6-M: the joint step is then
+    // one function, without call and argument-struct overhead.
+    #[cfg_attr(
+        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+        inline(always)
+    )]
     pub fn update(
         &self,
         st: &mut TorqueEstimatorState,
@@ -915,7 +953,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     ) -> TorqueEstimate<S> {
         self.advance(st, motor_counter);
         let invalid = link_count >= self.l;
-        let c_l = if invalid {
+        let c_l = if HAS_DIVIDE || invalid {
             self.l_div.div_rem(link_count).1
         } else {
             link_count
@@ -948,9 +986,10 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     }
 
     /// Steps 3–4 from the torsion in counts `D` of `2π/(LMN)` (the reduced
-    /// eq. 2.13 torsion [`update`](Self::update) computes): one scaling,
-    /// then eq. (3.9)–(3.10). The per-drive-size proofs sweep this over
-    /// every `D`.
+    /// eq. 2.13 torsion [`update`](Self::update) computes, `|D| ≤ LMN/2 ≤
+    /// 2⁴⁵`; the conversion needs `|D| < 2⁴⁷`): one scaling, then
+    /// eq. (3.9)–(3.10). The per-drive-size proofs sweep this over every
+    /// `D`.
     #[inline]
     pub(crate) fn estimate_from_torsion_counts(
         &self,
@@ -959,7 +998,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         motor_torque: S,
         link_count_invalid: bool,
     ) -> TorqueEstimate<S> {
-        let torsion = S::from_counts(d, &self.torsion_per_count);
+        let torsion = torsion_of_counts(d, &self.torsion_per_count);
         self.finish(torsion, kin_err, motor_torque, link_count_invalid)
     }
 
@@ -1386,6 +1425,55 @@ mod tests {
         fn mul_wide_split_is_exact(a in any::<u32>(), b in 0i64..1 << 48, narrow: bool) {
             let (a, b) = if narrow { (a, b & 0xFFFF_FFFF) } else { (a >> 17, b) };
             prop_assert_eq!(mul_wide_split(a, b) as u64 as u128, a as u128 * b as u128);
+        }
+    }
+
+    /// The split conversion of a torsion count equals `from_counts` bit
+    /// for bit on floats for every `|d| < 2⁴⁷`: the edges, both sides of
+    /// every power of two and of the 2²⁴ split, halfway cases, random
+    /// counts (`from_counts` on `f32` is the correctly rounded
+    /// `count_to_f32`, tested against `as` in `scalar::float`).
+    #[test]
+    fn torsion_of_counts_equals_from_counts_below_2_47() {
+        let mut ds = vec![
+            0i64,
+            1,
+            -1,
+            (1 << 47) - 1,
+            -(1 << 47),
+            (1 << 24) - 1,
+            1 << 24,
+        ];
+        for k in 0..47 {
+            for e in [-3i64, -1, 0, 1, 2, 3] {
+                ds.extend([(1i64 << k) + e, -(1i64 << k) + e]);
+            }
+            if k > 25 {
+                // Halfway between two f32 values, and one count off it.
+                let h = (1i64 << k) + (1 << (k - 24));
+                ds.extend([h, h - 1, h + 1, -h, -h + 1, -h - 1]);
+            }
+        }
+        let mut state = 0x2545_F491_4F6C_DD1Du64;
+        for _ in 0..200_000 {
+            let x = crate::scalar::xorshift64(&mut state);
+            ds.push((x as i64) >> (17 + x % 40));
+        }
+        for c in [
+            Coef::new(1.0),
+            Coef::new(TAU / 2.62144e10),
+            Coef::new(3.7e-7),
+        ] {
+            for &d in &ds {
+                assert!(d.unsigned_abs() <= 1 << 47, "{d}");
+                if d == 1 << 47 {
+                    continue;
+                }
+                let (a, b): (f32, f32) = (torsion_of_counts(d, &c), f32::from_counts(d, &c));
+                assert_eq!(a.to_bits(), b.to_bits(), "f32 {d}");
+                let (a, b): (f64, f64) = (torsion_of_counts(d, &c), f64::from_counts(d, &c));
+                assert_eq!(a.to_bits(), b.to_bits(), "f64 {d}");
+            }
         }
     }
 

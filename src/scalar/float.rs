@@ -8,37 +8,33 @@
 use super::{kernels, Scalar};
 
 /// `c as f32`, the same correctly rounded value, without the
-/// `__aeabi_l2f` library call on 32-bit cores: for `|c| < 2⁴⁸` (every
-/// estimator torsion count, `|D| < 2⁴⁶`) the high part `⌊c/2²⁴⌋` and the
-/// low part `c mod 2²⁴` are exact in `f32`, and so is `hi·2²⁴`, so the one
-/// rounding of their sum is the rounding of `c` itself; larger counts
-/// take the same split of their magnitude over 2¹⁶ with a sticky bit.
+/// `__aeabi_l2f` library call on 32-bit cores: for `|c| < 2⁴⁷` the high
+/// part `⌊c/2²⁴⌋` and the low part `c mod 2²⁴` are exact in `f32`, and so
+/// is `hi·2²⁴`, so the one rounding of their sum is the rounding of `c`
+/// itself. Larger counts first take `t = ⌊c/2¹⁶⌋` with the lost bits kept
+/// as a sticky bit (`t | 1` when any is set), which rounds as `c` does,
+/// and scale the rounded `t` back by 2¹⁶ (exact).
 #[inline]
 fn count_to_f32(c: i64) -> f32 {
     // −2⁴⁷ ≤ c < 2⁴⁷ exactly when the high word `⌊c/2³²⌋` is in
     // [−2¹⁵, 2¹⁵): one add and one shift on a 32-bit core.
     let high = (c >> 32) as i32;
-    if ((high as u32).wrapping_add(1 << 15)) >> 16 == 0 {
-        let hi = (c >> 24) as i32 as f32;
-        let lo = (c & 0xFF_FFFF) as i32 as f32;
-        hi * 16_777_216.0 + lo
+    let (t, scale) = if ((high as u32).wrapping_add(1 << 15)) >> 16 == 0 {
+        (c, 1.0)
     } else {
-        // |c| ≥ 2⁴⁷: the rounding position of the 24-bit mantissa is at
-        // bit 24 or above, so the magnitude shifted right by 16, with the
-        // lost bits kept as a sticky bit (at least 7 bits below the
-        // rounding half), rounds the same way; `t ≤ 2⁴⁷` splits exactly as
-        // above, and the scaling back by 2¹⁶ is exact. No `__aeabi_l2f`.
-        let a = c.unsigned_abs();
-        let t = (a >> 16) | (a & 0xFFFF != 0) as u64;
-        let hi = (t >> 24) as u32 as f32;
-        let lo = (t & 0xFF_FFFF) as u32 as f32;
-        let m = (hi * 16_777_216.0 + lo) * 65_536.0;
-        if c < 0 {
-            -m
-        } else {
-            m
-        }
-    }
+        // |c| ≥ 2⁴⁷: the f32 values near `c` are multiples of 2²⁴ and the
+        // rounding midpoints multiples of 2²³, so all are multiples of
+        // 2¹⁶. `t·2¹⁶` is `c` itself, or (a bit lost) an odd multiple of
+        // 2¹⁶ between the same two consecutive multiples of 2¹⁶ as `c`
+        // (the floor when it is odd, one above when it is even): never a
+        // midpoint, and no midpoint or f32 value between it and `c`, so
+        // both round alike. `t ∈ [−2⁴⁷, 2⁴⁷)` splits exactly as below.
+        ((c >> 16) | (c & 0xFFFF != 0) as i64, 65_536.0)
+    };
+    let hi = (t >> 24) as i32 as f32;
+    let lo = (t & 0xFF_FFFF) as i32 as f32;
+    // Times 1 or 2¹⁶: exact.
+    (hi * 16_777_216.0 + lo) * scale
 }
 
 /// `c as f64` (correctly rounded; not on a hot path of any target).
@@ -76,9 +72,18 @@ fn clamp_or_keep<T: Scalar>(v: T, keep: T, lo: T, hi: T) -> (T, bool) {
 fn integrate_f32(v: f32, residual: f32, step: f32, lo: f32, hi: f32) -> (f32, f32) {
     let b = step + residual;
     let s = v + b;
-    let (out, clamped) = clamp_or_keep(s, v, lo, hi);
-    if clamped {
-        (out, 0.0)
+    // `clamp_or_keep(s, v, lo, hi)` with the NaN case first replaced by
+    // `v` (one select), so the range tests serve both: the same value and
+    // flag (`float_integrate_is_clamp_or_keep`).
+    let nan = s.is_nan();
+    let w = if nan { v } else { s };
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    if !(w >= lo) {
+        (lo, 0.0)
+    } else if w > hi {
+        (hi, 0.0)
+    } else if nan {
+        (w, 0.0)
     } else {
         (s, b - (s - v))
     }
@@ -290,6 +295,76 @@ mod tests {
         }
         for c in xs {
             assert_eq!(count_to_f32(c).to_bits(), (c as f32).to_bits(), "{c}");
+        }
+    }
+
+    /// `integrate_f32` as it was first written (`clamp_or_keep` of the
+    /// sum, residual 0 when clamped), the reference of its test.
+    fn integrate_f32_reference(v: f32, residual: f32, step: f32, lo: f32, hi: f32) -> (f32, f32) {
+        let b = step + residual;
+        let s = v + b;
+        let (out, clamped) = clamp_or_keep(s, v, lo, hi);
+        if clamped {
+            (out, 0.0)
+        } else {
+            (s, b - (s - v))
+        }
+    }
+
+    /// Bit for bit the reference on every combination of special and
+    /// ordinary values, inside and outside the range, NaN included, and on
+    /// random ones.
+    #[test]
+    fn integrate_f32_equals_its_reference_bit_for_bit() {
+        let vals = [
+            f32::NAN,
+            -f32::NAN,
+            f32::NEG_INFINITY,
+            f32::MIN,
+            -3.0,
+            -1.0,
+            -0.5,
+            -1e-30,
+            -0.0,
+            0.0,
+            1e-30,
+            0.5,
+            1.0,
+            3.0,
+            f32::MAX,
+            f32::INFINITY,
+        ];
+        let ranges = [
+            (-1.0f32, 1.0f32),
+            (0.0, 0.0),
+            (-0.0, 2.0),
+            (0.5, 1.0),
+            (0.0, 0.012),
+        ];
+        let check = |v: f32, r: f32, x: f32, lo: f32, hi: f32| {
+            let got = integrate_f32(v, r, x, lo, hi);
+            let want = integrate_f32_reference(v, r, x, lo, hi);
+            assert_eq!(
+                (got.0.to_bits(), got.1.to_bits()),
+                (want.0.to_bits(), want.1.to_bits()),
+                "{v} {r} {x} [{lo}, {hi}]"
+            );
+        };
+        for &v in &vals {
+            for &r in &vals {
+                for &x in &vals {
+                    for &(lo, hi) in &ranges {
+                        check(v, r, x, lo, hi);
+                    }
+                }
+            }
+        }
+        let mut state = 0x9E37_79B9_7F4A_7C15u64;
+        for _ in 0..200_000 {
+            let w = crate::scalar::xorshift64(&mut state);
+            let f = |k: u32| f32::from_bits((w >> k) as u32) * 1e-30;
+            let (a, b) = (f(0).abs() * 1e30, f(8).abs() * 1e30 + 1.0);
+            check(f(16) * 1e30, f(24), f(32) * 1e30, a.min(b), a.max(b));
         }
     }
 
