@@ -177,6 +177,36 @@ pub fn switch_bumpless<S: Scalar>(
     Verdict::logical(ok)
 }
 
+/// `ε_r = 0.1 rad/s` of Table 4.1 as `I16F16` (bits 6554, the rounding of
+/// 6553.6) and its reciprocal `65536/6554` as a [`Coef`], from their stored
+/// quantization (`Coef::from_quantized`: no floating-point work for the
+/// solver). `prepared_constants_are_the_constructors` checks both equal
+/// `I16F16::from_f64(0.1)` and `Coef::new(1/ε)`.
+#[cfg(any(kani, test))]
+fn eps_r_i16f16_prepared() -> (I16F16, Coef) {
+    const INV: f64 = 65536.0 / 6554.0;
+    (
+        I16F16::from_bits(6554),
+        Coef::from_quantized(INV, INV as f32, 1_342_095_365, 27),
+    )
+}
+
+/// `ε_r = 0.1` as `f32` and its reciprocal `1/0.1f32` (in `f64`) as a
+/// [`Coef`], from their stored quantization (as
+/// [`eps_r_i16f16_prepared`]).
+#[cfg(any(kani, test))]
+fn eps_r_f32_prepared() -> (f32, Coef) {
+    const INV: f64 = 1.0 / (0.1f32 as f64);
+    (
+        0.1f32,
+        Coef::from_quantized(INV, INV as f32, F32_INV_MULT, 27),
+    )
+}
+
+/// The 31-bit mantissa of `1/0.1f32` at shift 27.
+#[cfg(any(kani, test))]
+const F32_INV_MULT: i64 = 1_342_177_260;
+
 #[cfg(kani)]
 mod kani_entries {
     use super::*;
@@ -191,9 +221,7 @@ mod kani_entries {
     /// `exhaustive_sat_reciprocal_i16f16` covers all 2³² inputs.
     #[kani::proof]
     fn kani_sat_reciprocal_i16f16() {
-        // ε_r = 0.1 rad/s of Table 4.1, as the law quantizes it.
-        let eps = I16F16::from_f64(0.1);
-        let inv = Coef::new(1.0 / eps.to_f64());
+        let (eps, inv) = super::eps_r_i16f16_prepared();
         let x = any_i16f16();
         // Solver budget: the layer (split domain; outside: the next harness).
         kani::assume(x.to_bits() >= -eps.to_bits() - 1 && x.to_bits() <= eps.to_bits() + 1);
@@ -203,8 +231,7 @@ mod kani_entries {
     /// [`sat_reciprocal_i16f16`] outside the layer, `|x| > ε`.
     #[kani::proof]
     fn kani_sat_reciprocal_outside_i16f16() {
-        let eps = I16F16::from_f64(0.1);
-        let inv = Coef::new(1.0 / eps.to_f64());
+        let (eps, inv) = super::eps_r_i16f16_prepared();
         let x = any_i16f16();
         // Split domain: the complement of `kani_sat_reciprocal_i16f16`'s.
         kani::assume(x.to_bits() < -eps.to_bits() - 1 || x.to_bits() > eps.to_bits() + 1);
@@ -213,8 +240,7 @@ mod kani_entries {
 
     #[kani::proof]
     fn kani_sat_reciprocal_f32() {
-        let eps = 0.1f32;
-        let inv = Coef::new(1.0 / eps as f64);
+        let (eps, inv) = super::eps_r_f32_prepared();
         assert!(sat_reciprocal::<f32>(kani::any(), eps, &inv).holds);
     }
 
@@ -226,8 +252,14 @@ mod kani_entries {
         crate::proofs::joint_step::kani_entries::exp_as_contract
     )]
     fn kani_friction_sign_i16f16() {
-        let cfg = FrictionConfig::<I16F16>::new(0.01);
-        let theta = table_4_1::<I16F16>().initial_state().friction;
+        // `FrictionConfig::new(0.01)` and the initial estimates of
+        // `table_4_1::<I16F16>()`, from the joint's stored configuration
+        // (a compile-time constant; `friction_harness_config_is_the_constructors`).
+        let law = *crate::proofs::joint_step::kani_entries::joint()
+            .mode()
+            .active();
+        let cfg = *law.friction_config();
+        let theta = law.initial_state().friction;
         assert!(friction_sign_and_bound_i16f16(&cfg, &theta, any_i16f16()).holds);
     }
 
@@ -301,8 +333,41 @@ mod tests {
     use crate::control::{ModeParams, ModeSettings, PassiveParams};
     use crate::estimation::{CollisionParams, CollisionReaction, CollisionSettings};
     use crate::scalar::I16F16;
+
+    /// The Kani harnesses' stored constants are what the library's
+    /// constructors build, field by field, so their results hold for the
+    /// library's own `ε_r` and `1/ε_r`; and the comparison can fail (a
+    /// mantissa one unit off differs).
+    #[test]
+    fn prepared_constants_are_the_constructors() {
+        let (eps, inv) = eps_r_i16f16_prepared();
+        assert_eq!(eps, I16F16::from_f64(0.1));
+        assert_eq!(inv, Coef::new(1.0 / I16F16::from_f64(0.1).to_f64()));
+        let (eps, inv) = eps_r_f32_prepared();
+        assert_eq!(eps, 0.1f32);
+        assert_eq!(inv, Coef::new(1.0 / 0.1f32 as f64));
+        const INV: f64 = 1.0 / (0.1f32 as f64);
+        assert_ne!(
+            Coef::from_quantized(INV, INV as f32, F32_INV_MULT + 1, 27),
+            Coef::new(INV)
+        );
+    }
     use proptest::prelude::*;
     use std::println;
+
+    /// `kani_friction_sign_i16f16` takes its friction model and estimates
+    /// from the joint's stored configuration: they are
+    /// `FrictionConfig::new(0.01)` and this module's `table_4_1` initial
+    /// estimates.
+    #[test]
+    fn friction_harness_config_is_the_constructors() {
+        let law = crate::joint::TABLE_4_1_I16F16.mode().active();
+        assert_eq!(law.friction_config(), &FrictionConfig::<I16F16>::new(0.01));
+        assert_eq!(
+            law.initial_state().friction,
+            table_4_1::<I16F16>().initial_state().friction
+        );
+    }
 
     /// `kani_step_bounded_i16f16` takes the active law from the joint's
     /// stored configuration: it is this module's `table_4_1::<I16F16>()`.

@@ -11,7 +11,13 @@
 #       the table
 #   -s  CBMC solver passed to `cargo kani --solver` (default: Kani's own,
 #       CaDiCaL; see "solver" below)
-#   HARNESS  names of #[kani::proof] functions (default: every one in proofs/)
+#   HARNESS  names of #[kani::proof] functions (default: every one in proofs/
+#            except the retired ones)
+#
+# Retired harnesses: proofs/kani-retired.tsv lists, per line, a harness and
+# (after a tab) why Kani cannot decide it and which engine covers its
+# property instead. They are not run by default (name one to run it), and
+# their rows say RETIRED with the time and versions of their last attempt.
 #
 # Running a subset updates only those rows of the table; the other rows keep
 # their previous result, version and commit.
@@ -103,6 +109,7 @@ backend_of() {
 }
 
 tsv=proofs/kani-results.tsv
+retired=proofs/kani-retired.tsv
 md=proofs/KANI_RESULTS.md
 logdir=${CARGO_TARGET_DIR:-target}/kani-logs
 mkdir -p "$logdir"
@@ -120,7 +127,8 @@ if [ $# -gt 0 ]; then
         sel="$sel$line"$'\n'
     done
 else
-    sel="$all"$'\n'
+    sel=$(printf '%s\n' "$all" | awk -F'\t' 'NR == FNR { r[$1] = 1; next } !($2 in r)' \
+        <(grep -v '^#' "$retired" 2>/dev/null) -)$'\n'
 fi
 
 echo "kani $kani_version, cbmc $cbmc_version, commit $commit, timeout ${timeout_s}s, solver $solver_label"
@@ -192,6 +200,13 @@ while IFS=$'\t' read -r file name _module; do
             "$(property_of "$file" "$name")" "$(backend_of "$name")" >>"$tmp"
     fi
 done <<<"$all"
+# Retired harnesses: result RETIRED, the rest of the row from their last
+# attempt.
+if [ -f "$retired" ]; then
+    awk -F'\t' -v OFS='\t' 'NR == FNR { if ($0 !~ /^#/) r[$1] = 1; next }
+        FNR > 1 && ($1 in r) && $5 != "VERIFIED" { $5 = "RETIRED" } { print }' "$retired" "$tmp" >"$tmp.2" &&
+        mv "$tmp.2" "$tmp"
+fi
 {
     head -1 "$tmp"
     tail -n +2 "$tmp" | awk -F'\t' -v all="$(printf '%s\n' "$all" | cut -f2 | tr '\n' ' ')" '
@@ -220,6 +235,14 @@ rm -f "$tmp"
     echo "| harness | file | property | backend | result | time (s) | Kani | CBMC | solver | commit |"
     echo "|---|---|---|---|---|---|---|---|---|---|"
     tail -n +2 "$tsv" | awk -F'\t' '{ printf "| `%s` | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $5, $6, $7, $8, $9, $10 }'
+    if [ -f "$retired" ]; then
+        echo
+        echo "## Retired harnesses"
+        echo
+        echo "Kani cannot decide these (the reason, and the engine that covers the property instead):"
+        echo
+        grep -v '^#' "$retired" | awk -F'\t' 'NF >= 2 { printf "- `%s`: %s\n", $1, $2 }'
+    fi
     if [ -f proofs/KANI_NOTES.md ]; then
         echo
         cat proofs/KANI_NOTES.md

@@ -517,6 +517,13 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
         RobustAdaptiveState::new(self.initial, S::ZERO)
     }
 
+    /// The friction model of the law (`eq. 4.17` with the layer `ε_v`),
+    /// for the proof harnesses that start from a stored configuration.
+    #[cfg(any(kani, test))]
+    pub(crate) fn friction_config(&self) -> &FrictionConfig<S> {
+        &self.friction
+    }
+
     /// The validated parameters this configuration was built from.
     pub fn params(&self) -> &RobustAdaptiveParams {
         &self.params

@@ -743,6 +743,20 @@ impl Coef {
     /// The coefficient `signed_mult · 2^−shift` (fixed point) built from
     /// `value` (floats), with its prepared products.
     fn from_mantissa(value: f64, signed_mult: i64, shift: i32) -> Self {
+        let value_f32 = (value as f32).clamp(f32::MIN, f32::MAX);
+        Self::from_parts(value, value_f32, value < 0.0, signed_mult, shift)
+    }
+
+    /// The coefficient with the given value, `f32` value, sign and
+    /// fixed-point mantissa and shift; the prepared products with integer
+    /// operations only.
+    fn from_parts(
+        value: f64,
+        value_f32: f32,
+        negative: bool,
+        signed_mult: i64,
+        shift: i32,
+    ) -> Self {
         let mult = signed_mult.abs();
         // ±mult·2^−shift saturated (used only when `shift ≤ 1`, where it
         // is an integer or 2³⁰).
@@ -757,14 +771,25 @@ impl Coef {
         };
         Coef {
             value,
-            value_f32: (value as f32).clamp(f32::MIN, f32::MAX),
+            value_f32,
             mult: signed_mult,
             shift,
             mag: mult as u32,
-            negative: value < 0.0,
+            negative,
             signed: SignedCoef::new(signed_mult, shift),
             units: [unit(1), unit(-1)],
         }
+    }
+
+    /// The coefficient [`Coef::new`] prepares from `value`, built from its
+    /// stored quantization instead: `value_f32` (the `f32` rounding),
+    /// `signed_mult` and `shift` (`value ≈ signed_mult·2^−shift`), with
+    /// integer operations only. For proof harnesses, whose solver would
+    /// otherwise evaluate `new`'s `log2`, `exp2` and rounding on its own;
+    /// tests compare every use with `Coef::new` field by field.
+    #[cfg(any(kani, test))]
+    pub(crate) fn from_quantized(value: f64, value_f32: f32, signed_mult: i64, shift: i32) -> Self {
+        Self::from_parts(value, value_f32, value < 0.0, signed_mult, shift)
     }
 
     /// `self · 2^k` with the same mantissa (the fixed-point exponent
