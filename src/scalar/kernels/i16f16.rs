@@ -923,7 +923,7 @@ pub fn sqrt(x: I16F16) -> I16F16 {
 }
 
 /// [`sqrt`] of a value below 4 (bits below `2¹⁸`): bit for bit [`sqrt`]
-/// there (correctly rounded), from [`sqrt_q16_small`] (seven trial steps
+/// there (correctly rounded), from `sqrt_q16_small` (seven trial steps
 /// fewer). Inputs of 4 and above are clamped to `4 − 2⁻¹⁶` (whose root
 /// rounds to 2); negative inputs return 0.
 pub fn sqrt_small(x: I16F16) -> I16F16 {
