@@ -86,14 +86,11 @@ impl<S: Scalar> ControlInput<S> {
         // form as a fallback when finite fields overflow it, and the
         // static bound of the step pays both.)
         let d = |v: S| v.sub(v);
-        let sum = d(self.desired_position)
-            .add(d(self.desired_velocity))
-            .add(d(self.desired_acceleration))
+        let sum = self
+            .unmeasured_probe()
             .add(d(self.motor_position))
             .add(d(self.motor_velocity))
-            .add(d(self.joint_torque))
-            .add(d(self.desired_joint_torque))
-            .add(d(self.expected_joint_torque));
+            .add(d(self.joint_torque));
         sum == S::ZERO
     }
 
@@ -110,13 +107,20 @@ impl<S: Scalar> ControlInput<S> {
         if S::RESOLUTION.to_f64() >= 1e-6 {
             return true;
         }
+        self.unmeasured_probe() == S::ZERO
+    }
+
+    /// `Σ (v − v)` over the five fields the joint step does not measure:
+    /// 0 when they are all finite, NaN otherwise (each term is exactly 0
+    /// for a finite float and NaN for NaN and ±∞, in any order).
+    #[inline(always)]
+    fn unmeasured_probe(&self) -> S {
         let d = |v: S| v.sub(v);
-        let sum = d(self.desired_position)
+        d(self.desired_position)
             .add(d(self.desired_velocity))
             .add(d(self.desired_acceleration))
             .add(d(self.desired_joint_torque))
-            .add(d(self.expected_joint_torque));
-        sum == S::ZERO
+            .add(d(self.expected_joint_torque))
     }
 }
 

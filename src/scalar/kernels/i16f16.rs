@@ -328,8 +328,15 @@ fn div_ratio_steps(n: u32, d: u32) -> (u32, u32) {
 /// compares them.
 #[inline]
 pub(crate) fn sqrt_q16(n: u32) -> (u32, u32) {
+    sqrt_q16_from(n, 0)
+}
+
+/// The recurrence of [`sqrt_q16`] from trial bit `15 − first` (`first` a
+/// constant at each call: 0, or 7 where `⌊√n⌋ < 2⁹`).
+#[inline(always)]
+fn sqrt_q16_from(n: u32, first: u32) -> (u32, u32) {
     let mut root = 0u32;
-    let mut i = 0u32;
+    let mut i = first;
     while i < 16 {
         // The next bit of ⌊√n⌋ is set when the square stays ≤ n
         // (t < 2¹⁶, so t² < 2³²).
@@ -361,27 +368,7 @@ pub(crate) fn sqrt_q16(n: u32) -> (u32, u32) {
 /// `n < 2¹⁸`.
 #[inline]
 pub(crate) fn sqrt_q16_small(n: u32) -> (u32, u32) {
-    let mut root = 0u32;
-    let mut i = 7u32;
-    while i < 16 {
-        let t = root | (1 << (15 - i));
-        if t * t <= n {
-            root = t;
-        }
-        i += 1;
-    }
-    let mut rem = n - root * root;
-    while i < 24 {
-        rem <<= 2;
-        let trial = (root << 2) | 1;
-        root <<= 1;
-        if rem >= trial {
-            rem -= trial;
-            root |= 1;
-        }
-        i += 1;
-    }
-    (root, rem)
+    sqrt_q16_from(n, 7)
 }
 
 /// [`sqrt_q16`] as the plain 24-step digit-by-digit recurrence (two bits of
