@@ -219,36 +219,29 @@ mod tests {
                 for &sp in &specials {
                     let mut v = [fill; 8];
                     v[i] = sp;
-                    let x = ControlInput {
-                        desired_position: v[0],
-                        desired_velocity: v[1],
-                        desired_acceleration: v[2],
-                        motor_position: v[3],
-                        motor_velocity: v[4],
-                        joint_torque: v[5],
-                        desired_joint_torque: v[6],
-                        expected_joint_torque: v[7],
-                    };
+                    let x = sample(v);
                     assert_eq!(x.is_finite_but_measured(), x.is_finite(), "{i} {sp} {fill}");
                 }
             }
         }
     }
 
+    /// A control input from its eight fields in declaration order.
+    fn sample<S: Scalar + Copy>(v: [S; 8]) -> ControlInput<S> {
+        ControlInput {
+            desired_position: v[0],
+            desired_velocity: v[1],
+            desired_acceleration: v[2],
+            motor_position: v[3],
+            motor_velocity: v[4],
+            joint_torque: v[5],
+            desired_joint_torque: v[6],
+            expected_joint_torque: v[7],
+        }
+    }
+
     #[test]
     fn is_finite_is_every_field_finite() {
-        fn sample<S: Scalar + Copy>(v: [S; 8]) -> ControlInput<S> {
-            ControlInput {
-                desired_position: v[0],
-                desired_velocity: v[1],
-                desired_acceleration: v[2],
-                motor_position: v[3],
-                motor_velocity: v[4],
-                joint_torque: v[5],
-                desired_joint_torque: v[6],
-                expected_joint_torque: v[7],
-            }
-        }
         let fills = [0.0f32, 1.5, -2.0, f32::MAX, f32::MIN, 3e38];
         let specials = [f32::NAN, f32::INFINITY, f32::NEG_INFINITY, f32::MAX, -1.0];
         for &fill in &fills {
