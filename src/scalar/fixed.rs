@@ -90,10 +90,14 @@ pub(crate) fn mul_bits_long_split(a: i32, b: i32) -> i32 {
     let low = ((al as u32) * (bl as u32) + (1 << 15)) >> 16;
     let s = (m1 & 0xFFFF) as u32 + (m2 & 0xFFFF) as u32 + low;
     let t = ah * bh + (m1 >> 16) + (m2 >> 16) + (s >> 16) as i32;
-    if (t + (1 << 15)) as u32 >= 1 << 16 {
-        return if t < 0 { i32::MIN } else { i32::MAX };
+    // `t ∈ [−2¹⁵, 2¹⁵)` exactly when `t·2¹⁶` shifted back is `t` (the
+    // shifted word is the result's high half); else the sign of `t` picks
+    // the bound, without a branch.
+    let high = t << 16;
+    if high >> 16 != t {
+        return (t >> 31) ^ i32::MAX;
     }
-    (t << 16) | (s & 0xFFFF) as i32
+    high | (s & 0xFFFF) as i32
 }
 
 /// The signed 64-bit product `V = a·b` as `(high word, low word)`, in
