@@ -90,10 +90,14 @@ pub(crate) fn mul_bits_long_split(a: i32, b: i32) -> i32 {
     let low = ((al as u32) * (bl as u32) + (1 << 15)) >> 16;
     let s = (m1 & 0xFFFF) as u32 + (m2 & 0xFFFF) as u32 + low;
     let t = ah * bh + (m1 >> 16) + (m2 >> 16) + (s >> 16) as i32;
-    if (t + (1 << 15)) as u32 >= 1 << 16 {
-        return if t < 0 { i32::MIN } else { i32::MAX };
+    // `t ∈ [−2¹⁵, 2¹⁵)` exactly when `t·2¹⁶` shifted back is `t` (the
+    // shifted word is the result's high half); else the sign of `t` picks
+    // the bound, without a branch.
+    let high = t << 16;
+    if high >> 16 != t {
+        return (t >> 31) ^ i32::MAX;
     }
-    (t << 16) | (s & 0xFFFF) as i32
+    high | (s & 0xFFFF) as i32
 }
 
 /// The signed 64-bit product `V = a·b` as `(high word, low word)`, in
@@ -139,9 +143,10 @@ pub(crate) fn signed_wide_mul_split(a: i32, b: i32) -> (i32, u32) {
 }
 
 /// `sat(⌊(V + round) / 2^sh⌋)` for `V = hi·2³² + lo` with `|hi| ≤ 2³⁰`,
-/// `sh = rs + 1 ∈ [1, 32]` and `round < 2³²` (the rounding constant
-/// `2^(sh−1)`). After the carry of `lo + round` into `hi`, the shifted value
-/// fits `i32` exactly when `hi >> (sh − 1)` (arithmetic) is `0` or `−1`;
+/// `sh = rs + 1 ∈ [1, 32]` and `round = 2^rs` (the rounding constant
+/// `2^(sh−1)`; every caller passes it). After the carry of `lo + round` into
+/// `hi`, the shifted value fits `i32` exactly when `hi >> (sh − 1)`
+/// (arithmetic) is `0` or `−1`;
 /// otherwise it saturates with the sign of `hi`. `lo >> sh` and
 /// `hi << (32 − sh)` are written with `rs` so that `sh = 32` needs no
 /// special case.
@@ -149,8 +154,10 @@ pub(crate) fn signed_wide_mul_split(a: i32, b: i32) -> (i32, u32) {
 pub(crate) fn round_shift_sat(hi: i32, lo: u32, round: u32, rs: u32) -> i32 {
     let (lo, carry) = lo.overflowing_add(round);
     let hi = hi + carry as i32;
-    let top = hi >> rs;
-    if top != (top >> 31) {
+    // `hi >> rs ∈ {−1, 0}` ⟺ `hi + 2^rs ∈ [0, 2^(rs+1))` ⟺ `⌊((hi + round)
+    // mod 2³²) / 2⌋ < round` (`round = 2^rs`; for `rs = 31` always true,
+    // as it must be): no shift by the variable amount in the test.
+    if ((hi as u32).wrapping_add(round) >> 1) >= round {
         return if hi < 0 { i32::MIN } else { i32::MAX };
     }
     (hi << (31 - rs)) | ((lo >> rs) >> 1) as i32
@@ -751,8 +758,72 @@ mod tests {
         }
     }
 
+    /// `sat(⌊(V + 2^rs) / 2^(rs+1)⌋)` in `i128`, the reference of
+    /// [`round_shift_sat`].
+    fn round_shift_reference(hi: i32, lo: u32, rs: u32) -> i32 {
+        let v = ((hi as i128) << 32) + lo as i128 + (1i128 << rs);
+        (v >> (rs + 1)).clamp(i32::MIN as i128, i32::MAX as i128) as i32
+    }
+
+    /// [`round_shift_sat`] equals the `i128` formula at the edges of its
+    /// range test: the high words just inside and outside `±2^rs` (with
+    /// and without the carry of the low word), `±2³⁰`, for every shift.
+    #[test]
+    fn round_shift_sat_equals_the_128_bit_formula_on_edges() {
+        let los = [0u32, 1, (1 << 31) - 1, 1 << 31, u32::MAX - 1, u32::MAX];
+        for rs in 0..32u32 {
+            let p = 1i64 << rs;
+            let mut his = vec![
+                0i64,
+                1,
+                -1,
+                1 << 30,
+                -(1 << 30),
+                (1 << 30) - 1,
+                -(1 << 30) + 1,
+            ];
+            for d in -2..=2 {
+                his.extend([p + d, -p + d]);
+            }
+            for &hi in his.iter().filter(|h| h.unsigned_abs() <= 1 << 30) {
+                for &lo in &los {
+                    let lo = lo.rotate_right(rs) ^ (lo >> 7);
+                    for lo in [lo, lo.wrapping_neg(), u32::MAX - (1 << rs) + 1] {
+                        assert_eq!(
+                            round_shift_sat(hi as i32, lo, 1 << rs, rs),
+                            round_shift_reference(hi as i32, lo, rs),
+                            "hi {hi} lo {lo} rs {rs}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
     proptest::proptest! {
         #![proptest_config(proptest::prelude::ProptestConfig::with_cases(50_000))]
+        /// [`round_shift_sat`] equals the `i128` formula.
+        #[test]
+        fn round_shift_sat_equals_the_128_bit_formula(
+            hi in -(1i32 << 30)..=(1 << 30),
+            lo in proptest::prelude::any::<u32>(),
+            rs in 0u32..32,
+        ) {
+            proptest::prop_assert_eq!(round_shift_sat(hi, lo, 1 << rs, rs), round_shift_reference(hi, lo, rs));
+        }
+
+        /// Near the saturation bounds of each shift.
+        #[test]
+        fn round_shift_sat_equals_the_128_bit_formula_near_the_bounds(
+            rs in 0u32..31,
+            d in -3i32..=3,
+            neg in proptest::prelude::any::<bool>(),
+            lo in proptest::prelude::any::<u32>(),
+        ) {
+            let hi = if neg { -(1i32 << rs) + d } else { (1i32 << rs) + d };
+            proptest::prop_assert_eq!(round_shift_sat(hi, lo, 1 << rs, rs), round_shift_reference(hi, lo, rs));
+        }
+
         /// The signed four-partial-product form is exact.
         #[test]
         fn mul_bits_long_split_equals_the_64_bit_formula(a in proptest::prelude::any::<i32>(), b in proptest::prelude::any::<i32>()) {
