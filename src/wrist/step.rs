@@ -401,7 +401,9 @@ pub struct WristOutput<S> {
     /// 0 when the sensor reading was invalid.
     pub interaction: [S; 2],
     /// `τ_t = −Jᵀ·interaction` fed to each motor law (eq. 6.1, ch. 4
-    /// sign), stored link-torque units.
+    /// sign), stored link-torque units; 0 when the sensor reading was
+    /// invalid or, on floats, when this product overflows (flagged
+    /// [`invalid_input`](Self::invalid_input)).
     pub joint_torque: [S; 2],
     /// The task reference reached, `(δ_r, γ_r)`, stored angle units:
     /// the mode manager's, projected onto the reachable cone when
@@ -426,7 +428,8 @@ pub struct WristOutput<S> {
     /// 0), the target (the reference holds), or a measured position or
     /// speed (that motor's torque is 0 and its law's state is kept). On
     /// floats, finite readings so large that a product overflows (a
-    /// wrench beyond the float range, or a motor law whose value turns
+    /// wrench beyond the float range or whose joint torque `−Jᵀτ` is, or
+    /// a motor law whose value turns
     /// NaN — e.g. a speed above about `1.8e19` rad/s on `f32`, whose square
     /// overflows) are flagged and handled the same way: the safe reaction
     /// to an encoder or gauge fault.
@@ -819,7 +822,7 @@ impl<S: Scalar> WristStepConfig<S> {
             .sub(cd.mul_unit_range(sp_s1))
             .mul_unit_range(cg);
         let [td, tg] = interaction;
-        let joint_torque = [
+        let mut joint_torque = [
             td.mul_unit_range(cd.mul_unit_range(sp_c1))
                 .sub(tg.mul_unit_range(sp_s1))
                 .mul(inv_d)
@@ -830,6 +833,14 @@ impl<S: Scalar> WristStepConfig<S> {
                     .mul(inv_d),
             ),
         ];
+        // A finite wrench within a factor ‖J‖ of the float range can
+        // overflow here: handled like an invalid gauge reading (0, flagged).
+        // Fixed point saturates, so the test is `false` there.
+        let finite = |v: S| v.sub(v) == S::ZERO;
+        let overflow = !(finite(joint_torque[0]) && finite(joint_torque[1]));
+        if overflow {
+            joint_torque = [S::ZERO; 2];
+        }
         let det_num = a_cg.mul_unit_range(sd).sub(sg.mul_unit_range(sp_s1));
         let singular = det_num.abs() < d.mul_unit_range(self.det_min);
         // 6. Both motor laws.
@@ -861,6 +872,7 @@ impl<S: Scalar> WristStepConfig<S> {
             torque_saturated,
             singular,
             invalid_input: sensed.is_none()
+                || overflow
                 || m.invalid_input
                 || laws[0].invalid_input
                 || laws[1].invalid_input,

@@ -465,6 +465,77 @@ fn impossible_readings_are_flagged_and_outputs_stay_finite() {
     run::<I16F16>();
 }
 
+/// A finite wrench so large that `−Jᵀτ` overflows the float range (the
+/// interaction is finite, its joint torque is not): flagged like an
+/// invalid gauge reading, the joint torques read 0, every output finite.
+#[test]
+fn joint_torque_overflow_is_flagged_and_outputs_stay_finite() {
+    fn run<S: Scalar>(max: f64) -> usize {
+        // The widest accepted inclination, φ = 30°, where ‖Jᵀ‖ exceeds 1
+        // (at φ = 16° the joint torque stays below the interaction, so the
+        // interaction overflows first).
+        let mut settings = params().settings();
+        settings.kinematics = WristParams::try_new(30f64.to_radians()).unwrap();
+        let p = WristStepParams::try_new(settings).unwrap();
+        let cfg = WristStepConfig::<S>::new(&p);
+        // At a bent reference, where ‖J‖ is largest (the first ticks from
+        // the straight pose are rate-limited and nearly singular).
+        let bent = WristTarget::<S>::from_si(0.25, -0.2, 0.0, 0.0);
+        let mut warm = cfg.state(MotorAngles::default());
+        let quiet = WristReadings::<S>::from_si([0.0; 6], [0.0; 2], [0.0; 2]);
+        for _ in 0..2000 {
+            cfg.update(&mut warm, &quiet, &bent);
+        }
+        let mut handled = 0;
+        // Two gauge channels at a time, both signs, magnitudes from
+        // `max/1e3` up by 1 % until the interaction is no longer finite.
+        for i in 0..6 {
+            for j in 0..6 {
+                for signs in [(1.0, 1.0), (1.0, -1.0)] {
+                    let mut g = max * 1e-3;
+                    loop {
+                        let mut gauges = [0.0; 6];
+                        gauges[i] += signs.0 * g;
+                        gauges[j] += signs.1 * g;
+                        let mut st = warm.clone();
+                        let out = cfg.update(
+                            &mut st,
+                            &WristReadings::from_si(gauges, [0.0; 2], [0.0; 2]),
+                            &bent,
+                        );
+                        let fields = [
+                            out.motor_torque_si(),
+                            out.interaction_si(),
+                            out.joint_torque_si(),
+                            out.motor_reference_rate_si(),
+                        ];
+                        let all_finite = fields.iter().flatten().all(|v| v.is_finite());
+                        assert!(all_finite, "{} {gauges:?}: {out:?}", S::NAME);
+                        if out.interaction != [S::ZERO; 2] && out.invalid_input {
+                            // The only way a finite interaction is flagged
+                            // with zero motor readings and a valid target.
+                            assert_eq!(out.joint_torque, [S::ZERO; 2], "{out:?}");
+                            handled += 1;
+                        }
+                        if out.interaction == [S::ZERO; 2] && out.invalid_input {
+                            break; // the interaction itself overflowed
+                        }
+                        g *= 1.01;
+                        if g > max {
+                            break;
+                        }
+                    }
+                }
+            }
+        }
+        handled
+    }
+    // The overflow is reached on both float backends (else this test
+    // would not exercise the path it names).
+    assert!(run::<f32>(f32::MAX as f64) > 0);
+    assert!(run::<f64>(f64::MAX) > 0);
+}
+
 #[test]
 fn unreachable_reference_saturates_onto_the_cone() {
     let p = params();
