@@ -836,8 +836,8 @@ impl<S: Scalar> WristStepConfig<S> {
         // A finite wrench within a factor ‖J‖ of the float range can
         // overflow here: handled like an invalid gauge reading (0, flagged).
         // Fixed point saturates, so the test is `false` there.
-        let finite = |v: S| v.sub(v) == S::ZERO;
-        let overflow = !(finite(joint_torque[0]) && finite(joint_torque[1]));
+        let nf = |v: S| v.sub(v); // 0 when finite, NaN for NaN and ±∞
+        let overflow = nf(joint_torque[0]).add(nf(joint_torque[1])) != S::ZERO;
         if overflow {
             joint_torque = [S::ZERO; 2];
         }
