@@ -199,7 +199,12 @@ pub fn sat_monotone_step<S: Scalar>(x: S, x_next: S, y: S) -> Verdict {
         // Precondition: x_next is strictly above x.
         return Verdict::logical(true);
     }
-    let (a, b) = (x.sat(y), x_next.sat(y));
+    sat_step_verdict(x, x_next, y, x.sat(y), x_next.sat(y))
+}
+
+/// The check of [`sat_monotone_step`] for results `a = sat(x, y)` and
+/// `b = sat(x', y)` (`x' > x`, neither NaN).
+pub fn sat_step_verdict<S: Scalar>(x: S, x_next: S, y: S, a: S, b: S) -> Verdict {
     let monotone = a <= b;
     if y.is_nan() || y <= S::ZERO {
         return Verdict::logical(monotone);
@@ -208,6 +213,23 @@ pub fn sat_monotone_step<S: Scalar>(x: S, x_next: S, y: S) -> Verdict {
     let allowed = (x_next.to_f64() - x.to_f64()) / y.to_f64();
     let excess = ((b.to_f64() - a.to_f64()) - allowed).max(0.0) / res;
     Verdict::logical(monotone).and(Verdict::bounded(excess, 1.0))
+}
+
+/// [`sat_step_verdict`] on `f32` without a division: for `y > 0`,
+/// `(b − a) − (x' − x)/y ≤ ε` is `(b − a − ε)·y ≤ x' − x` (`ε` the `f32`
+/// resolution), written with `f64` products. The same property in exact
+/// arithmetic; the `f64` roundings of the two forms differ by a few units
+/// of `2⁻⁵³` relative, far inside the one-unit (`2⁻²³`) allowance, and
+/// `sat_step_product_form_agrees_with_the_quotient_form` compares them on
+/// random and constructed results, failing ones included. For the Kani
+/// harness, whose solver does not finish an `f64` division in 600 s.
+pub fn sat_step_f32_products(x: f32, x_next: f32, y: f32, a: f32, b: f32) -> bool {
+    let monotone = a <= b;
+    if y.is_nan() || y <= 0.0 {
+        return monotone;
+    }
+    let over = (b as f64 - a as f64) - f32::EPSILON as f64;
+    monotone && (over <= 0.0 || over * y as f64 <= x_next as f64 - x as f64)
 }
 
 /// The body of `<f32 as Scalar>::div` (`src/scalar/float.rs`), for the
@@ -469,7 +491,9 @@ pub(crate) mod kani_entries {
         let (x, y) = any_f32_pair();
         // Precondition: a finite successor exists.
         kani::assume(x.is_finite() && x < f32::MAX);
-        assert!(sat_monotone_step(x, next_up(x), y).holds);
+        let xn = next_up(x);
+        // The check in its division-free form (`sat_step_f32_products`).
+        assert!(sat_step_f32_products(x, xn, y, x.sat(y), xn.sat(y)));
     }
 }
 
@@ -604,6 +628,69 @@ mod tests {
     fn div_bits_pair_holds(a0: i32, a: i32, b: i32) -> bool {
         use crate::scalar::fixed::div_bits;
         div_bits_pair_lemma(a0, div_bits(a0, b), a, div_bits(a, b), b)
+    }
+
+    /// The division-free check of `kani_sat_monotone_f32` agrees with the
+    /// quotient form of `sat_monotone_step` on results near the allowance
+    /// (both sides of it) and on arbitrary ones, and it can fail.
+    #[test]
+    fn sat_step_product_form_agrees_with_the_quotient_form() {
+        let mut rng = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            rng ^= rng << 13;
+            rng ^= rng >> 7;
+            rng ^= rng << 17;
+            rng
+        };
+        let (mut pass, mut fail) = (0, 0);
+        for i in 0..400_000 {
+            let r = next();
+            let (x, y) = match i % 4 {
+                // Arbitrary bit patterns.
+                0 => (f32::from_bits(r as u32), f32::from_bits((r >> 32) as u32)),
+                // Inside and around the boundary layer of a moderate y.
+                _ => {
+                    let y = f32::from_bits(0x3000_0000 + (r as u32 % 0x1800_0000));
+                    let k = ((r >> 32) as u32 as f32 / u32::MAX as f32) * 2.4 - 1.2;
+                    (k * y, y)
+                }
+            };
+            if !x.is_finite() || x >= f32::MAX {
+                continue;
+            }
+            let xn = next_up(x);
+            let a = x.sat(y);
+            // b: the real result, or one moved to the edge of the
+            // allowance (a + (x' − x)/y + ε, a few units either side).
+            let b = match (r >> 60) & 3 {
+                0 => xn.sat(y),
+                1 => f32::from_bits(next() as u32),
+                _ => {
+                    let edge = a as f64 + (xn as f64 - x as f64) / y as f64 + f32::EPSILON as f64;
+                    let mut b = edge as f32;
+                    for _ in 0..((r >> 56) & 7) {
+                        b = if r & 1 == 0 { next_up(b) } else { next_down(b) };
+                    }
+                    b
+                }
+            };
+            if b.is_nan() {
+                continue;
+            }
+            let quotient = sat_step_verdict(x, xn, y, a, b).holds;
+            assert_eq!(
+                sat_step_f32_products(x, xn, y, a, b),
+                quotient,
+                "x {x:e} y {y:e} a {a:e} b {b:e}"
+            );
+            if quotient {
+                pass += 1;
+            } else {
+                fail += 1;
+            }
+        }
+        // Both verdicts occur, so the comparison covers failing results.
+        assert!(pass > 10_000 && fail > 10_000, "{pass} pass, {fail} fail");
     }
 
     /// The copy of `<f32 as Scalar>::div` in the Kani stub is the function,
