@@ -33,6 +33,11 @@ pub fn sat_reciprocal<S: Scalar>(x: S, eps: S, inv_eps: &Coef) -> Verdict {
     let s = sat_with_reciprocal(x, eps, inv_eps);
     let in_range = !s.is_nan() && s >= S::ONE.neg() && s <= S::ONE;
     let odd = x == S::MIN || x.is_nan() || sat_with_reciprocal(x.neg(), eps, inv_eps) == s.neg();
+    Verdict::logical(in_range && odd).and(sat_reciprocal_value(x, eps, s))
+}
+
+/// The value check of [`sat_reciprocal`] for a computed result `s`.
+pub fn sat_reciprocal_value<S: Scalar>(x: S, eps: S, s: S) -> Verdict {
     let (xf, ef) = (x.to_f64(), eps.to_f64());
     let exact = if x.is_nan() {
         0.0
@@ -43,7 +48,37 @@ pub fn sat_reciprocal<S: Scalar>(x: S, eps: S, inv_eps: &Coef) -> Verdict {
     };
     let res = S::RESOLUTION.to_f64();
     let err = (s.to_f64() - exact).abs() / res;
-    Verdict::logical(in_range && odd).and(Verdict::bounded(err, 1.0 + 2f64.powi(-29) / res))
+    Verdict::bounded(err, 1.0 + 2f64.powi(-29) / res)
+}
+
+/// [`sat_reciprocal`] on `f32` without an `f64` division, for the Kani
+/// harness (whose solver does not finish one in 600 s): in range, odd,
+/// and the value check with the quotient cross-multiplied: inside the
+/// layer (`ε > 0`), `|s − x/ε| ≤ (1 + 2⁻⁶)·2⁻²³` is
+/// `|s·ε − x| ≤ (1 + 2⁻⁶)·2⁻²³·ε`; outside, `s = sgn x`; `s = 0` for NaN.
+/// The products are exact in `f64` (`s·ε`: 24 + 24 bits; the right side
+/// a power of two times a 7-bit factor) and the one difference rounds by
+/// `2⁻⁵³` relative; `sat_reciprocal_product_form_agrees` compares the two
+/// forms on random and constructed results, failing ones included.
+pub fn sat_reciprocal_f32_products(x: f32, eps: f32, inv_eps: &Coef) -> bool {
+    let s = sat_with_reciprocal(x, eps, inv_eps);
+    let in_range = !s.is_nan() && (-1.0..=1.0).contains(&s);
+    let odd = x == f32::MIN || x.is_nan() || sat_with_reciprocal(-x, eps, inv_eps) == -s;
+    in_range && odd && sat_reciprocal_value_f32_products(x, eps, s)
+}
+
+/// The value check of [`sat_reciprocal_f32_products`] for a result `s`.
+pub fn sat_reciprocal_value_f32_products(x: f32, eps: f32, s: f32) -> bool {
+    if x.is_nan() {
+        return s.abs() <= f32::EPSILON * (1.0 + 1.0 / 64.0);
+    }
+    let (xf, ef, sf) = (x as f64, eps as f64, s as f64);
+    let tol = (1.0 + 1.0 / 64.0) * f32::EPSILON as f64;
+    if xf.abs() > ef {
+        (sf - xf.signum()).abs() <= tol
+    } else {
+        (sf * ef - xf).abs() <= tol * ef
+    }
 }
 
 /// [`sat_reciprocal`] on `I16F16`, decided on integers (no `f64` of the
@@ -241,7 +276,8 @@ mod kani_entries {
     #[kani::proof]
     fn kani_sat_reciprocal_f32() {
         let (eps, inv) = super::eps_r_f32_prepared();
-        assert!(sat_reciprocal::<f32>(kani::any(), eps, &inv).holds);
+        // The check in its division-free form (`sat_reciprocal_f32_products`).
+        assert!(sat_reciprocal_f32_products(kani::any(), eps, &inv));
     }
 
     /// [`friction_sign_and_bound_i16f16`] at every speed, with `exp` by
@@ -495,6 +531,94 @@ mod tests {
         })
         .unwrap();
         ModeConfig::new(&p)
+    }
+
+    /// The division-free value check of `kani_sat_reciprocal_f32` agrees
+    /// with the quotient form of `sat_reciprocal` on the real results and
+    /// on results moved a few units either side of the allowance (ties
+    /// within 1e-9 of it relative apart), and it can fail.
+    #[test]
+    fn sat_reciprocal_product_form_agrees() {
+        let (eps, inv) = eps_r_f32_prepared();
+        let mut rng = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            rng ^= rng << 13;
+            rng ^= rng >> 7;
+            rng ^= rng << 17;
+            rng
+        };
+        let (mut pass, mut fail, mut ties) = (0, 0, 0);
+        for i in 0..300_000 {
+            let r = next();
+            let x = match i % 3 {
+                0 => f32::from_bits(r as u32),
+                // Inside and just around the layer.
+                _ => ((r >> 40) as f32 / (1u64 << 24) as f32 * 2.2 - 1.1) * eps,
+            };
+            let real = sat_with_reciprocal(x, eps, &inv);
+            let allowed = (1.0 + 1.0 / 64.0) * f32::EPSILON as f64;
+            let exact = if x.is_nan() {
+                0.0
+            } else if (x as f64).abs() > eps as f64 {
+                (x as f64).signum()
+            } else {
+                x as f64 / eps as f64
+            };
+            let s = match (r >> 62) & 1 {
+                0 => real,
+                // A candidate near the edge of the allowance.
+                _ => {
+                    let side = if r & 1 == 0 { allowed } else { -allowed };
+                    let mut s = (exact + side) as f32;
+                    for _ in 0..((r >> 56) & 3) {
+                        s = if r & 2 == 0 {
+                            super::super::sat_sgn::next_down(s)
+                        } else {
+                            super::super::kernels_f32::next_up(s)
+                        };
+                    }
+                    s
+                }
+            };
+            let quotient = sat_reciprocal_value(x, eps, s).holds;
+            // Away from ties: the forms round differently (by 2⁻⁵³
+            // relative; the quotient form's `x/ε` can vanish in the
+            // difference), so a result within 1e-9 of the allowance may be
+            // decided either way. Most ties are exact: `±1 ± allowance`.
+            let margin = (s as f64 - exact).abs() - allowed;
+            if margin.abs() <= 1e-9 * allowed {
+                ties += 1;
+                continue;
+            }
+            assert_eq!(
+                sat_reciprocal_value_f32_products(x, eps, s),
+                quotient,
+                "x {x:e} s {s:e}"
+            );
+            if quotient {
+                pass += 1;
+            } else {
+                fail += 1;
+            }
+        }
+        assert!(
+            pass > 10_000 && fail > 10_000 && ties < 6_000,
+            "{pass} pass, {fail} fail, {ties} ties"
+        );
+        // And the whole product-form check holds for the library's sat.
+        for x in [
+            0.0f32,
+            1e-30,
+            0.05,
+            0.1,
+            0.10000001,
+            -0.1,
+            3.0,
+            f32::NAN,
+            f32::INFINITY,
+        ] {
+            assert!(sat_reciprocal_f32_products(x, eps, &inv), "{x:e}");
+        }
     }
 
     /// The friction bits check rejects a wrong sign and a value one LSB

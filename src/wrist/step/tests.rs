@@ -497,7 +497,7 @@ fn joint_torque_overflow_is_flagged_and_outputs_stay_finite() {
                         let mut gauges = [0.0; 6];
                         gauges[i] += signs.0 * g;
                         gauges[j] += signs.1 * g;
-                        let mut st = warm.clone();
+                        let mut st = warm;
                         let out = cfg.update(
                             &mut st,
                             &WristReadings::from_si(gauges, [0.0; 2], [0.0; 2]),
