@@ -296,6 +296,26 @@ pub fn f32_div_rounding_contract(a: f32, b: f32, q: f32) -> bool {
     (lo + q) * 0.5 * b <= a && a <= (q + hi) * 0.5 * b
 }
 
+/// What `sat`'s logic needs of its division inside the boundary layer on
+/// `f32` (`0 < b < ∞`, `|a| ≤ b`), as comparisons only: `|q| ≤ 1`, the
+/// quotient takes the sign of `a` (0 for ±0), and it is exactly `±1` at
+/// `a = ±b`. IEEE 754 division guarantees each (the real quotient is in
+/// `[−1, 1]` and both ends are representable; `b/b = 1` exactly), and
+/// `f32_division_meets_layer_lemma` tests it on edge values and random
+/// pairs. Weaker than [`f32_div_rounding_contract`]: it leaves the
+/// quotient's value inside `(−1, 1)` free, so a harness that assumes it
+/// decides the branch logic around the division, not the rounding.
+pub fn f32_div_layer_lemma(a: f32, b: f32, q: f32) -> bool {
+    let sign = if a > 0.0 {
+        q >= 0.0
+    } else if a < 0.0 {
+        q <= 0.0
+    } else {
+        q == 0.0
+    };
+    q.abs() <= 1.0 && sign && (a != b || q == 1.0) && (a != -b || q == -1.0)
+}
+
 #[cfg(kani)]
 pub(crate) mod kani_entries {
     //! One property per harness (a conjunction is as slow as its hardest
@@ -462,7 +482,7 @@ pub(crate) mod kani_entries {
         assert!(sat_odd(x, y).holds);
     }
 
-    /// `<f32 as Scalar>::div` as its contract
+    /// `<f32 as Scalar>::div` as its rounding contract
     /// ([`f32_div_rounding_contract`]: the nearest `f32` to `a/b`, written
     /// with exact `f64` products instead of a division). The two IEEE
     /// divisions of the monotone harness (`x/y` and `next_up(x)/y`) are two
@@ -485,14 +505,50 @@ pub(crate) mod kani_entries {
         q
     }
 
+    /// `<f32 as Scalar>::div` as [`f32_div_layer_lemma`], its precondition
+    /// asserted at every call (as for the rounding contract above).
+    fn f32_div_as_layer_lemma(a: f32, b: f32) -> f32 {
+        assert!(
+            b > 0.0 && b.is_finite() && a.abs() <= b,
+            "f32 division called outside the boundary layer"
+        );
+        let q: f32 = kani::any();
+        kani::assume(f32_div_layer_lemma(a, b, q));
+        q
+    }
+
+    /// `sat_monotone_step` wherever `x` or its successor `x'` is outside
+    /// the boundary layer, or the layer is empty (`y ≤ 0`, NaN): the
+    /// branch logic of eq. (4.18), the joins at `|x| = y` included (there
+    /// `x = y < x'` or `x < −y = x'`, and the division meets `±1`
+    /// exactly). Split domain: both points inside the layer is
+    /// `kani_sat_monotone_inside_f32`, where the step is the monotonicity
+    /// and rounding of IEEE division itself (and
+    /// `exhaustive_sat_properties_f32` checks every pair of bfloat16
+    /// values).
     #[kani::proof]
-    #[kani::stub(<f32 as crate::scalar::Scalar>::div, f32_div_as_rounding_contract)]
+    #[kani::stub(<f32 as crate::scalar::Scalar>::div, f32_div_as_layer_lemma)]
     fn kani_sat_monotone_f32() {
         let (x, y) = any_f32_pair();
         // Precondition: a finite successor exists.
         kani::assume(x.is_finite() && x < f32::MAX);
         let xn = next_up(x);
+        // Split domain (the complement is the next harness).
+        kani::assume(!(y > 0.0 && x.abs() <= y && xn.abs() <= y));
         // The check in its division-free form (`sat_step_f32_products`).
+        assert!(sat_step_f32_products(x, xn, y, x.sat(y), xn.sat(y)));
+    }
+
+    /// `sat_monotone_step` with both points inside the layer, the division
+    /// by its rounding contract ([`f32_div_as_rounding_contract`]).
+    #[kani::proof]
+    #[kani::stub(<f32 as crate::scalar::Scalar>::div, f32_div_as_rounding_contract)]
+    fn kani_sat_monotone_inside_f32() {
+        let (x, y) = any_f32_pair();
+        kani::assume(x.is_finite() && x < f32::MAX);
+        let xn = next_up(x);
+        // Split domain: the complement of `kani_sat_monotone_f32`'s.
+        kani::assume(y > 0.0 && x.abs() <= y && xn.abs() <= y);
         assert!(sat_step_f32_products(x, xn, y, x.sat(y), xn.sat(y)));
     }
 }
@@ -725,11 +781,36 @@ mod tests {
         assert!(!f32_div_sign_symmetric(upward, 1.0, 3.0));
     }
 
-    /// The contract of the `kani_sat_monotone_f32` stub holds for the real
+    /// The lemma of the `kani_sat_monotone_f32` stub holds for the real
     /// division on every operand pair of the boundary layer among the edge
-    /// values and random bit patterns (and on the ties and subnormal
-    /// quotients below), and the check can fail: the quotient's neighbours
-    /// are rejected.
+    /// values and random bit patterns, and the check can fail.
+    #[test]
+    fn f32_division_meets_layer_lemma() {
+        let mut pairs = f32_division_operands();
+        pairs.extend([(f32::MAX, f32::MAX), (-f32::MAX, f32::MAX), (-0.0, 1.0)]);
+        let mut checked = 0;
+        for (a, b) in pairs {
+            if !(b > 0.0 && b.is_finite() && a.abs() <= b) {
+                continue;
+            }
+            assert!(
+                f32_div_layer_lemma(a, b, Scalar::div(a, b)),
+                "{a:e} / {b:e}"
+            );
+            checked += 1;
+        }
+        assert!(checked > 100_000, "{checked}");
+        // And it can fail: a quotient off the end, or of the wrong sign.
+        assert!(!f32_div_layer_lemma(2.0, 2.0, next_down(1.0)));
+        assert!(!f32_div_layer_lemma(-1.0, 2.0, 0.5));
+        assert!(!f32_div_layer_lemma(0.0, 2.0, f32::from_bits(1)));
+    }
+
+    /// The contract of the `kani_sat_monotone_inside_f32` stub holds for
+    /// the real division on every operand pair of the boundary layer among
+    /// the edge values and random bit patterns (and on the ties and
+    /// subnormal quotients below), and the check can fail: the quotient's
+    /// neighbours are rejected.
     #[test]
     fn f32_division_meets_rounding_contract() {
         let mut checked = 0;
