@@ -540,13 +540,7 @@ mod tests {
     #[test]
     fn sat_reciprocal_product_form_agrees() {
         let (eps, inv) = eps_r_f32_prepared();
-        let mut rng = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move || {
-            rng ^= rng << 13;
-            rng ^= rng >> 7;
-            rng ^= rng << 17;
-            rng
-        };
+        let mut next = super::super::engine::xorshift64(0x2545_f491_4f6c_dd1du64);
         let (mut pass, mut fail, mut ties) = (0, 0, 0);
         for i in 0..300_000 {
             let r = next();

@@ -182,6 +182,18 @@ pub fn ulp_error_f32(got: f32, reference: f64) -> f64 {
     diff / libm::exp2((e - 23) as f64)
 }
 
+/// A xorshift64 generator from a nonzero `seed`: reproducible random bit
+/// patterns for the tests that compare two forms of a check.
+pub fn xorshift64(seed: u64) -> impl FnMut() -> u64 {
+    let mut s = seed;
+    move || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        s
+    }
+}
+
 /// Error of a fixed-point result in LSBs (`lsb` is the value of one LSB).
 pub fn lsb_error(got: f64, reference: f64, lsb: f64) -> f64 {
     if reference.is_nan() || got.is_nan() {

@@ -691,13 +691,7 @@ mod tests {
     /// (both sides of it) and on arbitrary ones, and it can fail.
     #[test]
     fn sat_step_product_form_agrees_with_the_quotient_form() {
-        let mut rng = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = move || {
-            rng ^= rng << 13;
-            rng ^= rng >> 7;
-            rng ^= rng << 17;
-            rng
-        };
+        let mut next = super::super::engine::xorshift64(0x9e37_79b9_7f4a_7c15u64);
         let (mut pass, mut fail) = (0, 0);
         for i in 0..400_000 {
             let r = next();
