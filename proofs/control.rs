@@ -238,6 +238,28 @@ fn eps_r_f32_prepared() -> (f32, Coef) {
     )
 }
 
+/// The contract of `RobustAdaptiveConfig::law_of_checked_input` that
+/// `kani_step_bounded_f32` stands on: any law, errors and products `r·Y_j`
+/// (NaN and infinities included), `valid` exactly when neither the law nor
+/// `r` is NaN, which is the function's own last line
+/// (`law_validity_is_the_nan_test` checks it on the real law).
+#[cfg(kani)]
+pub(crate) fn law_as_contract<S: Scalar + kani::Arbitrary>(
+    _cfg: &RobustAdaptiveConfig<S>,
+    _st: &RobustAdaptiveState<S>,
+    _x: &ControlInput<S>,
+) -> crate::control::adaptive::ActiveTerms<S> {
+    let law: S = kani::any();
+    let r: S = kani::any();
+    crate::control::adaptive::ActiveTerms {
+        law,
+        e: kani::any(),
+        r,
+        ry: [kani::any(), kani::any(), kani::any(), kani::any()],
+        valid: !law.is_nan() && !r.is_nan(),
+    }
+}
+
 /// The 31-bit mantissa of `1/0.1f32` at shift 27.
 #[cfg(any(kani, test))]
 const F32_INV_MULT: i64 = 1_342_177_260;
@@ -343,10 +365,31 @@ mod kani_entries {
         assert!(step_bounded(&cfg, &mut st, &x).holds);
     }
 
+    /// [`step_bounded`] on `f32` from every state inside the box and the
+    /// integral limit (residuals any `f32`), on every input, with the law
+    /// itself by its contract ([`law_as_contract`]: any terms, NaN and
+    /// infinities included): the limit, the NaN test and the projected
+    /// updates bound the step whatever value the law takes. The whole law
+    /// with six symbolic `f32` readings ran out of memory after 240 s.
     #[kani::proof]
+    #[kani::stub(
+        crate::control::adaptive::RobustAdaptiveConfig::law_of_checked_input,
+        super::law_as_contract
+    )]
     fn kani_step_bounded_f32() {
         let cfg = table_4_1::<f32>();
         let mut st = cfg.initial_state();
+        // Precondition: the states the step itself produces.
+        let (lo, hi) = (cfg.lower_bounds(), cfg.upper_bounds());
+        for j in 0..4 {
+            let v: f32 = kani::any();
+            kani::assume(v >= lo[j] && v <= hi[j]);
+            st.friction[j] = v;
+            st.friction_residual[j] = kani::any();
+        }
+        let z: f32 = kani::any();
+        kani::assume(z.abs() <= cfg.integral_limit());
+        st.integral = z;
         let x = ControlInput {
             desired_position: kani::any(),
             desired_velocity: kani::any(),
@@ -402,6 +445,69 @@ mod tests {
         assert_eq!(
             law.initial_state().friction,
             table_4_1::<I16F16>().initial_state().friction
+        );
+    }
+
+    /// The contract `law_as_contract` stands for: the real law's `valid`
+    /// is exactly "neither the law nor `r` is NaN", on readings that make
+    /// both true and false (infinite and NaN readings, huge and ordinary
+    /// ones), from states across the box. The check fails if `valid`
+    /// tested anything else (e.g. `e`, or finiteness instead of NaN).
+    #[test]
+    fn law_validity_is_the_nan_test() {
+        let cfg = table_4_1::<f32>();
+        let mut next = super::super::engine::xorshift64(0x9E37_79B9_7F4A_7C15);
+        let special = [
+            0.0f32,
+            -0.0,
+            1e-3,
+            -2.5,
+            3.0e38,
+            -3.0e38,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+        ];
+        let pick = |next: &mut dyn FnMut() -> u64| -> f32 {
+            let w = next();
+            match w % 4 {
+                0 => special[(w >> 8) as usize % special.len()],
+                1 => f32::from_bits((w >> 16) as u32),
+                _ => ((w >> 11) as f64 / (1u64 << 53) as f64 * 200.0 - 100.0) as f32,
+            }
+        };
+        let (mut valid, mut invalid, mut finite_invalid) = (0, 0, 0);
+        for _ in 0..200_000 {
+            let mut st = cfg.initial_state();
+            let (lo, hi) = (cfg.lower_bounds(), cfg.upper_bounds());
+            for j in 0..4 {
+                let u = (next() >> 11) as f32 / (1u64 << 53) as f32;
+                st.friction[j] = lo[j] + (hi[j] - lo[j]) * u;
+            }
+            let x = ControlInput {
+                desired_position: pick(&mut next),
+                desired_velocity: pick(&mut next),
+                desired_acceleration: pick(&mut next),
+                motor_position: pick(&mut next),
+                motor_velocity: pick(&mut next),
+                joint_torque: pick(&mut next),
+                desired_joint_torque: 0.0,
+                expected_joint_torque: 0.0,
+            };
+            let t = cfg.law_of_checked_input(&st, &x);
+            assert_eq!(t.valid, !t.law.is_nan() && !t.r.is_nan(), "{x:?}");
+            if t.valid {
+                valid += 1;
+            } else {
+                invalid += 1;
+                finite_invalid += x.is_finite() as u32;
+            }
+        }
+        // Both outcomes reached, and invalid ones from finite readings
+        // too (an overflowing law), not only from NaN inputs.
+        assert!(
+            valid > 10_000 && invalid > 10_000 && finite_invalid > 0,
+            "{valid} {invalid} {finite_invalid}"
         );
     }
 
