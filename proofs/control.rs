@@ -302,23 +302,50 @@ mod kani_entries {
         assert!(sat_reciprocal_f32_products(kani::any(), eps, &inv));
     }
 
-    /// [`friction_sign_and_bound_i16f16`] at every speed, with `exp` by
-    /// its contract (`≥ 0`, `≤ 1` at `x ≤ 0`: `exhaustive_exp_i16f16`).
+    /// The joint's stored friction configuration and initial estimates
+    /// (`FrictionConfig::new(0.01)` and those of `table_4_1::<I16F16>()`, a
+    /// compile-time constant; `friction_harness_config_is_the_constructors`).
+    fn friction_of_the_joint() -> (FrictionConfig<I16F16>, [I16F16; 4]) {
+        let law = *crate::proofs::joint_step::kani_entries::joint()
+            .mode()
+            .active();
+        (*law.friction_config(), law.initial_state().friction)
+    }
+
+    /// [`friction_sign_and_bound_i16f16`] inside the velocity layer
+    /// `|q̇| ≤ ε_q̇` (and one LSB beyond), with `exp` by its contract (`≥ 0`,
+    /// `≤ 1` at `x ≤ 0`: `exhaustive_exp_i16f16`). With
+    /// `kani_friction_sign_outside_i16f16`, every speed (the single
+    /// every-speed harness timed out at 605 s); `exhaustive_friction_i16f16`
+    /// covers all 2²⁴ speeds in ±128 rad/s.
     #[kani::proof]
     #[kani::stub(
         crate::scalar::kernels::i16f16::exp,
         crate::proofs::joint_step::kani_entries::exp_as_contract
     )]
-    fn kani_friction_sign_i16f16() {
-        // `FrictionConfig::new(0.01)` and the initial estimates of
-        // `table_4_1::<I16F16>()`, from the joint's stored configuration
-        // (a compile-time constant; `friction_harness_config_is_the_constructors`).
-        let law = *crate::proofs::joint_step::kani_entries::joint()
-            .mode()
-            .active();
-        let cfg = *law.friction_config();
-        let theta = law.initial_state().friction;
-        assert!(friction_sign_and_bound_i16f16(&cfg, &theta, any_i16f16()).holds);
+    fn kani_friction_sign_inside_i16f16() {
+        let (cfg, theta) = friction_of_the_joint();
+        let e = cfg.eps_velocity().to_bits();
+        let q = any_i16f16();
+        // Split domain: the layer (the complement is the next harness).
+        kani::assume(q.to_bits() >= -e - 1 && q.to_bits() <= e + 1);
+        assert!(friction_sign_and_bound_i16f16(&cfg, &theta, q).holds);
+    }
+
+    /// [`friction_sign_and_bound_i16f16`] outside the velocity layer, where
+    /// `sat(q̇) = ±1`; `exp` by its contract.
+    #[kani::proof]
+    #[kani::stub(
+        crate::scalar::kernels::i16f16::exp,
+        crate::proofs::joint_step::kani_entries::exp_as_contract
+    )]
+    fn kani_friction_sign_outside_i16f16() {
+        let (cfg, theta) = friction_of_the_joint();
+        let e = cfg.eps_velocity().to_bits();
+        let q = any_i16f16();
+        // Split domain: the complement of the layer's.
+        kani::assume(q.to_bits() < -e - 1 || q.to_bits() > e + 1);
+        assert!(friction_sign_and_bound_i16f16(&cfg, &theta, q).holds);
     }
 
     /// [`step_bounded`] from every state inside the box and the integral
@@ -434,7 +461,7 @@ mod tests {
     use proptest::prelude::*;
     use std::println;
 
-    /// `kani_friction_sign_i16f16` takes its friction model and estimates
+    /// `kani_friction_sign_{inside,outside}_i16f16` take their friction model and estimates
     /// from the joint's stored configuration: they are
     /// `FrictionConfig::new(0.01)` and this module's `table_4_1` initial
     /// estimates.
