@@ -29,4 +29,6 @@ pub mod kernels_q15;
 pub mod kernels_turn;
 pub mod law_budget;
 pub mod sat_sgn;
+#[cfg(kani)]
+pub mod uninterpreted;
 pub mod wrist_ik;
