@@ -443,22 +443,30 @@ mod words {
         [r.f64(), r.f64(), r.f64(), r.f64()]
     }
 
-    impl FrictionConfig<I16F16> {
-        pub(crate) const fn take(r: &mut Words) -> Self {
-            FrictionConfig {
-                eps: r.fixed(),
-                inv_eps: Coef::take(r),
-                inv_eps_value: r.option_fixed(),
-            }
-        }
+    /// `take`/`put` of a backend's configuration, with that backend's
+    /// value readers and writers.
+    macro_rules! stored {
+        ($t:ty, $val:ident, $opt:ident) => {
+            impl FrictionConfig<$t> {
+                pub(crate) const fn take(r: &mut Words) -> Self {
+                    FrictionConfig {
+                        eps: r.$val(),
+                        inv_eps: Coef::take(r),
+                        inv_eps_value: r.$opt(),
+                    }
+                }
 
-        #[cfg(test)]
-        pub(crate) fn put(&self, s: &mut Sink) {
-            s.fixed(self.eps);
-            self.inv_eps.put(s);
-            s.option_fixed(self.inv_eps_value);
-        }
+                #[cfg(test)]
+                pub(crate) fn put(&self, s: &mut Sink) {
+                    s.$val(self.eps);
+                    self.inv_eps.put(s);
+                    s.$opt(self.inv_eps_value);
+                }
+            }
+        };
     }
+    stored!(I16F16, fixed, option_fixed);
+    stored!(f32, f32, option_f32);
 
     impl FrictionBounds {
         pub(crate) const fn take(r: &mut Words) -> Self {

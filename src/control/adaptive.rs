@@ -836,54 +836,63 @@ mod words {
         }
     }
 
-    impl RobustAdaptiveConfig<I16F16> {
-        pub(crate) const fn take(r: &mut Words) -> Self {
-            RobustAdaptiveConfig {
-                friction: FrictionConfig::take(r),
-                accel_inertia: Coef::take(r),
-                lambda_inertia: Coef::take(r),
-                lambda: Gain::take(r),
-                feedback: Gain::take(r),
-                integral_step: Gain::take(r),
-                robust_gain_value: [r.fixed(), r.fixed()],
-                eps_r: r.fixed(),
-                robust_slope: Coef::take(r),
-                rho_param: Coef::take4(r),
-                eps_f: r.fixed4(),
-                rho_slope: Coef::take4(r),
-                adapt: Coef::take4(r),
-                lower: r.fixed4(),
-                upper: r.fixed4(),
-                initial: r.fixed4(),
-                integral_limit: r.fixed(),
-                torque_limit: r.fixed(),
-                params: RobustAdaptiveParams::take(r),
-            }
-        }
+    /// `take`/`put` of a backend's configuration, with that backend's
+    /// value readers and writers (`$val` one value, `$val4` four, `$vals`
+    /// the writer of a slice).
+    macro_rules! stored {
+        ($t:ty, $val:ident, $val4:ident, $vals:ident) => {
+            impl RobustAdaptiveConfig<$t> {
+                pub(crate) const fn take(r: &mut Words) -> Self {
+                    RobustAdaptiveConfig {
+                        friction: FrictionConfig::<$t>::take(r),
+                        accel_inertia: Coef::take(r),
+                        lambda_inertia: Coef::take(r),
+                        lambda: Gain::<$t>::take(r),
+                        feedback: Gain::<$t>::take(r),
+                        integral_step: Gain::<$t>::take(r),
+                        robust_gain_value: [r.$val(), r.$val()],
+                        eps_r: r.$val(),
+                        robust_slope: Coef::take(r),
+                        rho_param: Coef::take4(r),
+                        eps_f: r.$val4(),
+                        rho_slope: Coef::take4(r),
+                        adapt: Coef::take4(r),
+                        lower: r.$val4(),
+                        upper: r.$val4(),
+                        initial: r.$val4(),
+                        integral_limit: r.$val(),
+                        torque_limit: r.$val(),
+                        params: RobustAdaptiveParams::take(r),
+                    }
+                }
 
-        #[cfg(test)]
-        pub(crate) fn put(&self, s: &mut Sink) {
-            self.friction.put(s);
-            self.accel_inertia.put(s);
-            self.lambda_inertia.put(s);
-            self.lambda.put(s);
-            self.feedback.put(s);
-            self.integral_step.put(s);
-            s.fixeds(&self.robust_gain_value);
-            s.fixed(self.eps_r);
-            self.robust_slope.put(s);
-            Coef::put_all(&self.rho_param, s);
-            s.fixeds(&self.eps_f);
-            Coef::put_all(&self.rho_slope, s);
-            Coef::put_all(&self.adapt, s);
-            s.fixeds(&self.lower);
-            s.fixeds(&self.upper);
-            s.fixeds(&self.initial);
-            s.fixed(self.integral_limit);
-            s.fixed(self.torque_limit);
-            self.params.put(s);
-        }
+                #[cfg(test)]
+                pub(crate) fn put(&self, s: &mut Sink) {
+                    self.friction.put(s);
+                    self.accel_inertia.put(s);
+                    self.lambda_inertia.put(s);
+                    self.lambda.put(s);
+                    self.feedback.put(s);
+                    self.integral_step.put(s);
+                    s.$vals(&self.robust_gain_value);
+                    s.$val(self.eps_r);
+                    self.robust_slope.put(s);
+                    Coef::put_all(&self.rho_param, s);
+                    s.$vals(&self.eps_f);
+                    Coef::put_all(&self.rho_slope, s);
+                    Coef::put_all(&self.adapt, s);
+                    s.$vals(&self.lower);
+                    s.$vals(&self.upper);
+                    s.$vals(&self.initial);
+                    s.$val(self.integral_limit);
+                    s.$val(self.torque_limit);
+                    self.params.put(s);
+                }
+            }
+        };
     }
+    stored!(I16F16, fixed, fixed4, fixeds);
+    stored!(f32, f32, f32x4, f32s);
 }
 
 #[cfg(test)]

@@ -912,7 +912,7 @@ mod words {
     impl ModeConfig<I16F16> {
         pub(crate) const fn take(r: &mut Words) -> Self {
             ModeConfig {
-                active: RobustAdaptiveConfig::take(r),
+                active: RobustAdaptiveConfig::<I16F16>::take(r),
                 passive: PassiveConfig::take(r),
                 collision: if r.bool() {
                     Some(CollisionConfig::take(r))
@@ -925,8 +925,8 @@ mod words {
                 dwell: r.u16(),
                 release_speed: r.fixed(),
                 release_samples: r.u16(),
-                two_omega: Gain::take(r),
-                omega_sq: Gain::take(r),
+                two_omega: Gain::<I16F16>::take(r),
+                omega_sq: Gain::<I16F16>::take(r),
                 step_rate: Coef::take(r),
                 step_position: Coef::take(r),
                 bias_decay: Coef::take(r),

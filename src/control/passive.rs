@@ -624,7 +624,7 @@ mod words {
     impl PassiveConfig<I16F16> {
         pub(crate) const fn take(r: &mut Words) -> Self {
             PassiveConfig {
-                friction: FrictionConfig::take(r),
+                friction: FrictionConfig::<I16F16>::take(r),
                 nominal: r.fixed4(),
                 feedback: Coef::take(r),
                 torque_gain: Coef::take(r),

@@ -80,6 +80,19 @@ impl<'a> Words<'a> {
             None
         }
     }
+
+    pub(crate) const fn f32x4(&mut self) -> [f32; 4] {
+        [self.f32(), self.f32(), self.f32(), self.f32()]
+    }
+
+    /// A tag word (0: `None`), then the value.
+    pub(crate) const fn option_f32(&mut self) -> Option<f32> {
+        if self.bool() {
+            Some(self.f32())
+        } else {
+            None
+        }
+    }
 }
 
 /// Writes words in the order [`Words`] reads them.
@@ -130,6 +143,17 @@ impl Sink {
         self.bool(v.is_some());
         if let Some(x) = v {
             self.fixed(x);
+        }
+    }
+
+    pub(crate) fn f32s(&mut self, v: &[f32]) {
+        v.iter().for_each(|&x| self.f32(x));
+    }
+
+    pub(crate) fn option_f32(&mut self, v: Option<f32>) {
+        self.bool(v.is_some());
+        if let Some(x) = v {
+            self.f32(x);
         }
     }
 }
@@ -235,20 +259,28 @@ impl IntFactor {
     }
 }
 
-impl Gain<I16F16> {
-    pub(crate) const fn take(r: &mut Words) -> Self {
-        Gain {
-            coef: Coef::take(r),
-            exact: r.option_fixed(),
-        }
-    }
+/// `take`/`put` of a backend's gain, with that backend's optional-value
+/// reader and writer.
+macro_rules! stored_gain {
+    ($t:ty, $opt:ident) => {
+        impl Gain<$t> {
+            pub(crate) const fn take(r: &mut Words) -> Self {
+                Gain {
+                    coef: Coef::take(r),
+                    exact: r.$opt(),
+                }
+            }
 
-    #[cfg(test)]
-    pub(crate) fn put(&self, s: &mut Sink) {
-        self.coef.put(s);
-        s.option_fixed(self.exact);
-    }
+            #[cfg(test)]
+            pub(crate) fn put(&self, s: &mut Sink) {
+                self.coef.put(s);
+                s.$opt(self.exact);
+            }
+        }
+    };
 }
+stored_gain!(I16F16, option_fixed);
+stored_gain!(f32, option_f32);
 
 impl CountToTurn {
     pub(crate) const fn take(r: &mut Words) -> Self {
