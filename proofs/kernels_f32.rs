@@ -301,16 +301,14 @@ mod kani_entries {
         assert!(atan_monotone_at(x).holds);
     }
 
-    static mut ATAN_CORE: crate::proofs::uninterpreted::Memo<2> =
+    static ATAN_CORE: crate::proofs::uninterpreted::Memo<2> =
         crate::proofs::uninterpreted::Memo::new();
 
     /// `atan_nonneg` (the kernel on `|x|`) as an uninterpreted function
     /// (`proofs/uninterpreted.rs`): any value, the same one for the same
     /// argument.
     fn atan_nonneg_uninterpreted(u: f32) -> f32 {
-        // SAFETY: one thread; the harness is the only user of the table.
-        let memo = unsafe { &mut *core::ptr::addr_of_mut!(ATAN_CORE) };
-        f32::from_bits(memo.call(u64::from(u.to_bits())) as u32)
+        f32::from_bits(ATAN_CORE.call(u64::from(u.to_bits())) as u32)
     }
 
     /// `atan` odd at every `f32`, bit for bit: the sign handling around the
@@ -355,15 +353,13 @@ mod kani_entries {
         assert!(exp_neg_abs_within_bound(x).holds);
     }
 
-    static mut EXP_CORE: crate::proofs::uninterpreted::Memo<2> =
+    static EXP_CORE: crate::proofs::uninterpreted::Memo<2> =
         crate::proofs::uninterpreted::Memo::new();
 
     /// `exp_reduced` (`e^x = p·2^k`) as an uninterpreted function: any
     /// `(p, k)` for a new argument, the same again for the same argument.
     fn exp_reduced_uninterpreted(x: f32) -> (f32, i32) {
-        // SAFETY: one thread; the harness is the only user of the table.
-        let memo = unsafe { &mut *core::ptr::addr_of_mut!(EXP_CORE) };
-        let v = memo.call(u64::from(x.to_bits()));
+        let v = EXP_CORE.call(u64::from(x.to_bits()));
         let k = (v >> 32) as i32;
         // Postcondition of the stubbed function at the arguments
         // `exp_neg_abs` passes (`−|x|` down to `−EXP_NEG_ABS_MAX_ARG`):

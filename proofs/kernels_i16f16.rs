@@ -336,35 +336,29 @@ mod kani_proofs {
     }
 
     use crate::proofs::uninterpreted::Memo;
-    static mut REDUCE: Memo<2> = Memo::new();
-    static mut MULHI: Memo<2> = Memo::new();
-    static mut SIN_POLY: Memo<2> = Memo::new();
-    static mut ONE_MINUS_COS: Memo<2> = Memo::new();
-
-    /// The table of an uninterpreted function.
-    fn table(t: *mut Memo<2>) -> &'static mut Memo<2> {
-        // SAFETY: one thread; each table is used by one stub only.
-        unsafe { &mut *t }
-    }
+    static REDUCE: Memo<2> = Memo::new();
+    static MULHI: Memo<2> = Memo::new();
+    static SIN_POLY: Memo<2> = Memo::new();
+    static ONE_MINUS_COS: Memo<2> = Memo::new();
 
     /// `reduce_half_pi` uninterpreted: any `(quadrant, ρ, sign)` for a new
     /// argument, the same again for the same argument. Postcondition of
     /// the stubbed function: the quadrant is `q & 3`, in `0..=3`.
     fn reduce_half_pi_uninterpreted(a: u32) -> (u32, u32, bool) {
-        let v = table(core::ptr::addr_of_mut!(REDUCE)).call(u64::from(a));
+        let v = REDUCE.call(u64::from(a));
         ((v >> 62) as u32, v as u32, (v >> 32) & 1 == 1)
     }
 
     fn mulhi_uninterpreted(a: u32, b: u32) -> u32 {
-        table(core::ptr::addr_of_mut!(MULHI)).call(u64::from(a) << 32 | u64::from(b)) as u32
+        MULHI.call(u64::from(a) << 32 | u64::from(b)) as u32
     }
 
     fn sin_poly_uninterpreted(rho: u32, z: u32) -> u32 {
-        table(core::ptr::addr_of_mut!(SIN_POLY)).call(u64::from(rho) << 32 | u64::from(z)) as u32
+        SIN_POLY.call(u64::from(rho) << 32 | u64::from(z)) as u32
     }
 
     fn one_minus_cos_poly_uninterpreted(z: u32) -> u32 {
-        table(core::ptr::addr_of_mut!(ONE_MINUS_COS)).call(u64::from(z)) as u32
+        ONE_MINUS_COS.call(u64::from(z)) as u32
     }
 
     /// `sin_cos(x) == (sin x, cos x)` bit for bit at every input: the

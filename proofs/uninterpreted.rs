@@ -12,41 +12,46 @@
 //! in 600 s. The value itself is unconstrained, so nothing about the
 //! function's accuracy or range is assumed.
 
-/// A table of up to `N` argument/value pairs of one function; a call
-/// beyond `N` new arguments fails the harness (raise `N`).
+use core::sync::atomic::{AtomicU64, AtomicUsize, Ordering::Relaxed};
+
+/// A table of up to `N` argument/value pairs of one function, for a
+/// `static` (atomics: the crate has no `unsafe`; Kani runs each harness as
+/// one single-threaded program). A call beyond `N` new arguments fails the
+/// harness (raise `N`).
 pub struct Memo<const N: usize> {
-    n: usize,
-    keys: [u64; N],
-    vals: [u64; N],
+    n: AtomicUsize,
+    keys: [AtomicU64; N],
+    vals: [AtomicU64; N],
 }
 
 impl<const N: usize> Memo<N> {
     pub const fn new() -> Self {
         Memo {
-            n: 0,
-            keys: [0; N],
-            vals: [0; N],
+            n: AtomicUsize::new(0),
+            keys: [const { AtomicU64::new(0) }; N],
+            vals: [const { AtomicU64::new(0) }; N],
         }
     }
 
     /// The value at `key`: the recorded one, or a fresh `kani::any()`
     /// recorded for later calls.
-    pub fn call(&mut self, key: u64) -> u64 {
+    pub fn call(&self, key: u64) -> u64 {
+        let n = self.n.load(Relaxed);
         let mut i = 0;
-        while i < self.n {
-            if self.keys[i] == key {
-                return self.vals[i];
+        while i < n {
+            if self.keys[i].load(Relaxed) == key {
+                return self.vals[i].load(Relaxed);
             }
             i += 1;
         }
         assert!(
-            self.n < N,
+            n < N,
             "uninterpreted function: more arguments than its table"
         );
         let v: u64 = kani::any();
-        self.keys[self.n] = key;
-        self.vals[self.n] = v;
-        self.n += 1;
+        self.keys[n].store(key, Relaxed);
+        self.vals[n].store(v, Relaxed);
+        self.n.store(n + 1, Relaxed);
         v
     }
 }

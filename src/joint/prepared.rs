@@ -185,10 +185,7 @@ mod tests {
     fn prepared_is_the_constructors() {
         let c = constructed();
         let w = words_of(&c);
-        assert_eq!(w.len(), TABLE_4_1_I16F16_WORDS.len(), "word count");
-        for (i, (a, b)) in w.iter().zip(&TABLE_4_1_I16F16_WORDS).enumerate() {
-            assert_eq!(a, b, "word {i}");
-        }
+        crate::scalar::words::assert_same_words(&w, &TABLE_4_1_I16F16_WORDS);
         assert_eq!(TABLE_4_1_I16F16, c);
         // The read-back is the inverse of the writer on this value.
         assert_eq!(words_of(&TABLE_4_1_I16F16), w);
@@ -199,11 +196,10 @@ mod tests {
     #[ignore]
     fn prepared_words_print() {
         let w = words_of(&constructed());
-        println!("pub(crate) const TABLE_4_1_I16F16_WORDS: [u32; WORDS] = [");
-        for row in w.chunks(8) {
-            let s: Vec<String> = row.iter().map(|x| format!("0x{x:08x},")).collect();
-            println!("    {}", s.join(" "));
-        }
+        crate::scalar::words::print_words(
+            "pub(crate) const TABLE_4_1_I16F16_WORDS: [u32; WORDS] = [",
+            &w,
+        );
         println!("];\nconst WORDS: usize = {};", w.len());
     }
 }

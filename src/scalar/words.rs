@@ -95,6 +95,26 @@ impl<'a> Words<'a> {
     }
 }
 
+/// `built` (the constructor's words) equals `stored`, word for word (the
+/// first differing word named).
+#[cfg(test)]
+pub(crate) fn assert_same_words(built: &[u32], stored: &[u32]) {
+    assert_eq!(built.len(), stored.len(), "word count");
+    for (i, (a, b)) in built.iter().zip(stored).enumerate() {
+        assert_eq!(a, b, "word {i}");
+    }
+}
+
+/// Prints `words` as the body of a `const` array after the line `head`.
+#[cfg(test)]
+pub(crate) fn print_words(head: &str, words: &[u32]) {
+    std::println!("{head}");
+    for row in words.chunks(8) {
+        let s: Vec<std::string::String> = row.iter().map(|x| std::format!("0x{x:08x},")).collect();
+        std::println!("    {}", s.join(" "));
+    }
+}
+
 /// Writes words in the order [`Words`] reads them.
 #[cfg(test)]
 #[derive(Default)]
