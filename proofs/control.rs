@@ -241,8 +241,9 @@ fn eps_r_f32_prepared() -> (f32, Coef) {
 /// The contract of `RobustAdaptiveConfig::law_of_checked_input` that
 /// `kani_step_bounded_f32` stands on: any law, errors and products `r·Y_j`
 /// (NaN and infinities included), `valid` exactly when neither the law nor
-/// `r` is NaN, which is the function's own last line
-/// (`law_validity_is_the_nan_test` checks it on the real law).
+/// `r` is NaN (the function's own last line), and no `r·Y_j` NaN when
+/// valid (a NaN `r·Y_j` makes its robust term, hence the law, NaN).
+/// `law_validity_is_the_nan_test` checks both on the real law.
 #[cfg(kani)]
 pub(crate) fn law_as_contract<S: Scalar + kani::Arbitrary>(
     _cfg: &RobustAdaptiveConfig<S>,
@@ -251,12 +252,16 @@ pub(crate) fn law_as_contract<S: Scalar + kani::Arbitrary>(
 ) -> crate::control::adaptive::ActiveTerms<S> {
     let law: S = kani::any();
     let r: S = kani::any();
+    let ry: [S; 4] = [kani::any(), kani::any(), kani::any(), kani::any()];
+    let valid = !law.is_nan() && !r.is_nan();
+    // Postcondition of the stubbed function (law_validity_is_the_nan_test).
+    kani::assume(!valid || ry.iter().all(|v| !v.is_nan()));
     crate::control::adaptive::ActiveTerms {
         law,
         e: kani::any(),
         r,
-        ry: [kani::any(), kani::any(), kani::any(), kani::any()],
-        valid: !law.is_nan() && !r.is_nan(),
+        ry,
+        valid,
     }
 }
 
@@ -501,6 +506,24 @@ mod kani_entries {
             desired_joint_torque: 0.0,
             expected_joint_torque: 0.0,
         };
+        // Precondition: finite readings. Kani's NaN check fails any
+        // operation that makes a NaN, and the step's finiteness test makes
+        // one on purpose (`v − v` of an infinite reading); non-finite
+        // readings (output 0, flagged, state untouched) are the random
+        // engine's and the unit tests'.
+        // (Tested with `f32::is_finite`, which makes no NaN.)
+        kani::assume(
+            [
+                x.desired_position,
+                x.desired_velocity,
+                x.desired_acceleration,
+                x.motor_position,
+                x.motor_velocity,
+                x.joint_torque,
+            ]
+            .iter()
+            .all(|v| v.is_finite()),
+        );
         assert!(step_bounded(&cfg, &mut st, &x).holds);
     }
 }
@@ -597,6 +620,7 @@ mod tests {
             };
             let t = cfg.law_of_checked_input(&st, &x);
             assert_eq!(t.valid, !t.law.is_nan() && !t.r.is_nan(), "{x:?}");
+            assert!(!t.valid || t.ry.iter().all(|v| !v.is_nan()), "{x:?}");
             if t.valid {
                 valid += 1;
             } else {
