@@ -522,7 +522,7 @@ mod kani_entries {
                 x.joint_torque,
             ]
             .iter()
-            .all(|v| v.is_finite()),
+            .all(|v: &f32| v.is_finite()),
         );
         assert!(step_bounded(&cfg, &mut st, &x).holds);
     }
