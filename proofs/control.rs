@@ -407,20 +407,35 @@ mod kani_entries {
         assert!(friction_sign_and_bound_i16f16(&cfg, &theta, q).holds);
     }
 
-    /// [`friction_sign_and_bound_i16f16`] outside the velocity layer, where
-    /// `sat(q̇) = ±1`; `exp` by its contract.
+    /// [`friction_sign_and_bound_i16f16`] outside the velocity layer up
+    /// to 1 rad/s, where `sat(q̇) = ±1`; `exp` by its contract.
     #[kani::proof]
     #[kani::stub(
         crate::scalar::kernels::i16f16::exp,
         crate::proofs::joint_step::kani_entries::exp_as_contract
     )]
-    fn kani_friction_sign_outside_i16f16() {
+    fn kani_friction_sign_outside_slow_i16f16() {
         let (cfg, theta) = friction_of_the_joint();
         let e = cfg.eps_velocity().to_bits();
-        let q = any_i16f16();
-        // Split domain: the complement of the layer's.
-        kani::assume(q.to_bits() < -e - 1 || q.to_bits() > e + 1);
-        assert!(friction_sign_and_bound_i16f16(&cfg, &theta, q).holds);
+        let q = any_i16f16().to_bits();
+        // Split domain: outside the layer, |q̇| ≤ 1 rad/s.
+        kani::assume((q < -e - 1 || q > e + 1) && (-(1 << 16)..=1 << 16).contains(&q));
+        assert!(friction_sign_and_bound_i16f16(&cfg, &theta, I16F16::from_bits(q)).holds);
+    }
+
+    /// [`friction_sign_and_bound_i16f16`] above 1 rad/s (the rest of the
+    /// outside of the layer); `exp` by its contract.
+    #[kani::proof]
+    #[kani::stub(
+        crate::scalar::kernels::i16f16::exp,
+        crate::proofs::joint_step::kani_entries::exp_as_contract
+    )]
+    fn kani_friction_sign_outside_fast_i16f16() {
+        let (cfg, theta) = friction_of_the_joint();
+        let q = any_i16f16().to_bits();
+        // Split domain: |q̇| > 1 rad/s.
+        kani::assume(!(-(1 << 16)..=1 << 16).contains(&q));
+        assert!(friction_sign_and_bound_i16f16(&cfg, &theta, I16F16::from_bits(q)).holds);
     }
 
     /// [`step_bounded`] from every state inside the box and the integral
