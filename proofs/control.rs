@@ -423,8 +423,25 @@ mod kani_entries {
         assert!(friction_sign_and_bound_i16f16(&cfg, &theta, I16F16::from_bits(q)).holds);
     }
 
-    /// [`friction_sign_and_bound_i16f16`] above 1 rad/s (the rest of the
-    /// outside of the layer); `exp` by its contract.
+    /// [`friction_sign_and_bound_i16f16`] for `1 < |q̇| ≤ 128` rad/s;
+    /// `exp` by its contract.
+    #[kani::proof]
+    #[kani::stub(
+        crate::scalar::kernels::i16f16::exp,
+        crate::proofs::joint_step::kani_entries::exp_as_contract
+    )]
+    fn kani_friction_sign_outside_medium_i16f16() {
+        let (cfg, theta) = friction_of_the_joint();
+        let q = any_i16f16().to_bits();
+        // Split domain: 1 < |q̇| ≤ 128 rad/s.
+        let m = q.unsigned_abs();
+        kani::assume(m > 1 << 16 && m <= 1 << 23);
+        assert!(friction_sign_and_bound_i16f16(&cfg, &theta, I16F16::from_bits(q)).holds);
+    }
+
+    /// [`friction_sign_and_bound_i16f16`] above 128 rad/s (the rest of the
+    /// outside of the layer; `q̇²` saturates from 181 rad/s); `exp` by its
+    /// contract.
     #[kani::proof]
     #[kani::stub(
         crate::scalar::kernels::i16f16::exp,
@@ -433,8 +450,8 @@ mod kani_entries {
     fn kani_friction_sign_outside_fast_i16f16() {
         let (cfg, theta) = friction_of_the_joint();
         let q = any_i16f16().to_bits();
-        // Split domain: |q̇| > 1 rad/s.
-        kani::assume(!(-(1 << 16)..=1 << 16).contains(&q));
+        // Split domain: |q̇| > 128 rad/s.
+        kani::assume(q.unsigned_abs() > 1 << 23);
         assert!(friction_sign_and_bound_i16f16(&cfg, &theta, I16F16::from_bits(q)).holds);
     }
 
