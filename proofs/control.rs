@@ -5,7 +5,7 @@
 //! | property | I16F16 | f32 | f64 |
 //! |---|---|---|---|
 //! | `sat_reciprocal` — the division-free `sat(x, ε)` of the hot path is in `[−1, 1]`, within 1 LSB/ulp of eq. (4.18), odd | Kani; exhaustive (all 2³² `x`, ε = ε_r) | Kani; random | random |
-//! | `friction_sign_and_bound` — `f̂^c(q̇)` never opposes `q̇` and `|f̂^c| ≤ b̂|q̇| + f̂_c + f̂_s` (+ rounding) | Kani (inside the velocity layer; outside: see the results); exhaustive (all 2²⁴ speeds in ±128 rad/s) | random | random |
+//! | `friction_sign_and_bound` — `f̂^c(q̇)` never opposes `q̇` and `|f̂^c| ≤ b̂|q̇| + f̂_c + f̂_s` (+ rounding) | Kani (every speed, in four parts); exhaustive (all 2²⁴ speeds in ±128 rad/s) | random | random |
 //! | `law_monotone_in_position` — eq. (4.19) is non-increasing in the measured motor position (every term is: `−λ²I_m e`, `−K_r sat(r)`, `−ρ_j Y_j sat(r Y_j)`) | exhaustive (2²⁴ consecutive positions, chained) | random | random |
 //! | `step_bounded` — output within the limit, never NaN; integral within its limit; estimates within the projection box | Kani (`exp`, product by contracts); random | Kani (the law by its contract: any terms); random | random |
 //! | `switch_bumpless` — at a mode switch, `|τ_after − τ_before| ≤` [`ModeConfig::switch_jump_bound`](crate::control::ModeConfig::switch_jump_bound) | random (proptest in `control::mode`), fuzz | same | same |
