@@ -387,72 +387,58 @@ mod kani_entries {
         (*law.friction_config(), law.initial_state().friction)
     }
 
-    /// [`friction_sign_and_bound_i16f16`] inside the velocity layer
-    /// `|q̇| ≤ ε_q̇` (and one LSB beyond), with `exp` by its contract (`≥ 0`,
-    /// `≤ 1` at `x ≤ 0`: `exhaustive_exp_i16f16`). With
-    /// `kani_friction_sign_outside_i16f16`, every speed (the single
-    /// every-speed harness timed out at 605 s); `exhaustive_friction_i16f16`
-    /// covers all 2²⁴ speeds in ±128 rad/s.
+    /// [`friction_sign_and_bound_i16f16`] at the speeds whose magnitude
+    /// bits `m` satisfy `part(m, e)` (`e` the layer's bits; split domain,
+    /// the four parts below together take every speed), `exp` by its
+    /// contract (`≥ 0`, `≤ 1` at `x ≤ 0`: `exhaustive_exp_i16f16`). The
+    /// single every-speed harness timed out at 605 s;
+    /// `exhaustive_friction_i16f16` covers all 2²⁴ speeds in ±128 rad/s.
+    fn friction_sign_on(part: impl Fn(u32, u32) -> bool) {
+        let (cfg, theta) = friction_of_the_joint();
+        let e = cfg.eps_velocity().to_bits().unsigned_abs();
+        let q = any_i16f16();
+        kani::assume(part(q.to_bits().unsigned_abs(), e));
+        assert!(friction_sign_and_bound_i16f16(&cfg, &theta, q).holds);
+    }
+
+    /// Inside the velocity layer `|q̇| ≤ ε_q̇`, and one LSB beyond.
     #[kani::proof]
     #[kani::stub(
         crate::scalar::kernels::i16f16::exp,
         crate::proofs::joint_step::kani_entries::exp_as_contract
     )]
     fn kani_friction_sign_inside_i16f16() {
-        let (cfg, theta) = friction_of_the_joint();
-        let e = cfg.eps_velocity().to_bits();
-        let q = any_i16f16();
-        // Split domain: the layer (the complement is the next harness).
-        kani::assume(q.to_bits() >= -e - 1 && q.to_bits() <= e + 1);
-        assert!(friction_sign_and_bound_i16f16(&cfg, &theta, q).holds);
+        friction_sign_on(|m, e| m <= e + 1);
     }
 
-    /// [`friction_sign_and_bound_i16f16`] outside the velocity layer up
-    /// to 1 rad/s, where `sat(q̇) = ±1`; `exp` by its contract.
+    /// Outside the layer up to 1 rad/s, where `sat(q̇) = ±1`.
     #[kani::proof]
     #[kani::stub(
         crate::scalar::kernels::i16f16::exp,
         crate::proofs::joint_step::kani_entries::exp_as_contract
     )]
     fn kani_friction_sign_outside_slow_i16f16() {
-        let (cfg, theta) = friction_of_the_joint();
-        let e = cfg.eps_velocity().to_bits();
-        let q = any_i16f16().to_bits();
-        // Split domain: outside the layer, |q̇| ≤ 1 rad/s.
-        kani::assume((q < -e - 1 || q > e + 1) && (-(1 << 16)..=1 << 16).contains(&q));
-        assert!(friction_sign_and_bound_i16f16(&cfg, &theta, I16F16::from_bits(q)).holds);
+        friction_sign_on(|m, e| m > e + 1 && m <= 1 << 16);
     }
 
-    /// [`friction_sign_and_bound_i16f16`] for `1 < |q̇| ≤ 128` rad/s;
-    /// `exp` by its contract.
+    /// `1 < |q̇| ≤ 128` rad/s.
     #[kani::proof]
     #[kani::stub(
         crate::scalar::kernels::i16f16::exp,
         crate::proofs::joint_step::kani_entries::exp_as_contract
     )]
     fn kani_friction_sign_outside_medium_i16f16() {
-        let (cfg, theta) = friction_of_the_joint();
-        let q = any_i16f16().to_bits();
-        // Split domain: 1 < |q̇| ≤ 128 rad/s.
-        let m = q.unsigned_abs();
-        kani::assume(m > 1 << 16 && m <= 1 << 23);
-        assert!(friction_sign_and_bound_i16f16(&cfg, &theta, I16F16::from_bits(q)).holds);
+        friction_sign_on(|m, _| m > 1 << 16 && m <= 1 << 23);
     }
 
-    /// [`friction_sign_and_bound_i16f16`] above 128 rad/s (the rest of the
-    /// outside of the layer; `q̇²` saturates from 181 rad/s); `exp` by its
-    /// contract.
+    /// Above 128 rad/s (`q̇²` saturates from 181 rad/s).
     #[kani::proof]
     #[kani::stub(
         crate::scalar::kernels::i16f16::exp,
         crate::proofs::joint_step::kani_entries::exp_as_contract
     )]
     fn kani_friction_sign_outside_fast_i16f16() {
-        let (cfg, theta) = friction_of_the_joint();
-        let q = any_i16f16().to_bits();
-        // Split domain: |q̇| > 128 rad/s.
-        kani::assume(q.unsigned_abs() > 1 << 23);
-        assert!(friction_sign_and_bound_i16f16(&cfg, &theta, I16F16::from_bits(q)).holds);
+        friction_sign_on(|m, _| m > 1 << 23);
     }
 
     /// [`step_bounded`] from every state inside the box and the integral
