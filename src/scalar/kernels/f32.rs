@@ -371,6 +371,16 @@ fn cos_poly(z: f32) -> f32 {
     1.0 - (0.5 * z - z * z * horner(z, &COS_C))
 }
 
+/// `(sin r, cos r)` for `|r| ≤ π/4` by [`sin_poly`] and [`cos_poly`], one
+/// `z = r·r` shared: the core of [`sin_cos`] after its reduction (a
+/// function of its own so that a Kani harness can take it as an
+/// uninterpreted function; inlined, the same code).
+#[inline(always)]
+fn sin_cos_poly(r: f32) -> (f32, f32) {
+    let z = r * r;
+    (sin_poly(r, z), cos_poly(z))
+}
+
 /// Bits of 2/π after the binary point, preceded by one zero word (the
 /// window of a small argument starts before the binary point).
 const TWO_OVER_PI: [u32; 8] = [
@@ -395,7 +405,7 @@ const FRAC_PI_2_Q30: u64 = 0x6487_ed51;
 /// fixed-point number with an error below 2^-60. The remainder is then
 /// multiplied by π/2 in Q30 (also in integers) and rounded to `f32` once.
 #[inline(always)]
-fn reduce_quadrant(abits: u32) -> (f32, u32) {
+pub(crate) fn reduce_quadrant(abits: u32) -> (f32, u32) {
     let e = (abits >> 23) as i32 - 127; // -1 ..= 127
     let m = ((abits & 0x007f_ffff) | 0x0080_0000) as u64;
     let j0 = (e + 7) as u32; // first window bit, counted from the zero word
@@ -451,9 +461,7 @@ pub fn sin_cos(x: f32) -> (f32, f32) {
     } else {
         reduce_quadrant(abits)
     };
-    let z = r * r;
-    let s = sin_poly(r, z);
-    let c = cos_poly(z);
+    let (s, c) = sin_cos_poly(r);
     let (sv, cv) = if n & 1 == 0 { (s, c) } else { (c, s) };
     // n: 0 → ( s,  c), 1 → ( c, −s), 2 → (−s, −c), 3 → (−c,  s)
     let sin_sign = (n & 2) << 30;
