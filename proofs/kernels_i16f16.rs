@@ -331,6 +331,16 @@ mod kani_proofs {
         q
     }
 
+    /// The contract [`div_ratio_atan_contract`] stands for, on the real
+    /// `div_ratio`: `⌊2⁴⁸/d⌋ ≥ 2¹⁶` at every divisor of `atan`'s `|x| > 1`
+    /// calls.
+    #[kani::proof]
+    fn kani_div_ratio_atan_contract() {
+        let d: u32 = kani::any();
+        kani::assume(d > 1 << 16 && d <= 1 << 31); // precondition: |x| > 1
+        assert!(k::div_ratio(1 << 16, d) >= 1 << 16);
+    }
+
     /// `|atan x| ≤ π/2` for `|x| > 1`. There `atan` is `π/2 − atan_unit(t)`
     /// of the ratio `t = ⌊2⁴⁸/|x|⌋`. The range needs a lower bound on `t`
     /// (with any quotient the harness FAILS in 5.4 s), so the division
