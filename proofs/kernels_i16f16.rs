@@ -368,70 +368,8 @@ mod kani_proofs {
         assert!(k::sqrt(x) >= I16F16::ZERO && k::exp(x) >= I16F16::ZERO);
     }
 
-    /// One memo table per trailing-zero count of the argument: a trial root
-    /// of step `i` of `sqrt_q16`'s first phase has its lowest set bit at
-    /// `15 − i`, so each table sees at most one argument per evaluation
-    /// (two in a two-input harness), and the final `root` is one of them.
-    /// A lookup then scans two entries, not every argument seen. Sixteen
-    /// statics, not an array (a symbolically indexed array of tables ran
-    /// out of memory).
-    static SQ0: Memo<2> = Memo::new();
-    static SQ1: Memo<2> = Memo::new();
-    static SQ2: Memo<2> = Memo::new();
-    static SQ3: Memo<2> = Memo::new();
-    static SQ4: Memo<2> = Memo::new();
-    static SQ5: Memo<2> = Memo::new();
-    static SQ6: Memo<2> = Memo::new();
-    static SQ7: Memo<2> = Memo::new();
-    static SQ8: Memo<2> = Memo::new();
-    static SQ9: Memo<2> = Memo::new();
-    static SQ10: Memo<2> = Memo::new();
-    static SQ11: Memo<2> = Memo::new();
-    static SQ12: Memo<2> = Memo::new();
-    static SQ13: Memo<2> = Memo::new();
-    static SQ14: Memo<2> = Memo::new();
-    static SQ15: Memo<2> = Memo::new();
-
-    /// `square` uninterpreted except at 0: any value for a new `t ≠ 0`, the
-    /// same again for the same `t` (the table is chosen by `t`), and
-    /// `0² = 0`. Its arguments are below `2¹⁶` (trial roots); a larger one
-    /// fails the harness.
-    fn square_uninterpreted(t: u32) -> u32 {
-        let table = match t.trailing_zeros() {
-            32 => return 0,
-            0 => &SQ0,
-            1 => &SQ1,
-            2 => &SQ2,
-            3 => &SQ3,
-            4 => &SQ4,
-            5 => &SQ5,
-            6 => &SQ6,
-            7 => &SQ7,
-            8 => &SQ8,
-            9 => &SQ9,
-            10 => &SQ10,
-            11 => &SQ11,
-            12 => &SQ12,
-            13 => &SQ13,
-            14 => &SQ14,
-            15 => &SQ15,
-            _ => panic!("square of a value of 2^16 or more"),
-        };
-        table.call(u64::from(t)) as u32
-    }
-
-    /// `sqrt` monotone at every pair of consecutive inputs, for every
-    /// function in place of the squares of the trial roots (with `0² = 0`):
-    /// the digit-by-digit recurrence keeps a bit for `x + 1` wherever it
-    /// keeps it for `x` (the same trial, the same square), so the root of
-    /// `x + 1` is the larger bit string or equal with a remainder one
-    /// larger, which the phase-2 steps and the final rounding preserve.
-    /// With the real squares the solver had to prove two copies of each
-    /// product equal and timed out (605 s). The exhaustive engine checks
-    /// monotonicity with the real kernel at every input.
     #[kani::proof]
     #[kani::unwind(30)]
-    #[kani::stub(crate::scalar::kernels::i16f16::square, square_uninterpreted)]
     fn kani_sqrt_monotone_pair_i16f16() {
         assert!(monotone_at(k::sqrt, any_fixed()).holds);
     }

@@ -341,12 +341,12 @@ fn sqrt_q16_from(n: u32, first: u32) -> (u32, u32) {
         // The next bit of ⌊√n⌋ is set when the square stays ≤ n
         // (t < 2¹⁶, so t² < 2³²).
         let t = root | (1 << (15 - i));
-        if square(t) <= n {
+        if t * t <= n {
             root = t;
         }
         i += 1;
     }
-    let mut rem = n - square(root);
+    let mut rem = n - root * root;
     while i < 24 {
         rem <<= 2;
         let trial = (root << 2) | 1;
@@ -358,14 +358,6 @@ fn sqrt_q16_from(n: u32, first: u32) -> (u32, u32) {
         i += 1;
     }
     (root, rem)
-}
-
-/// `t²` for `t < 2¹⁶` (one `MULS`): the squares of [`sqrt_q16`]'s trial
-/// roots, a function of its own so that a Kani harness can take it as an
-/// uninterpreted function (inlined, the same code).
-#[inline(always)]
-fn square(t: u32) -> u32 {
-    t * t
 }
 
 /// [`sqrt_q16`] for `n < 2¹⁸`: there `⌊√n⌋ < 2⁹`, so the first seven
