@@ -316,6 +316,15 @@ pub fn f32_div_layer_lemma(a: f32, b: f32, q: f32) -> bool {
     q.abs() <= 1.0 && sign && (a != b || q == 1.0) && (a != -b || q == -1.0)
 }
 
+/// Two quotients by one divisor are in the order of their dividends
+/// (IEEE 754: the exact quotient `a/b` is increasing in `a` for `b > 0`,
+/// and rounding to nearest is non-decreasing), as comparisons only:
+/// `a₀ ≤ a₁ ⇒ q₀ ≤ q₁` and `a₁ ≤ a₀ ⇒ q₁ ≤ q₀`. Tested on the real
+/// division by `f32_division_is_monotone_in_the_dividend`.
+pub fn f32_div_pair_lemma(a0: f32, q0: f32, a1: f32, q1: f32) -> bool {
+    (!(a0 <= a1) || q0 <= q1) && (!(a1 <= a0) || q1 <= q0)
+}
+
 #[cfg(kani)]
 pub(crate) mod kani_entries {
     //! One property per harness (a conjunction is as slow as its hardest
@@ -550,6 +559,57 @@ pub(crate) mod kani_entries {
         // Split domain: the complement of `kani_sat_monotone_f32`'s.
         kani::assume(y > 0.0 && x.abs() <= y && xn.abs() <= y);
         assert!(sat_step_f32_products(x, xn, y, x.sat(y), xn.sat(y)));
+    }
+
+    /// The operands and quotient (bits) of the first division of
+    /// [`f32_div_as_layer_and_pair_lemma`].
+    static FP_FIRST: AtomicBool = AtomicBool::new(true);
+    static FP_A0: AtomicU32 = AtomicU32::new(0);
+    static FP_B0: AtomicU32 = AtomicU32::new(0);
+    static FP_Q0: AtomicU32 = AtomicU32::new(0);
+
+    /// `<f32 as Scalar>::div` inside the boundary layer as comparisons
+    /// only: any quotient that [`f32_div_layer_lemma`] allows, and a second
+    /// division by the same divisor in the order of the dividends
+    /// ([`f32_div_pair_lemma`]). The precondition is asserted at every call.
+    fn f32_div_as_layer_and_pair_lemma(a: f32, b: f32) -> f32 {
+        assert!(
+            b > 0.0 && b.is_finite() && a.abs() <= b,
+            "f32 division called outside the boundary layer"
+        );
+        let q: f32 = kani::any();
+        kani::assume(f32_div_layer_lemma(a, b, q));
+        if FP_FIRST.load(Relaxed) {
+            FP_FIRST.store(false, Relaxed);
+            FP_A0.store(a.to_bits(), Relaxed);
+            FP_B0.store(b.to_bits(), Relaxed);
+            FP_Q0.store(q.to_bits(), Relaxed);
+        } else if FP_B0.load(Relaxed) == b.to_bits() {
+            kani::assume(f32_div_pair_lemma(
+                f32::from_bits(FP_A0.load(Relaxed)),
+                f32::from_bits(FP_Q0.load(Relaxed)),
+                a,
+                q,
+            ));
+        }
+        q
+    }
+
+    /// The order part of `sat_monotone_step` with both points inside the
+    /// layer: `sat(x, y) ≤ sat(x', y)` for `x' = next_up(x)`, every such
+    /// pair, the division by comparison-only lemmas of IEEE division
+    /// ([`f32_div_as_layer_and_pair_lemma`]). The step bound (at most one
+    /// unit beyond the slope) is `kani_sat_monotone_inside_f32`'s, which
+    /// needs the rounding itself.
+    #[kani::proof]
+    #[kani::stub(<f32 as crate::scalar::Scalar>::div, f32_div_as_layer_and_pair_lemma)]
+    fn kani_sat_order_inside_f32() {
+        let (x, y) = any_f32_pair();
+        kani::assume(x.is_finite() && x < f32::MAX);
+        let xn = next_up(x);
+        // Split domain: as kani_sat_monotone_inside_f32.
+        kani::assume(y > 0.0 && x.abs() <= y && xn.abs() <= y);
+        assert!(x.sat(y) <= xn.sat(y));
     }
 }
 
@@ -798,6 +858,33 @@ mod tests {
         assert!(!f32_div_layer_lemma(2.0, 2.0, next_down(1.0)));
         assert!(!f32_div_layer_lemma(-1.0, 2.0, 0.5));
         assert!(!f32_div_layer_lemma(0.0, 2.0, f32::from_bits(1)));
+    }
+
+    /// The order lemma of `kani_sat_order_inside_f32` holds for the real
+    /// division: each dividend against its successor and predecessor and
+    /// against every other dividend of the edge and random pairs with the
+    /// same divisor; and it can fail.
+    #[test]
+    fn f32_division_is_monotone_in_the_dividend() {
+        let pairs = f32_division_operands();
+        let mut checked = 0;
+        for &(a, b) in &pairs {
+            if !(b > 0.0 && b.is_finite()) || a.is_nan() {
+                continue;
+            }
+            let q = Scalar::div(a, b);
+            for a1 in [next_up(a), next_down(a), -a, 0.0, b, -b] {
+                if a1.is_nan() {
+                    continue;
+                }
+                let q1 = Scalar::div(a1, b);
+                assert!(f32_div_pair_lemma(a, q, a1, q1), "{a:e}, {a1:e} / {b:e}");
+                checked += 1;
+            }
+        }
+        assert!(checked > 100_000, "{checked}");
+        assert!(!f32_div_pair_lemma(1.0, 0.5, 2.0, 0.25));
+        assert!(!f32_div_pair_lemma(2.0, 0.5, 1.0, 0.75));
     }
 
     /// The contract of the `kani_sat_monotone_inside_f32` stub holds for
