@@ -322,7 +322,8 @@ pub fn f32_div_layer_lemma(a: f32, b: f32, q: f32) -> bool {
 /// `a₀ ≤ a₁ ⇒ q₀ ≤ q₁` and `a₁ ≤ a₀ ⇒ q₁ ≤ q₀`. Tested on the real
 /// division by `f32_division_is_monotone_in_the_dividend`.
 pub fn f32_div_pair_lemma(a0: f32, q0: f32, a1: f32, q1: f32) -> bool {
-    (!(a0 <= a1) || q0 <= q1) && (!(a1 <= a0) || q1 <= q0)
+    let (up, down) = (a0 <= a1, a1 <= a0);
+    (!up || q0 <= q1) && (!down || q1 <= q0)
 }
 
 #[cfg(kani)]
