@@ -554,12 +554,20 @@ pub(crate) mod kani_entries {
     #[kani::proof]
     #[kani::stub(<f32 as crate::scalar::Scalar>::div, f32_div_as_rounding_contract)]
     fn kani_sat_monotone_inside_f32() {
+        let (x, xn, y) = any_pair_inside_layer();
+        assert!(sat_step_f32_products(x, xn, y, x.sat(y), xn.sat(y)));
+    }
+
+    /// `(x, x' = next_up(x), y)` with both points inside the boundary
+    /// layer: the split domain of the two harnesses with both points
+    /// inside, the complement of `kani_sat_monotone_f32`'s.
+    fn any_pair_inside_layer() -> (f32, f32, f32) {
         let (x, y) = any_f32_pair();
+        // Precondition: a finite successor exists.
         kani::assume(x.is_finite() && x < f32::MAX);
         let xn = next_up(x);
-        // Split domain: the complement of `kani_sat_monotone_f32`'s.
         kani::assume(y > 0.0 && x.abs() <= y && xn.abs() <= y);
-        assert!(sat_step_f32_products(x, xn, y, x.sat(y), xn.sat(y)));
+        (x, xn, y)
     }
 
     /// The operands and quotient (bits) of the first division of
@@ -570,16 +578,12 @@ pub(crate) mod kani_entries {
     static FP_Q0: AtomicU32 = AtomicU32::new(0);
 
     /// `<f32 as Scalar>::div` inside the boundary layer as comparisons
-    /// only: any quotient that [`f32_div_layer_lemma`] allows, and a second
+    /// only: any quotient that [`f32_div_layer_lemma`] allows
+    /// ([`f32_div_as_layer_lemma`]), and a second
     /// division by the same divisor in the order of the dividends
     /// ([`f32_div_pair_lemma`]). The precondition is asserted at every call.
     fn f32_div_as_layer_and_pair_lemma(a: f32, b: f32) -> f32 {
-        assert!(
-            b > 0.0 && b.is_finite() && a.abs() <= b,
-            "f32 division called outside the boundary layer"
-        );
-        let q: f32 = kani::any();
-        kani::assume(f32_div_layer_lemma(a, b, q));
+        let q = f32_div_as_layer_lemma(a, b);
         if FP_FIRST.load(Relaxed) {
             FP_FIRST.store(false, Relaxed);
             FP_A0.store(a.to_bits(), Relaxed);
@@ -605,11 +609,7 @@ pub(crate) mod kani_entries {
     #[kani::proof]
     #[kani::stub(<f32 as crate::scalar::Scalar>::div, f32_div_as_layer_and_pair_lemma)]
     fn kani_sat_order_inside_f32() {
-        let (x, y) = any_f32_pair();
-        kani::assume(x.is_finite() && x < f32::MAX);
-        let xn = next_up(x);
-        // Split domain: as kani_sat_monotone_inside_f32.
-        kani::assume(y > 0.0 && x.abs() <= y && xn.abs() <= y);
+        let (x, xn, y) = any_pair_inside_layer();
         assert!(x.sat(y) <= xn.sat(y));
     }
 }
