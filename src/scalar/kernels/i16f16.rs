@@ -1161,7 +1161,9 @@ mod tests {
     }
 
     /// Every input of `atan` (`b = 2¹⁶`, `a` every magnitude up to 2³¹):
-    /// bit-identical to the bit-serial division. 2³¹ pairs, run in release by
+    /// bit-identical to the bit-serial division, and for `a > 2¹⁶` the
+    /// ratio `div_ratio(2¹⁶, a)` at least `2¹⁶` (the contract a Kani
+    /// harness assumes). 2³¹ pairs, run in release by
     /// `.ci/run` with the other exhaustive checks:
     /// `cargo test --release --lib exhaustive_atan_bit_identity_i16f16 -- --ignored`.
     #[test]
