@@ -396,6 +396,49 @@ mod kani_entries {
         assert!(sat_monotone_step(x, kani::any()).holds);
     }
 
+    use core::sync::atomic::Ordering::Relaxed;
+    use core::sync::atomic::{AtomicBool, AtomicU32};
+    /// The operands and value of the first stubbed `ratio` call.
+    static R_FIRST: AtomicBool = AtomicBool::new(true);
+    static R_NUM0: AtomicU32 = AtomicU32::new(0);
+    static R_DEN0: AtomicU32 = AtomicU32::new(0);
+    static R_Q0: AtomicU32 = AtomicU32::new(0);
+
+    /// `ratio` (the shift-and-subtract `num/den`) as comparisons only, at
+    /// `sat`'s calls (`num < den < 2¹⁵`, asserted): any value up to
+    /// `2^BITS`, and a second call by the same divisor in the order of the
+    /// dividends. Both hold for the real `ratio` (a correctly rounded
+    /// quotient below one); `exhaustive_sat_q15` checks the order of `sat`
+    /// itself at every pair.
+    fn ratio_as_order_lemma<const BITS: u32>(num: u32, den: u32) -> u32 {
+        assert!(num < den && den < 1 << 15, "ratio outside sat's calls");
+        let r: u32 = kani::any();
+        kani::assume(r <= 1 << BITS);
+        if R_FIRST.load(Relaxed) {
+            R_FIRST.store(false, Relaxed);
+            R_NUM0.store(num, Relaxed);
+            R_DEN0.store(den, Relaxed);
+            R_Q0.store(r, Relaxed);
+        } else if R_DEN0.load(Relaxed) == den {
+            let (num0, r0) = (R_NUM0.load(Relaxed), R_Q0.load(Relaxed));
+            kani::assume((num0 > num || r0 <= r) && (num > num0 || r <= r0));
+        }
+        r
+    }
+
+    /// The order part of `sat_monotone_step`: `sat(x, y) ≤ sat(x + 1 LSB,
+    /// y)` at every pair, the division by its order lemma
+    /// ([`ratio_as_order_lemma`]). The step bound is
+    /// `kani_sat_monotone_step_q15`'s, which needs the quotient's value.
+    #[kani::proof]
+    #[kani::stub(crate::scalar::q15::ratio, ratio_as_order_lemma)]
+    fn kani_sat_order_q15() {
+        let x: i16 = kani::any();
+        kani::assume(x != i16::MAX); // precondition: x + 1 LSB must exist
+        let y = q(kani::any());
+        assert!(q15::sat(q(x), y) <= q15::sat(q(x + 1), y));
+    }
+
     #[kani::proof]
     fn kani_sat_continuous_at_layer_q15() {
         let y: i16 = kani::any();
