@@ -396,13 +396,9 @@ mod kani_entries {
         assert!(sat_monotone_step(x, kani::any()).holds);
     }
 
-    use core::sync::atomic::Ordering::Relaxed;
-    use core::sync::atomic::{AtomicBool, AtomicU32};
     /// The operands and value of the first stubbed `ratio` call.
-    static R_FIRST: AtomicBool = AtomicBool::new(true);
-    static R_NUM0: AtomicU32 = AtomicU32::new(0);
-    static R_DEN0: AtomicU32 = AtomicU32::new(0);
-    static R_Q0: AtomicU32 = AtomicU32::new(0);
+    static RATIO_FIRST: crate::proofs::uninterpreted::FirstCall =
+        crate::proofs::uninterpreted::FirstCall::new();
 
     /// `ratio` (the shift-and-subtract `num/den`) as comparisons only, at
     /// `sat`'s calls (`num < den < 2¹⁵`, asserted): any value up to
@@ -414,14 +410,10 @@ mod kani_entries {
         assert!(num < den && den < 1 << 15, "ratio outside sat's calls");
         let r: u32 = kani::any();
         kani::assume(r <= 1 << BITS);
-        if R_FIRST.load(Relaxed) {
-            R_FIRST.store(false, Relaxed);
-            R_NUM0.store(num, Relaxed);
-            R_DEN0.store(den, Relaxed);
-            R_Q0.store(r, Relaxed);
-        } else if R_DEN0.load(Relaxed) == den {
-            let (num0, r0) = (R_NUM0.load(Relaxed), R_Q0.load(Relaxed));
-            kani::assume((num0 > num || r0 <= r) && (num > num0 || r <= r0));
+        if let Some((num0, den0, r0)) = RATIO_FIRST.first_or_record(num, den, r) {
+            if den0 == den {
+                kani::assume((num0 > num || r0 <= r) && (num > num0 || r <= r0));
+            }
         }
         r
     }

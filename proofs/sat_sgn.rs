@@ -572,10 +572,8 @@ pub(crate) mod kani_entries {
 
     /// The operands and quotient (bits) of the first division of
     /// [`f32_div_as_layer_and_pair_lemma`].
-    static FP_FIRST: AtomicBool = AtomicBool::new(true);
-    static FP_A0: AtomicU32 = AtomicU32::new(0);
-    static FP_B0: AtomicU32 = AtomicU32::new(0);
-    static FP_Q0: AtomicU32 = AtomicU32::new(0);
+    static PAIR_FIRST: crate::proofs::uninterpreted::FirstCall =
+        crate::proofs::uninterpreted::FirstCall::new();
 
     /// `<f32 as Scalar>::div` inside the boundary layer as comparisons
     /// only: any quotient that [`f32_div_layer_lemma`] allows
@@ -584,18 +582,13 @@ pub(crate) mod kani_entries {
     /// ([`f32_div_pair_lemma`]). The precondition is asserted at every call.
     fn f32_div_as_layer_and_pair_lemma(a: f32, b: f32) -> f32 {
         let q = f32_div_as_layer_lemma(a, b);
-        if FP_FIRST.load(Relaxed) {
-            FP_FIRST.store(false, Relaxed);
-            FP_A0.store(a.to_bits(), Relaxed);
-            FP_B0.store(b.to_bits(), Relaxed);
-            FP_Q0.store(q.to_bits(), Relaxed);
-        } else if FP_B0.load(Relaxed) == b.to_bits() {
-            kani::assume(f32_div_pair_lemma(
-                f32::from_bits(FP_A0.load(Relaxed)),
-                f32::from_bits(FP_Q0.load(Relaxed)),
-                a,
-                q,
-            ));
+        if let Some((a0, b0, q0)) =
+            PAIR_FIRST.first_or_record(a.to_bits(), b.to_bits(), q.to_bits())
+        {
+            if b0 == b.to_bits() {
+                let (a0, q0) = (f32::from_bits(a0), f32::from_bits(q0));
+                kani::assume(f32_div_pair_lemma(a0, q0, a, q));
+            }
         }
         q
     }

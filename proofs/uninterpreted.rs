@@ -12,7 +12,7 @@
 //! in 600 s. The value itself is unconstrained, so nothing about the
 //! function's accuracy or range is assumed.
 
-use core::sync::atomic::{AtomicU64, AtomicUsize, Ordering::Relaxed};
+use core::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, AtomicUsize, Ordering::Relaxed};
 
 /// A table of up to `N` argument/value pairs of one function, for a
 /// `static` (atomics: the crate has no `unsafe`; Kani runs each harness as
@@ -53,5 +53,43 @@ impl<const N: usize> Memo<N> {
         self.vals[n].store(v, Relaxed);
         self.n.store(n + 1, Relaxed);
         v
+    }
+}
+
+/// The operands and result of the first call of a stubbed two-operand
+/// function (as bits), for a stub that relates a second call to the first
+/// by a lemma (same divisor, dividends in order, ...).
+pub struct FirstCall {
+    seen: AtomicBool,
+    a: AtomicU32,
+    b: AtomicU32,
+    q: AtomicU32,
+}
+
+impl FirstCall {
+    pub const fn new() -> Self {
+        FirstCall {
+            seen: AtomicBool::new(false),
+            a: AtomicU32::new(0),
+            b: AtomicU32::new(0),
+            q: AtomicU32::new(0),
+        }
+    }
+
+    /// `None` on the first call (which is recorded), then the first
+    /// call's `(a, b, q)`.
+    pub fn first_or_record(&self, a: u32, b: u32, q: u32) -> Option<(u32, u32, u32)> {
+        if self.seen.load(Relaxed) {
+            return Some((
+                self.a.load(Relaxed),
+                self.b.load(Relaxed),
+                self.q.load(Relaxed),
+            ));
+        }
+        self.seen.store(true, Relaxed);
+        self.a.store(a, Relaxed);
+        self.b.store(b, Relaxed);
+        self.q.store(q, Relaxed);
+        None
     }
 }
