@@ -1173,6 +1173,7 @@ def qemu_check(fws, target_dir, profile):
     sequences end with joint steps."""
     import shutil
     import tempfile
+    import threading
     exe = shutil.which("qemu-system-arm")
     results = []
     for key, fw in fws.items():
@@ -1183,18 +1184,36 @@ def qemu_check(fws, target_dir, profile):
             continue
         board = "mps2-an386" if key == "M4F" else "mps2-an385"
         start, end = fw.syms["crosscheck_start"] & ~1, fw.syms["crosscheck_end"] & ~1
+        # The trace (over 10^6 lines, more than a gigabyte on the M0+ image)
+        # is read from a pipe while QEMU writes it: only the positions of
+        # the first `start` and the first `end` are kept.
+        first = {start: None, end: None}
         with tempfile.TemporaryDirectory() as d:
-            log = os.path.join(d, "trace.log")
-            subprocess.run([exe, "-M", board, "-nographic", "-kernel", elf, "-semihosting-config",
-                            "enable=on,target=native", "-singlestep", "-d", "exec,nochain", "-D", log],
-                           check=True, timeout=120, stdin=subprocess.DEVNULL)
-            pcs = []
-            with open(log) as fh:
-                for line in fh:
-                    if line.startswith("Trace"):
-                        pcs.append(int(line.split("[")[1].split("/")[1], 16))
+            log = os.path.join(d, "trace.fifo")
+            os.mkfifo(log)
+            proc = subprocess.Popen([exe, "-M", board, "-nographic", "-kernel", elf, "-semihosting-config",
+                                     "enable=on,target=native", "-singlestep", "-d", "exec,nochain", "-D", log],
+                                    stdin=subprocess.DEVNULL)
+            timer = threading.Timer(120, proc.kill)
+            timer.start()
+            try:
+                i = 0
+                with open(log) as fh:
+                    for line in fh:
+                        if line.startswith("Trace"):
+                            pc = int(line.split("[")[1].split("/")[1], 16)
+                            if pc in first and first[pc] is None:
+                                first[pc] = i
+                            i += 1
+                rc = proc.wait()
+            finally:
+                timer.cancel()
+            if rc != 0:
+                raise subprocess.CalledProcessError(rc, exe)
+        if first[start] is None or first[end] is None:
+            raise SystemExit(f"{key}: the QEMU trace has no crosscheck_start or crosscheck_end")
         # Instructions from crosscheck_start's first to crosscheck_end's first.
-        q = pcs.index(end) - pcs.index(start)
+        q = first[end] - first[start]
         # The same span in unicorn, on a fresh image (the table's runs have
         # changed the step states): run `crosscheck` after `init`.
         n_uni, raw = unicorn_span(Firmware(fw.core, elf), start, end)
