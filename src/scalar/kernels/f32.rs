@@ -723,7 +723,22 @@ pub fn sqrt(x: f32) -> f32 {
     let odd = (e & 1) as u32;
     let mm = m << odd;
     let h = (e - odd as i32) >> 1;
-    // t = mm · 2^-23 ∈ [1, 4), exact; √x = √t · 2^h.
+    // √x = √(mm · 2^23) · 2^(h - 23).
+    let q = sqrt_mantissa(mm);
+    // q ∈ [2^23, 2^24]: adding it to the exponent field carries at 2^24.
+    f32::from_bits((((h + 126) as u32) << 23) + q)
+}
+
+/// `round(√(mm · 2²³))` for `mm ∈ [2²³, 2²⁴)` and even `mm ∈ [2²⁴, 2²⁵)`
+/// (the scaled mantissas [`sqrt`] passes), the 24-bit root of [`sqrt`]:
+/// the integer `q ∈ [2²³, 2²⁴]` with `q² − q < mm · 2²³ ≤ q² + q` (the
+/// midpoints `(q ± ½)²` are never integers). Correct rounding is what
+/// makes `sqrt` non-decreasing: `round(√·)` of a larger integer is never
+/// smaller. Checked at every `mm` by `exhaustive_sqrt_f32` (through the
+/// kernel) and by Kani (`kani_sqrt_mantissa_rounded_f32`).
+#[inline(always)]
+pub(crate) fn sqrt_mantissa(mm: u32) -> u32 {
+    // t = mm · 2^-23 ∈ [1, 4), exact; √(mm · 2^23) = √t · 2^23.
     let t = mm as f32 * (1.0 / 8_388_608.0);
     let mut y = f32::from_bits((t.to_bits() >> 1) + 0x1fbb_4f2e);
     y = 0.5 * (y + t / y);
@@ -742,6 +757,5 @@ pub fn sqrt(x: f32) -> f32 {
     if big_m - sq > q as u64 {
         q += 1; // round to nearest
     }
-    // q ∈ [2^23, 2^24]: adding it to the exponent field carries at 2^24.
-    f32::from_bits((((h + 126) as u32) << 23) + q)
+    q
 }
