@@ -734,8 +734,7 @@ pub fn sqrt(x: f32) -> f32 {
 /// the integer `q ∈ [2²³, 2²⁴]` with `q² − q < mm · 2²³ ≤ q² + q` (the
 /// midpoints `(q ± ½)²` are never integers). Correct rounding is what
 /// makes `sqrt` non-decreasing: `round(√·)` of a larger integer is never
-/// smaller. Checked at every `mm` by `exhaustive_sqrt_f32` (through the
-/// kernel) and by Kani (`kani_sqrt_mantissa_rounded_f32`).
+/// smaller. Checked at every such `mm` by `exhaustive_sqrt_f32`.
 #[inline(always)]
 pub(crate) fn sqrt_mantissa(mm: u32) -> u32 {
     // t = mm · 2^-23 ∈ [1, 4), exact; √(mm · 2^23) = √t · 2^23.
