@@ -289,7 +289,7 @@ pub fn sqrt_monotone_at(x: f32) -> Verdict {
 /// Newton steps can leave the candidate more than one off, and the root is
 /// not always correctly rounded (at 90,549 of them).
 pub fn sqrt_mantissa_domain(mm: u32) -> bool {
-    (1 << 23..1 << 24).contains(&mm) || ((1 << 24..1 << 25).contains(&mm) && mm % 2 == 0)
+    (1 << 23..1 << 24).contains(&mm) || ((1 << 24..1 << 25).contains(&mm) && mm & 1 == 0)
 }
 
 /// The root of `sqrt` on a scaled mantissa `mm` of its domain
