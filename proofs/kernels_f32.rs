@@ -497,8 +497,10 @@ mod kani_entries {
     fn sqrt_mantissa_by_contract(mm: u32) -> u32 {
         assert!(sqrt_mantissa_domain(mm), "sqrt_mantissa precondition");
         let q: u32 = kani::any();
+        // postcondition of the stubbed function: the root's range
         kani::assume((1 << 23..=1 << 24).contains(&q));
         if let Some((mm1, _, q1)) = SQRT_FIRST.first_or_record(mm, 0, q) {
+            // postcondition of the stubbed function: the order lemma
             kani::assume(if mm > mm1 {
                 q >= q1
             } else if mm < mm1 {

@@ -381,8 +381,10 @@ mod kani_proofs {
         assert!(n > 0 && n < 1 << 31, "sqrt_q16 precondition");
         let root: u32 = kani::any();
         let rem: u32 = kani::any();
+        // postcondition of the stubbed function: the ranges
         kani::assume(root < 1 << 24 && rem <= 2 * root);
         if let Some((n1, root1, rem1)) = SQRT_Q16_FIRST.first_or_record(n, root, rem) {
+            // postcondition of the stubbed function: the order lemma
             kani::assume(if n > n1 {
                 root > root1 || (root == root1 && rem > rem1)
             } else if n < n1 {
