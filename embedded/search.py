@@ -159,6 +159,17 @@ def search(fw, entry, f, mask, seconds, rng, keep=8, pinned=False):
     return out, evals, len(found)
 
 
+def recount(fw, entry, mask, v):
+    """The executed instructions of a kept vector on this firmware (-1 if
+    its preparation or step does not return)."""
+    pre = list(v["pre"])
+    pre[3] |= mask
+    if fw.call("prepare_joint", pre, limit=5_000_000)[3] != "ok":
+        return -1
+    n, _, _, st = fw.call(entry, v["args"], count=True)
+    return n if st == "ok" else -1
+
+
 TARGETS = [  # (core, image, entry, word map, prepare mask)
     ("M4F", "main", "joint_f32", count.f32w, count.MASK[("f32", "stop")]),
     ("M0+", "main", "joint_i16f16", count.xw, count.MASK[("x", "stop")]),
@@ -193,7 +204,10 @@ def main():
             rng = random.Random(f"{args.seed} {core_key} {entry}")
             out, evals, restarts = search(fw, entry, f, mask, args.seconds, rng, pinned=args.pinned)
             key = f"{core_key} {entry}"
-            old = data.get(key, [])
+            # The kept vectors' counts are from the code they were found on:
+            # count them again on this firmware, so that a vector found now
+            # is ranked against what the kept ones cost today.
+            old = [dict(v, count=recount(fw, entry, mask, v)) for v in data.get(key, [])]
             merged = sorted(old + out, key=lambda v: -v["count"])
             dedup, seen = [], set()
             for v in merged:
