@@ -1194,7 +1194,17 @@ def qemu_check(fws, target_dir, profile):
             proc = subprocess.Popen([exe, "-M", board, "-nographic", "-kernel", elf, "-semihosting-config",
                                      "enable=on,target=native", "-singlestep", "-d", "exec,nochain", "-D", log],
                                     stdin=subprocess.DEVNULL)
-            timer = threading.Timer(120, proc.kill)
+            def give_up():
+                # QEMU hung or never opened the pipe: kill it, and open the
+                # pipe's write end once so that a reader still waiting in
+                # `open` gets end-of-file instead of waiting forever.
+                proc.kill()
+                try:
+                    os.close(os.open(log, os.O_WRONLY | os.O_NONBLOCK))
+                except OSError:
+                    pass
+
+            timer = threading.Timer(120, give_up)
             timer.start()
             try:
                 i = 0

@@ -110,11 +110,7 @@ def words(p, f):
 def search(fw, entry, f, mask, seconds, rng, keep=8, pinned=False):
     def evaluate(p):
         pre, args = words(p, f)
-        pre[3] |= mask
-        if fw.call("prepare_joint", pre, limit=5_000_000)[3] != "ok":
-            return -1
-        n, _, _, st = fw.call(entry, args, count=True)
-        return n if st == "ok" else -1
+        return recount(fw, entry, mask, {"pre": pre, "args": args})
 
     t_end = time.time() + seconds
     found, evals = [], 0
@@ -160,8 +156,8 @@ def search(fw, entry, f, mask, seconds, rng, keep=8, pinned=False):
 
 
 def recount(fw, entry, mask, v):
-    """The executed instructions of a kept vector on this firmware (-1 if
-    its preparation or step does not return)."""
+    """The executed instructions of a vector (`pre`, `args` words) on this
+    firmware (-1 if its preparation or step does not return)."""
     pre = list(v["pre"])
     pre[3] |= mask
     if fw.call("prepare_joint", pre, limit=5_000_000)[3] != "ok":
