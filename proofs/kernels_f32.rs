@@ -166,6 +166,47 @@ pub fn exp_monotone_at(x: f32) -> Verdict {
     monotone_at(k::exp, x)
 }
 
+/// The range part of the contract of `exp`'s reduction `exp_reduced(x) =
+/// (p, k)` (`e^x ≈ p·2^k`) on its domain `EXP_MIN_ARG ≤ x ≤ EXP_MAX_ARG`:
+/// `k ∈ [−150, 128]`, `p ∈ [½, 2)`, and `p < 1` when `k = 128` (so that
+/// `p·2^k` is finite). Checked at every argument by `exhaustive_exp_f32`.
+pub fn exp_reduced_in_range(p: f32, k: i32) -> bool {
+    (-150..=128).contains(&k) && (0.5..2.0).contains(&p) && (k < 128 || p < 1.0)
+}
+
+/// The order part of the contract of `exp_reduced`: for arguments
+/// `x1 < x2` of its domain with `(p1, k1)`, `(p2, k2)` in range
+/// ([`exp_reduced_in_range`]), `k1 ≤ k2`, `p1 ≤ p2` when `k1 = k2`, and
+/// `p1 ≤ 2·p2` when `k2 = k1 + 1` (`2·p2` is exact). With the range this is
+/// `p1·2^k1 ≤ p2·2^k2` as real numbers (for `k2 ≥ k1 + 2`,
+/// `p1·2^k1 < 2^(k1+1) ≤ 2^(k2−1) ≤ p2·2^k2`), so it holds for every pair
+/// as soon as it holds for every pair of adjacent arguments (the real
+/// values are then in order along the whole domain, and each clause
+/// follows from the order of the real values), which is what
+/// [`exp_reduced_contract_at`] checks.
+pub fn exp_reduced_order(p1: f32, k1: i32, p2: f32, k2: i32) -> bool {
+    k1 <= k2 && (k1 != k2 || p1 <= p2) && (k2 != k1 + 1 || p1 <= 2.0 * p2)
+}
+
+/// `exp_reduced` meets its contract at `x` (range) and between `x` and
+/// its successor (order), wherever both are in its domain. Engine:
+/// exhaustive (every `f32`, in `exhaustive_exp_f32`'s pass); the Kani
+/// harness `kani_exp_monotone_f32` assumes it.
+pub fn exp_reduced_contract_at(x: f32) -> Verdict {
+    let inside = |v: f32| (k::EXP_MIN_ARG..=k::EXP_MAX_ARG).contains(&v);
+    if !inside(x) {
+        return Verdict::logical(true);
+    }
+    let (p1, k1) = k::exp_reduced(x);
+    let ok = exp_reduced_in_range(p1, k1);
+    let xn = next_up(x);
+    if !inside(xn) {
+        return Verdict::logical(ok);
+    }
+    let (p2, k2) = k::exp_reduced(xn);
+    Verdict::logical(ok && exp_reduced_order(p1, k1, p2, k2))
+}
+
 /// Upper bound of `e^{−|x|}` where `exp_neg_abs` flushes to 0, as stated on
 /// the kernel (`e^{−EXP_NEG_ABS_MAX_ARG} = 8.31e-39`).
 pub const EXP_NEG_ABS_FLUSH_BOUND: f64 = 8.4e-39;
@@ -360,7 +401,47 @@ mod kani_entries {
         assert!(exp_within_bound(x).holds);
     }
 
+    static EXP_FIRST: crate::proofs::uninterpreted::FirstCall =
+        crate::proofs::uninterpreted::FirstCall::new();
+
+    /// `exp_reduced` by its contract: any `(p, k)` in range
+    /// ([`exp_reduced_in_range`]), and at a second call one in the order of
+    /// the arguments ([`exp_reduced_order`]; the same value again for the
+    /// same argument). Both are checked at every argument by
+    /// `exhaustive_exp_f32`. The precondition (the argument in the
+    /// reduction's domain) is asserted at each call.
+    fn exp_reduced_by_contract(x: f32) -> (f32, i32) {
+        assert!(
+            (k::EXP_MIN_ARG..=k::EXP_MAX_ARG).contains(&x),
+            "exp_reduced precondition"
+        );
+        let p: f32 = kani::any();
+        let kk: i32 = kani::any();
+        // postcondition of the stubbed function: the range
+        kani::assume(exp_reduced_in_range(p, kk));
+        if let Some((x1, k1, p1)) = EXP_FIRST.first_or_record(x.to_bits(), kk as u32, p.to_bits()) {
+            let (x1, k1, p1) = (f32::from_bits(x1), k1 as i32, f32::from_bits(p1));
+            // postcondition of the stubbed function: the order lemma
+            kani::assume(if x > x1 {
+                exp_reduced_order(p1, k1, p, kk)
+            } else if x < x1 {
+                exp_reduced_order(p, kk, p1, k1)
+            } else {
+                p.to_bits() == p1.to_bits() && kk == k1
+            });
+        }
+        (p, kk)
+    }
+
+    /// `exp` non-decreasing over every pair of adjacent `f32`s: NaN, the
+    /// saturation above `EXP_MAX_ARG`, the flush to 0 below `EXP_MIN_ARG`
+    /// and the scaling `p·2^k1·2^k2` (exact, or one rounding into the
+    /// subnormal range), with the reduction and polynomial by their
+    /// contract, which `exhaustive_exp_f32` checks at every argument. With
+    /// the real polynomial (two copies of its circuit on adjacent
+    /// arguments) it timed out at 605 s.
     #[kani::proof]
+    #[kani::stub(crate::scalar::kernels::f32::exp_reduced, exp_reduced_by_contract)]
     fn kani_exp_monotone_f32() {
         let x: f32 = kani::any();
         assert!(exp_monotone_at(x).holds);
@@ -678,13 +759,16 @@ mod exhaustive {
             &[
                 ("x<=88.72283(all-f32;MAX-above;0-below-103.97208)", "2"),
                 ("all-f32", "monotone"),
+                ("EXP_MIN_ARG..=EXP_MAX_ARG", "exp_reduced-contract"),
             ],
             0,
             u32::MAX,
             show,
             |c| {
                 let x = bits(c);
-                exp_within_bound(x).and(exp_monotone_at(x))
+                exp_within_bound(x)
+                    .and(exp_monotone_at(x))
+                    .and(exp_reduced_contract_at(x))
             },
         );
     }

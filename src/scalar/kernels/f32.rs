@@ -283,7 +283,7 @@ pub fn exp(x: f32) -> f32 {
 /// `e^x ≈ p·2^k` with `k = round(x·log2 e)` and `p = e^r`, `|r| ≲ ln2/2`.
 /// For `EXP_MIN_ARG ≤ x ≤ EXP_MAX_ARG`, `k ∈ [-150, 128]`.
 #[inline(always)]
-fn exp_reduced(x: f32) -> (f32, i32) {
+pub(crate) fn exp_reduced(x: f32) -> (f32, i32) {
     // Round to nearest integer: |x·log2 e| < 2^22, so adding 1.5·2^23 leaves
     // the integer part in the last bits.
     const ROUNDER: f32 = 12_582_912.0;
