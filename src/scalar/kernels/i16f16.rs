@@ -114,7 +114,7 @@ const PIO4_Q30: u32 = 843314857;
 const PI_Q30: u32 = 3373259426;
 const PIO2_Q48: u64 = 442139859501778;
 /// Smallest raw input whose `exp` rounds to `MAX` (`e^x ≥ 32768 − 2⁻¹⁷`).
-const EXP_SAT_BITS: i32 = 681392;
+pub(crate) const EXP_SAT_BITS: i32 = 681392;
 /// Smallest raw `|x|` whose `tan` rounds beyond `MAX` (`tan x ≥ 32768 − 2⁻¹⁷`).
 const TAN_SAT_BITS: u32 = 102942;
 /// Largest raw input `≤ π/4`.
@@ -122,7 +122,7 @@ const PIO4_BITS: u32 = 51471;
 // ------------------------------------------------------------------------------
 
 /// Below this raw input `e^x < 2⁻¹⁷`·0.1: `exp` is 0 without computing.
-const EXP_ZERO_BITS: i32 = -12 << 16;
+pub(crate) const EXP_ZERO_BITS: i32 = -12 << 16;
 
 /// `⌊a·b / 2³²⌋`, exact: the high word of
 /// [`wide_mul`](crate::scalar::fixed::wide_mul) (on Armv6-M four 16×16→32
@@ -805,17 +805,8 @@ pub fn exp(x: I16F16) -> I16F16 {
     if bits < EXP_ZERO_BITS {
         return I16F16::ZERO;
     }
-    let u = bits.unsigned_abs(); // < 2²⁰
-    let hi = ((mulhi(u, LOG2E_Q31) as u64) << 32) | u.wrapping_mul(LOG2E_Q31) as u64;
-    let y47 = hi + ((u * LOG2E_LO_Q43) >> 12) as u64; // |x|·log₂e·2⁴⁷
-    let y = if bits < 0 { -(y47 as i64) } else { y47 as i64 };
-    let k = (y >> 47) as i32; // −18..=14
-    let f = (y as u64) & ((1 << 47) - 1);
-    let j = (f >> 41) as usize;
-    let r = (f >> 9) as u32; // low 41 bits of f, top 32 of them: Q0.32
-    let e = mulhi(r, EXP_C1 + mulhi(r, EXP_C2 + mulhi(r, EXP_C3)));
-    let t = EXP2_TABLE[j];
-    let m = t.saturating_add(mulhi(t, e)); // 2^f in Q1.31
+    let (k, f) = exp_reduce(bits);
+    let m = exp2_frac(f); // 2^(f·2⁻⁴⁷) in Q1.31
     let shift = 15 - k; // ≥ 1
     if shift > 32 {
         return I16F16::ZERO;
@@ -823,6 +814,32 @@ pub fn exp(x: I16F16) -> I16F16 {
     let v = m >> (shift - 1);
     let mag = (v >> 1) + (v & 1);
     I16F16::from_bits(mag.min(i32::MAX as u32) as i32)
+}
+
+/// The reduction of [`exp`] for `EXP_ZERO_BITS ≤ bits < EXP_SAT_BITS`:
+/// `y = x·log₂e` to `2⁻⁴⁷` (43-bit `log₂e`) split as `y = k + f·2⁻⁴⁷` with
+/// `k = ⌊y⌋ ∈ [−18, 14]` and `f ∈ [0, 2⁴⁷)`.
+#[inline(always)]
+pub(crate) fn exp_reduce(bits: i32) -> (i32, u64) {
+    let u = bits.unsigned_abs(); // < 2²⁰
+    let hi = ((mulhi(u, LOG2E_Q31) as u64) << 32) | u.wrapping_mul(LOG2E_Q31) as u64;
+    let y47 = hi + ((u * LOG2E_LO_Q43) >> 12) as u64; // |x|·log₂e·2⁴⁷
+    let y = if bits < 0 { -(y47 as i64) } else { y47 as i64 };
+    let k = (y >> 47) as i32; // −18..=14
+    let f = (y as u64) & ((1 << 47) - 1);
+    (k, f)
+}
+
+/// `2^(f·2⁻⁴⁷)` in `Q1.31` for the fraction `f ∈ [0, 2⁴⁷)` of [`exp`]'s
+/// reduction: `f = j/64 + r` with `2^(j/64)` from the table and `2^r − 1` by
+/// the cubic.
+#[inline(always)]
+pub(crate) fn exp2_frac(f: u64) -> u32 {
+    let j = (f >> 41) as usize;
+    let r = (f >> 9) as u32; // low 41 bits of f, top 32 of them: Q0.32
+    let e = mulhi(r, EXP_C1 + mulhi(r, EXP_C2 + mulhi(r, EXP_C3)));
+    let t = EXP2_TABLE[j];
+    t.saturating_add(mulhi(t, e))
 }
 
 /// Four-quadrant arctangent of `y/x` in `[-π, π]` (the `atan2` used by the
