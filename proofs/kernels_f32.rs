@@ -138,6 +138,74 @@ pub fn tan_monotone_at(x: f32) -> Verdict {
     monotone_at(k::tan, x)
 }
 
+/// The order of `tan_poly`'s arguments: `(d, d_lo)` lexicographically,
+/// which is the order of the real values `d + d_lo` (each `d + d_lo` lies
+/// in the rounding interval of `d`).
+pub fn tan_poly_args_below(d1: f32, lo1: f32, d2: f32, lo2: f32) -> bool {
+    d1 < d2 || (d1 == d2 && lo1 < lo2)
+}
+
+/// The range part of `tan_poly`'s contract at the arguments `tan` passes:
+/// `t ∈ [0, 1]`, and `t > 0` when `d > 0`.
+pub fn tan_poly_in_range(d: f32, t: f32) -> bool {
+    (0.0..=1.0).contains(&t) && (d == 0.0 || t > 0.0)
+}
+
+/// The contracts by which `kani_tan_monotone_f32` stubs `tan`'s core, at
+/// the non-negative `x`:
+///
+/// * `tan_poly` over its argument set `S` (`(d, 0)` for every
+///   `0 ≤ d < π/4`, the direct branch, and `tan_reflect(ax)` for every
+///   `π/4 < ax ≤ TAN_DOMAIN_EDGE`, the reflection): in range
+///   ([`tan_poly_in_range`]) and non-decreasing along `S` in the order of
+///   [`tan_poly_args_below`]. Checked as three chains that together order
+///   every pair of `S`: the direct arguments `x`, `next_up(x)`; the
+///   reflected ones at `ax`, `next_up(ax)` (strictly decreasing
+///   arguments, so no two share a `d`); and each reflected `(d, d_lo)`
+///   between the direct neighbours of `d` on the side of `d_lo`.
+/// * `recip` on `(0, 1]`: at least 1, and non-increasing.
+pub fn tan_contracts_at(x: f32) -> Verdict {
+    if !(x >= 0.0) {
+        return Verdict::logical(true);
+    }
+    let up = f32::from_bits(k::FRAC_PI_4_UP);
+    let direct = |d: f32| k::tan_poly(d, 0.0);
+    let mut ok = true;
+    if x < up {
+        let t = direct(x);
+        ok &= tan_poly_in_range(x, t);
+        let xn = next_up(x);
+        if xn < up {
+            ok &= direct(xn) >= t;
+        }
+    } else if x <= k::TAN_DOMAIN_EDGE {
+        let (d, lo) = k::tan_reflect(x);
+        let t = k::tan_poly(d, lo);
+        ok &= d > 0.0 && d < up && tan_poly_in_range(d, t);
+        ok &= if lo > 0.0 {
+            direct(d) <= t && t <= direct(next_up(d))
+        } else if lo < 0.0 {
+            direct(f32::from_bits(d.to_bits() - 1)) <= t && t <= direct(d)
+        } else {
+            t == direct(d)
+        };
+        let xn = next_up(x);
+        if xn <= k::TAN_DOMAIN_EDGE {
+            let (dn, lon) = k::tan_reflect(xn);
+            ok &= tan_poly_args_below(dn, lon, d, lo) && k::tan_poly(dn, lon) <= t;
+        }
+    }
+    if x > 0.0 && x <= 1.0 {
+        let r = k::recip(x);
+        ok &= r >= 1.0;
+        let xn = next_up(x);
+        if xn <= 1.0 {
+            ok &= k::recip(xn) <= r;
+        }
+    }
+    Verdict::logical(ok)
+}
+
 /// `tan(-x) = -tan(x)` exactly. Engines: exhaustive, Kani.
 pub fn tan_odd_at(x: f32) -> Verdict {
     odd_at(k::tan, x)
@@ -389,7 +457,74 @@ mod kani_entries {
         assert!(tan_within_bound(x).holds);
     }
 
+    static TAN_POLY_FIRST: crate::proofs::uninterpreted::FirstCall =
+        crate::proofs::uninterpreted::FirstCall::new();
+    static RECIP_FIRST: crate::proofs::uninterpreted::FirstCall =
+        crate::proofs::uninterpreted::FirstCall::new();
+
+    /// `tan_poly` by its contract ([`tan_contracts_at`], checked at every
+    /// argument `tan` passes by `exhaustive_tan_f32`): a value in range
+    /// ([`tan_poly_in_range`]), and at a second call one in the order of the
+    /// arguments ([`tan_poly_args_below`]; the same again for the same
+    /// arguments). The precondition (`0 ≤ d < π/4`, `|d_lo|` below half an
+    /// ulp of `d`) is asserted at each call.
+    fn tan_poly_by_contract(d: f32, d_lo: f32) -> f32 {
+        assert!(
+            d >= 0.0 && d < f32::from_bits(k::FRAC_PI_4_UP) && d_lo.abs() <= d * f32::EPSILON,
+            "tan_poly precondition"
+        );
+        let t: f32 = kani::any();
+        // postcondition of the stubbed function: the range
+        kani::assume(tan_poly_in_range(d, t));
+        if let Some((d1, lo1, t1)) =
+            TAN_POLY_FIRST.first_or_record(d.to_bits(), d_lo.to_bits(), t.to_bits())
+        {
+            let (d1, lo1, t1) = (f32::from_bits(d1), f32::from_bits(lo1), f32::from_bits(t1));
+            // postcondition of the stubbed function: the order lemma
+            kani::assume(if tan_poly_args_below(d1, lo1, d, d_lo) {
+                t >= t1
+            } else if tan_poly_args_below(d, d_lo, d1, lo1) {
+                t <= t1
+            } else {
+                t.to_bits() == t1.to_bits()
+            });
+        }
+        t
+    }
+
+    /// `recip` by its contract on `(0, 1]` ([`tan_contracts_at`]): at least
+    /// 1, and at a second call one in the reverse order of the arguments.
+    /// The precondition is asserted at each call.
+    fn recip_by_contract(t: f32) -> f32 {
+        assert!(t > 0.0 && t <= 1.0, "recip precondition");
+        let r: f32 = kani::any();
+        // postcondition of the stubbed function: the range
+        kani::assume(r >= 1.0 && r.is_finite());
+        if let Some((t1, _, r1)) = RECIP_FIRST.first_or_record(t.to_bits(), 0, r.to_bits()) {
+            let (t1, r1) = (f32::from_bits(t1), f32::from_bits(r1));
+            // postcondition of the stubbed function: the order lemma
+            kani::assume(if t > t1 {
+                r <= r1
+            } else if t < t1 {
+                r >= r1
+            } else {
+                r.to_bits() == r1.to_bits()
+            });
+        }
+        r
+    }
+
+    /// `tan` non-decreasing over every pair of adjacent `f32`s: NaN, the
+    /// clamp at the domain edge, the choice of the reflection, the pair
+    /// `π/2 − |x| = d + d_lo` (Sterbenz and Fast2Sum, the real float
+    /// operations), the join at π/4 (`t ≤ 1 ≤ 1/t'`) and the sign, with the
+    /// polynomial and the reciprocal by their contracts, which
+    /// `exhaustive_tan_f32` checks at every argument `tan` passes. With the
+    /// real ones (two copies of the polynomial circuit and of the division)
+    /// it timed out at 602 s.
     #[kani::proof]
+    #[kani::stub(crate::scalar::kernels::f32::tan_poly, tan_poly_by_contract)]
+    #[kani::stub(crate::scalar::kernels::f32::recip, recip_by_contract)]
     fn kani_tan_monotone_f32() {
         let x: f32 = kani::any();
         assert!(tan_monotone_at(x).holds);
@@ -738,6 +873,7 @@ mod exhaustive {
                 ("|x|<=1.5707962(all-f32;saturated-outside)", "2"),
                 ("all-f32", "monotone"),
                 ("all-f32", "odd"),
+                ("x>=0", "tan_poly,recip-contracts"),
             ],
             lo,
             hi,
@@ -747,6 +883,7 @@ mod exhaustive {
                 tan_within_bound(x)
                     .and(tan_monotone_at(x))
                     .and(tan_odd_at(x))
+                    .and(tan_contracts_at(x))
             },
         );
     }

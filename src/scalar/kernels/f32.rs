@@ -57,7 +57,7 @@ const FRAC_PI_2_LO: f32 = f32::from_bits(0xb33b_bd2e);
 const PI_HI: f32 = f32::from_bits(0x4049_0fdb);
 const PI_LO: f32 = f32::from_bits(0xb3bb_bd2e);
 /// π/4 rounded up: below it no reduction is needed.
-const FRAC_PI_4_UP: u32 = 0x3f49_0fdb;
+pub(crate) const FRAC_PI_4_UP: u32 = 0x3f49_0fdb;
 
 #[inline]
 fn denan(x: f32) -> f32 {
@@ -206,17 +206,35 @@ pub fn tan(x: f32) -> f32 {
         f32::from_bits(abits)
     };
     let reflect = ax.to_bits() >= FRAC_PI_4_UP;
-    let (d, d_lo) = if reflect {
-        let s = FRAC_PI_2_HI - ax; // exact (Sterbenz)
-        let d = s + FRAC_PI_2_LO;
-        (d, (s - d) + FRAC_PI_2_LO) // Fast2Sum: |s| > |LO|
-    } else {
-        (ax, 0.0)
-    };
-    let z = d * d;
-    let t = d + (d * z * horner(z, &TAN_T) + d_lo * (1.0 + z));
-    let r = if reflect { 1.0 / t } else { t };
+    let (d, d_lo) = if reflect { tan_reflect(ax) } else { (ax, 0.0) };
+    let t = tan_poly(d, d_lo);
+    let r = if reflect { recip(t) } else { t };
     with_sign(r, bits & SIGN)
+}
+
+/// `π/2 − ax` as an unevaluated pair `(d, d_lo)` for `π/4 < ax < π/2`: the
+/// first subtraction is exact (Sterbenz), the rounding error of the second
+/// is recovered by Fast2Sum (`|s| > |LO|`).
+#[inline(always)]
+pub(crate) fn tan_reflect(ax: f32) -> (f32, f32) {
+    let s = FRAC_PI_2_HI - ax; // exact (Sterbenz)
+    let d = s + FRAC_PI_2_LO;
+    (d, (s - d) + FRAC_PI_2_LO)
+}
+
+/// `tan(d + d_lo)` for `0 ≤ d ≤ π/4` and a correction `|d_lo|` below half
+/// an ulp of `d` (0 outside [`tan`]'s reflection): `d + d³·T(d²)` with
+/// `d_lo·(1 + d²)`, the first-order change of `tan` at `d`, added.
+#[inline(always)]
+pub(crate) fn tan_poly(d: f32, d_lo: f32) -> f32 {
+    let z = d * d;
+    d + (d * z * horner(z, &TAN_T) + d_lo * (1.0 + z))
+}
+
+/// `1/t`, one correctly rounded division.
+#[inline(always)]
+pub(crate) fn recip(t: f32) -> f32 {
+    1.0 / t
 }
 
 // ----------------------------------------------------------------- exp ----
