@@ -109,6 +109,54 @@ pub fn atan_monotone_at(x: f32) -> Verdict {
     monotone_at(k::atan, x)
 }
 
+/// The contract of `recip` (`1/t`) at `x`: non-increasing over the positive
+/// `f32`s and `+∞` (checked between `x` and its successor), at least 1 on
+/// `(0, 1]` (the arguments `tan` passes) and in `[0, 0.6]` above
+/// `ATAN_HIGH` (the arguments `atan` passes). Vacuous at `x ≤ 0` and NaN.
+pub fn recip_contract_at(x: f32) -> Verdict {
+    if !(x > 0.0) {
+        return Verdict::logical(true);
+    }
+    let r = k::recip(x);
+    let mut ok = (x > 1.0 || r >= 1.0) && (x <= k::ATAN_HIGH || (0.0..=0.6).contains(&r));
+    if x < f32::INFINITY {
+        ok &= k::recip(next_up(x)) <= r;
+    }
+    Verdict::logical(ok)
+}
+
+/// The contracts by which `kani_atan_monotone_f32` stubs `atan`'s
+/// polynomial and middle-branch ratio, at the non-negative `x` (and its
+/// negative, for the polynomial):
+///
+/// * `atan_poly` on `[−0.6, 0.6]`: non-decreasing (between `x` and its
+///   successor, and between `−next_up(x)` and `−x`), with the sign of its
+///   argument (`≥ 0` for `u ≥ 0`, `≤ 0` for `u ≤ 0`) and `|p| ≤ 0.6`;
+/// * `atan_mid_ratio` on `(0.6, ATAN_HIGH]`: in `[−¼, ¼]`, non-decreasing;
+/// * `recip` ([`recip_contract_at`]).
+pub fn atan_contracts_at(x: f32) -> Verdict {
+    if !(x >= 0.0) {
+        return Verdict::logical(true);
+    }
+    let mut ok = true;
+    if x <= k::ATAN_LOW {
+        let (p, q) = (k::atan_poly(x), k::atan_poly(-x));
+        ok &= p >= 0.0 && p <= 0.6 && q <= 0.0 && q >= -0.6;
+        let xn = next_up(x);
+        if xn <= k::ATAN_LOW {
+            ok &= k::atan_poly(xn) >= p && k::atan_poly(-xn) <= q;
+        }
+    } else if x <= k::ATAN_HIGH {
+        let v = k::atan_mid_ratio(x);
+        ok &= (-0.25..=0.25).contains(&v);
+        let xn = next_up(x);
+        if xn <= k::ATAN_HIGH {
+            ok &= k::atan_mid_ratio(xn) >= v;
+        }
+    }
+    Verdict::logical(ok).and(recip_contract_at(x))
+}
+
 /// `atan(-x) = -atan(x)` exactly. Engines: exhaustive, Kani.
 pub fn atan_odd_at(x: f32) -> Verdict {
     odd_at(k::atan, x)
@@ -163,7 +211,7 @@ pub fn tan_poly_in_range(d: f32, t: f32) -> bool {
 ///   reflected ones at `ax`, `next_up(ax)` (strictly decreasing
 ///   arguments, so no two share a `d`); and each reflected `(d, d_lo)`
 ///   between the direct neighbours of `d` on the side of `d_lo`.
-/// * `recip` on `(0, 1]`: at least 1, and non-increasing.
+/// * `recip` ([`recip_contract_at`]).
 pub fn tan_contracts_at(x: f32) -> Verdict {
     if !(x >= 0.0) {
         return Verdict::logical(true);
@@ -195,15 +243,7 @@ pub fn tan_contracts_at(x: f32) -> Verdict {
             ok &= tan_poly_args_below(dn, lon, d, lo) && k::tan_poly(dn, lon) <= t;
         }
     }
-    if x > 0.0 && x <= 1.0 {
-        let r = k::recip(x);
-        ok &= r >= 1.0;
-        let xn = next_up(x);
-        if xn <= 1.0 {
-            ok &= k::recip(xn) <= r;
-        }
-    }
-    Verdict::logical(ok)
+    Verdict::logical(ok).and(recip_contract_at(x))
 }
 
 /// `tan(-x) = -tan(x)` exactly. Engines: exhaustive, Kani.
@@ -423,10 +463,120 @@ mod kani_entries {
         assert!(atan_within_bound(x).holds);
     }
 
+    static ATAN_POLY_FIRST: crate::proofs::uninterpreted::FirstCall =
+        crate::proofs::uninterpreted::FirstCall::new();
+    static ATAN_MID_FIRST: crate::proofs::uninterpreted::FirstCall =
+        crate::proofs::uninterpreted::FirstCall::new();
+    static ATAN_RECIP_FIRST: crate::proofs::uninterpreted::FirstCall =
+        crate::proofs::uninterpreted::FirstCall::new();
+
+    /// The order lemma of a stubbed function at its second call: a value in
+    /// the order of the arguments (`increasing`) or the reverse, the same
+    /// value again for the same argument (bits), nothing assumed between
+    /// `−0.0` and `+0.0`.
+    fn order_lemma(
+        first: &crate::proofs::uninterpreted::FirstCall,
+        a: f32,
+        v: f32,
+        increasing: bool,
+    ) {
+        if let Some((a1, _, v1)) = first.first_or_record(a.to_bits(), 0, v.to_bits()) {
+            let (a1f, v1f) = (f32::from_bits(a1), f32::from_bits(v1));
+            // postcondition of the stubbed function: the order lemma
+            kani::assume(if a > a1f {
+                if increasing {
+                    v >= v1f
+                } else {
+                    v <= v1f
+                }
+            } else if a < a1f {
+                if increasing {
+                    v <= v1f
+                } else {
+                    v >= v1f
+                }
+            } else {
+                a.to_bits() != a1 || v.to_bits() == v1
+            });
+        }
+    }
+
+    /// `atan_poly` by its contract ([`atan_contracts_at`], checked at every
+    /// `|u| ≤ 0.6` by `exhaustive_atan_f32`): the sign of `u`, `|p| ≤ 0.6`,
+    /// non-decreasing. The precondition `|u| ≤ 0.6` is asserted.
+    fn atan_poly_by_contract(u: f32) -> f32 {
+        assert!(u.abs() <= k::ATAN_LOW, "atan_poly precondition");
+        let p: f32 = kani::any();
+        // postcondition of the stubbed function: the range
+        kani::assume(p.abs() <= 0.6 && (u < 0.0 || p >= 0.0) && (u > 0.0 || p <= 0.0));
+        order_lemma(&ATAN_POLY_FIRST, u, p, true);
+        p
+    }
+
+    /// `atan_mid_ratio` by its contract ([`atan_contracts_at`]): in
+    /// `[−¼, ¼]`, non-decreasing. The precondition `0.6 < u ≤ ATAN_HIGH` is
+    /// asserted.
+    fn atan_mid_ratio_by_contract(u: f32) -> f32 {
+        assert!(
+            u > k::ATAN_LOW && u <= k::ATAN_HIGH,
+            "atan_mid_ratio precondition"
+        );
+        let v: f32 = kani::any();
+        // postcondition of the stubbed function: the range
+        kani::assume((-0.25..=0.25).contains(&v));
+        order_lemma(&ATAN_MID_FIRST, u, v, true);
+        v
+    }
+
+    /// `recip` by its contract above `ATAN_HIGH` ([`recip_contract_at`]): in
+    /// `[0, 0.6]`, non-increasing. The precondition `u > ATAN_HIGH` (`+∞`
+    /// included) is asserted.
+    fn recip_by_contract_above_atan_high(u: f32) -> f32 {
+        assert!(u > k::ATAN_HIGH, "recip precondition (atan)");
+        let r: f32 = kani::any();
+        // postcondition of the stubbed function: the range
+        kani::assume((0.0..=0.6).contains(&r));
+        order_lemma(&ATAN_RECIP_FIRST, u, r, false);
+        r
+    }
+
+    /// The four `x` whose successor is in another branch of `atan_nonneg`
+    /// (`|x|` or `|next_up(x)|` at `0.6` and `ATAN_HIGH`).
+    fn atan_branch_crossings() -> [f32; 4] {
+        let (lo, hi) = (k::ATAN_LOW, k::ATAN_HIGH);
+        [lo, hi, -next_up(lo), -next_up(hi)]
+    }
+
+    /// `atan` non-decreasing over every pair of adjacent `f32`s in one
+    /// branch: NaN, the sign, `±∞`, and in each branch the composition of
+    /// the reduction with the polynomial and the reconstruction
+    /// `π/4 + (p + lo)`, `π/2 − (p − lo)` (the real float additions), with
+    /// the polynomial, the middle ratio and the reciprocal by their
+    /// contracts, which `exhaustive_atan_f32` checks at every argument.
+    /// Split domain: the four pairs that cross a branch point are
+    /// `kani_atan_monotone_crossings_f32`'s. With the real kernel (two
+    /// copies of the polynomial and of a division) it timed out at 603 s.
     #[kani::proof]
+    #[kani::stub(crate::scalar::kernels::f32::atan_poly, atan_poly_by_contract)]
+    #[kani::stub(
+        crate::scalar::kernels::f32::atan_mid_ratio,
+        atan_mid_ratio_by_contract
+    )]
+    #[kani::stub(crate::scalar::kernels::f32::recip, recip_by_contract_above_atan_high)]
     fn kani_atan_monotone_f32() {
         let x: f32 = kani::any();
+        // Split domain (the complement is the next harness).
+        kani::assume(!atan_branch_crossings().contains(&x));
         assert!(atan_monotone_at(x).holds);
+    }
+
+    /// `atan` non-decreasing at the four pairs of adjacent `f32`s that cross
+    /// a branch point, with the real kernel (concrete arguments).
+    #[kani::proof]
+    fn kani_atan_monotone_crossings_f32() {
+        for x in atan_branch_crossings() {
+            assert!(atan_monotone_at(x).holds);
+        }
     }
 
     static ATAN_CORE: crate::proofs::uninterpreted::Memo<2> =
@@ -850,6 +1000,7 @@ mod exhaustive {
                 ("all-f32", "2"),
                 ("all-f32", "monotone"),
                 ("all-f32", "odd"),
+                ("x>=0", "atan_poly,atan_mid_ratio,recip-contracts"),
             ],
             lo,
             hi,
@@ -859,6 +1010,7 @@ mod exhaustive {
                 atan_within_bound(x)
                     .and(atan_monotone_at(x))
                     .and(atan_odd_at(x))
+                    .and(atan_contracts_at(x))
             },
         );
     }

@@ -101,12 +101,12 @@ const ATAN_Q: [f32; 7] = [
 const FRAC_PI_4_HI: f32 = f32::from_bits(0x3f49_0fdb);
 const FRAC_PI_4_LO: f32 = f32::from_bits(0xb2bb_bd2e);
 /// 0.6 and 1/0.6: the branch points of [`atan_nonneg`].
-const ATAN_LOW: f32 = 0.6;
-const ATAN_HIGH: f32 = 1.666_666_6;
+pub(crate) const ATAN_LOW: f32 = 0.6;
+pub(crate) const ATAN_HIGH: f32 = 1.666_666_6;
 
 /// `atan(u)` for `|u| ≤ 0.6` by the polynomial (exact for subnormal `u`).
 #[inline(always)]
-fn atan_poly(u: f32) -> f32 {
+pub(crate) fn atan_poly(u: f32) -> f32 {
     let z = u * u;
     u + u * z * horner(z, &ATAN_Q)
 }
@@ -124,10 +124,17 @@ fn atan_nonneg(u: f32) -> f32 {
     if u <= ATAN_LOW {
         atan_poly(u)
     } else if u <= ATAN_HIGH {
-        FRAC_PI_4_HI + (atan_poly((u - 1.0) / (u + 1.0)) + FRAC_PI_4_LO)
+        FRAC_PI_4_HI + (atan_poly(atan_mid_ratio(u)) + FRAC_PI_4_LO)
     } else {
-        FRAC_PI_2_HI - (atan_poly(1.0 / u) - FRAC_PI_2_LO)
+        FRAC_PI_2_HI - (atan_poly(recip(u)) - FRAC_PI_2_LO)
     }
+}
+
+/// `(u − 1)/(u + 1)`, the argument of the middle branch of [`atan_nonneg`]
+/// (`u − 1` is exact by Sterbenz on `(0.6, 1/0.6]`).
+#[inline(always)]
+pub(crate) fn atan_mid_ratio(u: f32) -> f32 {
+    (u - 1.0) / (u + 1.0)
 }
 
 /// Arctangent, in radians, in `[-π/2, π/2]` (thesis eq. 2.26 uses it for the

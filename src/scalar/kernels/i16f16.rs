@@ -116,7 +116,7 @@ const PIO2_Q48: u64 = 442139859501778;
 /// Smallest raw input whose `exp` rounds to `MAX` (`e^x ≥ 32768 − 2⁻¹⁷`).
 pub(crate) const EXP_SAT_BITS: i32 = 681392;
 /// Smallest raw `|x|` whose `tan` rounds beyond `MAX` (`tan x ≥ 32768 − 2⁻¹⁷`).
-const TAN_SAT_BITS: u32 = 102942;
+pub(crate) const TAN_SAT_BITS: u32 = 102942;
 /// Largest raw input `≤ π/4`.
 const PIO4_BITS: u32 = 51471;
 // ------------------------------------------------------------------------------
@@ -704,20 +704,27 @@ pub fn sin_cos(x: I16F16) -> (I16F16, I16F16) {
 ///   most 375 instructions (`embedded/count.py`, kernel row), 721 with the
 ///   bit-serial division.
 pub fn tan(x: I16F16) -> I16F16 {
-    tan_with(x, div_frac_wide)
+    tan_with(x, tan_quotient)
 }
 
-/// [`tan`] with the quotient `⌊n·2ᵏ/d⌋` formed by `div` (the tests pass
-/// the bit-serial division as the reference).
+/// The quotient `tan|x|·2¹⁷ ≈ ⌊n·2ᵏ/d⌋` of [`tan`] for the raw magnitude
+/// `a < TAN_SAT_BITS` ([`tan_quotient_operands`], [`div_frac_wide`]).
 #[inline(always)]
-fn tan_with(x: I16F16, div: impl Fn(u32, u32, u32) -> u32) -> I16F16 {
+pub(crate) fn tan_quotient(a: u32) -> u32 {
+    let (n, d, k) = tan_quotient_operands(a);
+    div_frac_wide(n, d, k)
+}
+
+/// [`tan`] with the quotient of the magnitude formed by `quotient` (the
+/// tests pass the bit-serial division as the reference).
+#[inline(always)]
+fn tan_with(x: I16F16, quotient: impl Fn(u32) -> u32) -> I16F16 {
     let bits = x.to_bits();
     let a = bits.unsigned_abs();
     if a >= TAN_SAT_BITS {
         return with_sign(i32::MAX, bits < 0);
     }
-    let (n, d, k) = tan_quotient_operands(a);
-    let q = div(n, d, k);
+    let q = quotient(a);
     let mag = (q >> 1) + (q & 1);
     with_sign(mag.min(i32::MAX as u32) as i32, bits < 0)
 }
@@ -977,7 +984,10 @@ mod tests {
     /// `tan` as it was before [`div_frac_wide`]: the same operands through
     /// the bit-serial [`div_frac`].
     fn tan_bit_serial(x: I16F16) -> I16F16 {
-        tan_with(x, div_frac)
+        tan_with(x, |a| {
+            let (n, d, k) = tan_quotient_operands(a);
+            div_frac(n, d, k)
+        })
     }
 
     /// Every input of `tan`'s domain: the operands satisfy the documented
