@@ -110,7 +110,7 @@ const TWO_OVER_PI_Q32: u32 = 2734261102;
 const PIO2_Q30_HI: u32 = 1686629713;
 const PIO2_Q30_LO_Q17: u32 = 8553;
 const PIO2_Q30: u32 = 1686629713;
-const PIO4_Q30: u32 = 843314857;
+pub(crate) const PIO4_Q30: u32 = 843314857;
 const PI_Q30: u32 = 3373259426;
 const PIO2_Q48: u64 = 442139859501778;
 /// Smallest raw input whose `exp` rounds to `MAX` (`e^x ≥ 32768 − 2⁻¹⁷`).
@@ -393,7 +393,7 @@ fn sqrt_q16_digit_by_digit(n: u32) -> (u32, u32) {
 /// `round(v / 2¹⁴)` of a `Q2.30` magnitude: the final rounding to `I16F16`
 /// bits (half away from zero). Result `< 2¹⁸`.
 #[inline]
-const fn round_q30(v: u32) -> i32 {
+pub(crate) const fn round_q30(v: u32) -> i32 {
     (((v >> 13) + 1) >> 1) as i32
 }
 
@@ -450,7 +450,7 @@ fn mulhi_signed(h: u32, v: i32) -> i32 {
 /// the axes or at tiny magnitudes. Bit-identical to the bit-serial
 /// `div_frac` version (`atan2_mag_is_bit_identical`).
 #[inline]
-fn atan2_mag(a: u32, b: u32) -> u32 {
+pub(crate) fn atan2_mag(a: u32, b: u32) -> u32 {
     if a == b {
         return PIO4_Q30;
     }
@@ -471,15 +471,18 @@ fn atan2_mag(a: u32, b: u32) -> u32 {
 ///   measured max error 0.500120 LSB (at `x = −3.76607`); monotone
 ///   non-decreasing over all inputs; odd except at `MIN` (all three in one
 ///   pass: `exhaustive_atan_i16f16`).
-/// * Algorithm: `t = min(|x|,1)/max(|x|,1)` formed exactly to `2⁻³²` (the
-///   floor) by `div_ratio`: the divisor normalized to `[2³¹, 2³²)` by a
+/// * Algorithm: `t = min(|x|,1)/max(|x|,1)` exactly to `2⁻³²` (the floor):
+///   `|x|·2¹⁶` itself below 1 (no division), and above 1 formed by
+///   `div_ratio`: the divisor normalized to `[2³¹, 2³²)` by a
 ///   nibble-table leading-zero count, a reciprocal from a 256-entry seed
 ///   and one Newton step, one widening product and one conditional
 ///   correction (bit-identical to the former bit-serial division, tested
 ///   on structured and random pairs, and at every magnitude `|x|` by
 ///   `exhaustive_atan_bit_identity_i16f16`); `atan t` from a 32-piece cubic
 ///   table for `t ≥ 1/16` and from the odd series below; `π/2 − atan(1/|x|)`
-///   for `|x| > 1`; one final rounding.
+///   for `|x| > 1`; one final rounding. Bit-identical to the rounded
+///   two-argument form `atan2(x, 1)` at every magnitude
+///   (`exhaustive_atan_contracts_i16f16`).
 /// * Cost: ≤ 4 `mulhi` (16 `MULS`) + `div_ratio` (one widening product, ten
 ///   `MULS`), no loop, no division, no library `leading_zeros` call, no
 ///   64-bit multiply; on the Cortex-M0+ at most 289 instructions
@@ -489,7 +492,32 @@ fn atan2_mag(a: u32, b: u32) -> u32 {
 pub fn atan(x: I16F16) -> I16F16 {
     let bits = x.to_bits();
     let a = bits.unsigned_abs();
-    with_sign(round_q30(atan2_mag(a, 1 << 16)), bits < 0)
+    // `atan2_mag(a, 2¹⁶)` rounded, by branch: below 1 the ratio `a/2¹⁶`
+    // is `a·2¹⁶` exactly (no division), at 1 it is π/4, above it is the
+    // quotient `⌊2⁴⁸/a⌋` (`exhaustive_atan_contracts_i16f16` checks the
+    // two forms equal at every magnitude).
+    let mag = if a < 1 << 16 {
+        atan_low(a << 16)
+    } else if a == 1 << 16 {
+        round_q30(PIO4_Q30)
+    } else {
+        atan_high(div_ratio(1 << 16, a))
+    };
+    with_sign(mag, bits < 0)
+}
+
+/// `atan t`, `t = t/2³² ∈ [0, 1)`, rounded to `I16F16` bits: [`atan`] below
+/// 1.
+#[inline(always)]
+pub(crate) fn atan_low(t: u32) -> i32 {
+    round_q30(atan_unit(t) >> 2)
+}
+
+/// `π/2 − atan t`, `t = t/2³² ∈ [0, 1)`, rounded to `I16F16` bits: [`atan`]
+/// above 1 at the ratio `t = ⌊2⁴⁸/|x|⌋`.
+#[inline(always)]
+pub(crate) fn atan_high(t: u32) -> i32 {
+    round_q30(PIO2_Q30 - (atan_unit(t) >> 2))
 }
 
 /// `Q1.31`-free sine/cosine core: `z = ρ²` (`Q0.32`) for `ρ ∈ [0, π/4+ε]`.
