@@ -114,7 +114,7 @@ pub fn atan_monotone_at(x: f32) -> Verdict {
 /// `(0, 1]` (the arguments `tan` passes) and in `[0, 0.6]` above
 /// `ATAN_HIGH` (the arguments `atan` passes). Vacuous at `x ≤ 0` and NaN.
 pub fn recip_contract_at(x: f32) -> Verdict {
-    if !(x > 0.0) {
+    if x.is_nan() || x <= 0.0 {
         return Verdict::logical(true);
     }
     let r = k::recip(x);
@@ -135,13 +135,13 @@ pub fn recip_contract_at(x: f32) -> Verdict {
 /// * `atan_mid_ratio` on `(0.6, ATAN_HIGH]`: in `[−¼, ¼]`, non-decreasing;
 /// * `recip` ([`recip_contract_at`]).
 pub fn atan_contracts_at(x: f32) -> Verdict {
-    if !(x >= 0.0) {
+    if x.is_nan() || x < 0.0 {
         return Verdict::logical(true);
     }
     let mut ok = true;
     if x <= k::ATAN_LOW {
         let (p, q) = (k::atan_poly(x), k::atan_poly(-x));
-        ok &= p >= 0.0 && p <= 0.6 && q <= 0.0 && q >= -0.6;
+        ok &= (0.0..=0.6).contains(&p) && (-0.6..=0.0).contains(&q);
         let xn = next_up(x);
         if xn <= k::ATAN_LOW {
             ok &= k::atan_poly(xn) >= p && k::atan_poly(-xn) <= q;
@@ -213,7 +213,7 @@ pub fn tan_poly_in_range(d: f32, t: f32) -> bool {
 ///   between the direct neighbours of `d` on the side of `d_lo`.
 /// * `recip` ([`recip_contract_at`]).
 pub fn tan_contracts_at(x: f32) -> Verdict {
-    if !(x >= 0.0) {
+    if x.is_nan() || x < 0.0 {
         return Verdict::logical(true);
     }
     let up = f32::from_bits(k::FRAC_PI_4_UP);
