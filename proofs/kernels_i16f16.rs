@@ -436,28 +436,24 @@ mod kani_proofs {
         }
     }
 
-    /// `atan_low` by its contract (`atan_contract_violations`, checked at
-    /// every argument `atan` passes, `t = a·2¹⁶` for `a < 2¹⁶`, by
-    /// `exhaustive_atan_contracts_i16f16`): a value in `[0, 2¹⁹]`,
-    /// non-decreasing in `t`. The precondition (`t` a multiple of `2¹⁶`) is
+    /// `atan_rounded` by its contract (`atan_contract_violations`, checked
+    /// at every argument `atan` passes by `exhaustive_atan_contracts_i16f16`:
+    /// `t = a·2¹⁶` below 1, `t = ⌊2⁴⁸/a⌋` above): a value in `[0, 2¹⁹]`,
+    /// and at a second call on the same side of 1 one non-decreasing in `t`
+    /// below 1 and non-increasing above (the same value again for the same
+    /// arguments). The precondition below 1 (`t` a multiple of `2¹⁶`) is
     /// asserted at each call.
-    fn atan_low_by_contract(t: u32) -> i32 {
-        assert!(t & 0xFFFF == 0, "atan_low precondition");
+    fn atan_rounded_by_contract(t: u32, above: bool) -> i32 {
+        assert!(above || t & 0xFFFF == 0, "atan_rounded precondition");
         let v: u32 = kani::any();
         // postcondition of the stubbed function: the range
         kani::assume(v <= 1 << 19);
-        order_lemma_u32(&ATAN_LOW_FIRST, t, v, true);
-        v as i32
-    }
-
-    /// `atan_high` by its contract (`atan_contract_violations`, checked at
-    /// every argument `atan` passes, `t = ⌊2⁴⁸/a⌋` for `2¹⁶ < a ≤ 2³¹`):
-    /// a value in `[0, 2¹⁹]`, non-increasing in `t`.
-    fn atan_high_by_contract(t: u32) -> i32 {
-        let v: u32 = kani::any();
-        // postcondition of the stubbed function: the range
-        kani::assume(v <= 1 << 19);
-        order_lemma_u32(&ATAN_HIGH_FIRST, t, v, false);
+        let first = if above {
+            &ATAN_HIGH_FIRST
+        } else {
+            &ATAN_LOW_FIRST
+        };
+        order_lemma_u32(first, t, v, !above);
         v as i32
     }
 
@@ -488,8 +484,7 @@ mod kani_proofs {
     /// `t → t + 1`), but each rounded core is over the arguments `atan`
     /// passes it. With the real kernel it timed out at 604 s.
     #[kani::proof]
-    #[kani::stub(crate::scalar::kernels::i16f16::atan_low, atan_low_by_contract)]
-    #[kani::stub(crate::scalar::kernels::i16f16::atan_high, atan_high_by_contract)]
+    #[kani::stub(crate::scalar::kernels::i16f16::atan_rounded, atan_rounded_by_contract)]
     #[kani::stub(crate::scalar::kernels::i16f16::div_ratio, div_ratio_by_order_contract)]
     fn kani_atan_monotone_pair_i16f16() {
         let x = any_fixed();
@@ -929,9 +924,9 @@ mod tests {
     /// The contracts by which `kani_atan_monotone_pair_i16f16` stubs
     /// `atan`'s parts, and the identity of `atan`'s branches with the
     /// two-argument form `round_q30(atan2_mag(a, 2¹⁶))`, at every magnitude
-    /// `a ≤ 2³¹`: `atan_low` non-decreasing and in `[0, 2¹⁹]` over
+    /// `a ≤ 2³¹`: `atan_rounded(·, false)` non-decreasing and in `[0, 2¹⁹]` over
     /// `t = a·2¹⁶` (`a < 2¹⁶`); `div_ratio(2¹⁶, a)` non-increasing in `a`
-    /// and `atan_high` non-increasing in `t` along it, in `[0, 2¹⁹]`
+    /// and `atan_rounded(·, true)` non-increasing in `t` along it, in `[0, 2¹⁹]`
     /// (`2¹⁶ < a ≤ 2³¹`; consecutive magnitudes, so every pair of
     /// arguments). Returns the number of violations. Two threads.
     pub fn atan_contract_violations() -> u64 {
@@ -940,20 +935,20 @@ mod tests {
         let same = |a: u32| {
             let one = ONE;
             let branch = if a < one {
-                k::atan_low(a << 16)
+                k::atan_rounded(a << 16, false)
             } else if a == one {
                 k::round_q30(k::PIO4_Q30)
             } else {
-                k::atan_high(k::div_ratio(one, a))
+                k::atan_rounded(k::div_ratio(one, a), true)
             };
             branch == k::round_q30(k::atan2_mag(a, one))
         };
         let mut bad = 0u64;
         for a in 0..one {
-            let v = k::atan_low(a << 16);
+            let v = k::atan_rounded(a << 16, false);
             bad += u64::from(!(0..=1 << 19).contains(&v) || !same(a));
             if a + 1 < one {
-                bad += u64::from(k::atan_low((a + 1) << 16) < v);
+                bad += u64::from(k::atan_rounded((a + 1) << 16, false) < v);
             }
         }
         bad += u64::from(!same(one));
@@ -964,7 +959,7 @@ mod tests {
                 let mut prev: Option<(u32, i32)> = None;
                 for a in lo..=hi {
                     let t = k::div_ratio(one, a);
-                    let v = k::atan_high(t);
+                    let v = k::atan_rounded(t, true);
                     bad += u64::from(!(0..=1 << 19).contains(&v) || !same(a));
                     if let Some((pt, pv)) = prev {
                         bad += u64::from(t > pt || (t < pt && v < pv) || (t == pt && v != pv));
@@ -989,7 +984,7 @@ mod tests {
             bad, 0,
             "atan's branch contracts violated at {bad} magnitudes"
         );
-        std::println!("PROOF kernel=atan_low,atan_high,div_ratio(2^16,a) backend=I16F16 domain=every-magnitude bound=order-contracts,atan2_mag-identity checked=2147483649 engine=exhaustive");
+        std::println!("PROOF kernel=atan_rounded,div_ratio(2^16,a) backend=I16F16 domain=every-magnitude bound=order-contracts,atan2_mag-identity checked=2147483649 engine=exhaustive");
     }
 
     /// The magnitudes `a < TAN_SAT_BITS − 1` at which `tan_quotient(a + 1) <

@@ -412,7 +412,9 @@ const fn with_sign(mag: i32, negative: bool) -> I16F16 {
 ///   inputs change the result by far less than the rounding noise (`|x| > 16`).
 /// * `t ≥ 1/16`: cubic piece `k = ⌊32t⌋` of `ATAN_TABLE` in `H = 32t − k`
 ///   (fit error `< 1.5·10⁻⁹`).
-#[inline]
+// Inlined into its two callers (`atan`, `atan2_mag`), as when `atan2_mag`
+// was its only one.
+#[inline(always)]
 fn atan_unit(t: u32) -> u32 {
     if t < 1 << 28 {
         let t36 = t << 4; // t·2³⁶ < 2³²
@@ -496,28 +498,27 @@ pub fn atan(x: I16F16) -> I16F16 {
     // is `a·2¹⁶` exactly (no division), at 1 it is π/4, above it is the
     // quotient `⌊2⁴⁸/a⌋` (`exhaustive_atan_contracts_i16f16` checks the
     // two forms equal at every magnitude).
-    let mag = if a < 1 << 16 {
-        atan_low(a << 16)
-    } else if a == 1 << 16 {
+    let mag = if a == 1 << 16 {
         round_q30(PIO4_Q30)
     } else {
-        atan_high(div_ratio(1 << 16, a))
+        let above = a > 1 << 16;
+        let t = if above {
+            div_ratio(1 << 16, a)
+        } else {
+            a << 16
+        };
+        atan_rounded(t, above)
     };
     with_sign(mag, bits < 0)
 }
 
-/// `atan t`, `t = t/2³² ∈ [0, 1)`, rounded to `I16F16` bits: [`atan`] below
-/// 1.
+/// [`atan`]'s magnitude from the ratio `t = t/2³² ∈ [0, 1)`, rounded to
+/// `I16F16` bits: `atan t` below 1 (`above = false`, `t = |x|`), `π/2 −
+/// atan t` above (`t = 1/|x|`).
 #[inline(always)]
-pub(crate) fn atan_low(t: u32) -> i32 {
-    round_q30(atan_unit(t) >> 2)
-}
-
-/// `π/2 − atan t`, `t = t/2³² ∈ [0, 1)`, rounded to `I16F16` bits: [`atan`]
-/// above 1 at the ratio `t = ⌊2⁴⁸/|x|⌋`.
-#[inline(always)]
-pub(crate) fn atan_high(t: u32) -> i32 {
-    round_q30(PIO2_Q30 - (atan_unit(t) >> 2))
+pub(crate) fn atan_rounded(t: u32, above: bool) -> i32 {
+    let g = atan_unit(t) >> 2;
+    round_q30(if above { PIO2_Q30 - g } else { g })
 }
 
 /// `Q1.31`-free sine/cosine core: `z = ρ²` (`Q0.32`) for `ρ ∈ [0, π/4+ε]`.
