@@ -485,10 +485,12 @@ pub(crate) fn atan2_mag(a: u32, b: u32) -> u32 {
 ///   for `|x| > 1`; one final rounding. Bit-identical to the rounded
 ///   two-argument form `atan2(x, 1)` at every magnitude
 ///   (`exhaustive_atan_contracts_i16f16`).
-/// * Cost: ≤ 4 `mulhi` (16 `MULS`) + `div_ratio` (one widening product, ten
-///   `MULS`), no loop, no division, no library `leading_zeros` call, no
-///   64-bit multiply; on the Cortex-M0+ at most 289 instructions
-///   (`embedded/count.py`, kernel row), 601 with the bit-serial division.
+/// * Cost: ≤ 4 `mulhi` (16 `MULS`) + `div_ratio` above 1 (one widening
+///   product, ten `MULS`), no loop, no division, no library
+///   `leading_zeros` call, no 64-bit multiply; on the Cortex-M0+ a static
+///   bound of 285 instructions, 279 the most executed over its arguments
+///   (`embedded/count.py`, kernel row); 601 with the former bit-serial
+///   division.
 ///   Tables: 512 B of cubics, 512 B of reciprocal seeds (shared with
 ///   [`tan`]) and 16 B of nibble counts.
 pub fn atan(x: I16F16) -> I16F16 {
