@@ -470,37 +470,6 @@ mod kani_entries {
     static ATAN_RECIP_FIRST: crate::proofs::uninterpreted::FirstCall =
         crate::proofs::uninterpreted::FirstCall::new();
 
-    /// The order lemma of a stubbed function at its second call: a value in
-    /// the order of the arguments (`increasing`) or the reverse, the same
-    /// value again for the same argument (bits), nothing assumed between
-    /// `−0.0` and `+0.0`.
-    fn order_lemma(
-        first: &crate::proofs::uninterpreted::FirstCall,
-        a: f32,
-        v: f32,
-        increasing: bool,
-    ) {
-        if let Some((a1, _, v1)) = first.first_or_record(a.to_bits(), 0, v.to_bits()) {
-            let (a1f, v1f) = (f32::from_bits(a1), f32::from_bits(v1));
-            // postcondition of the stubbed function: the order lemma
-            kani::assume(if a > a1f {
-                if increasing {
-                    v >= v1f
-                } else {
-                    v <= v1f
-                }
-            } else if a < a1f {
-                if increasing {
-                    v <= v1f
-                } else {
-                    v >= v1f
-                }
-            } else {
-                a.to_bits() != a1 || v.to_bits() == v1
-            });
-        }
-    }
-
     /// `atan_poly` by its contract ([`atan_contracts_at`], checked at every
     /// `|u| ≤ 0.6` by `exhaustive_atan_f32`): the sign of `u`, `|p| ≤ 0.6`,
     /// non-decreasing. The precondition `|u| ≤ 0.6` is asserted.
@@ -509,7 +478,7 @@ mod kani_entries {
         let p: f32 = kani::any();
         // postcondition of the stubbed function: the range
         kani::assume(p.abs() <= 0.6 && (u < 0.0 || p >= 0.0) && (u > 0.0 || p <= 0.0));
-        order_lemma(&ATAN_POLY_FIRST, u, p, true);
+        ATAN_POLY_FIRST.assume_in_order_f32(u, p, true);
         p
     }
 
@@ -524,7 +493,7 @@ mod kani_entries {
         let v: f32 = kani::any();
         // postcondition of the stubbed function: the range
         kani::assume((-0.25..=0.25).contains(&v));
-        order_lemma(&ATAN_MID_FIRST, u, v, true);
+        ATAN_MID_FIRST.assume_in_order_f32(u, v, true);
         v
     }
 
@@ -536,7 +505,7 @@ mod kani_entries {
         let r: f32 = kani::any();
         // postcondition of the stubbed function: the range
         kani::assume((0.0..=0.6).contains(&r));
-        order_lemma(&ATAN_RECIP_FIRST, u, r, false);
+        ATAN_RECIP_FIRST.assume_in_order_f32(u, r, false);
         r
     }
 
@@ -650,17 +619,7 @@ mod kani_entries {
         let r: f32 = kani::any();
         // postcondition of the stubbed function: the range
         kani::assume(r >= 1.0 && r.is_finite());
-        if let Some((t1, _, r1)) = RECIP_FIRST.first_or_record(t.to_bits(), 0, r.to_bits()) {
-            let (t1, r1) = (f32::from_bits(t1), f32::from_bits(r1));
-            // postcondition of the stubbed function: the order lemma
-            kani::assume(if t > t1 {
-                r <= r1
-            } else if t < t1 {
-                r >= r1
-            } else {
-                r.to_bits() == r1.to_bits()
-            });
-        }
+        RECIP_FIRST.assume_in_order_f32(t, r, false);
         r
     }
 
@@ -865,16 +824,7 @@ mod kani_entries {
         let q: u32 = kani::any();
         // postcondition of the stubbed function: the root's range
         kani::assume((1 << 23..=1 << 24).contains(&q));
-        if let Some((mm1, _, q1)) = SQRT_FIRST.first_or_record(mm, 0, q) {
-            // postcondition of the stubbed function: the order lemma
-            kani::assume(if mm > mm1 {
-                q >= q1
-            } else if mm < mm1 {
-                q <= q1
-            } else {
-                q == q1
-            });
-        }
+        SQRT_FIRST.assume_in_order_u32(mm, q, true);
         q
     }
 

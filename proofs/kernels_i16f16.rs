@@ -415,27 +415,6 @@ mod kani_proofs {
     static ATAN_RATIO_FIRST: crate::proofs::uninterpreted::FirstCall =
         crate::proofs::uninterpreted::FirstCall::new();
 
-    /// A second call's value `v` at argument `t` in the order of the
-    /// arguments (`increasing`) or the reverse, against the first call's
-    /// `(t1, v1)` recorded in `first`; the same value for the same argument.
-    fn order_lemma_u32(
-        first: &crate::proofs::uninterpreted::FirstCall,
-        t: u32,
-        v: u32,
-        increasing: bool,
-    ) {
-        if let Some((t1, _, v1)) = first.first_or_record(t, 0, v) {
-            // postcondition of the stubbed function: the order lemma
-            kani::assume(if t == t1 {
-                v == v1
-            } else if (t > t1) == increasing {
-                v >= v1
-            } else {
-                v <= v1
-            });
-        }
-    }
-
     /// `atan_rounded` by its contract (`atan_contract_violations`, checked
     /// at every argument `atan` passes by `exhaustive_atan_contracts_i16f16`:
     /// `t = a·2¹⁶` below 1, `t = ⌊2⁴⁸/a⌋` above): a value in `[0, 2¹⁹]`,
@@ -453,7 +432,7 @@ mod kani_proofs {
         } else {
             &ATAN_LOW_FIRST
         };
-        order_lemma_u32(first, t, v, !above);
+        first.assume_in_order_u32(t, v, !above);
         v as i32
     }
 
@@ -465,7 +444,7 @@ mod kani_proofs {
     fn div_ratio_by_order_contract(n: u32, d: u32) -> u32 {
         assert!(n == 1 << 16 && d > 1 << 16, "div_ratio precondition (atan)");
         let t: u32 = kani::any();
-        order_lemma_u32(&ATAN_RATIO_FIRST, d, t, false);
+        ATAN_RATIO_FIRST.assume_in_order_u32(d, t, false);
         t
     }
 
@@ -516,16 +495,7 @@ mod kani_proofs {
     fn tan_quotient_by_contract(a: u32) -> u32 {
         assert!(a < k::TAN_SAT_BITS, "tan_quotient precondition");
         let q: u32 = kani::any();
-        if let Some((a1, _, q1)) = TAN_Q_FIRST.first_or_record(a, 0, q) {
-            // postcondition of the stubbed function: the order lemma
-            kani::assume(if a > a1 {
-                q >= q1
-            } else if a < a1 {
-                q <= q1
-            } else {
-                q == q1
-            });
-        }
+        TAN_Q_FIRST.assume_in_order_u32(a, q, true);
         q
     }
 

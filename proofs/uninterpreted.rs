@@ -92,4 +92,40 @@ impl FirstCall {
         self.q.store(q, Relaxed);
         None
     }
+
+    /// The order lemma of a stubbed one-argument function on `u32`: the
+    /// first call's `(arg, value)` is recorded; at the second, the value is
+    /// assumed in the order of the arguments (`increasing`) or in the
+    /// reverse order, and equal for an equal argument.
+    pub fn assume_in_order_u32(&self, arg: u32, value: u32, increasing: bool) {
+        if let Some((arg1, _, value1)) = self.first_or_record(arg, 0, value) {
+            // postcondition of the stubbed function: the order lemma
+            kani::assume(if arg == arg1 {
+                value == value1
+            } else if (arg > arg1) == increasing {
+                value >= value1
+            } else {
+                value <= value1
+            });
+        }
+    }
+
+    /// [`assume_in_order_u32`](Self::assume_in_order_u32) for a function on
+    /// `f32`, in the order of the values; the same value (bits) for the
+    /// same argument (bits), and nothing assumed between `−0.0` and `+0.0`.
+    pub fn assume_in_order_f32(&self, arg: f32, value: f32, increasing: bool) {
+        if let Some((arg1, _, value1)) = self.first_or_record(arg.to_bits(), 0, value.to_bits()) {
+            let (a1, v1) = (f32::from_bits(arg1), f32::from_bits(value1));
+            // postcondition of the stubbed function: the order lemma
+            kani::assume(if arg > a1 || arg < a1 {
+                if (arg > a1) == increasing {
+                    value >= v1
+                } else {
+                    value <= v1
+                }
+            } else {
+                arg.to_bits() != arg1 || value.to_bits() == value1
+            });
+        }
+    }
 }
