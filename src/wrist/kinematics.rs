@@ -1139,8 +1139,16 @@ pub(crate) mod tests {
                         // One unit: an LSB on fixed point, an ulp at the
                         // previous angle's magnitude on floats.
                         let res = S::RESOLUTION.to_f64();
-                        let unit = if res < 1e-6 { res * (before.abs() + 2.0 * PI) } else { res };
-                        assert!(d.abs() <= 2.0 * unit, "{} turns {turns}: {d:e} vs unit {unit:e}", S::NAME);
+                        let unit = if res < 1e-6 {
+                            res * (before.abs() + 2.0 * PI)
+                        } else {
+                            res
+                        };
+                        assert!(
+                            d.abs() <= 2.0 * unit,
+                            "{} turns {turns}: {d:e} vs unit {unit:e}",
+                            S::NAME
+                        );
                         worst = worst.max(d.abs() / unit);
                     }
                 }
