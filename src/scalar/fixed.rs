@@ -369,7 +369,22 @@ pub(crate) fn div_bits(a: i32, b: i32) -> i32 {
             i32::MAX
         };
     }
-    // 1 ≤ B ≤ 2³¹ and A < B·2¹⁵ from here on.
+    let q = div_magnitude(ua, ub);
+    if neg {
+        // q ≤ 2³¹: 2³¹ reads as i32::MIN, whose negation wraps to itself.
+        (q as i32).wrapping_neg()
+    } else if q > i32::MAX as u32 {
+        i32::MAX
+    } else {
+        q as i32
+    }
+}
+
+/// Steps 2–3 of [`div_bits`]: the rounded magnitude quotient
+/// `⌊A·2¹⁶/B⌉` (ties up) for `1 ≤ B ≤ 2³¹` and `A < B·2¹⁵`, below or at
+/// `2³¹`.
+#[inline(always)]
+pub(crate) fn div_magnitude(ua: u32, ub: u32) -> u32 {
     let s = kernels::i16f16::leading_zeros_32(ub);
     let (u1, u0) = if s < 16 {
         (ua >> (16 - s), ua << (16 + s))
@@ -378,12 +393,35 @@ pub(crate) fn div_bits(a: i32, b: i32) -> i32 {
     };
     let q = kernels::i16f16::div_norm_steps(u1, u0, ub << s).0;
     let r = (ua << 16).wrapping_sub(q.wrapping_mul(ub));
-    let q = q + (r >= ub - r) as u32;
+    q + (r >= ub - r) as u32
+}
+
+/// [`div_bits`] for a ratio `|a| ≤ |b|` (the quotient in `[−1, 1]`, i.e.
+/// `[−2¹⁶, 2¹⁶]` bits): the same value for every such pair, with its range
+/// and sign by construction rather than by the division's exactness:
+/// `0` for `a = 0`, `±2¹⁶` for `|a| ≥ |b|` (so outside the precondition the
+/// quotient is clamped to `[−1, 1]`), otherwise the magnitude quotient
+/// capped at `2¹⁶` and signed. The cap never acts on a pair of the
+/// precondition (`div_magnitude` is exact, so `A < B` gives at most
+/// `2¹⁶`); it is what makes the range a property of the code's structure,
+/// which the Kani harness `kani_div_unit_range_contract` checks for any
+/// magnitude quotient.
+#[inline]
+pub(crate) fn div_bits_unit(a: i32, b: i32) -> i32 {
+    const ONE: u32 = 1 << 16;
+    let neg = (a < 0) != (b < 0);
+    let (ua, ub) = (a.unsigned_abs(), b.unsigned_abs());
+    let q = if ua == 0 {
+        0
+    } else if ua >= ub {
+        ONE
+    } else {
+        // 1 ≤ A < B ≤ 2³¹: within `div_magnitude`'s precondition.
+        div_magnitude(ua, ub).min(ONE)
+    };
+    // q ≤ 2¹⁶: the negation is exact.
     if neg {
-        // q ≤ 2³¹: 2³¹ reads as i32::MIN, whose negation wraps to itself.
-        (q as i32).wrapping_neg()
-    } else if q > i32::MAX as u32 {
-        i32::MAX
+        -(q as i32)
     } else {
         q as i32
     }
@@ -552,6 +590,10 @@ impl Scalar for I16F16 {
     #[inline]
     fn div(self, rhs: Self) -> Self {
         I16F16::from_bits(div_bits(self.to_bits(), rhs.to_bits()))
+    }
+    #[inline]
+    fn div_unit_range(self, rhs: Self) -> Self {
+        I16F16::from_bits(div_bits_unit(self.to_bits(), rhs.to_bits()))
     }
     #[inline]
     fn neg(self) -> Self {
@@ -933,6 +975,25 @@ mod tests {
             }
         }
 
+        /// `div_bits_unit` equals the 64-bit formula on ratios
+        /// `|a| ≤ |b|` of every magnitude, and stays in `[−2¹⁶, 2¹⁶]` with
+        /// the quotient's sign on any operands.
+        #[test]
+        fn div_bits_unit_equals_the_64_bit_formula_on_ratios(
+            a in proptest::prelude::any::<i32>(), b in proptest::prelude::any::<i32>(),
+            sa in 0u32..32, sb in 0u32..32,
+        ) {
+            for (x, y) in [(a, b), (a >> sa, b >> sb), (a >> sa, b), (a, b >> sb)] {
+                let q = div_bits_unit(x, y);
+                if x.unsigned_abs() <= y.unsigned_abs() {
+                    proptest::prop_assert_eq!(q, div_bits_reference(x, y), "{} / {}", x, y);
+                }
+                proptest::prop_assert!((-(1 << 16)..=1 << 16).contains(&q), "{} / {}", x, y);
+                proptest::prop_assert!(x == 0 || q == 0 || (q < 0) == ((x < 0) != (y < 0)), "{} / {}", x, y);
+                proptest::prop_assert!(x != 0 || q == 0);
+            }
+        }
+
         /// Ties and their neighbours at every scale: `|b| = c·2ʲ`,
         /// `|a| = c·(2q + 1)·2^(j−17)` (`j ≥ 17`) is a tie, `a ± 1` are not.
         #[test]
@@ -952,6 +1013,31 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// `div_bits_unit` against the 64-bit formula on every ratio
+    /// `|a| ≤ |b|` with `|b| ≤ 2¹⁰` (both signs), at the layer's ends and
+    /// ties, and its clamp outside the ratio domain.
+    #[test]
+    fn div_bits_unit_is_the_quotient_of_every_small_ratio() {
+        for b in -1024i32..=1024 {
+            for a in -b.abs()..=b.abs() {
+                assert_eq!(div_bits_unit(a, b), div_bits_reference(a, b), "{a} / {b}");
+            }
+        }
+        for b in div_edges().into_iter().filter(|&b| b != 0) {
+            let m = b.unsigned_abs().min(i32::MAX as u32) as i32;
+            for a in [0, 1, -1, m, -m, m - 1, 1 - m, m / 2, -(m / 2), m / 3] {
+                assert_eq!(div_bits_unit(a, b), div_bits_reference(a, b), "{a} / {b}");
+            }
+        }
+        // Outside |a| ≤ |b|: ±1 with the quotient's sign; 0/0 = 0.
+        assert_eq!(div_bits_unit(5, 3), 1 << 16);
+        assert_eq!(div_bits_unit(-5, 3), -(1 << 16));
+        assert_eq!(div_bits_unit(5, -3), -(1 << 16));
+        assert_eq!(div_bits_unit(i32::MIN, 1), -(1 << 16));
+        assert_eq!(div_bits_unit(7, 0), 1 << 16);
+        assert_eq!(div_bits_unit(0, 0), 0);
     }
 
     #[test]

@@ -179,6 +179,16 @@ pub trait Scalar:
     /// `self / rhs`; division by zero gives `±MAX` with the sign of `self`,
     /// and `0 / 0 = 0` (fixed: saturating).
     fn div(self, rhs: Self) -> Self;
+    /// `self / rhs` for a ratio `|self| ≤ |rhs|` (a normalized component,
+    /// a ratio of magnitudes): the value of [`div`](Self::div), bit for
+    /// bit, for every such pair. Fixed point returns it within `[−1, 1]`
+    /// and with the sign of the quotient (0 for `self = 0`) by
+    /// construction, and clamps to `±1` outside the precondition; floats
+    /// divide (IEEE rounding keeps `|self/rhs| ≤ 1`).
+    #[inline]
+    fn div_unit_range(self, rhs: Self) -> Self {
+        self.div(rhs)
+    }
     /// `-self` (fixed: `-MIN` saturates to `MAX`).
     fn neg(self) -> Self;
     /// `|self|` (fixed: `|MIN|` saturates to `MAX`; float: NaN stays NaN).

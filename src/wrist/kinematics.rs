@@ -290,7 +290,7 @@ pub(crate) fn hypot<S: Scalar>(a: S, b: S) -> S {
     if m <= S::ZERO {
         return S::ZERO;
     }
-    let r = n.div(m);
+    let r = n.div_unit_range(m);
     // r ≤ 1: the short product (bit for bit `mul`) and the root of a value
     // below 4 (bit for bit `sqrt`).
     m.mul(S::ONE.add(r.mul_unit_range(r)).sqrt_small())
@@ -379,7 +379,7 @@ impl<S: Scalar> WristConfig<S> {
         let (mut sd, mut cd) = d.sin_cos();
         let (mut sg, mut cg) = g.sin_cos();
         let two = S::ONE.add(S::ONE);
-        let half = S::ONE.div(two);
+        let half = S::ONE.div_unit_range(two);
         // sin(β/2) = |(sin(δ/2), √cos δ · sin(γ/2))|, eq. (5.13) in half
         // angles (a norm, not a difference of cosines: exact near the
         // straight pose on every backend).
@@ -391,7 +391,8 @@ impl<S: Scalar> WristConfig<S> {
             let (zx, zy) = (sd.mul(cg), sg.neg());
             let n = hypot(zx, zy);
             let (ux, uy) = if n > S::ZERO {
-                (zx.div(n), zy.div(n))
+                // n ≥ max(|zx|, |zy|): the root of 1 + r² is at least 1.
+                (zx.div_unit_range(n), zy.div_unit_range(n))
             } else {
                 (S::ONE, S::ZERO)
             };
@@ -409,7 +410,7 @@ impl<S: Scalar> WristConfig<S> {
         let half_bend_sq = sq(half_bend);
         let pose = PitchYaw { delta: d, gamma: g };
         // sin(θ4/2) ∈ [0, 1], cos(θ4/2) ≥ 0.
-        let sh = half_bend.div(self.sin_phi).min(S::ONE);
+        let sh = half_bend.div_unit_range(self.sin_phi).min(S::ONE);
         let ch = S::ONE.sub(sq(sh)).sqrt();
         let theta4 = two.mul(sh.atan2(ch));
         if sh == S::ZERO {
