@@ -299,6 +299,115 @@ impl<S: Scalar> WristModeConfig<S> {
         st.run = 0;
     }
 
+    /// Whether the sample leaves `mode` (the current one): a request for
+    /// the other mode, or, without a request, the mode's rule held for
+    /// `debounce` samples after `dwell` samples in the mode (advances the
+    /// rule's run counter).
+    #[inline(always)]
+    fn leaves(
+        &self,
+        st: &mut WristModeState<S>,
+        x: &WristModeInput<S>,
+        mode: WristMode,
+        torque: S,
+    ) -> bool {
+        if let Some(m) = x.request {
+            return m != mode;
+        }
+        let want = match mode {
+            WristMode::Active => torque > self.enter,
+            WristMode::Passive => {
+                // The passive reference's last rate is held in the
+                // offset-rate slot while passive (see below).
+                torque < self.exit
+                    && st.offset_rate[0].abs() < self.rest
+                    && st.offset_rate[1].abs() < self.rest
+            }
+        };
+        st.run = if want { st.run.saturating_add(1) } else { 0 };
+        st.run >= self.debounce && st.in_mode >= self.dwell
+    }
+
+    /// The Passive reference of this sample: the admittance law (eq. 6.32)
+    /// on the interaction. Its state's reference is always inside the
+    /// workspace box (`state_at` and `update` clamp it to the limits
+    /// these `limits` are quantized from, the same values), so the
+    /// manager's clamp of the Active reference would change nothing here.
+    #[inline(always)]
+    fn passive_reference(
+        &self,
+        st: &mut WristModeState<S>,
+        x: &WristModeInput<S>,
+    ) -> ([S; 2], [S; 2], bool) {
+        let o = self.admittance.update(&mut st.admittance, x.interaction);
+        // Keep the passive rate for the rest test and for a
+        // rate-continuous return to Active.
+        st.offset_rate = o.rate;
+        (o.reference, o.rate, o.saturated)
+    }
+
+    /// The Active reference of this sample: desired plus the decaying
+    /// rejoin offset, clamped to the workspace box (`want_rate`: the rate
+    /// of a clamped reference by difference, see `update_with`).
+    #[inline(always)]
+    fn active_reference(
+        &self,
+        st: &mut WristModeState<S>,
+        x: &WristModeInput<S>,
+        want_rate: bool,
+    ) -> ([S; 2], [S; 2], bool) {
+        let mut r = [S::ZERO; 2];
+        let mut v = [S::ZERO; 2];
+        for i in 0..2 {
+            // Semi-implicit Euler of ö = −2ω ȯ − ω² o.
+            let od = st.offset_rate[i]
+                .mul_coef(&self.rate_keep)
+                .sub(st.offset[i].mul_coef(&self.rate_pull));
+            let o = st.offset[i].add(od.mul_coef(&self.step));
+            // On floats an offset whose next step is not a finite
+            // number (desired values near the float range) is
+            // dropped: the reference is then the desired
+            // trajectory, and the state never holds an infinity
+            // or a NaN (`v − v` is 0 exactly when `v` is finite).
+            // Fixed point saturates instead (folded at compile
+            // time).
+            let float = S::RESOLUTION.to_f64() < 1e-6;
+            let (o, od) = if !float || od.sub(od).add(o.sub(o)) == S::ZERO {
+                (o, od)
+            } else {
+                (S::ZERO, S::ZERO)
+            };
+            st.offset_rate[i] = od;
+            st.offset[i] = o;
+            r[i] = x.desired[i].add(o);
+            // On floats a sum beyond the float range reads as the
+            // largest finite value.
+            let rate = x.desired_rate[i].add(od);
+            v[i] = if float {
+                rate.clamp(S::MAX.neg(), S::MAX)
+            } else {
+                rate
+            };
+        }
+        let mut saturated = false;
+        let mut out = r;
+        for i in 0..2 {
+            let l = self.limits[i];
+            let c = out[i].clamp(l.neg(), l);
+            saturated |= c != out[i];
+            out[i] = c;
+        }
+        let rate = if want_rate && saturated {
+            [
+                out[0].sub(st.reference[0]).mul_coef(&self.inv_step),
+                out[1].sub(st.reference[1]).mul_coef(&self.inv_step),
+            ]
+        } else {
+            v
+        };
+        (out, rate, saturated)
+    }
+
     /// One sample: decide the mode (rules in the module docs), then
     /// advance the reference of the mode. Never panics; a non-finite input
     /// holds the reference, flagged.
@@ -332,93 +441,37 @@ impl<S: Scalar> WristModeConfig<S> {
             };
         }
         let torque = x.interaction[0].abs().max(x.interaction[1].abs());
-        let mut switched = false;
-        if let Some(m) = x.request {
-            if m != st.mode {
-                self.enter(st, m, x);
-                switched = true;
-            }
-        } else {
-            let want = match st.mode {
-                WristMode::Active => torque > self.enter,
-                WristMode::Passive => {
-                    // The passive reference's last rate is held in the
-                    // offset-rate slot while passive (see below).
-                    torque < self.exit
-                        && st.offset_rate[0].abs() < self.rest
-                        && st.offset_rate[1].abs() < self.rest
-                }
-            };
-            st.run = if want { st.run.saturating_add(1) } else { 0 };
-            if st.run >= self.debounce && st.in_mode >= self.dwell {
-                let m = match st.mode {
-                    WristMode::Active => WristMode::Passive,
-                    WristMode::Passive => WristMode::Active,
-                };
-                self.enter(st, m, x);
-                switched = true;
-            }
-        }
-        st.in_mode = st.in_mode.saturating_add(1);
-        let (reference, rate, mut saturated) = match st.mode {
-            WristMode::Passive => {
-                let o = self.admittance.update(&mut st.admittance, x.interaction);
-                // Keep the passive rate for the rest test and for a
-                // rate-continuous return to Active.
-                st.offset_rate = o.rate;
-                (o.reference, o.rate, o.saturated)
-            }
+        // Each mode's arm decides whether to leave it (rules in the module
+        // docs), enters the other mode when it does, and advances the
+        // reference of the mode it ends in: the rules of one mode, the
+        // entry into the other and the other's reference form one path
+        // (the static bound no longer combines the Passive rule with the
+        // entry into Passive).
+        let (out, rate, saturated, switched) = match st.mode {
             WristMode::Active => {
-                let mut r = [S::ZERO; 2];
-                let mut v = [S::ZERO; 2];
-                for i in 0..2 {
-                    // Semi-implicit Euler of ö = −2ω ȯ − ω² o.
-                    let od = st.offset_rate[i]
-                        .mul_coef(&self.rate_keep)
-                        .sub(st.offset[i].mul_coef(&self.rate_pull));
-                    let o = st.offset[i].add(od.mul_coef(&self.step));
-                    // On floats an offset whose next step is not a finite
-                    // number (desired values near the float range) is
-                    // dropped: the reference is then the desired
-                    // trajectory, and the state never holds an infinity
-                    // or a NaN (`v − v` is 0 exactly when `v` is finite).
-                    // Fixed point saturates instead (folded at compile
-                    // time).
-                    let float = S::RESOLUTION.to_f64() < 1e-6;
-                    let (o, od) = if !float || od.sub(od).add(o.sub(o)) == S::ZERO {
-                        (o, od)
-                    } else {
-                        (S::ZERO, S::ZERO)
-                    };
-                    st.offset_rate[i] = od;
-                    st.offset[i] = o;
-                    r[i] = x.desired[i].add(o);
-                    // On floats a sum beyond the float range reads as the
-                    // largest finite value.
-                    let rate = x.desired_rate[i].add(od);
-                    v[i] = if float {
-                        rate.clamp(S::MAX.neg(), S::MAX)
-                    } else {
-                        rate
-                    };
+                if self.leaves(st, x, WristMode::Active, torque) {
+                    self.enter(st, WristMode::Passive, x);
+                    st.in_mode = st.in_mode.saturating_add(1);
+                    let (r, v, sat) = self.passive_reference(st, x);
+                    (r, v, sat, true)
+                } else {
+                    st.in_mode = st.in_mode.saturating_add(1);
+                    let (r, v, sat) = self.active_reference(st, x, want_rate);
+                    (r, v, sat, false)
                 }
-                (r, v, false)
             }
-        };
-        let mut out = reference;
-        for i in 0..2 {
-            let l = self.limits[i];
-            let c = out[i].clamp(l.neg(), l);
-            saturated |= c != out[i];
-            out[i] = c;
-        }
-        let rate = if want_rate && st.mode == WristMode::Active && saturated {
-            [
-                out[0].sub(st.reference[0]).mul_coef(&self.inv_step),
-                out[1].sub(st.reference[1]).mul_coef(&self.inv_step),
-            ]
-        } else {
-            rate
+            WristMode::Passive => {
+                if self.leaves(st, x, WristMode::Passive, torque) {
+                    self.enter(st, WristMode::Active, x);
+                    st.in_mode = st.in_mode.saturating_add(1);
+                    let (r, v, sat) = self.active_reference(st, x, want_rate);
+                    (r, v, sat, true)
+                } else {
+                    st.in_mode = st.in_mode.saturating_add(1);
+                    let (r, v, sat) = self.passive_reference(st, x);
+                    (r, v, sat, false)
+                }
+            }
         };
         st.reference = out;
         WristModeOutput {
