@@ -505,15 +505,18 @@ impl<S: Scalar> JointConfig<S> {
         readings: &JointReadings<S>,
     ) -> JointMeasurement<S> {
         let counter = readings.motor_counter;
-        let motor_torque = match readings.motor_torque {
-            Some(t) => t,
-            None => st.mode.last_torque(),
+        // The previous command is finite (the mode manager limits it): the
+        // estimator then does not test it.
+        let (motor_torque, torque_finite) = match readings.motor_torque {
+            Some(t) => (t, false),
+            None => (st.mode.last_torque(), true),
         };
-        let estimate = self.estimator.update(
+        let estimate = self.estimator.update_with(
             &mut st.estimator,
             readings.link_count,
             counter.wrapping_neg(),
             motor_torque,
+            torque_finite,
         );
         // Position: wrapping 32-bit difference, exact 64-bit sum.
         let delta = counter.wrapping_sub(st.last_counter) as i32;

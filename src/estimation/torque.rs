@@ -865,7 +865,12 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     /// torque, with the output saturation and the input checks of
     /// [`TorqueEstimate::invalid_input`]: a torsion beyond `±torsion_range`
     /// (or NaN) is clamped to it (NaN to 0), a non-finite motor torque is
-    /// taken as 0, and either sets `invalid_input`.
+    /// taken as 0, and either sets `invalid_input`. `count_negative` is
+    /// `Some(D < 0)` for a torsion converted from a count `D` (finite, with
+    /// the sign of `D`: the clamp then takes that sign without comparing
+    /// the torsion again), `None` otherwise. `torque_finite` tells that
+    /// the motor torque is known to be finite (the previous command of the
+    /// mode manager), so that it is not tested.
     // Armv6-M: its own function (a fresh register allocation; inlined,
     // the estimator spills many more prepared field offsets). Elsewhere
     // inlined.
@@ -877,13 +882,19 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     fn finish(
         &self,
         torsion: S,
+        count_negative: Option<bool>,
         kin_err: S,
         motor_torque: S,
+        torque_finite: bool,
         link_count_invalid: bool,
     ) -> TorqueEstimate<S> {
         // One comparison on the common path; NaN fails it.
         let (torsion, torsion_bad) = if torsion.abs() <= self.torsion_range {
             (torsion, false)
+        } else if let Some(negative) = count_negative {
+            // From counts: finite, with the sign of the count.
+            let r = self.torsion_range;
+            (if negative { r.neg() } else { r }, true)
         } else if torsion > S::ZERO {
             (self.torsion_range, true)
         } else if torsion < S::ZERO {
@@ -893,7 +904,9 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         };
         // Fixed point has no NaN or infinity (folded at compile time); on
         // floats `τ − τ` is 0 exactly for a finite `τ`.
-        let torque_bad = S::RESOLUTION.to_f64() < 1e-6 && motor_torque.sub(motor_torque) != S::ZERO;
+        let torque_bad = S::RESOLUTION.to_f64() < 1e-6
+            && !torque_finite
+            && motor_torque.sub(motor_torque) != S::ZERO;
         let motor_torque = if torque_bad { S::ZERO } else { motor_torque };
         let flexspline_torsion = torsion
             .add(self.wave_generator.output_torsion(motor_torque))
@@ -951,6 +964,24 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         motor_counter: u32,
         motor_torque: S,
     ) -> TorqueEstimate<S> {
+        self.update_with(st, link_count, motor_counter, motor_torque, false)
+    }
+
+    /// [`update`](Self::update), told whether the motor torque is known to
+    /// be finite (`torque_finite`: it is then not tested; the joint passes
+    /// the mode manager's previous command, which is limited).
+    #[cfg_attr(
+        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+        inline(always)
+    )]
+    pub(crate) fn update_with(
+        &self,
+        st: &mut TorqueEstimatorState,
+        link_count: u32,
+        motor_counter: u32,
+        motor_torque: S,
+        torque_finite: bool,
+    ) -> TorqueEstimate<S> {
         self.advance(st, motor_counter);
         let invalid = link_count >= self.l;
         let c_l = if HAS_DIVIDE || invalid {
@@ -982,7 +1013,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             d -= lmn;
         }
         let kin_err = self.kinematic_error_from_counts(c_l, st.motor_in_turn);
-        self.estimate_from_torsion_counts(d, kin_err, motor_torque, invalid)
+        self.estimate_from_counts(d, kin_err, motor_torque, torque_finite, invalid)
     }
 
     /// Steps 3–4 from the torsion in counts `D` of `2π/(LMN)` (the reduced
@@ -990,6 +1021,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
     /// 2⁴⁵`; the conversion needs `|D| < 2⁴⁷`): one scaling, then
     /// eq. (3.9)–(3.10). The per-drive-size proofs sweep this over every
     /// `D`.
+    #[cfg(any(kani, test, feature = "proofs"))]
     #[inline]
     pub(crate) fn estimate_from_torsion_counts(
         &self,
@@ -998,8 +1030,43 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         motor_torque: S,
         link_count_invalid: bool,
     ) -> TorqueEstimate<S> {
+        self.estimate_from_counts(d, kin_err, motor_torque, false, link_count_invalid)
+    }
+
+    /// [`estimate_from_torsion_counts`](Self::estimate_from_torsion_counts)
+    /// with `torque_finite` as in [`update_with`](Self::update_with).
+    // Inlined into `update_with` except on Armv6-M (where `finish` is a
+    // function of its own).
+    #[cfg_attr(
+        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+        inline(always)
+    )]
+    #[cfg_attr(all(target_arch = "arm", not(target_has_atomic = "32")), inline)]
+    fn estimate_from_counts(
+        &self,
+        d: i64,
+        kin_err: S,
+        motor_torque: S,
+        torque_finite: bool,
+        link_count_invalid: bool,
+    ) -> TorqueEstimate<S> {
         let torsion = torsion_of_counts(d, &self.torsion_per_count);
-        self.finish(torsion, kin_err, motor_torque, link_count_invalid)
+        // Floats: the clamp takes the sign of the count (the torsion is
+        // finite). Fixed point keeps the comparisons (folded at compile
+        // time; Armv6-M calls `finish`).
+        let negative = if S::RESOLUTION.to_f64() < 1e-6 {
+            Some(d < 0)
+        } else {
+            None
+        };
+        self.finish(
+            torsion,
+            negative,
+            kin_err,
+            motor_torque,
+            torque_finite,
+            link_count_invalid,
+        )
     }
 
     /// One estimate from angles in radians (stored angle units): the link
@@ -1028,7 +1095,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             d(link_angle).add(d(motor_angle)) != S::ZERO
         };
         if angles_bad {
-            let mut e = self.finish(S::ZERO, S::ZERO, motor_torque, false);
+            let mut e = self.finish(S::ZERO, None, S::ZERO, motor_torque, false, false);
             e.invalid_input = true;
             return e;
         }
@@ -1037,7 +1104,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         } else {
             S::ZERO
         };
-        self.finish(torsion, kin_err, motor_torque, false)
+        self.finish(torsion, None, kin_err, motor_torque, false, false)
     }
 }
 
@@ -1642,7 +1709,7 @@ mod tests {
             (torque, sat)
         }
         fn agree<S: Scalar + core::fmt::Debug>(cfg: &TorqueEstimatorConfig<S>, ft: S) {
-            let e = cfg.finish(ft, S::ZERO, S::ZERO, false);
+            let e = cfg.finish(ft, None, S::ZERO, S::ZERO, false, false);
             assert_eq!((e.torque, e.saturated), direct(cfg, ft), "at {ft:?}");
         }
         /// Checks one float configuration; returns whether the next torsion

@@ -590,7 +590,16 @@ impl<S: Scalar> WaveGeneratorConfig<S> {
     /// Output-side wave-generator torsion `Δθ_w / N` of eq. (2.29)/(2.30).
     #[inline]
     pub fn output_torsion(&self, motor_torque: S) -> S {
-        let e = motor_torque.abs().mul_coef(&self.c_w).exp_neg_abs();
+        // Floats round a product symmetrically, so `|τ_w|·c_w` and
+        // `τ_w·c_w` have the same magnitude and `exp_neg_abs` (even) takes
+        // it; fixed point rounds ties up and keeps the magnitude first
+        // (folded at compile time).
+        let t = if S::RESOLUTION.to_f64() < 1e-6 {
+            motor_torque
+        } else {
+            motor_torque.abs()
+        };
+        let e = t.mul_coef(&self.c_w).exp_neg_abs();
         // `sgn(τ_w)(1 − e)` as a sign transfer: `1 − e ≥ 0`, and it is 0
         // at `τ_w = 0` (and for a NaN torque, where `e = 1`), exactly where
         // `sgn` would give 0.
