@@ -989,6 +989,10 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         } else {
             link_count
         };
+        // The kinematic error first: its phases need only `c_l` and the
+        // motor position within the revolution, and fewer values are live
+        // across it than across the torsion's 64-bit products.
+        let kin_err = self.kinematic_error_from_counts(c_l, st.motor_in_turn);
         let (mn, lmn, half) = (self.mn, self.lmn, self.half_lmn);
         // p < MN and every product below are exact in 64 bits (LMN ≤ 2⁴⁶
         // is validated); `mul_wide` keeps them off `__aeabi_lmul` on
@@ -1012,7 +1016,6 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         if d >= half {
             d -= lmn;
         }
-        let kin_err = self.kinematic_error_from_counts(c_l, st.motor_in_turn);
         self.estimate_from_counts(d, kin_err, motor_torque, torque_finite, invalid)
     }
 
