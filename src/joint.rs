@@ -95,6 +95,7 @@ use core::f64::consts::TAU;
 
 /// Longest speed window, ticks.
 pub const MAX_SPEED_WINDOW: u8 = 64;
+const _: () = assert!(MAX_SPEED_WINDOW.is_power_of_two());
 
 /// The settings of a joint by name, for [`JointParams::try_new`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -521,21 +522,21 @@ impl<S: Scalar> JointConfig<S> {
         // Position: wrapping 32-bit difference, exact 64-bit sum.
         let delta = counter.wrapping_sub(st.last_counter) as i32;
         st.last_counter = counter;
-        st.motor_count = st.motor_count.wrapping_add(delta as i64);
+        let motor_count = st.motor_count.wrapping_add(delta as i64);
+        st.motor_count = motor_count;
         // Speed: difference to the counter `w` ticks ago (`w` is validated
-        // in [1, MAX_SPEED_WINDOW]; the ring's reads and writes are checked
-        // anyway, so no reading can index past it).
+        // in [1, MAX_SPEED_WINDOW]; the ring index is taken modulo its
+        // power-of-two length anyway, one mask and no bounds test, so no
+        // reading can index past it).
         let w = self.speed_window;
         let head = if st.head < w { st.head } else { 0 };
-        let old = st.history.get(head as usize).copied().unwrap_or(counter);
-        if let Some(slot) = st.history.get_mut(head as usize) {
-            *slot = counter;
-        }
+        let slot = &mut st.history[head as usize % MAX_SPEED_WINDOW as usize];
+        let old = core::mem::replace(slot, counter);
         st.head = if head + 1 >= w { 0 } else { head + 1 };
         let moved = counter.wrapping_sub(old) as i32;
         JointMeasurement {
             joint_torque: estimate.torque.neg(),
-            motor_position: S::from_counts_prepared(st.motor_count, &self.angle_per_count),
+            motor_position: S::from_counts_prepared(motor_count, &self.angle_per_count),
             motor_velocity: S::from_counts_i32(moved, &self.speed_per_count),
             estimate,
         }
