@@ -983,8 +983,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         torque_finite: bool,
     ) -> TorqueEstimate<S> {
         self.advance(st, motor_counter);
-        let invalid = link_count >= self.l;
-        let c_l = if HAS_DIVIDE || invalid {
+        let c_l = if HAS_DIVIDE || link_count >= self.l {
             self.l_div.div_rem(link_count).1
         } else {
             link_count
@@ -1016,6 +1015,9 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         if d >= half {
             d -= lmn;
         }
+        // The flag formed where it is used (not kept live across the
+        // kinematic error and the products).
+        let invalid = link_count >= self.l;
         self.estimate_from_counts(d, kin_err, motor_torque, torque_finite, invalid)
     }
 
