@@ -602,11 +602,18 @@ impl<S: Scalar> WaveGeneratorConfig<S> {
         let e = t.mul_coef(&self.c_w).exp_neg_abs();
         // `sgn(τ_w)(1 − e)` as a sign transfer: `1 − e ≥ 0`, and it is 0
         // at `τ_w = 0` (and for a NaN torque, where `e = 1`), exactly where
-        // `sgn` would give 0.
-        S::ONE
-            .sub(e)
-            .copysign(motor_torque)
-            .mul_coef(&self.amplitude)
+        // `sgn` would give 0. Fixed point (no signed zero, no NaN) negates
+        // on `τ_w < 0`: `copysign` of the non-negative `1 − e` without its
+        // `abs` (folded at compile time).
+        let v = S::ONE.sub(e);
+        let v = if S::RESOLUTION.to_f64() < 1e-6 {
+            v.copysign(motor_torque)
+        } else if motor_torque < S::ZERO {
+            v.neg()
+        } else {
+            v
+        };
+        v.mul_coef(&self.amplitude)
     }
 }
 
