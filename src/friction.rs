@@ -304,6 +304,20 @@ fn sat_in_layer<S: Scalar>(x: S, eps: S, scale: impl Fn(S) -> S) -> S {
     }
 }
 
+/// [`sat_in_layer`] for an `x` known not to be NaN: the same value for
+/// every other `x` without the NaN test (outside the layer `x` is
+/// positive or negative; on fixed point `MIN` takes the `−1` branch).
+#[inline(always)]
+fn sat_in_layer_number<S: Scalar>(x: S, eps: S, scale: impl Fn(S) -> S) -> S {
+    if x.abs() <= eps {
+        scale(x)
+    } else if x > S::ZERO {
+        S::ONE
+    } else {
+        S::ONE.neg()
+    }
+}
+
 /// `x · s` for a factor `s ∈ [−1, 1]` (a `sat` value, often exactly `±1`):
 /// [`Scalar::mul_unit_range`], bit-identical to `x.mul(s)` on every
 /// backend (on `I16F16` a short product for every such `s`, `±1`
@@ -405,6 +419,17 @@ impl<S: Scalar> FrictionConfig<S> {
         }
     }
 
+    /// [`sat`](Self::sat) for a speed that is not NaN: the same value for
+    /// every such `qd`, without the NaN test.
+    #[inline(always)]
+    fn sat_number(&self, qd: S) -> S {
+        let fixed = S::RESOLUTION.to_f64() >= 1e-6;
+        match self.inv_eps_value {
+            Some(inv) if fixed => sat_in_layer_number(qd, self.eps, |x| x.mul(inv)),
+            _ => sat_in_layer_number(qd, self.eps, |x| x.mul_coef(&self.inv_eps)),
+        }
+    }
+
     /// Eq. (4.17): nominal torque `f̂^c(q̇)` and regressor `Y(q̇)` at motor
     /// speed `qd` (stored speed units) for stored parameters `theta`.
     /// One exponential per call. In fixed point, `q̇²` saturates above
@@ -413,7 +438,27 @@ impl<S: Scalar> FrictionConfig<S> {
     /// they should.
     #[inline]
     pub fn evaluate(&self, theta: &[S; 4], qd: S) -> FrictionEval<S> {
-        let s = self.sat(qd);
+        self.evaluate_with_sat(theta, qd, self.sat(qd))
+    }
+
+    /// [`evaluate`](Self::evaluate) for a speed that is not NaN (the active
+    /// law's checked sample): the same value for every such `qd`; a NaN
+    /// `qd` gives a NaN torque either way, with `Y_2 = −1` here instead
+    /// of 0.
+    #[inline(always)]
+    pub(crate) fn evaluate_number(&self, theta: &[S; 4], qd: S) -> FrictionEval<S> {
+        // Floats only (folded at compile time): fixed point has no NaN and
+        // keeps `evaluate` (the smaller Armv6-M code).
+        if S::RESOLUTION.to_f64() >= 1e-6 {
+            self.evaluate(theta, qd)
+        } else {
+            self.evaluate_with_sat(theta, qd, self.sat_number(qd))
+        }
+    }
+
+    /// Eq. (4.17) given `s = sat(q̇, ε_q̇)`.
+    #[inline(always)]
+    fn evaluate_with_sat(&self, theta: &[S; 4], qd: S, s: S) -> FrictionEval<S> {
         let q2 = qd.mul(qd);
         // f̂_τ q̇² ≥ 0 (f̂_τ is projected into a box of positive shapes):
         // e^{−|f̂_τ q̇²|} is e^{−f̂_τ q̇²}.

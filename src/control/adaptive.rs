@@ -598,7 +598,11 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
             .desired_acceleration
             .mul_coef(&self.accel_inertia)
             .sub(ed.add(r).mul_coef(&self.lambda_inertia));
-        let fr = self.friction.evaluate(&st.friction, x.motor_velocity);
+        // The speed is a number here (checked by the caller) or the law is NaN
+        // anyway (`F̂_1 q̇`): the sat without its NaN test.
+        let fr = self
+            .friction
+            .evaluate_number(&st.friction, x.motor_velocity);
         // K_r sat(r/ε_r): ±K_r outside the layer, (K_r/ε_r)·r inside it
         // (one product; the same value up to its rounding).
         // One magnitude test for the common inside-layer case (a NaN `r`
