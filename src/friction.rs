@@ -406,7 +406,10 @@ impl<S: Scalar> FrictionConfig<S> {
     /// `qd` (stored speed units, rad/s on floats; dimensionless result): in
     /// `[−1, 1]`, odd, non-decreasing, 0 for NaN; within the rounding of the
     /// prepared `1/ε_q̇` and of one product of `q̇/ε_q̇` inside the layer.
-    #[inline]
+    // Its own function on Armv6-M: the callers' code (the active law
+    // around it) is smaller than with the product inlined.
+    #[cfg_attr(not(all(target_arch = "arm", not(target_has_atomic = "32"))), inline)]
+    #[cfg_attr(all(target_arch = "arm", not(target_has_atomic = "32")), inline(never))]
     pub fn sat(&self, qd: S) -> S {
         // Fixed point only (folded at compile time): a float product by the
         // coefficient is already one multiply.
