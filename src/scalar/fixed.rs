@@ -105,6 +105,10 @@ pub(crate) fn mul_bits_long_split(a: i32, b: i32) -> i32 {
 /// with its high word corrected by `−b` for `a < 0` and by `−a` for `b < 0`.
 /// `|V| ≤ 2⁶²`, so `|high| ≤ 2³⁰`.
 #[inline(always)]
+#[cfg_attr(
+    all(target_arch = "arm", not(target_has_atomic = "32")),
+    allow(dead_code)
+)]
 pub(crate) fn signed_wide_mul(a: i32, b: i32) -> (i32, u32) {
     #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
     {
@@ -151,12 +155,57 @@ pub(crate) fn signed_wide_mul_split(a: i32, b: i32) -> (i32, u32) {
 /// `hi << (32 − sh)` are written with `rs` so that `sh = 32` needs no
 /// special case.
 #[inline(always)]
+#[cfg_attr(
+    all(target_arch = "arm", not(target_has_atomic = "32")),
+    allow(dead_code)
+)]
 pub(crate) fn round_shift_sat(hi: i32, lo: u32, round: u32, rs: u32) -> i32 {
     let (lo, carry) = lo.overflowing_add(round);
     let hi = hi + carry as i32;
     // `hi >> rs ∈ {−1, 0}` ⟺ `hi + 2^rs ∈ [0, 2^(rs+1))` ⟺ `⌊((hi + round)
     // mod 2³²) / 2⌋ < round` (`round = 2^rs`; for `rs = 31` always true,
     // as it must be): no shift by the variable amount in the test.
+    if ((hi as u32).wrapping_add(round) >> 1) >= round {
+        return if hi < 0 { i32::MIN } else { i32::MAX };
+    }
+    (hi << (31 - rs)) | ((lo >> rs) >> 1) as i32
+}
+
+/// `V + r` for the signed product `V = x·m` as `(high word, low word)`,
+/// from 16-bit halves with *signed* low parts: `x = x_h·2¹⁶ + x_l` and
+/// `m = m_h·2¹⁶ + m_l` with `x_l = x as i16`, `x_h = (x − x_l)/2¹⁶`
+/// (so `x_l, m_l ∈ [−2¹⁵, 2¹⁵)`, `x_h, m_h ∈ [−2¹⁵, 2¹⁵]`); the
+/// coefficient's halves are prepared (`m_h = (m + 2¹⁵) >> 16`,
+/// `m_l = m as i16`).
+///
+/// `V = x_h m_h·2³² + M·2¹⁶ + x_l m_l` with `M = x_h m_l + x_l m_h`: each
+/// middle product is at most `2³⁰` in magnitude, and both reach `±2³⁰`
+/// only for operands outside the `i32` range, so `M ∈ [−2³¹, 2³¹)` is
+/// exact in an `i32` (one multiply-add instead of two carried ones), and
+/// `|x_l m_l| ≤ 2³⁰`. The low word is `x_l m_l + M·2¹⁶` (one carry into the
+/// high word, which also takes the sign of `x_l m_l`), then `+ r` (one more
+/// carry): on Armv6-M two `ADDS`/`ADCS` pairs. Requires `|m| < 2³¹` and
+/// `r < 2³²` (then `|V + r| < 2⁶³`).
+#[inline(always)]
+#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+pub(crate) fn signed_wide_mul_add_split(x: i32, mh: i32, ml: i32, r: u32) -> (i32, u32) {
+    let xl = x as i16 as i32;
+    // (x − x_l)/2¹⁶ = ⌊(x + 2¹⁵)/2¹⁶⌋, without the overflow of either sum.
+    let xh = ((x >> 15) + 1) >> 1;
+    let mid = xh * ml + xl * mh;
+    let ll = xl * ml;
+    let (lo, c1) = (ll as u32).overflowing_add((mid as u32) << 16);
+    let hi = xh * mh + (ll >> 31) + (mid >> 16) + c1 as i32;
+    let (lo, c2) = lo.overflowing_add(r);
+    (hi + c2 as i32, lo)
+}
+
+/// [`round_shift_sat`] of a value whose rounding constant `round = 2^rs`
+/// is already added: `sat(⌊W / 2^(rs+1)⌋)` for `W = hi·2³² + lo`,
+/// `|hi| ≤ 2³⁰ + 1`, `rs ≤ 31`.
+#[inline(always)]
+#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+pub(crate) fn shift_sat(hi: i32, lo: u32, round: u32, rs: u32) -> i32 {
     if ((hi as u32).wrapping_add(round) >> 1) >= round {
         return if hi < 0 { i32::MIN } else { i32::MAX };
     }
@@ -800,6 +849,40 @@ mod tests {
         }
     }
 
+    /// [`signed_wide_mul_add_split`] with the halves of `m` prepared as
+    /// the coefficients prepare them.
+    fn mul_add_split(x: i32, m: i32, r: u32) -> i64 {
+        let (mh, ml) = (((m as i64 + (1 << 15)) >> 16) as i32, m as i16 as i32);
+        let (hi, lo) = signed_wide_mul_add_split(x, mh, ml, r);
+        ((hi as i64) << 32) | lo as i64
+    }
+
+    /// The signed-halves form with its rounding constant is the exact
+    /// `x·m + r` on every pair of edge words (`|m| < 2³¹`) and constants
+    /// `0`, `1`, `2³⁰`, `2³¹`, `2³² − 1`.
+    #[test]
+    fn signed_wide_mul_add_split_is_exact_on_edges() {
+        // Plus the words whose signed halves are at their ends (x_h or
+        // m_h = ±2¹⁵, x_l or m_l = −2¹⁵), where the middle sum is largest.
+        let mut w = edge_words();
+        for h in [0x7FFF_i32, -0x8000, 0x7FFE, -0x7FFF] {
+            for l in [0x7FFF_i32, 0x8000, 0x8001, 0xFFFF, 0] {
+                w.push(((h as u32) << 16 | l as u32) as i32);
+            }
+        }
+        for &x in &w {
+            for &m in w.iter().filter(|&&m| m != i32::MIN) {
+                for r in [0u32, 1, 1 << 30, 1 << 31, u32::MAX] {
+                    assert_eq!(
+                        mul_add_split(x, m, r),
+                        x as i64 * m as i64 + r as i64,
+                        "{x} {m} {r}"
+                    );
+                }
+            }
+        }
+    }
+
     /// `sat(⌊(V + 2^rs) / 2^(rs+1)⌋)` in `i128`, the reference of
     /// [`round_shift_sat`].
     fn round_shift_reference(hi: i32, lo: u32, rs: u32) -> i32 {
@@ -870,6 +953,15 @@ mod tests {
         #[test]
         fn mul_bits_long_split_equals_the_64_bit_formula(a in proptest::prelude::any::<i32>(), b in proptest::prelude::any::<i32>()) {
             proptest::prop_assert_eq!(mul_bits_long_split(a, b), mul_bits_reference(a, b));
+        }
+
+        #[test]
+        fn signed_wide_mul_add_split_is_exact(
+            x in proptest::prelude::any::<i32>(),
+            m in (i32::MIN + 1)..=i32::MAX,
+            r in proptest::prelude::any::<u32>(),
+        ) {
+            proptest::prop_assert_eq!(mul_add_split(x, m, r), x as i64 * m as i64 + r as i64);
         }
 
         #[test]

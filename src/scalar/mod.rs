@@ -546,6 +546,47 @@ pub struct Coef {
     /// `x = −1` when `signed` is `None` (`|c| ≥ 2³⁰`: every larger `|x|`
     /// saturates).
     units: [i32; 2],
+    /// The mantissa and exponent of [`scale_wide`](Self::scale_wide) on
+    /// Armv6-M.
+    #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    wide: WideCoef,
+}
+
+/// The coefficient `mult · 2^−shift` with a mantissa below `2³¹` in
+/// magnitude, for the signed product of [`Coef::scale_wide`] on Armv6-M:
+/// `mult` itself, or, for `|mult| = 2³¹`, `mult/2` with `shift − 1` (the
+/// same value), as its halves `m_hi = (m + 2¹⁵) >> 16` (arithmetic) and
+/// `m_lo = m as i16` for [`fixed::signed_wide_mul_add_split`].
+#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct WideCoef {
+    m_hi: i32,
+    m_lo: i32,
+    shift: i32,
+}
+
+#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+impl WideCoef {
+    /// From the coefficient's mantissa (`|mult| ≤ 2³¹`) and exponent.
+    pub(crate) const fn new(mult: i64, shift: i32) -> Self {
+        let (m, shift) = if mult == 1 << 31 || mult == -(1 << 31) {
+            (mult / 2, shift - 1)
+        } else {
+            (mult, shift)
+        };
+        WideCoef {
+            m_hi: ((m + (1 << 15)) >> 16) as i32,
+            m_lo: m as i32 as i16 as i32,
+            shift,
+        }
+    }
+
+    /// The exact signed product `x·m` as `(high word, low word)`
+    /// (`|x·m| < 2⁶²`).
+    #[inline(always)]
+    fn product(&self, x: i32) -> (i32, u32) {
+        fixed::signed_wide_mul_add_split(x, self.m_hi, self.m_lo, 0)
+    }
 }
 
 /// A count-to-value factor for [`Scalar::from_counts_i32`]: the
@@ -593,6 +634,17 @@ impl CountCoef {
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct SignedCoef {
     m: i32,
+    /// `(m + 2¹⁵) >> 16` (arithmetic) and `m as i16`: the halves of the
+    /// 16×16 partial products on Armv6-M
+    /// ([`fixed::signed_wide_mul_add_split`]).
+    #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    m_hi: i32,
+    #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    m_lo: i32,
+    /// The rounding constant added to the low word: `round` (`sh ≤ 32`)
+    /// or 0 (`sh ≥ 33`).
+    #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    round_lo: u32,
     /// `sh ≥ 33`: the rounding and shift apply to the high word alone.
     high_only: bool,
     /// `2^(sh−1)` (`sh ≤ 32`, added to the low word) or `2^(sh−33)`
@@ -616,6 +668,12 @@ impl SignedCoef {
         if shift >= 63 || mult == 0 {
             return Some(SignedCoef {
                 m: 0,
+                #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+                m_hi: 0,
+                #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+                m_lo: 0,
+                #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+                round_lo: 0,
                 high_only: true,
                 round: 0,
                 rs: 1,
@@ -630,14 +688,21 @@ impl SignedCoef {
             return None;
         }
         let high_only = shift > 32;
+        let round = if high_only {
+            1 << (shift - 33)
+        } else {
+            1 << (shift - 1)
+        };
         Some(SignedCoef {
             m: mult as i32,
+            #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+            m_hi: ((mult + (1 << 15)) >> 16) as i32,
+            #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+            m_lo: mult as i32 as i16 as i32,
+            #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+            round_lo: if high_only { 0 } else { round },
             high_only,
-            round: if high_only {
-                1 << (shift - 33)
-            } else {
-                1 << (shift - 1)
-            },
+            round,
             rs: if high_only { shift - 32 } else { shift - 1 } as u32,
         })
     }
@@ -738,6 +803,8 @@ impl Coef {
                 negative: false,
                 signed: SignedCoef::new(0, 0),
                 units: [0; 2],
+                #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+                wide: WideCoef::new(0, 0),
             };
         }
         // |value| · 2^shift ∈ [2^30, 2^31). Beyond 2^40 the fixed-point
@@ -788,6 +855,8 @@ impl Coef {
             negative,
             signed: SignedCoef::new(signed_mult, shift),
             units: [unit(1), unit(-1)],
+            #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+            wide: WideCoef::new(signed_mult, shift),
         }
     }
 
@@ -857,6 +926,10 @@ impl Coef {
     ///   magnitude, so it never saturates.
     /// * `sh ≤ 32`: [`fixed::round_shift_sat`].
     ///
+    /// On Armv6-M the product comes from the prepared 16-bit halves of `m`
+    /// with the low-word rounding constant in its carry chain
+    /// (`scale_i32_split`).
+    ///
     /// No absolute values and no sign fix-up of the result; the rounding
     /// constant and shift are prepared per coefficient (a mantissa of 2³¹
     /// halved, a coefficient below 2⁻³² or zero as `m = 0`:
@@ -874,27 +947,74 @@ impl Coef {
                 _ => i32::MAX,
             };
         };
-        let (hi, lo) = fixed::signed_wide_mul(x, c.m);
+        #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+        {
+            Self::scale_i32_split(&c, x)
+        }
+        #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+        {
+            let (hi, lo) = fixed::signed_wide_mul(x, c.m);
+            if c.high_only {
+                // |hi| ≤ 2³⁰ and round = 2^(sh−33) ≤ 2²⁹: no overflow.
+                return (hi + c.round as i32) >> c.rs;
+            }
+            fixed::round_shift_sat(hi, lo, c.round, c.rs)
+        }
+    }
+
+    /// The prepared signed path of [`scale_i32`](Self::scale_i32) on
+    /// Armv6-M (built on every target so the host tests check it): the
+    /// product from the prepared halves of `m` with the rounding constant
+    /// (for `sh ≤ 32`) added to the low word in the same carry chain
+    /// ([`fixed::signed_wide_mul_add_split`]), then the shift
+    /// ([`fixed::shift_sat`]; for `sh ≥ 33` the rounding of the high word
+    /// alone, as in [`scale_i32`](Self::scale_i32)).
+    #[inline(always)]
+    #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    fn scale_i32_split(c: &SignedCoef, x: i32) -> i32 {
+        let (hi, lo) = fixed::signed_wide_mul_add_split(x, c.m_hi, c.m_lo, c.round_lo);
         if c.high_only {
-            // |hi| ≤ 2³⁰ and round = 2^(sh−33) ≤ 2²⁹: no overflow.
+            // round_lo = 0: the high word of x·m; |hi| ≤ 2³⁰ and round =
+            // 2^(sh−33) ≤ 2²⁹, no overflow.
             return (hi + c.round as i32) >> c.rs;
         }
-        fixed::round_shift_sat(hi, lo, c.round, c.rs)
+        fixed::shift_sat(hi, lo, c.round, c.rs)
     }
 
     /// `round(x · c · 2^extra)` (ties up) saturated to `i64`: the
     /// increment of a Q16.48 accumulator for `extra = 32` and `x` the bits
     /// of an `I16F16` ([`Scalar::integrate`]). The product `x·mult` is
-    /// exact (`|x·mult| ≤ 2⁶²`): the unsigned [`fixed::wide_mul`] of the
-    /// magnitudes with the sign applied, one form for every coefficient
-    /// (no `__aeabi_lmul` on Armv6-M).
+    /// exact (`|x·mult| ≤ 2⁶²`): on Armv6-M the signed product from the
+    /// prepared halves of the mantissa (`scale_wide_split`, no
+    /// `__aeabi_lmul`, no absolute values or negation), elsewhere the
+    /// unsigned [`fixed::wide_mul`] of the magnitudes with the sign applied
+    /// ([`scale_wide_magnitude`](Self::scale_wide_magnitude)); one form for
+    /// every coefficient.
     ///
     /// The rounding shift works on the two 32-bit words (a shift by less
     /// than 32 and a word move), so Armv6-M calls no 64-bit shift
     /// (`__aeabi_lasr`, `__aeabi_llsl`); equal to the exact formula for
     /// every coefficient, argument and `extra` (tests below).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn scale_wide(&self, x: i32, extra: i32) -> i64 {
+        #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+        {
+            self.scale_wide_split(x, extra)
+        }
+        #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+        {
+            self.scale_wide_magnitude(x, extra)
+        }
+    }
+
+    /// [`scale_wide`](Self::scale_wide) from the unsigned product of the
+    /// magnitudes (the form of targets with a widening multiply).
+    #[inline]
+    #[cfg_attr(
+        all(target_arch = "arm", not(target_has_atomic = "32")),
+        allow(dead_code)
+    )]
+    fn scale_wide_magnitude(&self, x: i32, extra: i32) -> i64 {
         let (hi, lo) = fixed::wide_mul(x.unsigned_abs(), self.mag);
         let neg = (x < 0) != self.negative;
         let sh = self.shift - extra;
@@ -937,6 +1057,67 @@ impl Coef {
             hi = (!hi).wrapping_add((lo == 0) as i32);
         }
         let sh = sh as u32;
+        if sh <= 32 {
+            let (l, c) = lo.overflowing_add(1 << (sh - 1));
+            lo = l;
+            hi += c as i32;
+        } else {
+            hi += 1 << (sh - 33);
+        }
+        let (h, l) = if sh >= 32 {
+            (hi >> 31, (hi >> (sh - 32)) as u32)
+        } else {
+            (hi >> sh, ((hi as u32) << (32 - sh)) | (lo >> sh))
+        };
+        ((h as u32 as u64) << 32 | l as u64) as i64
+    }
+
+    /// [`scale_wide`](Self::scale_wide) on Armv6-M (built on every target
+    /// so the host tests check it): the product `V = x·m` is the exact
+    /// signed product by the mantissa of [`WideCoef`] (below `2³¹`, so
+    /// `|V| < 2⁶²`) from its prepared 16-bit halves
+    /// ([`fixed::signed_wide_mul_add_split`]): no absolute values and no
+    /// negation. Then the same saturating shift or rounding shift on the
+    /// two words.
+    #[inline(never)]
+    #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    fn scale_wide_split(&self, x: i32, extra: i32) -> i64 {
+        let w = &self.wide;
+        let sh = w.shift - extra;
+        if sh >= 63 {
+            // |V| < 2⁶²: |V/2^sh| < ½ rounds to 0.
+            return 0;
+        }
+        let (hi, lo) = w.product(x);
+        if sh <= 0 {
+            // V·2^s saturated: it fits exactly when the top s + 1 bits of
+            // the 64-bit V are copies of its sign bit.
+            let s = sh.unsigned_abs();
+            let fits = if s >= 64 {
+                hi == 0 && lo == 0
+            } else if s >= 32 {
+                // V fits an i32 and has 63 − s bits besides the sign.
+                let t = (lo as i32) >> (63 - s);
+                hi == (lo as i32) >> 31 && (t == 0 || t == -1)
+            } else {
+                let t = hi >> (31 - s);
+                t == 0 || t == -1
+            };
+            if !fits {
+                return if hi < 0 { i64::MIN } else { i64::MAX };
+            }
+            let (h, l) = if s >= 32 {
+                (lo << (s - 32), 0)
+            } else {
+                // `(lo >> 1) >> (31 − s)` is `lo >> (32 − s)`, and 0 for
+                // `s = 0`.
+                (((hi as u32) << s) | ((lo >> 1) >> (31 - s)), lo << s)
+            };
+            return ((h as u64) << 32 | l as u64) as i64;
+        }
+        // ⌊(V + 2^(sh−1)) / 2^sh⌋ (|V| + 2^(sh−1) < 2⁶³: no overflow).
+        let sh = sh as u32;
+        let (mut hi, mut lo) = (hi, lo);
         if sh <= 32 {
             let (l, c) = lo.overflowing_add(1 << (sh - 1));
             lo = l;
@@ -1154,6 +1335,9 @@ mod tests {
             proptest::prop_assert_eq!(c.scale_int(x, extra), c.scale_int_reference(x, extra));
             let x32 = x as i32;
             proptest::prop_assert_eq!(c.scale_i32(x32), c.scale_int_reference(x32 as i64, 0));
+            if let Some(s) = &c.signed {
+                proptest::prop_assert_eq!(Coef::scale_i32_split(s, x32), c.scale_int_reference(x32 as i64, 0));
+            }
         }
     }
 
@@ -1267,11 +1451,28 @@ mod tests {
                     c.scale_int_reference(x as i64, 0),
                     "{v} {x}"
                 );
+                if let Some(s) = &c.signed {
+                    assert_eq!(
+                        Coef::scale_i32_split(s, x),
+                        c.scale_int_reference(x as i64, 0),
+                        "split {v} {x}"
+                    );
+                }
                 for extra in [0, 16, 32] {
                     assert_eq!(
                         c.scale_wide(x, extra),
                         scale_wide_reference(&c, x, extra),
                         "{v} {x} {extra}"
+                    );
+                    assert_eq!(
+                        c.scale_wide_split(x, extra),
+                        scale_wide_reference(&c, x, extra),
+                        "split {v} {x} {extra}"
+                    );
+                    assert_eq!(
+                        c.scale_wide_magnitude(x, extra),
+                        scale_wide_reference(&c, x, extra),
+                        "magnitude {v} {x} {extra}"
                     );
                 }
             }
@@ -1622,6 +1823,8 @@ mod tests {
             let v = mant * 2f64.powi(exp) * if neg { -1.0 } else { 1.0 };
             let c = Coef::new(v);
             proptest::prop_assert_eq!(c.scale_wide(x, extra), scale_wide_reference(&c, x, extra));
+            proptest::prop_assert_eq!(c.scale_wide_split(x, extra), scale_wide_reference(&c, x, extra));
+            proptest::prop_assert_eq!(c.scale_wide_magnitude(x, extra), scale_wide_reference(&c, x, extra));
         }
 
         #[test]

@@ -178,14 +178,27 @@ impl Sink {
     }
 }
 
+#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+use super::WideCoef;
 use super::{Coef, CountCoef, CountToTurn, Gain, IntFactor, SignedCoef, I16F16};
 
 impl SignedCoef {
+    /// The stored fields; the halves of `m` and the low-word rounding
+    /// constant are derived as [`SignedCoef::new`] derives them.
     const fn take(r: &mut Words) -> Self {
+        let m = r.i32();
+        let high_only = r.bool();
+        let round = r.u32();
         SignedCoef {
-            m: r.i32(),
-            high_only: r.bool(),
-            round: r.u32(),
+            m,
+            #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+            m_hi: ((m as i64 + (1 << 15)) >> 16) as i32,
+            #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+            m_lo: m as i16 as i32,
+            #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+            round_lo: if high_only { 0 } else { round },
+            high_only,
+            round,
             rs: r.u32(),
         }
     }
@@ -200,12 +213,18 @@ impl SignedCoef {
 }
 
 impl Coef {
+    /// The stored fields; the product form of `scale_wide` is derived
+    /// from the mantissa and exponent as [`WideCoef::new`] derives it.
     pub(crate) const fn take(r: &mut Words) -> Self {
+        let value = r.f64();
+        let value_f32 = r.f32();
+        let mult = r.i64();
+        let shift = r.i32();
         Coef {
-            value: r.f64(),
-            value_f32: r.f32(),
-            mult: r.i64(),
-            shift: r.i32(),
+            value,
+            value_f32,
+            mult,
+            shift,
             mag: r.u32(),
             negative: r.bool(),
             signed: if r.bool() {
@@ -214,6 +233,8 @@ impl Coef {
                 None
             },
             units: [r.i32(), r.i32()],
+            #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+            wide: WideCoef::new(mult, shift),
         }
     }
 
