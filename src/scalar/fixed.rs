@@ -593,7 +593,10 @@ impl Scalar for I16F16 {
         // Outside the box exactly when the sum is above `hi·2³²` or below
         // `lo·2³²`: the end, residual 0.
         let (h, l) = (hi.to_bits() as i64, lo.to_bits() as i64);
-        if high > h || (high == h && low > 0) {
+        // Above `hi·2³²` exactly when `high > h`, or `high = h` with a
+        // non-zero low word: `high − h − [low = 0] ≥ 0` (one comparison of
+        // the 64-bit high words instead of two).
+        if high - h - (low == 0) as i64 >= 0 {
             (hi, 0)
         } else if high < l {
             (lo, 0)
