@@ -607,6 +607,8 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
         // (one product; the same value up to its rounding).
         // One magnitude test for the common inside-layer case (a NaN `r`
         // fails it too, and its law is NaN either way).
+        // sign(r): ±1, for the robust terms outside their layers on floats.
+        let r_sign = if r > S::ZERO { S::ONE } else { S::ONE.neg() };
         let robust = if r.abs() > self.eps_r {
             if r > S::ZERO {
                 self.robust_gain_value[0]
@@ -630,10 +632,10 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
             r.mul(y[3]),
         ];
         let param_robust = self
-            .param_robust_term(0, y[0], ry[0])
-            .add(self.param_robust_term(1, y[1], ry[1]))
-            .add(self.param_robust_term(2, y[2], ry[2]))
-            .add(self.param_robust_term(3, y[3], ry[3]));
+            .param_robust_term(0, y[0], ry[0], r_sign)
+            .add(self.param_robust_term(1, y[1], ry[1], r_sign))
+            .add(self.param_robust_term(2, y[2], ry[2], r_sign))
+            .add(self.param_robust_term(3, y[3], ry[3], r_sign));
         let law = ia
             .add(self.feedback.apply(x.joint_torque))
             .add(fr.torque)
@@ -650,13 +652,23 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
     }
 
     /// `ρ_j Y_j sat(r Y_j / ε_j)` of eq. (4.19): `±ρ_j Y_j` outside the
-    /// layer, `(ρ_j/ε_j) Y_j · r Y_j` inside it.
+    /// layer, `(ρ_j/ε_j) Y_j · r Y_j` inside it. `r_sign` is `1` for
+    /// `r > 0`, else `−1`.
     #[inline(always)]
-    fn param_robust_term(&self, j: usize, y: S, ry: S) -> S {
+    fn param_robust_term(&self, j: usize, y: S, ry: S, r_sign: S) -> S {
         // One magnitude test on the inside-layer path (a NaN `ry` takes it
         // and stays NaN, as with two one-sided tests; `|MIN|` saturates to
         // `MAX` on fixed point and takes the negative branch, as before).
         if ry.abs() > self.eps_f[j] {
+            // Floats: outside the layer `r Y_j` is a nonzero number (`ε_j`
+            // is not negative), so `r` and `Y_j` are nonzero and
+            // sign(r Y_j)·Y_j = sign(r)·|Y_j|, and rounding to nearest is
+            // symmetric: `(sign(r)|Y_j|)·ρ_j` is `±(Y_j ρ_j)` bit for bit,
+            // without a test per term (`sign(r)|Y_j|` is exact).
+            // Fixed point rounds ties up, not symmetrically: its own test.
+            if S::RESOLUTION.to_f64() < 1e-6 {
+                return y.abs().mul(r_sign).mul_coef(&self.rho_param[j]);
+            }
             let t = y.mul_coef(&self.rho_param[j]);
             if ry > S::ZERO {
                 t
