@@ -598,8 +598,15 @@ impl<S: Scalar> ModeConfig<S> {
 
     /// The sample as the active law sees it in the current mode: the
     /// reference replaced by desired + offset (Active) or the hold point.
+    /// `seeded` is `2ω ȯ + ω² o` when the caller already has it for the
+    /// current offset (the one [`seed`](Self::seed) returns).
     #[inline]
-    fn reference(&self, st: &ModeState<S>, x: &ControlInput<S>) -> (ControlInput<S>, S) {
+    fn reference(
+        &self,
+        st: &ModeState<S>,
+        x: &ControlInput<S>,
+        seeded: Option<S>,
+    ) -> (ControlInput<S>, S) {
         let mut xr = *x;
         match st.mode {
             JointMode::Hold => {
@@ -609,11 +616,11 @@ impl<S: Scalar> ModeConfig<S> {
                 (xr, S::ZERO)
             }
             _ => {
-                let acc = self
-                    .two_omega
-                    .apply(st.offset_rate)
-                    .add(self.omega_sq.apply(st.offset))
-                    .neg();
+                let acc = match seeded {
+                    Some(sum) => sum,
+                    None => self.offset_sum(st),
+                }
+                .neg();
                 xr.desired_position = x.desired_position.add(st.offset);
                 xr.desired_velocity = x.desired_velocity.add(st.offset_rate);
                 xr.desired_acceleration = x.desired_acceleration.add(acc);
@@ -683,7 +690,7 @@ impl<S: Scalar> ModeConfig<S> {
         let law = match st.mode {
             JointMode::Passive => self.passive.law(x, &st.active.friction),
             _ => {
-                let (xr, _) = self.reference(st, x);
+                let (xr, _) = self.reference(st, x, None);
                 self.active.law(&st.active, &xr).law
             }
         };
@@ -726,41 +733,57 @@ impl<S: Scalar> ModeConfig<S> {
     /// positions of opposite sign near the float range) is dropped: the
     /// Active reference is then the desired trajectory itself, so the
     /// state never holds an infinity or a NaN. Fixed point saturates
-    /// instead (folded at compile time).
+    /// instead (folded at compile time). Returns `2ω ȯ + ω² o` of the
+    /// offset kept (`+0` for a dropped one, as `2ω·0 + ω²·0` is with
+    /// `ω > 0`) on floats, `None` on fixed point.
     #[inline]
-    fn drop_overflowing_offset(&self, st: &mut ModeState<S>) {
+    fn drop_overflowing_offset(&self, st: &mut ModeState<S>) -> Option<S> {
         if S::RESOLUTION.to_f64() >= 1e-6 {
-            return;
+            return None;
         }
-        let acc = self
-            .two_omega
-            .apply(st.offset_rate)
-            .add(self.omega_sq.apply(st.offset));
+        let acc = self.offset_sum(st);
         // `v − v` is 0 exactly when `v` is finite; a finite `acc` proves
         // both terms, and so `o` and `ȯ`, finite.
         if acc.sub(acc) != S::ZERO {
             st.offset = S::ZERO;
             st.offset_rate = S::ZERO;
+            Some(S::ZERO)
+        } else {
+            Some(acc)
         }
+    }
+
+    /// `2ω ȯ + ω² o`: the reference acceleration of the offset, negated.
+    #[inline(always)]
+    fn offset_sum(&self, st: &ModeState<S>) -> S {
+        self.two_omega
+            .apply(st.offset_rate)
+            .add(self.omega_sq.apply(st.offset))
     }
 
     /// Enter mode `to`: reset the counters and seed the reference
     /// (Active: the rejoin offset; Hold: the hold point) and the integral
-    /// (to 0, re-seeded in `update` once the law is known).
-    fn seed(&self, st: &mut ModeState<S>, to: JointMode, x: &ControlInput<S>) {
+    /// (to 0, re-seeded in `update` once the law is known). Returns the
+    /// new offset's `2ω ȯ + ω² o` when it has it (entering Active on
+    /// floats), for [`reference`](Self::reference).
+    fn seed(&self, st: &mut ModeState<S>, to: JointMode, x: &ControlInput<S>) -> Option<S> {
         st.mode = to;
         st.in_mode = 0;
         st.run = 0;
-        match to {
-            JointMode::Passive => return,
+        let sum = match to {
+            JointMode::Passive => return None,
             JointMode::Active => {
                 st.offset = x.motor_position.sub(x.desired_position);
                 st.offset_rate = x.motor_velocity.sub(x.desired_velocity);
-                self.drop_overflowing_offset(st);
+                self.drop_overflowing_offset(st)
             }
-            JointMode::Hold => st.hold = x.motor_position,
-        }
+            JointMode::Hold => {
+                st.hold = x.motor_position;
+                None
+            }
+        };
         st.active.integral = S::ZERO;
+        sum
     }
 
     /// One sample: collision detection, mode decision (with seeding at a
@@ -842,6 +865,7 @@ impl<S: Scalar> ModeConfig<S> {
         }
         st.in_mode = st.in_mode.saturating_add(1);
         let mut switched = false;
+        let mut seeded = None;
         if target != st.mode {
             st.run = st.run.saturating_add(1);
             // Passive → Active waits for the release rule's hold.
@@ -851,7 +875,7 @@ impl<S: Scalar> ModeConfig<S> {
                 self.debounce
             };
             if immediate || (st.run >= needed && st.in_mode > self.dwell) {
-                self.seed(st, target, x);
+                seeded = self.seed(st, target, x);
                 switched = true;
             }
         } else {
@@ -868,7 +892,7 @@ impl<S: Scalar> ModeConfig<S> {
                 (law, overflow, x.motor_position)
             }
             mode => {
-                let (xr, acc) = self.reference(st, x);
+                let (xr, acc) = self.reference(st, x, seeded);
                 // `x` was checked above; `xr` only shifts its reference.
                 let mut t: ActiveTerms<S> = self.active.law_of_checked_input(&st.active, &xr);
                 // `valid` is false exactly when the law is NaN (a NaN `r`
@@ -891,7 +915,7 @@ impl<S: Scalar> ModeConfig<S> {
                     let rate = st.offset_rate.add(acc.mul_coef(&self.step_rate));
                     st.offset_rate = rate;
                     st.offset = st.offset.add(rate.mul_coef(&self.step_position));
-                    self.drop_overflowing_offset(st);
+                    let _ = self.drop_overflowing_offset(st);
                 }
                 (
                     if overflow { S::ZERO } else { t.law },
