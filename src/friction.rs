@@ -306,15 +306,15 @@ fn sat_in_layer<S: Scalar>(x: S, eps: S, scale: impl Fn(S) -> S) -> S {
 
 /// [`sat_in_layer`] for an `x` known not to be NaN: the same value for
 /// every other `x` without the NaN test (outside the layer `x` is
-/// positive or negative; on fixed point `MIN` takes the `−1` branch).
+/// positive or negative, and `±1` is `1` with the sign of `x`: on floats
+/// its sign bit, without a comparison; on fixed point `MIN` takes the `−1`
+/// branch).
 #[inline(always)]
 fn sat_in_layer_number<S: Scalar>(x: S, eps: S, scale: impl Fn(S) -> S) -> S {
     if x.abs() <= eps {
         scale(x)
-    } else if x > S::ZERO {
-        S::ONE
     } else {
-        S::ONE.neg()
+        S::ONE.copysign(x)
     }
 }
 
