@@ -644,7 +644,16 @@ impl<S: Scalar> ModeConfig<S> {
     fn limit_flag(&self, v: S) -> (S, bool) {
         let l = self.limit;
         if v.abs() > l {
-            (if v > S::ZERO { l } else { l.neg() }, true)
+            // `v` is a nonzero number here: on floats `±l` from its sign
+            // bit (no second comparison).
+            let c = if S::RESOLUTION.to_f64() < 1e-6 {
+                l.copysign(v)
+            } else if v > S::ZERO {
+                l
+            } else {
+                l.neg()
+            };
+            (c, true)
         } else {
             (v, false)
         }
