@@ -637,7 +637,7 @@ impl<S: Scalar> WristStepConfig<S> {
     /// 121 × 121 grid: motor angles, `(sin θ1, cos θ1)` and the projected
     /// pose within `2e-5` (`f32`) and `5e-3` (`I16F16`, dominated by bends
     /// of a few resolution steps) of [`WristConfig::inverse`].
-    #[inline]
+    #[inline(always)]
     fn ik(&self, r: PitchYaw<S>) -> Ik<S> {
         let (mut sd, mut cd) = r.delta.sin_cos();
         let (mut sg, mut cg) = r.gamma.sin_cos();
