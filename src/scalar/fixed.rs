@@ -405,7 +405,7 @@ pub(crate) fn scaled_magnitude(neg: bool, hi: u32, lo: u32, sh: i32) -> i32 {
 ///    arithmetic, and `Q + 1` when `2R ≥ B` (`R ≥ B − R`) is the rounding,
 ///    applied to the magnitude, so ties go away from zero;
 /// 4. the sign, then saturation (`Q + 1 ≤ 2³¹`: only `+2³¹` saturates).
-#[inline]
+#[inline(always)]
 pub(crate) fn div_bits(a: i32, b: i32) -> i32 {
     let neg = (a < 0) != (b < 0);
     let (ua, ub) = (a.unsigned_abs(), b.unsigned_abs());
@@ -639,7 +639,7 @@ impl Scalar for I16F16 {
     fn mul_unit_range(self, u: Self) -> Self {
         I16F16::from_bits(mul_bits_unit(self.to_bits(), u.to_bits()))
     }
-    #[inline]
+    #[inline(always)]
     fn div(self, rhs: Self) -> Self {
         I16F16::from_bits(div_bits(self.to_bits(), rhs.to_bits()))
     }
