@@ -554,7 +554,7 @@ fn reduce_half_pi(a: u32) -> (u32, u32, bool) {
 
 /// `(sin, cos)` of the reduced argument as signed `Q2.30`, selecting only the
 /// polynomials requested.
-#[inline]
+#[inline(always)]
 fn sin_cos_q30(a: u32, want_sin: bool, want_cos: bool) -> (i32, i32) {
     let (quadrant, rho, r_neg) = reduce_half_pi(a);
     let z = mulhi(rho, rho);
