@@ -662,19 +662,26 @@ impl<S: Scalar> WristStepConfig<S> {
             let ay_c = ay.mul_unit_range(self.cos_2phi);
             let n2 = ax.mul_unit_range(ax).add(ay.mul_unit_range(ay));
             let w2 = ax.mul_unit_range(ax).add(ay_c.mul_unit_range(ay_c));
+            // θ1 = arg A + π/2, θ3 = arg B + π/2 with B ∝ (U_x, cos 2φ·U_y)
+            // (B = (sd, cd·sg) scaled by cos γ_b/sin 2φ),
+            // (cos θ1, sin θ1) = (−u_y, u_x). One branch on `|A|·w > 0`
+            // for both the angles and the reciprocal (at A = 0: θ1 = θ3 =
+            // atan2(1, 0), U = (1, 0)).
             let (n, w) = (n2.sqrt_small(), w2.sqrt_small());
             let nw = n.mul_unit_range(w);
-            let (ux, uy, inv_cg) = if nw > S::ZERO {
+            let (ux, uy, inv_cg, theta) = if nw > S::ZERO {
+                let theta = [ax.atan2(ay.neg()), ax.atan2(ay_c)];
                 let r = S::ONE.div(nw);
                 cg = r.mul_unit_range(w2);
                 (
                     r.mul_unit_range(ax.mul_unit_range(w)),
                     r.mul_unit_range(ay.mul_unit_range(w)),
                     r.mul_unit_range(n2),
+                    theta,
                 )
             } else {
                 cg = S::ONE;
-                (S::ONE, S::ZERO, S::ONE)
+                (S::ONE, S::ZERO, S::ONE, [S::ONE.atan2(S::ZERO); 2])
             };
             let (bx, by) = (
                 ux.mul_unit_range(self.sin_2phi),
@@ -687,15 +694,7 @@ impl<S: Scalar> WristStepConfig<S> {
                 delta: bx.atan2(self.cos_2phi),
                 gamma: sg.atan2(cg),
             };
-            // θ1 = arg A + π/2, θ3 = arg B + π/2 with B ∝ (U_x, cos 2φ·U_y)
-            // (B = (sd, cd·sg) scaled by cos γ_b/sin 2φ),
-            // (cos θ1, sin θ1) = (−u_y, u_x).
-            let (y, x1, x3) = if nw > S::ZERO {
-                (ax, ay.neg(), ay_c)
-            } else {
-                (S::ONE, S::ZERO, S::ZERO)
-            };
-            Some(([y.atan2(x1), y.atan2(x3)], (ux, uy.neg())))
+            Some((theta, (ux, uy.neg())))
         } else {
             // sin β = |A|.
             let n = hypot(ax, ay);
