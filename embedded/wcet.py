@@ -296,6 +296,35 @@ class Program:
             return None
         return out
 
+    def byte_table(self, ins, prev, lo, hi):
+        """Targets of an Armv6-M byte jump table as LLVM emits it for a
+        small switch, `add rB, pc; ldrb rX, [rB, #k]; lsls rX, rX, #1;
+        add pc, rX` (rB holding the index before the first instruction):
+        the table starts at the first `add`'s address + 4 + k and is the
+        data region up to the next `$t` mapping symbol; entry `e` jumps to
+        the last `add`'s address + 4 + 2e, which must be code of the
+        function. `None` for any other `add pc`."""
+        if _base(ins.mn) != "add" or [q.strip() for q in ins.op.split(",")][0] != "pc" or len(prev) < 3:
+            return None
+        reg = ins.op.split(",")[1].strip()
+        addpc, ldrb, lsl = prev[-3:]
+        lp = [q.strip().strip("[]") for q in lsl.op.split(",")]
+        bp = [q.strip().strip("[]") for q in ldrb.op.split(",")]
+        ap = [q.strip() for q in addpc.op.split(",")]
+        if not (_base(lsl.mn) == "lsls" and lp == [reg, reg, "#1"]
+                and _base(ldrb.mn) == "ldrb" and len(bp) == 3 and bp[0] == reg
+                and _base(addpc.mn) == "add" and ap == [bp[1], "pc"]):
+            return None
+        table = addpc.addr + 4 + int(bp[2].lstrip("#"), 0)
+        end = min([m for m, is_data in self.data_marks if m > table and not is_data] + [hi or table + 256])
+        out = []
+        for a in range(table, end):
+            t = ins.addr + 4 + 2 * self.read(a, 1)[0]
+            if hi is None or not (lo <= t < hi):
+                raise WcetError(f"byte jump table at {table:#x} (from {ins.addr:#x}): target {t:#x} is not code of the function")
+            out.append(t)
+        return out or None
+
     def resolve_icall(self, ins, prev):
         """The target of `blx rN` when rN was loaded in the same block from
         a literal pool or built by MOVW/MOVT."""
@@ -401,6 +430,8 @@ class Program:
                 exits[a] = ("noreturn",)
             elif k == "ijump" and self.word_table(ins, self._linear_before(insns, a), lo, hi) is not None:
                 out = [(t, True) for t in self.word_table(ins, self._linear_before(insns, a), lo, hi)]
+            elif k == "ijump" and self.byte_table(ins, self._linear_before(insns, a), lo, hi) is not None:
+                out = [(t, True) for t in self.byte_table(ins, self._linear_before(insns, a), lo, hi)]
             elif k == "ijump":
                 raise WcetError(f"unresolved indirect jump `{ins.mn} {ins.op}` at {a:#x} in {self.name_of(a)}")
             edges[a] = out
