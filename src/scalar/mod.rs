@@ -788,6 +788,27 @@ pub(crate) fn slope_within<T>(value: f64, make: impl Fn(f64) -> T, fits: impl Fn
     make(value * 0.5)
 }
 
+/// `⌊(V + 2^(sh−1)) / 2^sh⌋` of the signed 64-bit `V = hi·2³² + lo` for
+/// `sh ∈ [1, 62]`, in 32-bit words, given `|V| + 2^(sh−1) < 2⁶³` (so the
+/// rounding constant carries into `hi` without overflow): the rounding
+/// shift shared by [`Coef::scale_wide`] and its Armv6-M form.
+#[inline(always)]
+fn round_shift_words(mut hi: i32, mut lo: u32, sh: u32) -> i64 {
+    if sh <= 32 {
+        let (l, c) = lo.overflowing_add(1 << (sh - 1));
+        lo = l;
+        hi += c as i32;
+    } else {
+        hi += 1 << (sh - 33);
+    }
+    let (h, l) = if sh >= 32 {
+        (hi >> 31, (hi >> (sh - 32)) as u32)
+    } else {
+        (hi >> sh, ((hi as u32) << (32 - sh)) | (lo >> sh))
+    };
+    ((h as u32 as u64) << 32 | l as u64) as i64
+}
+
 impl Coef {
     /// Prepare a coefficient. A zero or non-finite value yields the zero
     /// coefficient. Magnitudes are limited to `[2^-60, 2^40]`; smaller
@@ -1056,20 +1077,7 @@ impl Coef {
             lo = lo.wrapping_neg();
             hi = (!hi).wrapping_add((lo == 0) as i32);
         }
-        let sh = sh as u32;
-        if sh <= 32 {
-            let (l, c) = lo.overflowing_add(1 << (sh - 1));
-            lo = l;
-            hi += c as i32;
-        } else {
-            hi += 1 << (sh - 33);
-        }
-        let (h, l) = if sh >= 32 {
-            (hi >> 31, (hi >> (sh - 32)) as u32)
-        } else {
-            (hi >> sh, ((hi as u32) << (32 - sh)) | (lo >> sh))
-        };
-        ((h as u32 as u64) << 32 | l as u64) as i64
+        round_shift_words(hi, lo, sh as u32)
     }
 
     /// [`scale_wide`](Self::scale_wide) on Armv6-M (built on every target
@@ -1116,21 +1124,7 @@ impl Coef {
             return ((h as u64) << 32 | l as u64) as i64;
         }
         // ⌊(V + 2^(sh−1)) / 2^sh⌋ (|V| + 2^(sh−1) < 2⁶³: no overflow).
-        let sh = sh as u32;
-        let (mut hi, mut lo) = (hi, lo);
-        if sh <= 32 {
-            let (l, c) = lo.overflowing_add(1 << (sh - 1));
-            lo = l;
-            hi += c as i32;
-        } else {
-            hi += 1 << (sh - 33);
-        }
-        let (h, l) = if sh >= 32 {
-            (hi >> 31, (hi >> (sh - 32)) as u32)
-        } else {
-            (hi >> sh, ((hi as u32) << (32 - sh)) | (lo >> sh))
-        };
-        ((h as u32 as u64) << 32 | l as u64) as i64
+        round_shift_words(hi, lo, sh as u32)
     }
 
     /// The straightforward 64-bit form of [`scale_int`](Self::scale_int),
