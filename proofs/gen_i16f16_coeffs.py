@@ -66,6 +66,22 @@ for r in rows:
     print(f"    [{r[0] - (1 << 32) if r[0] >= 1 << 31 else r[0]}, {r[1]}, {r[2]}, {r[3]}],")
 print("];")
 
+# --- atan_small on [1, 2): atan(1 + (k + H)/32) - pi/4, the same cubic form ---
+print("// ATAN_TABLE_HI[k]: atan(1 + k/32 + H/32) - pi/4 ~ b0 + H(b1 + H(b2 + H b3)), Q0.32")
+rows = []
+worst = 0
+for k in range(32):
+    f = lambda h, k=k: atan(1 + (k + h) / 32) - pi / 4
+    poly, err = chebyfit(f, [0, 1], 4, error=True)
+    worst = max(worst, err)
+    b3, b2, b1, b0 = poly
+    rows.append((q(b0, 32), q(b1, 32), q(b2, 32), q(b3, 32)))
+print(f"// worst piece fit error {float(worst):.3e}")
+print("const ATAN_TABLE_HI: [[i32; 4]; 32] = [")
+for r in rows:
+    print(f"    [{r[0]}, {r[1]}, {r[2]}, {r[3]}],")
+print("];")
+
 # --- exp: 2^(j/64) in Q1.31 and 2^(R/64) - 1 = R (c1 + R (c2 + R c3)) -----
 print("const EXP2_TABLE: [u32; 64] = [")
 print("    " + ", ".join(str(q(mpf(2) ** (mpf(j) / 64), 31)) for j in range(64)) + ",")

@@ -699,6 +699,10 @@ impl Scalar for I16F16 {
     fn sqrt_small(self) -> Self {
         kernels::i16f16::sqrt_small(self)
     }
+    #[inline]
+    fn atan_small(self) -> Self {
+        kernels::i16f16::atan_small(self)
+    }
 }
 
 #[cfg(test)]

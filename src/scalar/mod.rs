@@ -287,6 +287,16 @@ pub trait Scalar:
     /// Four-quadrant arctangent of `self / x` (`self` is `y`), in `[-π, π]`;
     /// `atan2(0, 0) = 0`.
     fn atan2(self, x: Self) -> Self;
+    /// [`atan`](Self::atan) of a value below 2 in magnitude (the tangent
+    /// of an angle within ±63°, e.g. formed from a bounded ratio without
+    /// a division). `I16F16` evaluates it without the division `atan`
+    /// needs above 1 ([`kernels::i16f16::atan_small`]: bit for bit `atan`
+    /// below 1, within the same 1 LSB bound up to 2, inputs of 2 and above
+    /// clamped to `2 − 2⁻¹⁶`); floats take `atan`.
+    #[inline]
+    fn atan_small(self) -> Self {
+        self.atan()
+    }
     /// Arccosine in `[0, π]`; inputs outside `[-1, 1]` are clamped to it.
     fn acos(self) -> Self;
     /// Square root; negative inputs return 0.

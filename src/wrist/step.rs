@@ -249,6 +249,8 @@ pub struct WristStepConfig<S> {
     cos_phi: S,
     sin_2phi: S,
     cos_2phi: S,
+    /// `tan 2φ` (below `tan 60°`).
+    tan_2phi: S,
     two: S,
     /// `1/(2 sin φ)`.
     inv_2_sin_phi: Coef,
@@ -531,6 +533,7 @@ impl<S: Scalar> WristStepConfig<S> {
             cos_phi: S::from_f64(libm::cos(phi)),
             sin_2phi: S::from_f64(libm::sin(2.0 * phi)),
             cos_2phi: S::from_f64(libm::cos(2.0 * phi)),
+            tan_2phi: S::from_f64(libm::tan(2.0 * phi)),
             two: S::from_f64(2.0),
             inv_2_sin_phi: Coef::new(0.5 / sin_phi),
             cot_phi_half: Coef::new(0.5 * libm::cos(phi) / sin_phi),
@@ -669,7 +672,9 @@ impl<S: Scalar> WristStepConfig<S> {
             // atan2(1, 0), U = (1, 0)).
             let (n, w) = (n2.sqrt_small(), w2.sqrt_small());
             let nw = n.mul_unit_range(w);
-            let (ux, uy, inv_cg, theta) = if nw > S::ZERO {
+            // The boundary pose's yaw from its tangent: tan γ_b = s_γ/c_γ
+            // = −sin 2φ·A_y/w, and 1/w = r·|A|.
+            let (ux, uy, inv_cg, tan_g, theta) = if nw > S::ZERO {
                 let theta = [ax.atan2(ay.neg()), ax.atan2(ay_c)];
                 let r = S::ONE.div(nw);
                 cg = r.mul_unit_range(w2);
@@ -677,11 +682,15 @@ impl<S: Scalar> WristStepConfig<S> {
                     r.mul_unit_range(ax.mul_unit_range(w)),
                     r.mul_unit_range(ay.mul_unit_range(w)),
                     r.mul_unit_range(n2),
+                    r.mul_unit_range(n)
+                        .mul_unit_range(ay)
+                        .mul_unit_range(self.sin_2phi)
+                        .neg(),
                     theta,
                 )
             } else {
                 cg = S::ONE;
-                (S::ONE, S::ZERO, S::ONE, [S::ONE.atan2(S::ZERO); 2])
+                (S::ONE, S::ZERO, S::ONE, S::ZERO, [S::ONE.atan2(S::ZERO); 2])
             };
             let (bx, by) = (
                 ux.mul_unit_range(self.sin_2phi),
@@ -691,8 +700,11 @@ impl<S: Scalar> WristStepConfig<S> {
             sd = inv_cg.mul_unit_range(bx);
             cd = inv_cg.mul_unit_range(self.cos_2phi);
             pose = PitchYaw {
-                delta: bx.atan2(self.cos_2phi),
-                gamma: sg.atan2(cg),
+                // tan δ_b = b_x / cos 2φ = u_x tan 2φ. Both tangents are at
+                // most tan 2φ < 2 in magnitude (2φ ≤ 60°): `atan_small`,
+                // no quotient.
+                delta: self.tan_2phi.mul_unit_range(ux).atan_small(),
+                gamma: tan_g.atan_small(),
             };
             Some((theta, (ux, uy.neg())))
         } else {
