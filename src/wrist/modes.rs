@@ -46,7 +46,7 @@
 
 use super::admittance::{AdmittanceConfig, AdmittanceParams, AdmittanceState};
 use crate::error::{increasing, positive, ParamError};
-use crate::scalar::{Coef, Scalar};
+use crate::scalar::{Coef, CoefRow, Scalar};
 
 /// The wrist's operating mode.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -178,10 +178,9 @@ pub struct WristModeConfig<S> {
     rest: S,
     debounce: u16,
     dwell: u16,
-    /// `1 − 2ωT` (speed → speed).
-    rate_keep: Coef,
-    /// `ω² T`, angle → speed.
-    rate_pull: Coef,
+    /// `[1 − 2ωT, −ω² T]`: the next offset rate from `(ȯ, o)` (speed →
+    /// speed, angle → speed), one exactly summed row on `I16F16`.
+    rate_row: CoefRow<2>,
     /// `T`, speed → angle.
     step: Coef,
     /// `1/T`, angle → speed.
@@ -259,8 +258,7 @@ impl<S: Scalar> WristModeConfig<S> {
             rest: S::from_f64(p.rest_speed * u.speed),
             debounce: p.debounce,
             dwell: p.dwell,
-            rate_keep: Coef::new(1.0 - 2.0 * w * t),
-            rate_pull: Coef::new(w * w * t * u.speed / u.angle),
+            rate_row: CoefRow::new([1.0 - 2.0 * w * t, -(w * w * t * u.speed / u.angle)]),
             step: Coef::new(t * u.angle / u.speed),
             inv_step: Coef::new(u.speed / (t * u.angle)),
             limits: [S::from_f64(lim[0] * u.angle), S::from_f64(lim[1] * u.angle)],
@@ -360,9 +358,9 @@ impl<S: Scalar> WristModeConfig<S> {
         let mut v = [S::ZERO; 2];
         for i in 0..2 {
             // Semi-implicit Euler of ö = −2ω ȯ − ω² o.
-            let od = st.offset_rate[i]
-                .mul_coef(&self.rate_keep)
-                .sub(st.offset[i].mul_coef(&self.rate_pull));
+            // ȯ(1 − 2ωT) − o ω²T: on floats the two products summed in
+            // order, on fixed point their exact sum rounded once.
+            let od = S::dot_coef(&[st.offset_rate[i], st.offset[i]], &self.rate_row);
             let o = st.offset[i].add(od.mul_coef(&self.step));
             // On floats an offset whose next step is not a finite
             // number (desired values near the float range) is
