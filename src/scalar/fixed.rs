@@ -700,6 +700,10 @@ impl Scalar for I16F16 {
         kernels::i16f16::sqrt_small(self)
     }
     #[inline]
+    fn hypot_unit(self, b: Self) -> Self {
+        kernels::i16f16::hypot_unit(self, b)
+    }
+    #[inline]
     fn atan_small(self) -> Self {
         kernels::i16f16::atan_small(self)
     }

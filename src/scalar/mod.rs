@@ -287,6 +287,23 @@ pub trait Scalar:
     /// Four-quadrant arctangent of `self / x` (`self` is `y`), in `[-π, π]`;
     /// `atan2(0, 0) = 0`.
     fn atan2(self, x: Self) -> Self;
+    /// `√(self² + b²)` for components of magnitude at most 1 (the sine
+    /// of a bend from its two components). `I16F16` scales both by a
+    /// power of two instead of dividing by the larger
+    /// ([`kernels::i16f16::hypot_unit`]: within 2 LSB, inputs clamped to
+    /// `[−1, 1]`); the default is `m·√(1 + (n/m)²)` with `m ≥ n` the
+    /// magnitudes, free of overflow and of the loss of squaring tiny
+    /// values.
+    #[inline]
+    fn hypot_unit(self, b: Self) -> Self {
+        let (a, b) = (self.abs(), b.abs());
+        let (m, n) = if a >= b { (a, b) } else { (b, a) };
+        if m <= Self::ZERO {
+            return Self::ZERO;
+        }
+        let r = n.div_unit_range(m);
+        m.mul(Self::ONE.add(r.mul_unit_range(r)).sqrt_small())
+    }
     /// [`atan`](Self::atan) of a value below 2 in magnitude (the tangent
     /// of an angle within ±63°, e.g. formed from a bounded ratio without
     /// a division). `I16F16` evaluates it without the division `atan`

@@ -127,7 +127,7 @@ use super::active::{WristActiveConfig, WristActiveParams, WristActiveState, Wris
 use super::admittance::{AdmittanceParams, AdmittanceSettings};
 use super::ft_sensor::{DecouplingMatrix, FtSensorConfig, FtSensorParams};
 use super::jacobian::DET_MIN;
-use super::kinematics::{denan, hypot, wrap, MotorAngles, PitchYaw, WristConfig, WristParams};
+use super::kinematics::{denan, wrap, MotorAngles, PitchYaw, WristConfig, WristParams};
 use super::modes::{
     WristMode, WristModeConfig, WristModeInput, WristModeParams, WristModeSettings, WristModeState,
 };
@@ -708,8 +708,8 @@ impl<S: Scalar> WristStepConfig<S> {
             };
             Some((theta, (ux, uy.neg())))
         } else {
-            // sin β = |A|.
-            let n = hypot(ax, ay);
+            // sin β = |A| (components within [−1, 1]).
+            let n = ax.hypot_unit(ay);
             if n < self.min_bend {
                 None
             } else {

@@ -1014,6 +1014,37 @@ pub fn sqrt_small(x: I16F16) -> I16F16 {
     I16F16::from_bits((root + (rem > root) as u32) as i32)
 }
 
+/// `√(a² + b²)` of two components of magnitude at most 1 (clamped to
+/// it), without a division: both are scaled by the power of two `2ᵏ`
+/// that brings the larger into `[½, 1]` (exact shifts; `k ≤ 15`), the
+/// sum of the two unit-range squares (below 2) goes through
+/// [`sqrt_small`], and the root is shifted back by `k` with rounding.
+///
+/// * Bound (tests: every pair on a 1,025-point grid of each sign and
+///   magnitude class, edge words, random pairs): **≤ 2 LSB** against the
+///   exact `hypot` of the clamped inputs. The squares of the scaled
+///   components (each `≥ ¼` for the larger) are rounded to `½` LSB, the
+///   root adds `½` LSB and the sum's error at most 1 LSB, all divided by
+///   `2ᵏ` before the final rounding; so a tiny vector keeps its relative
+///   precision (as with `m·√(1 + (n/m)²)`, which needs a quotient).
+/// * Cost: one leading-zero count (nibble table), two short products,
+///   the 17-step root; no division.
+pub fn hypot_unit(a: I16F16, b: I16F16) -> I16F16 {
+    let a = a.to_bits().unsigned_abs().min(1 << 16);
+    let b = b.to_bits().unsigned_abs().min(1 << 16);
+    let m = a.max(b);
+    if m == 0 {
+        return I16F16::ZERO;
+    }
+    // m << k ∈ [2¹⁵, 2¹⁶] (k = 0 for m ≥ 2¹⁵).
+    let k = leading_zeros_32(m).saturating_sub(16);
+    let (a, b) = ((a << k) as i32, (b << k) as i32);
+    let s = crate::scalar::fixed::mul_bits_unit(a, a) + crate::scalar::fixed::mul_bits_unit(b, b);
+    let r = sqrt_small(I16F16::from_bits(s)).to_bits() as u32;
+    let n = if k == 0 { r } else { (r + (1 << (k - 1))) >> k };
+    I16F16::from_bits(n as i32)
+}
+
 /// [`atan`] of a value below 2 in magnitude (the arctangent of a bounded
 /// ratio, e.g. the tangent of a wrist angle within 60°), without the
 /// division `atan` needs above 1.
@@ -1050,6 +1081,58 @@ pub fn atan_small(x: I16F16) -> I16F16 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `hypot_unit` against the exact `hypot` (f64) of the clamped inputs:
+    /// every pair of a grid covering each magnitude class (powers of two
+    /// and their neighbours, from 1 LSB to 1) with both signs, plus a
+    /// random sweep; the bound is 2 LSB, and tiny vectors stay precise.
+    #[test]
+    fn hypot_unit_is_within_two_lsb() {
+        let mut mags: Vec<i32> = vec![0, 1, 2, 3, 0xFFFF, 1 << 16];
+        for i in 1..16 {
+            let p = 1i32 << i;
+            mags.extend([p - 1, p, p + 1, p + (p >> 1)]);
+        }
+        for i in 0..=1024 {
+            mags.push(i * 64);
+        }
+        let check = |a: i32, b: i32| {
+            let got = hypot_unit(I16F16::from_bits(a), I16F16::from_bits(b)).to_bits();
+            let (ca, cb) = (
+                (a.unsigned_abs().min(1 << 16)) as f64,
+                (b.unsigned_abs().min(1 << 16)) as f64,
+            );
+            let exact = ca.hypot(cb);
+            assert!(
+                (got as f64 - exact).abs() <= 2.0,
+                "hypot_unit({a}, {b}) = {got}, exact {exact}"
+            );
+        };
+        for &x in &mags {
+            for &y in &mags {
+                check(x, y);
+                check(-x, y);
+                check(x, -y);
+            }
+        }
+        // Clamped beyond 1, and the extreme words.
+        for (x, y) in [
+            (i32::MAX, 0),
+            (i32::MIN, 5),
+            (1 << 20, 1 << 17),
+            (-(1 << 16), -(1 << 16)),
+        ] {
+            check(x, y);
+        }
+        let mut z = 0x2545_F491_4F6C_DD1Du64;
+        for _ in 0..200_000 {
+            z ^= z << 13;
+            z ^= z >> 7;
+            z ^= z << 17;
+            let (x, y) = ((z as i32) >> 14, ((z >> 32) as i32) >> 14);
+            check(x, y);
+        }
+    }
 
     /// `atan_small` at every input below 2 in magnitude: within 1 LSB of
     /// the exact arctangent (f64), equal to `atan` below 1, odd and
