@@ -49,17 +49,23 @@ for name, g in (("SIN", g_sin), ("COS", g_cos)):
     emit(f"{name}_K2", "u32", q(-k2, 32))
     emit(f"{name}_K3", "u32", q(k3, 32))
 
+
+def cubic_table(g):
+    """32 cubic pieces of g(k, H), H in [0, 1): rows (b0, b1, b2, b3) in
+    Q0.32 with g ~ b0 + H(b1 + H(b2 + H b3)), and the worst fit error."""
+    rows, worst = [], 0
+    for k in range(32):
+        poly, err = chebyfit(lambda h, k=k: g(k, h), [0, 1], 4, error=True)
+        worst = max(worst, err)
+        b3, b2, b1, b0 = poly
+        rows.append((q(b0, 32), q(b1, 32), q(b2, 32), q(b3, 32)))
+    print(f"// worst piece fit error {float(worst):.3e}")
+    return rows
+
+
 # --- atan: 32 cubic pieces on [k/32, (k+1)/32), H = 32 (t - k/32) in [0,1) --
 print("// ATAN_TABLE[k] = [b0, b1, b2, b3]: atan(k/32 + H/32) ~ b0 + H(b1 + H(b2 + H b3)), Q0.32")
-rows = []
-worst = 0
-for k in range(32):
-    f = lambda h, k=k: atan((k + h) / 32)
-    poly, err = chebyfit(f, [0, 1], 4, error=True)
-    worst = max(worst, err)
-    b3, b2, b1, b0 = poly
-    rows.append((q(b0, 32), q(b1, 32), q(b2, 32), q(b3, 32)))
-print(f"// worst piece fit error {float(worst):.3e}")
+rows = cubic_table(lambda k, h: atan((k + h) / 32))
 print("const ATAN_TABLE: [[i32; 4]; 32] = [")
 for r in rows:
     # b0 < pi/4 * 2^32 does not fit i32: store b0 as u32 bit pattern
@@ -68,15 +74,7 @@ print("];")
 
 # --- atan_small on [1, 2): atan(1 + (k + H)/32) - pi/4, the same cubic form ---
 print("// ATAN_TABLE_HI[k]: atan(1 + k/32 + H/32) - pi/4 ~ b0 + H(b1 + H(b2 + H b3)), Q0.32")
-rows = []
-worst = 0
-for k in range(32):
-    f = lambda h, k=k: atan(1 + (k + h) / 32) - pi / 4
-    poly, err = chebyfit(f, [0, 1], 4, error=True)
-    worst = max(worst, err)
-    b3, b2, b1, b0 = poly
-    rows.append((q(b0, 32), q(b1, 32), q(b2, 32), q(b3, 32)))
-print(f"// worst piece fit error {float(worst):.3e}")
+rows = cubic_table(lambda k, h: atan(1 + (k + h) / 32) - pi / 4)
 print("const ATAN_TABLE_HI: [[i32; 4]; 32] = [")
 for r in rows:
     print(f"    [{r[0]}, {r[1]}, {r[2]}, {r[3]}],")

@@ -296,13 +296,7 @@ pub trait Scalar:
     /// values.
     #[inline]
     fn hypot_unit(self, b: Self) -> Self {
-        let (a, b) = (self.abs(), b.abs());
-        let (m, n) = if a >= b { (a, b) } else { (b, a) };
-        if m <= Self::ZERO {
-            return Self::ZERO;
-        }
-        let r = n.div_unit_range(m);
-        m.mul(Self::ONE.add(r.mul_unit_range(r)).sqrt_small())
+        hypot(self, b)
     }
     /// [`atan`](Self::atan) of a value below 2 in magnitude (the tangent
     /// of an angle within ±63°, e.g. formed from a bounded ratio without
@@ -733,6 +727,22 @@ impl SignedCoef {
             rs: if high_only { shift - 32 } else { shift - 1 } as u32,
         })
     }
+}
+
+/// `√(a² + b²)` without squaring small values (scaled by the larger
+/// magnitude, `m·√(1 + (n/m)²)`), so fixed point keeps its resolution for
+/// tiny vectors; 0 for two zeros.
+#[inline]
+pub(crate) fn hypot<S: Scalar>(a: S, b: S) -> S {
+    let (a, b) = (a.abs(), b.abs());
+    let (m, n) = if a >= b { (a, b) } else { (b, a) };
+    if m <= S::ZERO {
+        return S::ZERO;
+    }
+    let r = n.div_unit_range(m);
+    // r ≤ 1: the short product (bit for bit `mul`) and the root of a value
+    // below 4 (bit for bit `sqrt`).
+    m.mul(S::ONE.add(r.mul_unit_range(r)).sqrt_small())
 }
 
 /// A row of constants for [`Scalar::dot_coef`]: each as a [`Coef`] (the

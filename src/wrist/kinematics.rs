@@ -281,20 +281,7 @@ pub(crate) fn sq<S: Scalar>(x: S) -> S {
     x.mul(x)
 }
 
-/// `√(a² + b²)` without squaring small values (scaled by the larger
-/// magnitude), so fixed point keeps its resolution for tiny vectors.
-#[inline]
-pub(crate) fn hypot<S: Scalar>(a: S, b: S) -> S {
-    let (a, b) = (a.abs(), b.abs());
-    let (m, n) = if a >= b { (a, b) } else { (b, a) };
-    if m <= S::ZERO {
-        return S::ZERO;
-    }
-    let r = n.div_unit_range(m);
-    // r ≤ 1: the short product (bit for bit `mul`) and the root of a value
-    // below 4 (bit for bit `sqrt`).
-    m.mul(S::ONE.add(r.mul_unit_range(r)).sqrt_small())
-}
+pub(crate) use crate::scalar::hypot;
 
 impl<S: Scalar> WristConfig<S> {
     /// Quantize validated parameters.
