@@ -101,6 +101,31 @@ pub fn atan_within_bound(x: I16F16) -> Verdict {
     atan_check(x, k::atan(x))
 }
 
+/// `atan_small`: `≤ 1 LSB` against the exact arctangent of the input
+/// clamped to `|x| ≤ 2 − 2⁻¹⁶` (its documented domain), odd. (The unit
+/// test `atan_small_is_within_one_lsb` checks every input below 2.)
+pub fn atan_small_within_bound(x: I16F16) -> Verdict {
+    let top = 2.0 - LSB;
+    let got = k::atan_small(x);
+    let err = lsb_error(
+        got.to_f64(),
+        reference::atan(x.to_f64().clamp(-top, top)),
+        LSB,
+    );
+    Verdict::bounded(err, 1.0).and(odd_at(k::atan_small, x, got))
+}
+
+/// `hypot_unit`: `≤ 2 LSB` against the exact `√(a² + b²)` of the inputs
+/// clamped to `[−1, 1]` (its documented domain).
+pub fn hypot_unit_within_bound(a: I16F16, b: I16F16) -> Verdict {
+    let (ca, cb) = (a.to_f64().clamp(-1.0, 1.0), b.to_f64().clamp(-1.0, 1.0));
+    let got = k::hypot_unit(a, b);
+    Verdict::bounded(
+        lsb_error(got.to_f64(), reference::sqrt(ca * ca + cb * cb), LSB),
+        2.0,
+    )
+}
+
 /// The `tan` reference: `tan x` on `|x| < π/2`, `±MAX` outside, saturated
 /// at `±MAX` (the kernel's documented value beyond the range).
 pub fn tan_reference(x: I16F16) -> f64 {
@@ -1159,6 +1184,20 @@ mod tests {
         fn atan2_full_range(y in any::<i32>(), x in any::<i32>()) {
             let v = atan2_within_bound(I16F16::from_bits(y), I16F16::from_bits(x));
             prop_assert!(v.holds, "err {}", v.error);
+        }
+
+        /// `atan_small` and `hypot_unit` on every bit pattern (clamped
+        /// beyond their domains).
+        #[test]
+        fn atan_small_and_hypot_unit_full_range(a in any::<i32>(), b in any::<i32>()) {
+            let (x, y) = (I16F16::from_bits(a), I16F16::from_bits(b));
+            let v = atan_small_within_bound(x);
+            prop_assert!(v.holds, "atan_small err {}", v.error);
+            let v = hypot_unit_within_bound(x, y);
+            prop_assert!(v.holds, "hypot_unit err {}", v.error);
+            // Unit-range pairs, where it is used.
+            let v = hypot_unit_within_bound(I16F16::from_bits(a >> 15), I16F16::from_bits(b >> 15));
+            prop_assert!(v.holds, "hypot_unit err {}", v.error);
         }
 
         /// Joint angles within ±4 turns.
