@@ -632,8 +632,10 @@ impl<S: Scalar> WristStepConfig<S> {
     /// [`WristConfig::inverse`] does).
     ///
     /// Evaluated with as few roots and quotients as the arithmetic allows
-    /// (one each inside the cone, where `P` is scaled by `cos(β/2)`; two
-    /// roots and one reciprocal beyond it, see the comments): the same map
+    /// (inside the cone `|A|` by [`Scalar::hypot_unit`], then one root and
+    /// one quotient, `P` scaled by `cos(β/2)`; beyond it two roots and one
+    /// reciprocal, and the projected pose's angles from their tangents by
+    /// [`Scalar::atan_small`]; see the comments): the same map
     /// in exact arithmetic, and on `I16F16` and `f32` the same map up to
     /// rounding. Bound, checked by
     /// `tests::vector_inverse_kinematics_matches_the_library_inverse` on a
