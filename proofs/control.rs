@@ -7,7 +7,7 @@
 //! | `sat_reciprocal` — the division-free `sat(x, ε)` of the hot path is in `[−1, 1]`, within 1 LSB/ulp of eq. (4.18), odd | Kani; exhaustive (all 2³² `x`, ε = ε_r) | Kani; random | random |
 //! | `friction_sign_and_bound` — `f̂^c(q̇)` never opposes `q̇` and `|f̂^c| ≤ b̂|q̇| + f̂_c + f̂_s` (+ rounding) | Kani (every speed, in four parts); exhaustive (all 2²⁴ speeds in ±128 rad/s) | random | random |
 //! | `law_monotone_in_position` — eq. (4.19) is non-increasing in the measured motor position (every term is: `−λ²I_m e`, `−K_r sat(r)`, `−ρ_j Y_j sat(r Y_j)`) | exhaustive (2²⁴ consecutive positions, chained) | random | random |
-//! | `step_bounded` — output within the limit, never NaN; integral within its limit; estimates within the projection box | Kani (`exp`, product by contracts); random | Kani (the law by its contract: any terms); random | random |
+//! | `step_bounded` — output within the limit, never NaN; integral within its limit; estimates within the projection box | Kani (`exp_neg_abs`, product by contracts); random | Kani (the law by its contract: any terms); random | random |
 //! | `switch_bumpless` — at a mode switch, `|τ_after − τ_before| ≤` [`ModeConfig::switch_jump_bound`](crate::control::ModeConfig::switch_jump_bound) | random (proptest in `control::mode`), fuzz | same | same |
 
 use super::engine::Verdict;
@@ -389,8 +389,8 @@ mod kani_entries {
 
     /// [`friction_sign_and_bound_i16f16`] at the speeds whose magnitude
     /// bits `m` satisfy `part(m, e)` (`e` the layer's bits; split domain,
-    /// the four parts below together take every speed), `exp` by its
-    /// contract (`≥ 0`, `≤ 1` at `x ≤ 0`: `exhaustive_exp_i16f16`). The
+    /// the four parts below together take every speed), `exp_neg_abs` by
+    /// its contract (`[0, 1]`: `exhaustive_exp_neg_abs_i16f16`). The
     /// single every-speed harness timed out at 605 s;
     /// `exhaustive_friction_i16f16` covers all 2²⁴ speeds in ±128 rad/s.
     fn friction_sign_on(part: impl Fn(u32, u32) -> bool) {
@@ -404,8 +404,8 @@ mod kani_entries {
     /// Inside the velocity layer `|q̇| ≤ ε_q̇`, and one LSB beyond.
     #[kani::proof]
     #[kani::stub(
-        crate::scalar::kernels::i16f16::exp,
-        crate::proofs::joint_step::kani_entries::exp_as_contract
+        crate::scalar::kernels::i16f16::exp_neg_abs,
+        crate::proofs::joint_step::kani_entries::exp_neg_abs_as_contract
     )]
     fn kani_friction_sign_inside_i16f16() {
         friction_sign_on(|m, e| m <= e + 1);
@@ -414,8 +414,8 @@ mod kani_entries {
     /// Outside the layer up to 1 rad/s, where `sat(q̇) = ±1`.
     #[kani::proof]
     #[kani::stub(
-        crate::scalar::kernels::i16f16::exp,
-        crate::proofs::joint_step::kani_entries::exp_as_contract
+        crate::scalar::kernels::i16f16::exp_neg_abs,
+        crate::proofs::joint_step::kani_entries::exp_neg_abs_as_contract
     )]
     fn kani_friction_sign_outside_slow_i16f16() {
         friction_sign_on(|m, e| m > e + 1 && m <= 1 << 16);
@@ -424,8 +424,8 @@ mod kani_entries {
     /// `1 < |q̇| ≤ 128` rad/s.
     #[kani::proof]
     #[kani::stub(
-        crate::scalar::kernels::i16f16::exp,
-        crate::proofs::joint_step::kani_entries::exp_as_contract
+        crate::scalar::kernels::i16f16::exp_neg_abs,
+        crate::proofs::joint_step::kani_entries::exp_neg_abs_as_contract
     )]
     fn kani_friction_sign_outside_medium_i16f16() {
         friction_sign_on(|m, _| m > 1 << 16 && m <= 1 << 23);
@@ -434,20 +434,20 @@ mod kani_entries {
     /// Above 128 rad/s (`q̇²` saturates from 181 rad/s).
     #[kani::proof]
     #[kani::stub(
-        crate::scalar::kernels::i16f16::exp,
-        crate::proofs::joint_step::kani_entries::exp_as_contract
+        crate::scalar::kernels::i16f16::exp_neg_abs,
+        crate::proofs::joint_step::kani_entries::exp_neg_abs_as_contract
     )]
     fn kani_friction_sign_outside_fast_i16f16() {
         friction_sign_on(|m, _| m > 1 << 23);
     }
 
     /// [`step_bounded`] from every state inside the box and the integral
-    /// limit, on every input; `exp` and the `I16F16` product by their
+    /// limit, on every input; `exp_neg_abs` and the `I16F16` product by their
     /// contracts (`proofs/joint_step.rs`).
     #[kani::proof]
     #[kani::stub(
-        crate::scalar::kernels::i16f16::exp,
-        crate::proofs::joint_step::kani_entries::exp_as_contract
+        crate::scalar::kernels::i16f16::exp_neg_abs,
+        crate::proofs::joint_step::kani_entries::exp_neg_abs_as_contract
     )]
     #[kani::stub(
         crate::scalar::fixed::mul_bits,

@@ -99,6 +99,18 @@ emit("EXP_C1", "u32", q(c1, 32))
 emit("EXP_C2", "u32", q(c2, 32))
 emit("EXP_C3", "u32", q(c3, 32))
 
+
+# --- exp_neg_abs: e^(-i/16) in Q0.31, i = 0 .. while it can round to 1 LSB --
+# exp_neg_abs is 0 from the smallest raw |x| whose e^(-|x|) < 2^-17.
+zero = int(floor(17 * log(2) * 65536)) + 1
+print(f"// e^(-i/16) in Q0.31, i = 0..={(zero - 1) >> 12}.")
+print(f"const EXP_NEG_TABLE: [u32; {((zero - 1) >> 12) + 1}] = [")
+vals = [str(q(exp(-mpf(i) / 16), 31)) for i in range(((zero - 1) >> 12) + 1)]
+for k in range(0, len(vals), 8):
+    print("    " + ", ".join(vals[k:k + 8]) + ",")
+print("];")
+emit("EXP_NEG_ZERO_BITS", "u32", zero)
+
 # --- constants ---------------------------------------------------------------
 log2e = 1 / log(2)
 hi = int(floor(log2e * mpf(2) ** 31))

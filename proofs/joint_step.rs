@@ -6,7 +6,7 @@
 //! | property | I16F16 | f32 | f64 |
 //! |---|---|---|---|
 //! | `joint_step_bounded` — the step returns (no panic, no integer overflow), the command is within `±L` and is the state's last command, the integral within its limit, the friction estimates inside the projection box | Kani `kani_joint_step_products_i16f16` (kernels and products by contract, see below): VERIFIED in 594 s (limit 600 s); random | random | random |
-//! | `mode_step_bounded` — the mode manager alone (the second half of the step), the same bounds | Kani `kani_joint_mode_step_i16f16` (`exp` and products by contract): VERIFIED in 237 s; random | in `joint_step_bounded` | in `joint_step_bounded` |
+//! | `mode_step_bounded` — the mode manager alone (the second half of the step), the same bounds | Kani `kani_joint_mode_step_i16f16` (`exp_neg_abs` and products by contract): VERIFIED in 237 s; random | in `joint_step_bounded` | in `joint_step_bounded` |
 //!
 //! **The configuration is constant.** Both Kani harnesses take the
 //! configuration from `joint::TABLE_4_1_I16F16`:
@@ -55,7 +55,7 @@
 //! | kernel | contract | proven by |
 //! |---|---|---|
 //! | `kernels::i16f16::tan` (eq. 3.10 in the estimator) | the sign of the argument, 0 at 0 | `exhaustive_tan_i16f16` (odd and non-decreasing at all 2³² inputs) |
-//! | `kernels::i16f16::exp` (the Stribeck term `e^{−f_τ q̇²}`, eq. 4.17) | `≥ 0`; `≤ 1` for `x ≤ 0` | `exhaustive_exp_i16f16` (≤ 2 LSB and non-decreasing at all 2³² inputs; `exp(0) = 1`) |
+//! | `kernels::i16f16::exp_neg_abs` (the Stribeck term `e^{−f_τ q̇²}`, eq. 4.17, and the wave generator's `e^{−c_w|τ_w|}`, eq. 2.29) | `[0, 1]` | `exhaustive_exp_neg_abs_i16f16` (≤ 1 LSB, in `[0, 1]`, even and non-increasing in `|x|` at all 2³² inputs) |
 //! | `kernels::i16f16::cos_turn` (kinematic error, eq. 3.7) | `[−1, 1]` | `exhaustive_cos_turn_i16f16` (`|result| ≤ 1` at all 2³² turns) |
 //!
 //! Both harnesses replace, in addition, the fixed-point product
@@ -157,11 +157,12 @@ pub(crate) mod kani_entries {
         I16F16::from_bits(y)
     }
 
-    /// Postcondition of the stubbed `exp`: `≥ 0`, and `≤ 1` for `x ≤ 0`.
-    pub(crate) fn exp_as_contract(x: I16F16) -> I16F16 {
+    /// Postcondition of the stubbed `exp_neg_abs`: `[0, 1]`.
+    pub(crate) fn exp_neg_abs_as_contract(_x: I16F16) -> I16F16 {
         let y = kani::any::<i32>();
-        // Postcondition of the stubbed function (exhaustive_exp_i16f16).
-        kani::assume(y >= 0 && (x.to_bits() > 0 || y <= 1 << 16));
+        // Postcondition of the stubbed function
+        // (exhaustive_exp_neg_abs_i16f16).
+        kani::assume((0..=1 << 16).contains(&y));
         I16F16::from_bits(y)
     }
 
@@ -227,7 +228,7 @@ pub(crate) mod kani_entries {
     /// `I16F16` products by contract).
     #[kani::proof]
     #[kani::stub(crate::scalar::kernels::i16f16::tan, tan_as_contract)]
-    #[kani::stub(crate::scalar::kernels::i16f16::exp, exp_as_contract)]
+    #[kani::stub(crate::scalar::kernels::i16f16::exp_neg_abs, exp_neg_abs_as_contract)]
     #[kani::stub(crate::scalar::kernels::i16f16::cos_turn, cos_turn_as_contract)]
     #[kani::stub(crate::scalar::fixed::mul_bits, mul_bits_as_contract)]
     fn kani_joint_step_products_i16f16() {
@@ -240,7 +241,7 @@ pub(crate) mod kani_entries {
     /// `JointConfig::update`) on every input: one tick from its initial
     /// state (kernels and `I16F16` products by contract).
     #[kani::proof]
-    #[kani::stub(crate::scalar::kernels::i16f16::exp, exp_as_contract)]
+    #[kani::stub(crate::scalar::kernels::i16f16::exp_neg_abs, exp_neg_abs_as_contract)]
     #[kani::stub(crate::scalar::fixed::mul_bits, mul_bits_as_contract)]
     fn kani_joint_mode_step_i16f16() {
         let cfg = *joint().mode();

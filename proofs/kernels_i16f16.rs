@@ -168,6 +168,25 @@ pub fn exp_within_bound(x: I16F16) -> Verdict {
     exp_check(x, k::exp(x))
 }
 
+/// `exp_neg_abs`, given `got`: `≤ 1 LSB` against `e^{−|x|}` and in
+/// `[0, 1]` (the contract by which the joint-step harnesses stub it); at
+/// `x ≥ 0` also even (`f(−x) = f(x)`) and non-increasing (`f(x + δ) ≤
+/// f(x)`), so every pair of adjacent magnitudes is checked once.
+pub fn exp_neg_abs_check(x: I16F16, got: I16F16) -> Verdict {
+    let r = reference::exp(-x.to_f64().abs());
+    let err = lsb_error(got.to_f64(), r, LSB);
+    let in_range = got >= I16F16::ZERO && got <= I16F16::ONE;
+    let shape = x < I16F16::ZERO
+        || (k::exp_neg_abs(-x) == got && (x == I16F16::MAX || k::exp_neg_abs(next_up(x)) <= got));
+    let shape = in_range && shape;
+    Verdict::bounded(err, 1.0).and(Verdict::logical(shape))
+}
+
+/// `exp_neg_abs`: see [`exp_neg_abs_check`].
+pub fn exp_neg_abs_within_bound(x: I16F16) -> Verdict {
+    exp_neg_abs_check(x, k::exp_neg_abs(x))
+}
+
 /// Errors (LSB) of `sin_cos(x) = (s, c)`, and whether `s = sin x`,
 /// `c = cos x` bit for bit, `sin` is odd and `cos` even (from `x ≥ 0`).
 pub fn sin_cos_check(x: I16F16, (s, c): (I16F16, I16F16)) -> (f64, f64, bool) {
@@ -878,6 +897,19 @@ mod tests {
 
     #[test]
     #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_exp_neg_abs_i16f16() {
+        run(
+            "exp_neg_abs",
+            "all,zero-from-17ln2",
+            "1 LSB,even,non-increasing-in-|x|",
+            k::exp_neg_abs,
+            exp_neg_abs_check,
+            false,
+        );
+    }
+
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
     fn exhaustive_sqrt_i16f16() {
         run("sqrt", "x>=0,neg=0", "0.5 LSB", k::sqrt, sqrt_check, true);
     }
@@ -1231,6 +1263,12 @@ mod tests {
             let x = fx(a);
             prop_assert!(exp_within_bound(x).holds);
             prop_assert!(monotone_at(k::exp, x).holds);
+        }
+
+        /// Exponents of the decaying exponentials, up to where they vanish.
+        #[test]
+        fn exp_neg_abs_exponents(a in -12.5f64..12.5) {
+            prop_assert!(exp_neg_abs_within_bound(fx(a)).holds);
         }
 
         /// Cosines of joint angles and a margin outside [-1, 1].

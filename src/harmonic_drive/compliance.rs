@@ -1005,7 +1005,7 @@ mod tests {
     #[test]
     fn wave_generator_sign_transfer_equals_the_product_form() {
         fn product_form<S: Scalar>(w: &WaveGeneratorConfig<S>, t: S) -> S {
-            let e = t.abs().mul_coef(&w.c_w).neg().exp();
+            let e = t.abs().mul_coef(&w.c_w).exp_neg_abs();
             t.sgn().mul(S::ONE.sub(e)).mul_coef(&w.amplitude)
         }
         let p = WaveGeneratorParams::try_new(WaveGeneratorSettings {

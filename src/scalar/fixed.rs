@@ -668,6 +668,10 @@ impl Scalar for I16F16 {
         kernels::i16f16::exp(self)
     }
     #[inline]
+    fn exp_neg_abs(self) -> Self {
+        kernels::i16f16::exp_neg_abs(self)
+    }
+    #[inline]
     fn sin(self) -> Self {
         kernels::i16f16::sin(self)
     }

@@ -139,6 +139,31 @@ const EXP2_TABLE: [u32; 64] = [
 const EXP_C1: u32 = 46516320;
 const EXP_C2: u32 = 251894;
 const EXP_C3: u32 = 913;
+// e^(−i/16) in Q0.31, i = 0..=188 (the segments of `exp_neg_abs`).
+const EXP_NEG_TABLE: [u32; 189] = [
+    2147483648, 2017374191, 1895147668, 1780326475, 1672461947, 1571132600, 1475942488, 1386519653,
+    1302514674, 1223599299, 1149465165, 1079822591, 1014399448, 952940092, 895204371, 840966680,
+    790015084, 742150490, 697185865, 654945509, 615264366, 577987383, 542968898, 510072075,
+    479168370, 450137026, 422864603, 397244531, 373176702, 350567069, 329327284, 309374352,
+    290630308, 273021908, 256480346, 240940988, 226343111, 212629675, 199747095, 187645030,
+    176276192, 165596158, 155563194, 146138096, 137284037, 128966417, 121152737, 113812464,
+    106916915, 100439147, 94353846, 88637236, 83266977, 78222086, 73482850, 69030749, 64848387,
+    60919422, 57228501, 53761201, 50503975, 47444094, 44569601, 41869266, 39332535, 36949497,
+    34710840, 32607817, 30632209, 28776297, 27032830, 25394993, 23856388, 22411003, 21053189,
+    19777641, 18579374, 17453707, 16396240, 15402842, 14469631, 13592960, 12769405, 11995745,
+    11268960, 10586208, 9944822, 9342296, 8776275, 8244547, 7745035, 7275787, 6834970, 6420860,
+    6031840, 5666389, 5323080, 5000571, 4697601, 4412988, 4145619, 3894448, 3658496, 3436839,
+    3228611, 3032999, 2849239, 2676613, 2514445, 2362102, 2218990, 2084548, 1958252, 1839607,
+    1728151, 1623448, 1525088, 1432687, 1345885, 1264342, 1187740, 1115778, 1048177, 984671,
+    925013, 868969, 816321, 766862, 720401, 676754, 635751, 597233, 561048, 527056, 495124, 465126,
+    436945, 410472, 385603, 362240, 340293, 319676, 300308, 282113, 265021, 248964, 233880, 219710,
+    206398, 193893, 182146, 171110, 160743, 151004, 141855, 133261, 125187, 117602, 110477, 103784,
+    97496, 91589, 86040, 80827, 75930, 71329, 67008, 62948, 59134, 55551, 52186, 49024, 46054,
+    43263, 40642, 38180, 35867, 33694, 31652, 29734, 27933, 26241, 24651, 23157, 21754, 20436,
+    19198, 18035, 16942,
+];
+/// Smallest raw `|x|` whose `e^{−|x|}` is below `2⁻¹⁷` (rounds to 0).
+pub(crate) const EXP_NEG_ZERO_BITS: u32 = 772244;
 // log2(e) = (LOG2E_Q31 + LOG2E_LO_Q43·2⁻¹²)·2⁻³¹.
 const LOG2E_Q31: u32 = 3098164009;
 const LOG2E_LO_Q43: u32 = 1473;
@@ -915,6 +940,47 @@ pub(crate) fn exp2_frac(f: u64) -> u32 {
     let e = mulhi(r, EXP_C1 + mulhi(r, EXP_C2 + mulhi(r, EXP_C3)));
     let t = EXP2_TABLE[j];
     t.saturating_add(mulhi(t, e))
+}
+
+/// `e^{−|x|}` (thesis eqs. 2.29 and 4.17: the wave generator's decaying
+/// torsion and the Stribeck term, whose exponents are never positive):
+/// [`exp`] of `−|x|` without its reduction by `log₂e`.
+///
+/// * Domain: every input; even in `x` (`MIN` gives 0, as `e^{−MAX}` does).
+///   From `|x| ≥ 772244·2⁻¹⁶ ≈ 17·ln 2` (`e^{−|x|} < 2⁻¹⁷`) the result is 0
+///   without computing.
+/// * Proven bound: **≤ 1 LSB** at all 2³² inputs, non-increasing in `|x|`
+///   and exactly even (`exhaustive_exp_neg_abs_i16f16`).
+/// * Algorithm: `|x| = i/16 + f` with `f ∈ [0, 1/16)` (the raw bits'
+///   top and low 12 bits), `e^{−|x|} = T_i (1 − d)` with `T_i = e^{−i/16}`
+///   from a 189-entry `Q0.31` table and `d = 1 − e^{−f} = f(1 − f(½ −
+///   f(⅙ − f/24)))` (Taylor; the next term is below `2⁻²⁶`) in `Q0.20` by
+///   four 32-bit `MULS` of the 12-bit `f`; then `T_i − T_i d` with `T_i`
+///   split in 16-bit halves (two `MULS`, every product below `2³²`) and
+///   one rounding shift. No 64-bit product, no `mulhi`; table 756 B.
+pub fn exp_neg_abs(x: I16F16) -> I16F16 {
+    let a = x.to_bits().unsigned_abs();
+    if a >= EXP_NEG_ZERO_BITS {
+        return I16F16::ZERO;
+    }
+    // a < 772244 < 189·2¹²: the index is in the table.
+    let t = EXP_NEG_TABLE[(a >> 12) as usize];
+    let f = a & 0xFFF; // f·2¹⁶, < 2¹²
+                       // Horner in Q0.20; every product is below 2³¹ (f < 2¹², factors
+                       // below 2²⁰·½).
+    const C4: u32 = 43691; // 2²⁰/24
+    const C3: u32 = 174763; // 2²⁰/6
+    const C2: u32 = 1 << 19; // 2²⁰/2
+    let g = C3 - ((f * C4) >> 16);
+    let g = C2 - ((f * g) >> 16);
+    let g = (1 << 20) - ((f * g) >> 16);
+    // d·2²⁰ = f·g/2¹⁶ rounded: f·g < 2¹²·2²⁰, and d < 0.0606, so d < 2¹⁶.
+    let d = (f * g + (1 << 15)) >> 16;
+    // T·d in Q0.31 from T's halves: (t_h·d)/2⁴ + (t_l·d)/2²⁰, with
+    // t_h ≤ 2¹⁵ and t_l < 2¹⁶: both products below 2³².
+    let td = (((t >> 16) * d) >> 4) + (((t & 0xFFFF) * d) >> 20);
+    let v = t - td; // Q0.31, ≤ 2³¹
+    I16F16::from_bits(((v + (1 << 14)) >> 15) as i32)
 }
 
 /// Four-quadrant arctangent of `y/x` in `[-π, π]` (the `atan2` used by the
