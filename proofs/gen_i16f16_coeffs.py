@@ -50,15 +50,16 @@ for name, g in (("SIN", g_sin), ("COS", g_cos)):
     emit(f"{name}_K3", "u32", q(k3, 32))
 
 
-def cubic_table(g):
-    """32 cubic pieces of g(k, H), H in [0, 1): rows (b0, b1, b2, b3) in
-    Q0.32 with g ~ b0 + H(b1 + H(b2 + H b3)), and the worst fit error."""
+def cubic_table(g, pieces=32, bits=32):
+    """`pieces` cubic pieces of g(k, H), H in [0, 1): rows (b0, b1, b2, b3)
+    with `bits` fraction bits and g ~ b0 + H(b1 + H(b2 + H b3)), and the
+    worst fit error."""
     rows, worst = [], 0
-    for k in range(32):
+    for k in range(pieces):
         poly, err = chebyfit(lambda h, k=k: g(k, h), [0, 1], 4, error=True)
         worst = max(worst, err)
         b3, b2, b1, b0 = poly
-        rows.append((q(b0, 32), q(b1, 32), q(b2, 32), q(b3, 32)))
+        rows.append((q(b0, bits), q(b1, bits), q(b2, bits), q(b3, bits)))
     print(f"// worst piece fit error {float(worst):.3e}")
     return rows
 
@@ -76,6 +77,14 @@ print("];")
 print("// ATAN_TABLE_HI[k]: atan(1 + k/32 + H/32) - pi/4 ~ b0 + H(b1 + H(b2 + H b3)), Q0.32")
 rows = cubic_table(lambda k, h: atan(1 + (k + h) / 32) - pi / 4)
 print("const ATAN_TABLE_HI: [[i32; 4]; 32] = [")
+for r in rows:
+    print(f"    [{r[0]}, {r[1]}, {r[2]}, {r[3]}],")
+print("];")
+
+# --- rsqrt on [1/4, 1): 24 cubic pieces on [1/4 + k/32, 1/4 + (k+1)/32) ----
+print("// RSQRT_TABLE[k]: 1/sqrt(1/4 + k/32 + H/32) ~ b0 + H(b1 + H(b2 + H b3)), Q2.30")
+rows = cubic_table(lambda k, h: 1 / sqrt(mpf(1) / 4 + (k + h) / 32), pieces=24, bits=30)
+print("const RSQRT_TABLE: [[i32; 4]; 24] = [")
 for r in rows:
     print(f"    [{r[0]}, {r[1]}, {r[2]}, {r[3]}],")
 print("];")

@@ -115,14 +115,45 @@ pub fn atan_small_within_bound(x: I16F16) -> Verdict {
     Verdict::bounded(err, 1.0).and(odd_at(k::atan_small, x, got))
 }
 
-/// `hypot_unit`: `≤ 2 LSB` against the exact `√(a² + b²)` of the inputs
-/// clamped to `[−1, 1]` (its documented domain).
+/// The inputs of `hypot_unit` and `unit_vector` clamped to their
+/// documented domain, `[−(1 − 2⁻¹⁶), 1 − 2⁻¹⁶]`.
+fn clamp_unit(a: I16F16) -> f64 {
+    let top = 1.0 - LSB;
+    a.to_f64().clamp(-top, top)
+}
+
+/// `hypot_unit`: `≤ 1 LSB` against the exact `√(a² + b²)` of the inputs
+/// clamped to `±(1 − 2⁻¹⁶)` (its documented domain).
 pub fn hypot_unit_within_bound(a: I16F16, b: I16F16) -> Verdict {
-    let (ca, cb) = (a.to_f64().clamp(-1.0, 1.0), b.to_f64().clamp(-1.0, 1.0));
+    let (ca, cb) = (clamp_unit(a), clamp_unit(b));
     let got = k::hypot_unit(a, b);
     Verdict::bounded(
         lsb_error(got.to_f64(), reference::sqrt(ca * ca + cb * cb), LSB),
-        2.0,
+        1.0,
+    )
+}
+
+/// `unit_vector`: each component `≤ 1 LSB` from the exact direction of
+/// the clamped inputs, `None` exactly for the zero vector.
+pub fn unit_vector_within_bound(a: I16F16, b: I16F16) -> Verdict {
+    let (ca, cb) = (clamp_unit(a), clamp_unit(b));
+    let h = reference::sqrt(ca * ca + cb * cb);
+    match k::unit_vector(a, b) {
+        None => Verdict::logical(h == 0.0),
+        Some((u, v)) => Verdict::bounded(
+            lsb_error(u.to_f64(), ca / h, LSB).max(lsb_error(v.to_f64(), cb / h, LSB)),
+            1.0,
+        ),
+    }
+}
+
+/// `rsqrt_quarter`: `≤ 1 LSB` against the exact `1/√x` of the input
+/// clamped to `[¼, 1]`.
+pub fn rsqrt_quarter_within_bound(x: I16F16) -> Verdict {
+    let c = x.to_f64().clamp(0.25, 1.0);
+    Verdict::bounded(
+        lsb_error(k::rsqrt_quarter(x).to_f64(), 1.0 / reference::sqrt(c), LSB),
+        1.0,
     )
 }
 
@@ -1230,6 +1261,21 @@ mod tests {
             // Unit-range pairs, where it is used.
             let v = hypot_unit_within_bound(I16F16::from_bits(a >> 15), I16F16::from_bits(b >> 15));
             prop_assert!(v.holds, "hypot_unit err {}", v.error);
+        }
+
+        /// `unit_vector` and `rsqrt_quarter` on every bit pattern, and on
+        /// unit-range pairs (where the wrist uses them).
+        #[test]
+        fn unit_vector_and_rsqrt_quarter_full_range(a in any::<i32>(), b in any::<i32>()) {
+            let (x, y) = (I16F16::from_bits(a), I16F16::from_bits(b));
+            let v = unit_vector_within_bound(x, y);
+            prop_assert!(v.holds, "unit_vector err {}", v.error);
+            let v = unit_vector_within_bound(I16F16::from_bits(a >> 15), I16F16::from_bits(b >> 15));
+            prop_assert!(v.holds, "unit_vector err {}", v.error);
+            let v = rsqrt_quarter_within_bound(x);
+            prop_assert!(v.holds, "rsqrt_quarter err {}", v.error);
+            let v = rsqrt_quarter_within_bound(I16F16::from_bits(a >> 15));
+            prop_assert!(v.holds, "rsqrt_quarter err {}", v.error);
         }
 
         /// Joint angles within ±4 turns.

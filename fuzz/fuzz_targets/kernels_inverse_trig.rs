@@ -1,5 +1,5 @@
 //! Fuzz the inverse trigonometric kernels (atan, atan2, acos; on I16F16
-//! also atan_small and hypot_unit) of every backend with arbitrary bit
+//! also atan_small, hypot_unit, unit_vector and rsqrt_quarter) of every backend with arbitrary bit
 //! patterns: no panic, and the proven bounds.
 #![no_main]
 
@@ -20,6 +20,8 @@ fuzz_target!(|data: (u32, u32, i32, i32, i16, i16)| {
         ("I16F16 acos", x::acos_within_bound(y)),
         ("I16F16 atan_small", x::atan_small_within_bound(y)),
         ("I16F16 hypot_unit", x::hypot_unit_within_bound(y, z)),
+        ("I16F16 unit_vector", x::unit_vector_within_bound(y, z)),
+        ("I16F16 rsqrt_quarter", x::rsqrt_quarter_within_bound(y)),
         ("Q15 atan", q::atan_within_bound(c)),
         ("Q15 atan2", q::atan2_within_bound(c, c2)),
     ] {

@@ -711,6 +711,14 @@ impl Scalar for I16F16 {
     fn atan_small(self) -> Self {
         kernels::i16f16::atan_small(self)
     }
+    #[inline]
+    fn unit_vector(self, b: Self) -> Option<(Self, Self)> {
+        kernels::i16f16::unit_vector(self, b)
+    }
+    #[inline]
+    fn rsqrt_quarter(self) -> Self {
+        kernels::i16f16::rsqrt_quarter(self)
+    }
 }
 
 #[cfg(test)]

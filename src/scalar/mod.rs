@@ -289,14 +289,47 @@ pub trait Scalar:
     fn atan2(self, x: Self) -> Self;
     /// `√(self² + b²)` for components of magnitude at most 1 (the sine
     /// of a bend from its two components). `I16F16` scales both by a
-    /// power of two instead of dividing by the larger
-    /// ([`kernels::i16f16::hypot_unit`]: within 2 LSB, inputs clamped to
-    /// `[−1, 1]`); the default is `m·√(1 + (n/m)²)` with `m ≥ n` the
-    /// magnitudes, free of overflow and of the loss of squaring tiny
-    /// values.
+    /// power of two instead of dividing by the larger and takes the root
+    /// as the product of the scaled sum of squares and its table
+    /// reciprocal root ([`kernels::i16f16::hypot_unit`]: within 1 LSB,
+    /// inputs clamped to `±(1 − 2⁻¹⁶)`); the default is
+    /// `m·√(1 + (n/m)²)` with `m ≥ n` the magnitudes, free of overflow and
+    /// of the loss of squaring tiny values.
     #[inline]
     fn hypot_unit(self, b: Self) -> Self {
         hypot(self, b)
+    }
+    /// The unit vector `(self, b)/|(self, b)|` of two components of
+    /// magnitude at most 1 (e.g. the azimuth of a wrist's output axis),
+    /// `None` for the zero vector. `I16F16` scales both by a power of two
+    /// and multiplies by a table reciprocal root
+    /// ([`kernels::i16f16::unit_vector`]: within 1 LSB per component, no
+    /// division); the default divides both by [`hypot`].
+    #[inline]
+    fn unit_vector(self, b: Self) -> Option<(Self, Self)> {
+        let h = hypot(self, b);
+        if h > Self::ZERO {
+            Some((self.div(h), b.div(h)))
+        } else {
+            None
+        }
+    }
+    /// `1/√self` for `self ∈ [¼, 1]` (inputs clamped to it): the
+    /// reciprocal of a cosine known to be at least ½. `I16F16` takes a
+    /// 24-piece cubic table ([`kernels::i16f16::rsqrt_quarter`]: within
+    /// 1 LSB, no root or division); the default is `1/√x`.
+    #[inline]
+    fn rsqrt_quarter(self) -> Self {
+        let quarter = Self::from_f64(0.25);
+        // A NaN fails both tests and stays NaN.
+        let x = if self > Self::ONE {
+            Self::ONE
+        } else if self < quarter {
+            quarter
+        } else {
+            self
+        };
+        Self::ONE.div(x.sqrt())
     }
     /// [`atan`](Self::atan) of a value below 2 in magnitude (the tangent
     /// of an angle within ±63°, e.g. formed from a bounded ratio without

@@ -251,7 +251,6 @@ pub struct WristStepConfig<S> {
     cos_2phi: S,
     /// `tan 2φ` (below `tan 60°`).
     tan_2phi: S,
-    two: S,
     /// `1/(2 sin φ)`.
     inv_2_sin_phi: Coef,
     /// `cos φ/(2 sin φ)`.
@@ -534,7 +533,6 @@ impl<S: Scalar> WristStepConfig<S> {
             sin_2phi: S::from_f64(libm::sin(2.0 * phi)),
             cos_2phi: S::from_f64(libm::cos(2.0 * phi)),
             tan_2phi: S::from_f64(libm::tan(2.0 * phi)),
-            two: S::from_f64(2.0),
             inv_2_sin_phi: Coef::new(0.5 / sin_phi),
             cot_phi_half: Coef::new(0.5 * libm::cos(phi) / sin_phi),
             sin_phi: S::from_f64(sin_phi),
@@ -632,10 +630,13 @@ impl<S: Scalar> WristStepConfig<S> {
     /// [`WristConfig::inverse`] does).
     ///
     /// Evaluated with as few roots and quotients as the arithmetic allows
-    /// (inside the cone `|A|` by [`Scalar::hypot_unit`], then one root and
-    /// one quotient, `P` scaled by `cos(β/2)`; beyond it two roots and one
-    /// reciprocal, and the projected pose's angles from their tangents by
-    /// [`Scalar::atan_small`]; see the comments): the same map
+    /// (inside the cone `|A|` by [`Scalar::hypot_unit`], then one root,
+    /// `P` scaled by `cos(β/2)`, and `(sin θ1, cos θ1)` as the unit vector
+    /// of `V1` ([`Scalar::unit_vector`]); beyond it `U = A/|A|` by
+    /// [`Scalar::unit_vector`], `1/cos γ_b` by [`Scalar::rsqrt_quarter`],
+    /// and the projected pose's angles from their tangents by
+    /// [`Scalar::atan_small`]; on `I16F16` none of these divides or takes
+    /// a root; see the comments): the same map
     /// in exact arithmetic, and on `I16F16` and `f32` the same map up to
     /// rounding. Bound, checked by
     /// `tests::vector_inverse_kinematics_matches_the_library_inverse` on a
@@ -659,40 +660,30 @@ impl<S: Scalar> WristStepConfig<S> {
         };
         let reduced = if saturated {
             // The boundary pose of the same azimuth: z = (sin 2φ·U, cos 2φ)
-            // with U = A/|A|; there θ4 = π, P = (0, cos φ), and with
-            // w = |A| cos γ_b = √(A_x² + cos²2φ·A_y²) (γ_b the boundary
-            // pose's yaw): 1/|A| = w·r, 1/cos γ_b = |A|²·r and
-            // cos γ_b = w²·r for the one reciprocal r = 1/(|A|·w).
-            // (|A|² = sin²β > sin²2φ here: a bend beyond 2φ.)
+            // with U = A/|A|; there θ4 = π, P = (0, cos φ), and its yaw
+            // γ_b has cos γ_b = w/|A| with w = √(A_x² + cos²2φ·A_y²), so
+            // cos²γ_b = 1 − sin²2φ·u_y² ∈ [cos²2φ, 1] ⊂ [¼, 1] (φ ≤ 30°):
+            // 1/cos γ_b from `rsqrt_quarter`, and cos γ_b = cos²γ_b/cos γ_b.
             let ay_c = ay.mul_unit_range(self.cos_2phi);
-            let n2 = ax.mul_unit_range(ax).add(ay.mul_unit_range(ay));
-            let w2 = ax.mul_unit_range(ax).add(ay_c.mul_unit_range(ay_c));
             // θ1 = arg A + π/2, θ3 = arg B + π/2 with B ∝ (U_x, cos 2φ·U_y)
             // (B = (sd, cd·sg) scaled by cos γ_b/sin 2φ),
-            // (cos θ1, sin θ1) = (−u_y, u_x). One branch on `|A|·w > 0`
-            // for both the angles and the reciprocal (at A = 0: θ1 = θ3 =
-            // atan2(1, 0), U = (1, 0)).
-            let (n, w) = (n2.sqrt_small(), w2.sqrt_small());
-            let nw = n.mul_unit_range(w);
-            // The boundary pose's yaw from its tangent: tan γ_b = s_γ/c_γ
-            // = −sin 2φ·A_y/w, and 1/w = r·|A|.
-            let (ux, uy, inv_cg, tan_g, theta) = if nw > S::ZERO {
-                let theta = [ax.atan2(ay.neg()), ax.atan2(ay_c)];
-                let r = S::ONE.div(nw);
-                cg = r.mul_unit_range(w2);
-                (
-                    r.mul_unit_range(ax.mul_unit_range(w)),
-                    r.mul_unit_range(ay.mul_unit_range(w)),
-                    r.mul_unit_range(n2),
-                    r.mul_unit_range(n)
-                        .mul_unit_range(ay)
-                        .mul_unit_range(self.sin_2phi)
-                        .neg(),
-                    theta,
-                )
-            } else {
-                cg = S::ONE;
-                (S::ONE, S::ZERO, S::ONE, S::ZERO, [S::ONE.atan2(S::ZERO); 2])
+            // (cos θ1, sin θ1) = (−u_y, u_x). At A = 0: θ1 = θ3 =
+            // atan2(1, 0), U = (1, 0).
+            let (ux, uy, inv_cg, tan_g, theta) = match ax.unit_vector(ay) {
+                Some((ux, uy)) => {
+                    let theta = [ax.atan2(ay.neg()), ax.atan2(ay_c)];
+                    let s_uy = uy.mul_unit_range(self.sin_2phi);
+                    let cg2 = S::ONE.sub(s_uy.mul_unit_range(s_uy));
+                    let inv_cg = cg2.rsqrt_quarter();
+                    cg = inv_cg.mul_unit_range(cg2);
+                    // The boundary pose's yaw from its tangent:
+                    // tan γ_b = s_γ/c_γ = −sin 2φ·u_y/cos γ_b.
+                    (ux, uy, inv_cg, inv_cg.mul_unit_range(s_uy).neg(), theta)
+                }
+                None => {
+                    cg = S::ONE;
+                    (S::ONE, S::ZERO, S::ONE, S::ZERO, [S::ONE.atan2(S::ZERO); 2])
+                }
             };
             let (bx, by) = (
                 ux.mul_unit_range(self.sin_2phi),
@@ -729,12 +720,11 @@ impl<S: Scalar> WristStepConfig<S> {
                 let py = n.mul_coef(&self.cot_phi_half);
                 let v1 = rot(ax, ay, px, py);
                 let v3 = rot(sd, cd.mul_unit_range(sg), px, py);
-                // |V1| = |A|·|P'| = sin β (1 + cos β)/2: (sin θ1, cos θ1) = V1/|V1|.
-                let k = self.two.div(one_cb.mul_unit_range(n));
-                Some((
-                    [v1.1.atan2(v1.0), v3.1.atan2(v3.0)],
-                    (k.mul_unit_range(v1.1), k.mul_unit_range(v1.0)),
-                ))
+                // (sin θ1, cos θ1) = V1/|V1| (|V1| = |A|·|P'| = sin β (1 +
+                // cos β)/2 ≤ 1), normalized by its own computed length;
+                // (0, 1) with atan2(0, 0) = 0 should both round to 0.
+                let s1c1 = v1.1.unit_vector(v1.0).unwrap_or((S::ZERO, S::ONE));
+                Some(([v1.1.atan2(v1.0), v3.1.atan2(v3.0)], s1c1))
             }
         };
         Ik {

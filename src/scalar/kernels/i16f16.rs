@@ -124,6 +124,34 @@ const ATAN_TABLE_HI: [[i32; 4]; 32] = [
     [1326847442, 28233135, -359531, 4088],
     [1354725135, 27526317, -347267, 3924],
 ];
+// RSQRT_TABLE[k] = [b0, b1, b2, b3]: 1/√(1/4 + k/32 + H/32) ≈ b0 + H(b1 + H(b2 +
+// H b3)), Q2.30, H ∈ [0, 1) (worst piece fit error 8.3·10⁻⁷).
+const RSQRT_TABLE: [[i32; 4]; 24] = [
+    [2147482745, -134188735, 12435203, -1063025],
+    [2024666456, -112464044, 9284707, -719848],
+    [1920767422, -96027322, 7146711, -506919],
+    [1831379980, -83237239, 5638682, -368578],
+    [1753412900, -73053869, 4540822, -275225],
+    [1684624663, -64789729, 3720210, -210197],
+    [1623344971, -57974056, 3092985, -163660],
+    [1568300256, -52274790, 2604304, -129575],
+    [1518500206, -47451711, 2217192, -104099],
+    [1473161595, -43327194, 1906050, -84717],
+    [1431655739, -39767369, 1652741, -69739],
+    [1393471376, -36669633, 1444150, -58000],
+    [1358187897, -33954166, 1270621, -48684],
+    [1325455670, -31558040, 1124929, -41207],
+    [1294981353, -29431046, 1001585, -35144],
+    [1266516751, -27532686, 896371, -30182],
+    [1239850255, -25829976, 805999, -26085],
+    [1214800194, -24295806, 727883, -22676],
+    [1191209596, -22907710, 659966, -19819],
+    [1168942033, -21646934, 600599, -17409],
+    [1147878290, -20497707, 548446, -15363],
+    [1127913667, -19446685, 502418, -13616],
+    [1108955785, -18482508, 461621, -12116],
+    [1090922782, -17595452, 425315, -10822],
+];
 // 2^(j/64) in Q1.31.
 const EXP2_TABLE: [u32; 64] = [
     2147483648, 2170868212, 2194507417, 2218404036, 2242560872, 2266980759, 2291666561, 2316621173,
@@ -1081,34 +1109,129 @@ pub fn sqrt_small(x: I16F16) -> I16F16 {
 }
 
 /// `√(a² + b²)` of two components of magnitude at most 1 (clamped to
-/// it), without a division: both are scaled by the power of two `2ᵏ`
-/// that brings the larger into `[½, 1]` (exact shifts; `k ≤ 15`), the
-/// sum of the two unit-range squares (below 2) goes through
-/// [`sqrt_small`], and the root is shifted back by `k` with rounding.
+/// `1 − 2⁻¹⁶`), without a root or a division: with the scaled squares and
+/// the table reciprocal root `r = 1/√s` of [`unit_vector`]
+/// ([`scaled_unit_root`]), `√s = s·r` (one `mulhi`), shifted back by the
+/// scaling with rounding.
 ///
 /// * Bound (tests: every pair on a 1,025-point grid of each sign and
-///   magnitude class, edge words, random pairs): **≤ 2 LSB** against the
-///   exact `hypot` of the clamped inputs. The squares of the scaled
-///   components (each `≥ ¼` for the larger) are rounded to `½` LSB, the
-///   root adds `½` LSB and the sum's error at most 1 LSB, all divided by
-///   `2ᵏ` before the final rounding; so a tiny vector keeps its relative
-///   precision (as with `m·√(1 + (n/m)²)`, which needs a quotient).
-/// * Cost: one leading-zero count (nibble table), two short products,
-///   the 17-step root; no division.
+///   magnitude class, edge words, random pairs;
+///   `hypot_unit_is_within_one_lsb`): **≤ 1 LSB** against the exact
+///   `hypot` of the clamped inputs. The scaling is exact, so a tiny vector
+///   keeps its relative precision (as with `m·√(1 + (n/m)²)`, which needs
+///   a quotient).
+/// * Cost: one leading-zero count (nibble table), two 32-bit squares, the
+///   table root and one `mulhi`; no division, no `sqrt`.
 pub fn hypot_unit(a: I16F16, b: I16F16) -> I16F16 {
-    let a = a.to_bits().unsigned_abs().min(1 << 16);
-    let b = b.to_bits().unsigned_abs().min(1 << 16);
-    let m = a.max(b);
-    if m == 0 {
+    let Some(u) = scaled_unit_root(a, b) else {
         return I16F16::ZERO;
+    };
+    // s·r: Q0.30 times Q2.30 is √s in Q0.30 (the high word of Q1.31 ×
+    // Q1.31; r < 2³¹, so 2r fits), halved when `big`.
+    let root = mulhi(u.s << 1, u.r << 1);
+    let sh = u.k + u.sh; // the root's Q0.30 → Q16.16, undoing 2ᵏ (and ½ for `big`)
+    let sh = sh - 2 * (u.sh - 14); // `big`: √s = 2·√(s/4)
+    I16F16::from_bits(((root + (1 << (sh - 1))) >> sh) as i32)
+}
+
+/// `1/√s` in `Q2.30` for `s` in `Q0.30`, clamped to `[2²⁸, 2³⁰)` (the
+/// reals `[¼, 1)`): the 24-piece cubic table `RSQRT_TABLE` in
+/// `H = 32(s − ¼) − k` (fit error below `8.3·10⁻⁷`), three `mulhi`, no
+/// division.
+#[inline(always)]
+pub(crate) fn rsqrt_q30(s: u32) -> u32 {
+    let u = s.clamp(1 << 28, (1 << 30) - 1) - (1 << 28); // < 3·2²⁸
+    let row = RSQRT_TABLE[((u >> 25) as usize).min(23)];
+    let h = u << 7; // H in Q0.32
+    let mut acc = row[2] + mulhi_signed(h, row[3]);
+    acc = row[1] + mulhi_signed(h, acc);
+    // b0 ≤ 2³¹ − 903 and the correction is negative: no overflow.
+    (row[0] + mulhi_signed(h, acc)) as u32
+}
+
+/// `1/√x` for `x ∈ [¼, 1]` (inputs clamped to it), in `[1, 2]`: the
+/// reciprocal of a cosine known to be at least ½ (the wrist's boundary
+/// yaw, ch. 5) without a root or a division.
+///
+/// * Bound (every input, `rsqrt_quarter_is_within_one_lsb`): **≤ 1 LSB**
+///   against the exact `1/√x` of the clamped input, non-increasing.
+/// * Cost: [`rsqrt_q30`]: one table row, three `mulhi`.
+pub fn rsqrt_quarter(x: I16F16) -> I16F16 {
+    let bits = x.to_bits().clamp(1 << 14, 1 << 16) as u32;
+    let v = rsqrt_q30(bits << 14);
+    I16F16::from_bits(((v + (1 << 13)) >> 14) as i32)
+}
+
+/// The unit vector `(a, b)/|(a, b)|` of two components of magnitude at
+/// most 1 (clamped to `1 − 2⁻¹⁶`), or `None` for `(0, 0)`: both are
+/// scaled by the power of two `2ᵏ` that brings the larger into `[½, 1)`
+/// (exact shifts), the sum of their squares (in `[¼, 2)`, formed to
+/// `2⁻³⁰`) goes through [`rsqrt_q30`] (a factor 4 taken out when it is 1
+/// or more), and each scaled component is multiplied by that reciprocal
+/// root from its halves (two 32-bit `MULS` each) and rounded.
+///
+/// * Bound (tests: every pair on a grid of each sign and magnitude class,
+///   edge words, random pairs; `unit_vector_is_within_one_lsb`): **≤ 1
+///   LSB** per component against the exact direction of the clamped
+///   inputs. A vector of a few LSB keeps its exact direction (the scaling
+///   loses nothing).
+/// * Cost: one leading-zero count (nibble table), two 32-bit squares, the
+///   table root, four `MULS`; no division, no `sqrt`.
+pub fn unit_vector(a: I16F16, b: I16F16) -> Option<(I16F16, I16F16)> {
+    let u = scaled_unit_root(a, b)?;
+    let (rh, rl) = (u.r >> 16, u.r & 0xFFFF);
+    // c·r·2⁻³⁰ (halved for `big`) in Q16.16: c·r_h < 2³¹, c·r_l < 2³².
+    let scale = |c: u32| -> i32 {
+        let p = c * rh + ((c * rl) >> 16);
+        ((p + (1 << (u.sh - 1))) >> u.sh).min(1 << 16) as i32
+    };
+    Some((
+        with_sign(scale(u.x), a.to_bits() < 0),
+        with_sign(scale(u.y), b.to_bits() < 0),
+    ))
+}
+
+/// The shared start of [`unit_vector`] and [`hypot_unit`].
+struct ScaledRoot {
+    /// The magnitudes scaled by `2ᵏ` (the larger in `[2¹⁵, 2¹⁶)`).
+    x: u32,
+    y: u32,
+    k: u32,
+    /// `(x² + y²)·2⁻³⁴`, divided by 4 more when `big` (`Q0.30`, in
+    /// `[2²⁸, 2³⁰)`).
+    s: u32,
+    /// `1/√s` in `Q2.30`.
+    r: u32,
+    /// 14, or 15 when `big` (the sum was 1 or more and was divided by 4).
+    sh: u32,
+}
+
+/// The magnitudes of `(a, b)` (clamped to `2¹⁶ − 1`) scaled by the power
+/// of two that brings the larger into `[2¹⁵, 2¹⁶)` (exact shifts), the sum
+/// of their squares in `Q0.30` (`[¼, 2)`, brought into `[¼, 1)` by a factor
+/// 4 when needed) and its table reciprocal root; `None` for `(0, 0)`.
+#[inline(always)]
+fn scaled_unit_root(a: I16F16, b: I16F16) -> Option<ScaledRoot> {
+    let x = a.to_bits().unsigned_abs().min(0xFFFF);
+    let y = b.to_bits().unsigned_abs().min(0xFFFF);
+    let m = x.max(y);
+    if m == 0 {
+        return None;
     }
-    // m << k ∈ [2¹⁵, 2¹⁶] (k = 0 for m ≥ 2¹⁵).
-    let k = leading_zeros_32(m).saturating_sub(16);
-    let (a, b) = ((a << k) as i32, (b << k) as i32);
-    let s = crate::scalar::fixed::mul_bits_unit(a, a) + crate::scalar::fixed::mul_bits_unit(b, b);
-    let r = sqrt_small(I16F16::from_bits(s)).to_bits() as u32;
-    let n = if k == 0 { r } else { (r + (1 << (k - 1))) >> k };
-    I16F16::from_bits(n as i32)
+    // m << k ∈ [2¹⁵, 2¹⁶).
+    let k = leading_zeros_32(m) - 16;
+    let (x, y) = (x << k, y << k);
+    // (x² + y²)·2⁻³² in Q0.30: each square below 2³², the sum below 2³¹.
+    let s = ((x * x) >> 2) + ((y * y) >> 2);
+    let (s, sh) = if s >= 1 << 30 { (s >> 2, 15) } else { (s, 14) };
+    Some(ScaledRoot {
+        x,
+        y,
+        k,
+        s,
+        r: rsqrt_q30(s),
+        sh,
+    })
 }
 
 /// [`atan`] of a value below 2 in magnitude (the arctangent of a bounded
@@ -1153,7 +1276,7 @@ mod tests {
     /// and their neighbours, from 1 LSB to 1) with both signs, plus a
     /// random sweep; the bound is 2 LSB, and tiny vectors stay precise.
     #[test]
-    fn hypot_unit_is_within_two_lsb() {
+    fn hypot_unit_is_within_one_lsb() {
         let mut mags: Vec<i32> = vec![0, 1, 2, 3, 0xFFFF, 1 << 16];
         for i in 1..16 {
             let p = 1i32 << i;
@@ -1165,12 +1288,12 @@ mod tests {
         let check = |a: i32, b: i32| {
             let got = hypot_unit(I16F16::from_bits(a), I16F16::from_bits(b)).to_bits();
             let (ca, cb) = (
-                (a.unsigned_abs().min(1 << 16)) as f64,
-                (b.unsigned_abs().min(1 << 16)) as f64,
+                (a.unsigned_abs().min(0xFFFF)) as f64,
+                (b.unsigned_abs().min(0xFFFF)) as f64,
             );
             let exact = ca.hypot(cb);
             assert!(
-                (got as f64 - exact).abs() <= 2.0,
+                (got as f64 - exact).abs() <= 1.0,
                 "hypot_unit({a}, {b}) = {got}, exact {exact}"
             );
         };
@@ -1182,6 +1305,90 @@ mod tests {
             }
         }
         // Clamped beyond 1, and the extreme words.
+        for (x, y) in [
+            (i32::MAX, 0),
+            (i32::MIN, 5),
+            (1 << 20, 1 << 17),
+            (-(1 << 16), -(1 << 16)),
+        ] {
+            check(x, y);
+        }
+        let mut z = 0x2545_F491_4F6C_DD1Du64;
+        for _ in 0..200_000 {
+            z ^= z << 13;
+            z ^= z >> 7;
+            z ^= z << 17;
+            let (x, y) = ((z as i32) >> 14, ((z >> 32) as i32) >> 14);
+            check(x, y);
+        }
+    }
+
+    /// `rsqrt_quarter` at every input of `[¼, 1]` and the clamps beyond:
+    /// within 1 LSB of the exact `1/√x` of the clamped input, and
+    /// non-increasing.
+    #[test]
+    fn rsqrt_quarter_is_within_one_lsb() {
+        let mut prev = i32::MAX;
+        let mut worst = 0.0f64;
+        for bits in (1 << 14) - 3..=(1 << 16) + 3 {
+            let got = rsqrt_quarter(I16F16::from_bits(bits)).to_bits();
+            let c = bits.clamp(1 << 14, 1 << 16) as f64 / 65536.0;
+            let err = (got as f64 - 65536.0 / c.sqrt()).abs();
+            worst = worst.max(err);
+            assert!(err <= 1.0, "rsqrt_quarter({bits}) = {got}, error {err} LSB");
+            assert!(got <= prev, "rsqrt_quarter not monotone at {bits}");
+            prev = got;
+        }
+        assert!(worst > 0.0);
+        for bits in [i32::MIN, -1, 0, 1, i32::MAX] {
+            let want = if bits > 1 << 16 { 1 << 16 } else { 1 << 17 };
+            assert_eq!(
+                rsqrt_quarter(I16F16::from_bits(bits)).to_bits(),
+                want,
+                "{bits}"
+            );
+        }
+    }
+
+    /// `unit_vector` against the exact direction of the clamped inputs:
+    /// every pair of a grid of each magnitude class and sign, edge words
+    /// and random pairs; `None` only for the zero vector.
+    #[test]
+    fn unit_vector_is_within_one_lsb() {
+        let mut mags: Vec<i32> = vec![0, 1, 2, 3, 0xFFFF, 1 << 16];
+        for i in 1..16 {
+            let p = 1i32 << i;
+            mags.extend([p - 1, p, p + 1, p + (p >> 1)]);
+        }
+        for i in 0..=1024 {
+            mags.push(i * 64);
+        }
+        let check = |a: i32, b: i32| {
+            let got = unit_vector(I16F16::from_bits(a), I16F16::from_bits(b));
+            let cl = |v: i32| (v.unsigned_abs().min(0xFFFF) as f64).copysign(v as f64);
+            let (ca, cb) = (cl(a), cl(b));
+            let h = ca.hypot(cb);
+            match got {
+                None => assert!(h == 0.0, "unit_vector({a}, {b}) = None"),
+                Some((u, v)) => {
+                    let (eu, ev) = (65536.0 * ca / h, 65536.0 * cb / h);
+                    assert!(
+                        (u.to_bits() as f64 - eu).abs() <= 1.0
+                            && (v.to_bits() as f64 - ev).abs() <= 1.0,
+                        "unit_vector({a}, {b}) = ({}, {}), exact ({eu}, {ev})",
+                        u.to_bits(),
+                        v.to_bits()
+                    );
+                }
+            }
+        };
+        for &x in &mags {
+            for &y in &mags {
+                check(x, y);
+                check(-x, y);
+                check(x, -y);
+            }
+        }
         for (x, y) in [
             (i32::MAX, 0),
             (i32::MIN, 5),
