@@ -89,6 +89,34 @@ for r in rows:
     print(f"    [{r[0]}, {r[1]}, {r[2]}, {r[3]}],")
 print("];")
 
+# --- tan: 20 cubic pieces in z = x^2 on [k/32, (k+1)/32), z < (pi/4)^2 ------
+# TAN_TABLE[k]: tan(sqrt z)/sqrt z - 1 (for |x| <= pi/4, tan x = x (1 + .)),
+# COT_TABLE[k]: 1 - sqrt z cot(sqrt z) (for delta = pi/2 - |x|,
+# tan x = cot delta = (1 - .)/delta); both Q0.32.
+def g_tan(k, h):
+    z = (k + h) / 32
+    if z == 0:
+        return mpf(0)
+    r = sqrt(z)
+    return tan(r) / r - 1
+
+
+def g_cot(k, h):
+    z = (k + h) / 32
+    if z == 0:
+        return mpf(0)
+    r = sqrt(z)
+    return 1 - r * cos(r) / sin(r)
+
+
+for name, g in (("TAN_TABLE", g_tan), ("COT_TABLE", g_cot)):
+    print(f"// {name}[k] = [b0, b1, b2, b3], Q0.32")
+    rows = cubic_table(g, pieces=20)
+    print(f"const {name}: [[i32; 4]; 20] = [")
+    for r in rows:
+        print(f"    [{r[0]}, {r[1]}, {r[2]}, {r[3]}],")
+    print("];")
+
 # --- exp: 2^(j/64) in Q1.31 and 2^(R/64) - 1 = R (c1 + R (c2 + R c3)) -----
 print("const EXP2_TABLE: [u32; 64] = [")
 print("    " + ", ".join(str(q(mpf(2) ** (mpf(j) / 64), 31)) for j in range(64)) + ",")

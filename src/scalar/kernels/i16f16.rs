@@ -152,6 +152,53 @@ const RSQRT_TABLE: [[i32; 4]; 24] = [
     [1108955785, -18482508, 461621, -12116],
     [1090922782, -17595452, 425315, -10822],
 ];
+// TAN_TABLE[k] = [b0, b1, b2, b3]: tan(√z)/√z − 1 ≈ b0 + H(b1 + H(b2 + H b3)),
+// z = (k + H)/32, Q0.32 (worst piece fit error 6.8·10⁻¹⁰).
+const TAN_TABLE: [[i32; 4]; 20] = [
+    [-1, 44739266, 559126, 7256],
+    [45305647, 45879333, 580889, 7638],
+    [91773507, 47064076, 603797, 8046],
+    [139449425, 48295860, 627927, 8481],
+    [188381692, 49577213, 653361, 8945],
+    [238621212, 50910834, 680190, 9442],
+    [290221679, 52299608, 708509, 9975],
+    [343239770, 53746620, 738424, 10545],
+    [397735358, 55255178, 770048, 11156],
+    [453771739, 56828824, 803506, 11813],
+    [511415881, 58471361, 838932, 12518],
+    [570738692, 60186874, 876473, 13277],
+    [631815317, 61979754, 916291, 14094],
+    [694725455, 63854728, 958558, 14975],
+    [759553717, 65816890, 1003468, 15927],
+    [826390002, 67871734, 1051230, 16954],
+    [895329920, 70025197, 1102073, 18067],
+    [966475257, 72283694, 1156251, 19271],
+    [1039934473, 74654174, 1214042, 20578],
+    [1115823267, 77144170, 1275750, 21998],
+];
+// COT_TABLE[k]: 1 − √z·cot √z, the same form (worst piece fit error 2.2·10⁻¹²).
+const COT_TABLE: [[i32; 4]; 20] = [
+    [0, 44739243, 93206, 279],
+    [44832728, 44926492, 94043, 283],
+    [89853546, 45115427, 94891, 286],
+    [135064150, 45306068, 95750, 290],
+    [180466257, 45498438, 96619, 294],
+    [226061608, 45692558, 97500, 297],
+    [271851963, 45888450, 98392, 301],
+    [317839107, 46086139, 99296, 305],
+    [364024846, 46285645, 100211, 309],
+    [410411010, 46486994, 101137, 313],
+    [456999455, 46690208, 102076, 317],
+    [503792056, 46895312, 103027, 321],
+    [550790717, 47102331, 103991, 325],
+    [597997365, 47311290, 104967, 330],
+    [645413952, 47522214, 105956, 334],
+    [693042456, 47735129, 106958, 338],
+    [740884881, 47950061, 107973, 343],
+    [788943258, 48167037, 109002, 347],
+    [837219644, 48386084, 110045, 352],
+    [885716125, 48607230, 111101, 357],
+];
 // 2^(j/64) in Q1.31.
 const EXP2_TABLE: [u32; 64] = [
     2147483648, 2170868212, 2194507417, 2218404036, 2242560872, 2266980759, 2291666561, 2316621173,
@@ -810,30 +857,59 @@ pub fn sin_cos(x: I16F16) -> (I16F16, I16F16) {
 ///   keeps ~30 significant bits, so even next to the pole (`tan(102941·2⁻¹⁶)
 ///   ≈ 24200`, one input step below `≈ 17670`: a 37 % jump per LSB of input)
 ///   the absolute error stays under 1 LSB.
-/// * Algorithm: `|x| ≤ π/4`: `sin θ / cos θ` from the [`sin`] polynomials,
-///   the quotient formed to 17 bits. `|x| > π/4`: `δ = π/2 − |x|` exactly
-///   in 48 fractional bits (one 64-bit subtraction), normalized to a 32-bit
-///   mantissa (a 16-bit leading-zero count and two 32-bit shifts), and
-///   `tan x = cos δ / sin δ` with `sin δ = δ·(1 − z·…)` so the quotient
-///   keeps ~30 significant bits even next to the pole. Both quotients are
-///   the exact floor `⌊n·2ᵏ/d⌋` (divisor `d ≥ 2²⁹`) by `div_frac_wide`:
-///   a reciprocal from a 256-entry seed and one Newton step, one widening
+/// * Algorithm: `|x| ≤ π/4`: `tan θ = θ(1 + G(θ²))` with `G` from the
+///   20-piece cubic table `TAN_TABLE` in `z = θ²` (fit error `< 7·10⁻¹⁰`):
+///   no division. `|x| > π/4`: `δ = π/2 − |x|` exactly in 48 fractional
+///   bits (one 64-bit subtraction), normalized to a 32-bit mantissa (a
+///   16-bit leading-zero count and two 32-bit shifts), and
+///   `tan x = cot δ = C(δ²)/δ` with `C = δ cot δ ∈ [π/4, 1]` from the
+///   table `COT_TABLE` (fit error `< 3·10⁻¹²`), so the quotient keeps ~30
+///   significant bits even next to the pole. That quotient is the exact
+///   floor `⌊n·2ᵏ/d⌋` (divisor `d ≥ 2³⁰`) by `div_frac_wide`: a
+///   reciprocal from a 256-entry seed and one Newton step, one widening
 ///   product and one conditional correction, bit-identical to the
 ///   bit-serial `div_frac` (tested at every input).
-/// * Cost: 6 `mulhi` + `div_frac_wide` (one widening product, ten `MULS`),
-///   no loop, no division, no `leading_zeros` call; on the Cortex-M0+ at
-///   most 375 instructions (`embedded/count.py`, kernel row), 721 with the
-///   bit-serial division.
+/// * Cost: 5 `mulhi` below π/4; beyond it 4 `mulhi` + `div_frac_wide`
+///   (one widening product, ten `MULS`), no loop, no `leading_zeros`
+///   call (`embedded/count.py`, kernel row).
 pub fn tan(x: I16F16) -> I16F16 {
     tan_with(x, tan_quotient)
 }
 
-/// The quotient `tan|x|·2¹⁷ ≈ ⌊n·2ᵏ/d⌋` of [`tan`] for the raw magnitude
-/// `a < TAN_SAT_BITS` ([`tan_quotient_operands`], [`div_frac_wide`]).
+/// `tan|x|·2¹⁷` (floored) of [`tan`] for the raw magnitude
+/// `a < TAN_SAT_BITS`: below π/4 the product `θ(1 + G(θ²))`, beyond it
+/// the quotient `⌊n·2ᵏ/d⌋` of [`cot_quotient_operands`] by
+/// [`div_frac_wide`].
 #[inline(always)]
 pub(crate) fn tan_quotient(a: u32) -> u32 {
-    let (n, d, k) = tan_quotient_operands(a);
-    div_frac_wide(n, d, k)
+    if a <= PIO4_BITS {
+        tan_small_quotient(a)
+    } else {
+        let (n, d, k) = cot_quotient_operands(a);
+        div_frac_wide(n, d, k)
+    }
+}
+
+/// `⌊tan θ·2¹⁷⌋` for `θ = a·2⁻¹⁶ ≤ π/4` (`a ≤ PIO4_BITS`): `tan θ =
+/// θ + θ·G(θ²)` in `Q0.32` (below 1: `θ < π/4`), no division.
+#[inline(always)]
+fn tan_small_quotient(a: u32) -> u32 {
+    let theta = a << 16; // Q0.32
+    let g = z_piece(&TAN_TABLE, mulhi(theta, theta));
+    (theta + mulhi(theta, g)) >> 15
+}
+
+/// One piece of `TAN_TABLE` or `COT_TABLE` at `z ∈ [0, 0.625)` (`Q0.32`):
+/// `b0 + H(b1 + H(b2 + H·b3))` with `H = 32z − k`; `b1`, `b2`, `b3` are
+/// positive in both tables, and the value is clamped at 0 (`TAN_TABLE`'s
+/// first `b0` is −1).
+#[inline(always)]
+fn z_piece(table: &[[i32; 4]; 20], z: u32) -> u32 {
+    let row = table[((z >> 27) as usize).min(19)];
+    let h = z << 5; // H in Q0.32
+    let acc = row[2] as u32 + mulhi(h, row[3] as u32);
+    let acc = row[1] as u32 + mulhi(h, acc);
+    (row[0] + mulhi(h, acc) as i32).max(0) as u32
 }
 
 /// [`tan`] with the quotient of the magnitude formed by `quotient` (the
@@ -876,37 +952,21 @@ pub(crate) fn leading_zeros_32(d: u32) -> u32 {
 }
 
 /// The operands `(n, d, k)` of the quotient `tan|x|·2¹⁷ ≈ ⌊n·2ᵏ/d⌋` of
-/// [`tan`] for the raw magnitude `a < TAN_SAT_BITS`.
-///
-/// * `a ≤ PIO4_BITS`: `n = sin θ` (`Q0.32`), `d = cos θ ∈ [2^30.5, 2³¹]`
-///   (`Q1.31`), `k = 16`; quotient `< 2¹⁸`.
-/// * otherwise: `n = cos δ` (`Q1.31`), `d = sin δ·2^(15+lz) ∈ [2^29.9, 2³¹)`,
-///   `k = lz + 1 ∈ 17..=31`; quotient `< 2³²`.
-///
-/// Both satisfy the preconditions of `div_frac` and of [`div_frac_wide`]
+/// [`tan`] for the raw magnitude `PIO4_BITS < a < TAN_SAT_BITS`:
+/// `n = δ cot δ` (`Q1.31`, in `[2^30.6, 2³¹]`), `d = δ·2^(15+lz) ∈ [2³⁰,
+/// 2³¹)` and `k = lz + 1 ∈ 17..=31` for `δ = π/2 − |x|`; quotient `< 2³²`.
+/// They satisfy the preconditions of `div_frac` and of [`div_frac_wide`]
 /// (`d ≥ 2²⁹`), checked at every `a` by `tan_quotients_are_exact`.
 #[inline(always)]
-fn tan_quotient_operands(a: u32) -> (u32, u32, u32) {
-    if a <= PIO4_BITS {
-        let theta = a << 16; // Q0.32
-        let z = mulhi(theta, theta);
-        let s = sin_poly(theta, z); // Q0.32
-        let c31 = (1u32 << 31) - (one_minus_cos_poly(z) >> 1); // Q1.31
-                                                               // tan·2¹⁷ = s·2¹⁶ / c31
-        (s, c31, 16)
-    } else {
-        let d48 = PIO2_Q48 - ((a as u64) << 32); // δ·2⁴⁸, δ ∈ (2⁻¹⁵, π/4]
-        let (hi, lo) = ((d48 >> 32) as u32, d48 as u32); // hi ∈ [2, 2¹⁶)
-        let lz = leading_zeros_16(hi); // of d48: 16..=30
-        let m = (hi << lz) | (lo >> (32 - lz)); // δ·2^(16+lz) ∈ [2³¹, 2³²)
-        let delta = (d48 >> 16) as u32; // Q0.32
-        let z = mulhi(delta, delta);
-        let zh = mulhi(z, SIN_K1 - mulhi(z, SIN_K2 - mulhi(z, SIN_K3)));
-        let den = (m - mulhi(m, zh)) >> 1; // sin δ·2^(15+lz) ∈ [2^29.9, 2³¹)
-        let c31 = (1u32 << 31) - (one_minus_cos_poly(z) >> 1);
-        // tan·2¹⁷ = (c31/den)·2^(lz+1)
-        (c31, den, lz + 1)
-    }
+fn cot_quotient_operands(a: u32) -> (u32, u32, u32) {
+    let d48 = PIO2_Q48 - ((a as u64) << 32); // δ·2⁴⁸, δ ∈ (2⁻¹⁵, π/4]
+    let (hi, lo) = ((d48 >> 32) as u32, d48 as u32); // hi ∈ [2, 2¹⁶)
+    let lz = leading_zeros_16(hi); // of d48: 16..=30
+    let m = (hi << lz) | (lo >> (32 - lz)); // δ·2^(16+lz) ∈ [2³¹, 2³²)
+    let delta = (d48 >> 16) as u32; // Q0.32
+    let c31 = (1u32 << 31) - (z_piece(&COT_TABLE, mulhi(delta, delta)) >> 1);
+    // tan·2¹⁷ = (c31/(m/2))·2^(lz+1)
+    (c31, m >> 1, lz + 1)
 }
 
 /// `e^x` (thesis eqs. 2.29 and 4.7: exponential Stribeck friction).
@@ -1476,37 +1536,39 @@ mod tests {
     /// the bit-serial [`div_frac`].
     fn tan_bit_serial(x: I16F16) -> I16F16 {
         tan_with(x, |a| {
-            let (n, d, k) = tan_quotient_operands(a);
-            div_frac(n, d, k)
+            if a <= PIO4_BITS {
+                tan_small_quotient(a)
+            } else {
+                let (n, d, k) = cot_quotient_operands(a);
+                div_frac(n, d, k)
+            }
         })
     }
 
-    /// Every input of `tan`'s domain: the operands satisfy the documented
-    /// ranges, both divisions equal the 128-bit floor quotient, the
-    /// final correction is 0 or 1 (both occur), and `tan` is bit-identical
-    /// to the bit-serial version (both signs, and past the saturation).
+    /// Every input of `tan`'s domain beyond π/4: the operands satisfy the
+    /// documented ranges, both divisions equal the 128-bit floor quotient,
+    /// the final correction is 0 or 1 (both occur); and `tan` is
+    /// bit-identical to the bit-serial version at every input (both
+    /// signs, and past the saturation).
     #[test]
     fn tan_quotients_are_exact() {
-        let mut max_steps = [0u32; 2];
-        for a in 0..TAN_SAT_BITS {
-            let (n, d, k) = tan_quotient_operands(a);
-            let branch = (a > PIO4_BITS) as usize;
-            assert!((1 << 29..=1 << 31).contains(&d), "a = {a}: d = {d}");
-            if branch == 0 {
-                assert_eq!(k, 16);
-                assert!(d >= 3_037_000_000 / 2, "a = {a}: d = {d}");
-            } else {
-                assert!((17..=31).contains(&k), "a = {a}: k = {k}");
-                assert!(d as f64 >= 2f64.powf(29.9), "a = {a}: d = {d}");
-            }
+        let mut max_steps = 0;
+        for a in PIO4_BITS + 1..TAN_SAT_BITS {
+            let (n, d, k) = cot_quotient_operands(a);
+            assert!((1 << 30..1 << 31).contains(&d), "a = {a}: d = {d}");
+            assert!((17..=31).contains(&k), "a = {a}: k = {k}");
+            assert!(
+                n as f64 >= 2f64.powf(30.6) && n <= 1 << 31,
+                "a = {a}: n = {n}"
+            );
             let want = floor_quotient(n, d, k);
-            assert!(want < 1 << (if branch == 0 { 18 } else { 32 }));
+            assert!(want < 1 << 32);
             let (q, steps) = div_frac_wide_steps(n, d, k);
             assert_eq!(q as u128, want, "a = {a}: n = {n}, d = {d}, k = {k}");
             assert_eq!(div_frac(n, d, k) as u128, want, "a = {a}");
-            max_steps[branch] = max_steps[branch].max(steps);
+            max_steps = max_steps.max(steps);
         }
-        assert_eq!(max_steps, [1, 1]);
+        assert_eq!(max_steps, 1);
         for a in 0..TAN_SAT_BITS as i32 + 100 {
             for bits in [a, -a] {
                 let x = I16F16::from_bits(bits);
