@@ -577,7 +577,7 @@ mod kani_proofs {
     /// `tan` non-decreasing over every pair of adjacent inputs: the
     /// saturation at `TAN_SAT_BITS`, the final rounding of the quotient, its
     /// cap at `MAX` and the sign, with the quotient of the magnitude (the
-    /// sine/cosine polynomials and the division) by its order contract,
+    /// table polynomials and, beyond π/4, the division) by its order contract,
     /// which the exhaustive engine checks at each of the 102,942 magnitudes.
     /// With the real quotient (two copies of the polynomials and of the
     /// division) it timed out at 643 s.
