@@ -851,8 +851,8 @@ pub fn sin_cos(x: I16F16) -> (I16F16, I16F16) {
 ///   so `tan` is odd (except at `MIN`, which gives `−MAX`) and non-decreasing
 ///   over all inputs.
 /// * Proven bound: **≤ 1 LSB** at all 2³² inputs against the reference
-///   saturated at `±MAX` (measured max 0.781484 LSB at `x = −1.5707`, where
-///   `tan ≈ −10381`), together with monotonicity and oddness
+///   saturated at `±MAX` (measured max 0.813410 LSB at `x = −1.57072`,
+///   next to the pole), together with monotonicity and oddness
 ///   (`exhaustive_tan_i16f16`). No relative bound is needed: the quotient
 ///   keeps ~30 significant bits, so even next to the pole (`tan(102941·2⁻¹⁶)
 ///   ≈ 24200`, one input step below `≈ 17670`: a 37 % jump per LSB of input)
