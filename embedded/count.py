@@ -3,8 +3,9 @@
 and Cortex-M0+.
 
 Builds the firmware crate of this directory for `thumbv7em-none-eabihf`
-(Cortex-M4F, f32) and `thumbv6m-none-eabi` (Cortex-M0+, I16F16), as two
-images (the default entries, and the `variants` feature's), computes each
+(Cortex-M4F, f32) and `thumbv6m-none-eabi` (Cortex-M0+, I16F16), as four
+images (the default entries, and those of the `variants`, `laws` and
+`wrist` features: each image holds what one firmware would), computes each
 entry's static worst-case bound from the ELF (`wcet.py`), loads each ELF
 into the unicorn CPU emulator, calls every entry of `all_steps()` over its
 list of argument vectors (plus the search's `found_vectors.json`), and
@@ -626,7 +627,7 @@ class Step:
     max_arm_share: float = None  # required ARM_JOINTS x cycles x 2 / tick
     per_joint: bool = False  # a step that runs once per joint (6-joint column)
     ratio_range: float = None  # ratio over the vectors with |first argument| <= this only
-    image: str = "main"  # "variants": the second image (src/main.rs)
+    image: str = "main"  # "variants", "laws", "wrist": the other images (src/main.rs)
     prep_mask: int = 0  # or-ed into word 3 of `prepare_joint`'s arguments: which states to warm up
     note: str = None  # printed in the budget column (e.g. "informative")
     arm_joint_entry: str = None  # with max_arm_total_share: the per-joint entry of the whole-arm check
@@ -745,9 +746,9 @@ def joint_steps(quick=False):
     for backend, core, vecs, xs, key in (("f32", "M4F", LAW_F32, "f32", "f32"), ("I16F16", "M0+", LAW_X, "i16f16", "x")):
         law = vecs[::3]
         steps.append(Step("active law", core, backend, f"active_{xs}", None, law, prepare="prepare_joint",
-                          per_joint=True, prep_mask=MASK[(key, "stop")], image="variants"))
+                          per_joint=True, prep_mask=MASK[(key, "stop")], image="laws"))
         steps.append(Step("passive law", core, backend, f"passive_{xs}", None, [args for _, args in law], per_joint=True,
-                          image="variants"))
+                          image="laws"))
     return steps
 
 
@@ -824,8 +825,8 @@ def all_steps(quick=False):
     steps += [
         Step("torque estimation", "M4F", "f32", "est_f32", "est_libm_f32", est_vectors(EST_T_F32, lambda: f32w(RNG.uniform(-2, 2))), prepare="prepare_est", per_joint=True, decode=lambda o: f32_of(o[0])),
         Step("torque estimation", "M0+", "I16F16", "est_i16f16", "est_cordic_i16f16", est_vectors(EST_T_X, lambda: xw(RNG.uniform(-2000, 2000))), prepare="prepare_est", per_joint=True, decode=lambda o: x_of(o[0])),
-        Step("update_radians", "M4F", "f32", "est_radians_f32", None, radians_vectors(f32w, 2.0) + [[0x7FC00000, 0, 0], [f32w(1e30), f32w(-1e30), 0]], per_joint=True, image="variants"),
-        Step("update_radians", "M0+", "I16F16", "est_radians_i16f16", None, radians_vectors(xw, 2000.0) + [[0x7FFFFFFF, 0x80000000, 0x7FFFFFFF]], per_joint=True, image="variants"),
+        Step("update_radians", "M4F", "f32", "est_radians_f32", None, radians_vectors(f32w, 2.0) + [[0x7FC00000, 0, 0], [f32w(1e30), f32w(-1e30), 0]], per_joint=True, image="laws"),
+        Step("update_radians", "M0+", "I16F16", "est_radians_i16f16", None, radians_vectors(xw, 2000.0) + [[0x7FFFFFFF, 0x80000000, 0x7FFFFFFF]], per_joint=True, image="laws"),
     ]
     steps += joint_steps(quick)
     steps += wrist_steps(quick)
@@ -846,8 +847,8 @@ def elf_path(core, profile, target_dir, image="main"):
 
 
 def build(core, profile, target_dir, image="main"):
-    """Builds one image: `main` (the default entries) or `variants` (the
-    `variants` feature, copied beside the main image)."""
+    """Builds one image: `main` (the default entries) or the image of one
+    feature (`variants`, `laws`, `wrist`), copied beside the main image."""
     cmd = ["cargo", "build", "--quiet", "--profile", profile, "--target", core.triple]
     if image != "main":
         cmd += ["--features", image]
@@ -943,7 +944,7 @@ def run(args):
         steps = [s for s in steps if s.image == "main"]
     # The variants image first: both share the output path, and the main
     # image must be the one left there (QEMU, profile.py, the bit check).
-    for image in ("variants", "wrist", "main"):
+    for image in ("variants", "laws", "wrist", "main"):
         if image != "main" and not any(s.image == image for s in steps):
             continue
         for key, core in CORES.items():

@@ -493,13 +493,10 @@ impl<S: Scalar> JointConfig<S> {
     /// For a loop that runs its own law on the measured joint (a
     /// simulator comparing feedback variants, a test bench); call it once
     /// per tick instead of `update`, never both.
-    // Inlined into its caller except on Armv6-M: the joint step is then
-    // one function, without call and argument-struct overhead.
-    #[cfg_attr(
-        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
-        inline(always)
-    )]
-    #[cfg_attr(all(target_arch = "arm", not(target_has_atomic = "32")), inline)]
+    // Inlined into its caller: the joint step is then one function,
+    // without call and argument-struct overhead, also in a firmware that
+    // builds several joint configurations.
+    #[inline(always)]
     pub fn measure(
         &self,
         st: &mut JointState<S>,

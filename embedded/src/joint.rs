@@ -15,7 +15,7 @@
 
 use core::mem::MaybeUninit;
 use fixed::types::I16F16;
-#[cfg(feature = "variants")]
+#[cfg(feature = "laws")]
 use mrr_control::control::{ActiveOutput, PassiveOutput};
 use mrr_control::control::{
     ControlInput, ModeConfig, ModeOutput, ModeParams, ModeSettings, ModeState, PassiveConfig,
@@ -334,7 +334,7 @@ pub unsafe fn step_x<const E: usize, const R: usize>(
 
 /// The stand-alone sample of the active and passive laws: `a` = desired
 /// position, speed, acceleration, measured position, speed, joint torque.
-#[cfg(feature = "variants")]
+#[cfg(feature = "laws")]
 #[inline(always)]
 fn sample_of<S: Scalar>(a: [S; 6], td: S) -> ControlInput<S> {
     ControlInput {
@@ -351,7 +351,7 @@ fn sample_of<S: Scalar>(a: [S; 6], td: S) -> ControlInput<S> {
 
 /// The robust adaptive law of eq. (4.19) with its adaptation, alone (the
 /// Stop manager's active law and state).
-#[cfg(feature = "variants")]
+#[cfg(feature = "laws")]
 #[inline(always)]
 pub unsafe fn active_f32(a: [f32; 6]) -> ActiveOutput<f32> {
     let x = sample_of(a, f32::from_bits(desired(0)));
@@ -361,7 +361,7 @@ pub unsafe fn active_f32(a: [f32; 6]) -> ActiveOutput<f32> {
 }
 
 /// As [`active_f32`], I16F16.
-#[cfg(feature = "variants")]
+#[cfg(feature = "laws")]
 #[inline(always)]
 pub unsafe fn active_x(a: [I16F16; 6]) -> ActiveOutput<I16F16> {
     let x = sample_of(a, I16F16::from_bits(desired(1) as i32));
@@ -371,7 +371,7 @@ pub unsafe fn active_x(a: [I16F16; 6]) -> ActiveOutput<I16F16> {
 }
 
 /// The passive law of eq. (4.32) alone (Table 4.1, gain 2000).
-#[cfg(feature = "variants")]
+#[cfg(feature = "laws")]
 #[inline(always)]
 pub unsafe fn passive_f32(a: [f32; 6]) -> PassiveOutput<f32> {
     let x = sample_of(a, f32::from_bits(desired(0)));
@@ -379,7 +379,7 @@ pub unsafe fn passive_f32(a: [f32; 6]) -> PassiveOutput<f32> {
 }
 
 /// As [`passive_f32`], I16F16.
-#[cfg(feature = "variants")]
+#[cfg(feature = "laws")]
 #[inline(always)]
 pub unsafe fn passive_x(a: [I16F16; 6]) -> PassiveOutput<I16F16> {
     let x = sample_of(a, I16F16::from_bits(desired(1) as i32));

@@ -154,7 +154,9 @@ entry!(joint_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16F16, te: I16F
 // inlining decisions, and the image above must stay the firmware a user of
 // the default joint configuration builds. In the second image functions
 // shared by several of these entries are called rather than inlined, so
-// its counts are, if anything, high.
+// its counts are, if anything, high. The stand-alone laws and
+// `update_radians` (feature `laws`) are a third image, so that no joint
+// configuration shares its law with a stand-alone caller.
 // The other configurations a user can choose: collision reaction Passive,
 // and no kinematic-error model (same readings, same prepare).
 #[cfg(feature = "variants")]
@@ -174,21 +176,21 @@ entry!(joint_passive_noke_i16f16(l: u32, m: u32, qd: I16F16, vd: I16F16, ad: I16
 // measured position, speed, joint torque; `prepare_joint` sets the active
 // law's state): the robust adaptive law with adaptation, eq. (4.19), and
 // the passive law, eq. (4.32).
-#[cfg(feature = "variants")]
+#[cfg(feature = "laws")]
 entry!(active_f32(qd: f32, vd: f32, ad: f32, q: f32, v: f32, tau: f32) => unsafe { joint::active_f32([qd, vd, ad, q, v, tau]) });
-#[cfg(feature = "variants")]
+#[cfg(feature = "laws")]
 entry!(active_i16f16(qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, tau: I16F16) => unsafe { joint::active_x([qd, vd, ad, q, v, tau]) });
-#[cfg(feature = "variants")]
+#[cfg(feature = "laws")]
 entry!(passive_f32(qd: f32, vd: f32, ad: f32, q: f32, v: f32, tau: f32) => unsafe { joint::passive_f32([qd, vd, ad, q, v, tau]) });
-#[cfg(feature = "variants")]
+#[cfg(feature = "laws")]
 entry!(passive_i16f16(qd: I16F16, vd: I16F16, ad: I16F16, q: I16F16, v: I16F16, tau: I16F16) => unsafe { joint::passive_x([qd, vd, ad, q, v, tau]) });
 
 // The estimate from angles (`update_radians`, eq. 2.13 from radians; with
 // the kinematic-error model): link angle, motor angle (stored angle units),
 // motor torque.
-#[cfg(feature = "variants")]
+#[cfg(feature = "laws")]
 entry!(est_radians_f32(l: f32, m: f32, t: f32) => unsafe { steps::EST_F32.assume_init_ref().update_radians(l, m, t) });
-#[cfg(feature = "variants")]
+#[cfg(feature = "laws")]
 entry!(est_radians_i16f16(l: I16F16, m: I16F16, t: I16F16) => unsafe { steps::EST_X.assume_init_ref().update_radians(l, m, t) });
 
 // Hook for the wrist step (ch. 5-6): one `entry!` line per backend here,
