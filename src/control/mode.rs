@@ -135,7 +135,7 @@ use crate::error::{positive, ParamError};
 use crate::estimation::collision::{
     CollisionConfig, CollisionParams, CollisionReaction, CollisionState,
 };
-use crate::scalar::{Coef, Gain, Scalar};
+use crate::scalar::{Coef, CoefRow, Scalar};
 
 /// The operating mode of a joint.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -422,10 +422,9 @@ pub struct ModeConfig<S> {
     /// the release condition must hold.
     release_speed: S,
     limit: S,
-    /// `2ω`, speed → speed/s.
-    two_omega: Gain<S>,
-    /// `ω²`, angle → speed/s.
-    omega_sq: Gain<S>,
+    /// `[2ω, ω²]`: the offset's `2ω ȯ + ω² o` from `(ȯ, o)` (speed →
+    /// speed/s, angle → speed/s), one exactly summed row on `I16F16`.
+    offset_row: CoefRow<2>,
     /// `T`, speed/s → speed.
     #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
     step_rate: Coef,
@@ -544,8 +543,7 @@ impl<S: Scalar> ModeConfig<S> {
             dwell: p.dwell,
             release_speed: S::from_f64(p.release.speed * u.speed),
             release_samples: p.release.samples,
-            two_omega: Gain::new(2.0 * w),
-            omega_sq: Gain::new(w * w * u.speed / u.angle),
+            offset_row: CoefRow::new([2.0 * w, w * w * u.speed / u.angle]),
             step_rate: Coef::new(t),
             step_position: Coef::new(t * u.angle / u.speed),
             bias_decay: Coef::new(1.0 - t / p.bias_time_constant),
@@ -763,11 +761,11 @@ impl<S: Scalar> ModeConfig<S> {
     }
 
     /// `2ω ȯ + ω² o`: the reference acceleration of the offset, negated.
+    /// On floats the two products summed in order, on fixed point their
+    /// exact sum rounded once.
     #[inline(always)]
     fn offset_sum(&self, st: &ModeState<S>) -> S {
-        self.two_omega
-            .apply(st.offset_rate)
-            .add(self.omega_sq.apply(st.offset))
+        S::dot_coef(&[st.offset_rate, st.offset], &self.offset_row)
     }
 
     /// Enter mode `to`: reset the counters and seed the reference
@@ -958,7 +956,7 @@ mod words {
     use crate::estimation::collision::CollisionConfig;
     #[cfg(test)]
     use crate::scalar::words::Sink;
-    use crate::scalar::{words::Words, Coef, Gain, I16F16};
+    use crate::scalar::{words::Words, Coef, CoefRow, I16F16};
 
     impl ModeConfig<I16F16> {
         pub(crate) const fn take(r: &mut Words) -> Self {
@@ -976,8 +974,7 @@ mod words {
                 dwell: r.u16(),
                 release_speed: r.fixed(),
                 release_samples: r.u16(),
-                two_omega: Gain::<I16F16>::take(r),
-                omega_sq: Gain::<I16F16>::take(r),
+                offset_row: CoefRow::<2>::take(r),
                 step_rate: Coef::take(r),
                 step_position: Coef::take(r),
                 bias_decay: Coef::take(r),
@@ -999,8 +996,7 @@ mod words {
             s.u32(self.dwell.into());
             s.fixed(self.release_speed);
             s.u32(self.release_samples.into());
-            self.two_omega.put(s);
-            self.omega_sq.put(s);
+            self.offset_row.put(s);
             self.step_rate.put(s);
             self.step_position.put(s);
             self.bias_decay.put(s);

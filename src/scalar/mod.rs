@@ -108,7 +108,9 @@ pub trait Scalar:
     ///   instead of `½ LSB` per term.
     #[inline]
     fn dot_coef<const N: usize>(x: &[Self; N], row: &CoefRow<N>) -> Self {
-        let mut acc = Self::ZERO;
+        // −0 on floats, the exact identity of the sum (−0 + p = p for
+        // every p), so the sum starts at the first product.
+        let mut acc = Self::ZERO.neg();
         for (x, c) in x.iter().zip(row.coefs.iter()) {
             acc = acc.add(x.mul_coef(c));
         }

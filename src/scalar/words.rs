@@ -180,7 +180,7 @@ impl Sink {
 
 #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
 use super::WideCoef;
-use super::{Coef, CountCoef, CountToTurn, Gain, IntFactor, SignedCoef, I16F16};
+use super::{Coef, CoefRow, CountCoef, CountToTurn, Gain, IntFactor, SignedCoef, I16F16};
 
 impl SignedCoef {
     /// The stored fields; the halves of `m` and the low-word rounding
@@ -261,6 +261,32 @@ impl Coef {
     #[cfg(test)]
     pub(crate) fn put_all(c: &[Self], s: &mut Sink) {
         c.iter().for_each(|c| c.put(s));
+    }
+}
+
+impl CoefRow<2> {
+    /// The stored fields; the split mantissas are derived as
+    /// [`CoefRow::new`] derives them.
+    pub(crate) const fn take(r: &mut Words) -> Self {
+        let coefs = [Coef::take(r), Coef::take(r)];
+        let mant = [r.i32(), r.i32()];
+        CoefRow {
+            coefs,
+            mant,
+            split: [
+                (mant[0] >> 16, mant[0] & 0xFFFF),
+                (mant[1] >> 16, mant[1] & 0xFFFF),
+            ],
+            shift: r.i32(),
+        }
+    }
+
+    #[cfg(test)]
+    pub(crate) fn put(&self, s: &mut Sink) {
+        Coef::put_all(&self.coefs, s);
+        s.i32(self.mant[0]);
+        s.i32(self.mant[1]);
+        s.i32(self.shift);
     }
 }
 
