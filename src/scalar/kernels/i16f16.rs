@@ -1331,12 +1331,11 @@ pub fn atan_small(x: I16F16) -> I16F16 {
 mod tests {
     use super::*;
 
-    /// `hypot_unit` against the exact `hypot` (f64) of the clamped inputs:
-    /// every pair of a grid covering each magnitude class (powers of two
-    /// and their neighbours, from 1 LSB to 1) with both signs, plus a
-    /// random sweep; the bound is 2 LSB, and tiny vectors stay precise.
-    #[test]
-    fn hypot_unit_is_within_one_lsb() {
+    /// `check` at every pair of a grid of each magnitude class of `[−1, 1]`
+    /// (powers of two and their neighbours, a 64-LSB stride) with both
+    /// signs, at edge words beyond the range, and at 200,000 random pairs
+    /// of about that range.
+    fn for_each_unit_pair(check: impl Fn(i32, i32)) {
         let mut mags: Vec<i32> = vec![0, 1, 2, 3, 0xFFFF, 1 << 16];
         for i in 1..16 {
             let p = 1i32 << i;
@@ -1345,18 +1344,6 @@ mod tests {
         for i in 0..=1024 {
             mags.push(i * 64);
         }
-        let check = |a: i32, b: i32| {
-            let got = hypot_unit(I16F16::from_bits(a), I16F16::from_bits(b)).to_bits();
-            let (ca, cb) = (
-                (a.unsigned_abs().min(0xFFFF)) as f64,
-                (b.unsigned_abs().min(0xFFFF)) as f64,
-            );
-            let exact = ca.hypot(cb);
-            assert!(
-                (got as f64 - exact).abs() <= 1.0,
-                "hypot_unit({a}, {b}) = {got}, exact {exact}"
-            );
-        };
         for &x in &mags {
             for &y in &mags {
                 check(x, y);
@@ -1381,6 +1368,27 @@ mod tests {
             let (x, y) = ((z as i32) >> 14, ((z >> 32) as i32) >> 14);
             check(x, y);
         }
+    }
+
+    /// `hypot_unit` against the exact `hypot` (f64) of the clamped inputs:
+    /// every pair of a grid covering each magnitude class (powers of two
+    /// and their neighbours, from 1 LSB to 1) with both signs, plus a
+    /// random sweep; the bound is 1 LSB, and tiny vectors stay precise.
+    #[test]
+    fn hypot_unit_is_within_one_lsb() {
+        let check = |a: i32, b: i32| {
+            let got = hypot_unit(I16F16::from_bits(a), I16F16::from_bits(b)).to_bits();
+            let (ca, cb) = (
+                (a.unsigned_abs().min(0xFFFF)) as f64,
+                (b.unsigned_abs().min(0xFFFF)) as f64,
+            );
+            let exact = ca.hypot(cb);
+            assert!(
+                (got as f64 - exact).abs() <= 1.0,
+                "hypot_unit({a}, {b}) = {got}, exact {exact}"
+            );
+        };
+        for_each_unit_pair(check);
     }
 
     /// `rsqrt_quarter` at every input of `[¼, 1]` and the clamps beyond:
@@ -1415,14 +1423,6 @@ mod tests {
     /// and random pairs; `None` only for the zero vector.
     #[test]
     fn unit_vector_is_within_one_lsb() {
-        let mut mags: Vec<i32> = vec![0, 1, 2, 3, 0xFFFF, 1 << 16];
-        for i in 1..16 {
-            let p = 1i32 << i;
-            mags.extend([p - 1, p, p + 1, p + (p >> 1)]);
-        }
-        for i in 0..=1024 {
-            mags.push(i * 64);
-        }
         let check = |a: i32, b: i32| {
             let got = unit_vector(I16F16::from_bits(a), I16F16::from_bits(b));
             let cl = |v: i32| (v.unsigned_abs().min(0xFFFF) as f64).copysign(v as f64);
@@ -1442,29 +1442,7 @@ mod tests {
                 }
             }
         };
-        for &x in &mags {
-            for &y in &mags {
-                check(x, y);
-                check(-x, y);
-                check(x, -y);
-            }
-        }
-        for (x, y) in [
-            (i32::MAX, 0),
-            (i32::MIN, 5),
-            (1 << 20, 1 << 17),
-            (-(1 << 16), -(1 << 16)),
-        ] {
-            check(x, y);
-        }
-        let mut z = 0x2545_F491_4F6C_DD1Du64;
-        for _ in 0..200_000 {
-            z ^= z << 13;
-            z ^= z >> 7;
-            z ^= z << 17;
-            let (x, y) = ((z as i32) >> 14, ((z >> 32) as i32) >> 14);
-            check(x, y);
-        }
+        for_each_unit_pair(check);
     }
 
     /// `atan_small` at every input below 2 in magnitude: within 1 LSB of
