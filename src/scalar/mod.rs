@@ -306,7 +306,7 @@ pub trait Scalar:
     /// `None` for the zero vector. `I16F16` scales both by a power of two
     /// and multiplies by a table reciprocal root
     /// ([`kernels::i16f16::unit_vector`]: within 1 LSB per component, no
-    /// division); the default divides both by [`hypot`].
+    /// division); the default divides both by their `hypot`.
     #[inline]
     fn unit_vector(self, b: Self) -> Option<(Self, Self)> {
         let h = hypot(self, b);

@@ -1171,7 +1171,7 @@ pub fn sqrt_small(x: I16F16) -> I16F16 {
 /// `√(a² + b²)` of two components of magnitude at most 1 (clamped to
 /// `1 − 2⁻¹⁶`), without a root or a division: with the scaled squares and
 /// the table reciprocal root `r = 1/√s` of [`unit_vector`]
-/// ([`scaled_unit_root`]), `√s = s·r` (one `mulhi`), shifted back by the
+/// (`scaled_unit_root`), `√s = s·r` (one `mulhi`), shifted back by the
 /// scaling with rounding.
 ///
 /// * Bound (tests: every pair on a 1,025-point grid of each sign and
@@ -1215,7 +1215,7 @@ pub(crate) fn rsqrt_q30(s: u32) -> u32 {
 ///
 /// * Bound (every input, `rsqrt_quarter_is_within_one_lsb`): **≤ 1 LSB**
 ///   against the exact `1/√x` of the clamped input, non-increasing.
-/// * Cost: [`rsqrt_q30`]: one table row, three `mulhi`.
+/// * Cost: `rsqrt_q30`: one table row, three `mulhi`.
 pub fn rsqrt_quarter(x: I16F16) -> I16F16 {
     let bits = x.to_bits().clamp(1 << 14, 1 << 16) as u32;
     let v = rsqrt_q30(bits << 14);
@@ -1226,7 +1226,7 @@ pub fn rsqrt_quarter(x: I16F16) -> I16F16 {
 /// most 1 (clamped to `1 − 2⁻¹⁶`), or `None` for `(0, 0)`: both are
 /// scaled by the power of two `2ᵏ` that brings the larger into `[½, 1)`
 /// (exact shifts), the sum of their squares (in `[¼, 2)`, formed to
-/// `2⁻³⁰`) goes through [`rsqrt_q30`] (a factor 4 taken out when it is 1
+/// `2⁻³⁰`) goes through `rsqrt_q30` (a factor 4 taken out when it is 1
 /// or more), and each scaled component is multiplied by that reciprocal
 /// root from its halves (two 32-bit `MULS` each) and rounded.
 ///
