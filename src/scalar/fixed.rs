@@ -33,10 +33,15 @@ pub(crate) const fn sat_i64(v: i64) -> i32 {
 /// When either operand lies in `[−2¹⁵, 2¹⁵)` (a value below 0.5 in
 /// magnitude — small errors, speeds and boundary-layer quantities, the
 /// common case in a control law) the product takes [`mul_bits_short`]: two
-/// 32-bit multiplies and no saturation check.
+/// 32-bit multiplies and no saturation check. Not on Armv6-M: there the
+/// two operand tests cost six instructions on top of the long form on
+/// every worst-case path (the one a servo tick's budget is signed on),
+/// which then is [`mul_bits_long_split`] alone; the value is the same.
 #[inline]
 pub(crate) fn mul_bits(a: i32, b: i32) -> i32 {
-    if b as i16 as i32 == b {
+    if cfg!(all(target_arch = "arm", not(target_has_atomic = "32"))) {
+        mul_bits_long(a, b)
+    } else if b as i16 as i32 == b {
         mul_bits_short(a, b)
     } else if a as i16 as i32 == a {
         mul_bits_short(b, a)
