@@ -96,6 +96,7 @@ pub fn edge_turns() -> impl Iterator<Item = u32> {
 mod tests {
     use super::super::engine::exhaustive_u32;
     use super::*;
+    use crate::scalar::kernels::i16f16::{turn_of_radians, TURN_OF_RADIANS_UNITS};
     use proptest::prelude::*;
     use std::time::Instant;
     use std::{eprintln, println};
@@ -271,6 +272,83 @@ mod tests {
         eprintln!("(cos_turn I16F16: {:.1} s)", t.elapsed().as_secs_f64());
         assert_eq!(r.failures, 0, "first failure at {:?}", r.first_failure);
         line("I16F16", "1 LSB", "LSB", r.max_error, r.argmax, r.checked);
+        // Radians through `turn_of_radians` (within its bound of
+        // `TURN_OF_RADIANS_UNITS` turn units, `turn_of_radians_is_within_its_bound`):
+        // cos and sin (a quarter turn back, the same kernel) are within
+        // this maximum plus the angle error, `|Δ cos| ≤ |Δθ|`.
+        let conv = TURN_OF_RADIANS_UNITS * TAU / 4_294_967_296.0 / LSB;
+        assert!(r.max_error + conv <= 1.0, "{} + {conv}", r.max_error);
+        println!(
+            "PROOF kernel=sin_cos_turn(turn_of_radians(x)) backend=I16F16 domain=all bound=1 LSB max_err<={:.6} LSB (cos_turn max {:.6} + conversion {conv:.6}) checked={} engine=exhaustive",
+            r.max_error + conv,
+            r.max_error,
+            r.checked
+        );
+    }
+
+    /// `turn_of_radians` against the exact product with a 64-bit fraction
+    /// of `2¹⁶/(2π)` (`⌊2⁸⁰/(2π)⌉`, from a 60-digit π): within
+    /// `TURN_OF_RADIANS_UNITS` at the edge words, a stride through all
+    /// words and random words; the sample reaches most of the bound.
+    #[test]
+    fn turn_of_radians_is_within_its_bound() {
+        // 2¹⁶/(2π)·2⁶⁴, rounded.
+        const K: i128 = 192_406_520_023_089_232_379_658;
+        let mut worst = 0.0f64;
+        let mut state = 0x9E37_79B9_7F4A_7C15u64;
+        let random = (0..400_000).map(|_| (crate::scalar::xorshift64(&mut state) >> 32) as i32);
+        let stride = (0..=u32::MAX / 9973).map(|k| (k * 9973) as i32);
+        let edges = [
+            0,
+            1,
+            -1,
+            i32::MAX,
+            i32::MIN,
+            i32::MIN + 1,
+            102_944,
+            -102_944,
+            205_887,
+            -205_887,
+        ];
+        for b in edges.into_iter().chain(stride).chain(random) {
+            let got = turn_of_radians(I16F16::from_bits(b));
+            // (got − b·K/2⁶⁴) modulo 2³², as a signed multiple of 2⁻⁶⁴.
+            let exact = b as i128 * K;
+            let diff = ((got as i128) << 64).wrapping_sub(exact) & ((1i128 << 96) - 1);
+            let diff = if diff >= 1i128 << 95 {
+                diff - (1i128 << 96)
+            } else {
+                diff
+            };
+            let units = diff as f64 / 18_446_744_073_709_551_616.0;
+            assert!(
+                units.abs() <= TURN_OF_RADIANS_UNITS,
+                "bits {b}: {units} units"
+            );
+            worst = worst.max(units.abs());
+        }
+        assert!(worst > 0.49, "worst {worst}");
+    }
+
+    /// `sin_cos_turn(turn_of_radians(x))` against `f64` `sin`/`cos` of
+    /// `x`: within 1 LSB on every input of `|x| ≤ 8` rad and a random
+    /// sample of all words (the exhaustive proof is the composition in
+    /// `exhaustive_cos_turn_i16f16`).
+    #[test]
+    fn sin_cos_of_turn_of_radians_is_within_one_lsb() {
+        let mut state = 0x2545_F491_4F6C_DD1Du64;
+        let random = (0..200_000).map(|_| (crate::scalar::xorshift64(&mut state) >> 32) as i32);
+        let mut worst = 0.0f64;
+        for b in (-(8 << 16)..=(8 << 16)).step_by(3).chain(random) {
+            let x = I16F16::from_bits(b);
+            let (s, c) = I16F16::sin_cos_turn(x.to_turn());
+            let xf = x.to_f64();
+            let es = (s.to_f64() - libm::sin(xf)).abs() / LSB;
+            let ec = (c.to_f64() - libm::cos(xf)).abs() / LSB;
+            assert!(es <= 1.0 && ec <= 1.0, "at {xf}: {es} {ec} LSB");
+            worst = worst.max(es).max(ec);
+        }
+        assert!(worst > 0.7, "worst {worst} LSB");
     }
 
     /// Every `u32` angle: `f32` within 2⁻²² absolute, even, `|c| ≤ 1`.

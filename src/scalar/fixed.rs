@@ -693,6 +693,10 @@ impl Scalar for I16F16 {
         kernels::i16f16::cos_turn(turn)
     }
     #[inline]
+    fn to_turn(self) -> u32 {
+        kernels::i16f16::turn_of_radians(self)
+    }
+    #[inline]
     fn atan2(self, x: Self) -> Self {
         kernels::i16f16::atan2(self, x)
     }

@@ -286,6 +286,18 @@ pub trait Scalar:
             Self::cos_turn(turn),
         )
     }
+    /// This angle (radians) as a binary angle (units of `2⁻³²` turn,
+    /// wrapped), for [`cos_turn`](Scalar::cos_turn) and
+    /// [`sin_cos_turn`](Scalar::sin_cos_turn). `I16F16`: from the raw bits
+    /// by one widening product with `2¹⁶/(2π)`, within 0.52 units
+    /// ([`kernels::i16f16::turn_of_radians`]), so `sin_cos_turn` of it is
+    /// within 1 LSB of `(sin, cos)` at every input, with no division or
+    /// argument reduction; the default rounds the `f64` value
+    /// ([`turn_from_radians`]; a non-finite angle gives 0).
+    #[inline]
+    fn to_turn(self) -> u32 {
+        turn_from_radians(self.to_f64())
+    }
     /// Four-quadrant arctangent of `self / x` (`self` is `y`), in `[-π, π]`;
     /// `atan2(0, 0) = 0`.
     fn atan2(self, x: Self) -> Self;

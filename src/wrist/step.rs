@@ -645,8 +645,18 @@ impl<S: Scalar> WristStepConfig<S> {
     /// of a few resolution steps) of [`WristConfig::inverse`].
     #[inline(always)]
     fn ik(&self, r: PitchYaw<S>) -> Ik<S> {
-        let (mut sd, mut cd) = r.delta.sin_cos();
-        let (mut sg, mut cg) = r.gamma.sin_cos();
+        // Fixed point (folded at compile time): through the binary angle,
+        // a table lookup instead of a reduction modulo π/2 and polynomials
+        // (the same 1-LSB bound: `Scalar::to_turn`).
+        let sin_cos = |a: S| {
+            if S::RESOLUTION.to_f64() >= 1e-6 {
+                S::sin_cos_turn(a.to_turn())
+            } else {
+                a.sin_cos()
+            }
+        };
+        let (mut sd, mut cd) = sin_cos(r.delta);
+        let (mut sg, mut cg) = sin_cos(r.gamma);
         let (ax, ay) = (sd.mul_unit_range(cg), sg.neg());
         let cb = cd.mul_unit_range(cg);
         let saturated = cb < self.cos_2phi;

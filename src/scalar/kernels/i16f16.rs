@@ -832,6 +832,42 @@ pub fn cos_turn(turn: u32) -> I16F16 {
     I16F16::from_bits(if negative { -r } else { r })
 }
 
+/// `2¹⁶/(2π)` (binary-angle units per raw `I16F16` step of one radian)
+/// as `TURN_PER_RAD_INT + TURN_PER_RAD_FRAC·2⁻³²`; the fraction is rounded
+/// from 0.378350470452724949566… (error 0.021·2⁻³²).
+const TURN_PER_RAD_INT: u32 = 10430;
+const TURN_PER_RAD_FRAC: i32 = 1_625_002_897;
+
+/// An angle in radians as a binary angle: `round(x·2³²/(2π))` modulo 2³²
+/// (units of `2⁻³²` turn), for [`cos_turn`] and `sin_cos_turn`.
+///
+/// * Domain: every input; the result wraps (angles modulo a turn).
+/// * Error: at most **0.52 units** (`0.52·2π·2⁻³² = 7.6·10⁻¹⁰` rad, i.e.
+///   `5·10⁻⁵` LSB of a sine): the raw bits `b` times the constant
+///   `2¹⁶/(2π)` split into its integer part (a wrapping `MULS`, exact
+///   modulo 2³²) and 32 fractional bits (the signed high word of one
+///   32 × 32 product, rounded: ≤ ½ unit), whose own rounding contributes
+///   `|b|·0.021·2⁻³² ≤ 0.011` units. Checked against the exact product with
+///   a 64-bit fraction by `turn_of_radians_is_within_its_bound`.
+/// * So `cos_turn(turn_of_radians(x))` is within cos_turn's proven error
+///   (max 0.801 LSB at all 2³² turns) plus `5·10⁻⁵` LSB of `cos x`: **≤ 1
+///   LSB** at every input (`exhaustive_cos_turn_i16f16` asserts the sum),
+///   and likewise the sine a quarter turn back.
+/// * Cost: one widening product and one `MULS`; no reduction, no table.
+#[inline]
+pub fn turn_of_radians(x: I16F16) -> u32 {
+    let b = x.to_bits();
+    let (hi, lo) = crate::scalar::fixed::signed_wide_mul(b, TURN_PER_RAD_FRAC);
+    // ⌊(b·F + 2³¹)/2³²⌋: the high word, plus one when the low word is at
+    // least one half.
+    let frac = (hi as u32).wrapping_add(lo >> 31);
+    (b as u32).wrapping_mul(TURN_PER_RAD_INT).wrapping_add(frac)
+}
+
+/// The bound of [`turn_of_radians`] in units of `2⁻³²` turn.
+#[cfg(any(test, feature = "proofs"))]
+pub(crate) const TURN_OF_RADIANS_UNITS: f64 = 0.52;
+
 /// `(sin x, cos x)` sharing one argument reduction; bit-identical to
 /// `(sin(x), cos(x))` (proven at all 2³² inputs). Cost: 9 `mulhi`.
 pub fn sin_cos(x: I16F16) -> (I16F16, I16F16) {
