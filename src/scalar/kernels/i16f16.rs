@@ -865,7 +865,7 @@ pub fn turn_of_radians(x: I16F16) -> u32 {
 }
 
 /// The bound of [`turn_of_radians`] in units of `2⁻³²` turn.
-#[cfg(any(test, feature = "proofs"))]
+#[cfg(test)]
 pub(crate) const TURN_OF_RADIANS_UNITS: f64 = 0.52;
 
 /// `(sin x, cos x)` sharing one argument reduction; bit-identical to
