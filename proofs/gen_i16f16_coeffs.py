@@ -117,6 +117,16 @@ for name, g in (("TAN_TABLE", g_tan), ("COT_TABLE", g_cot)):
         print(f"    [{r[0]}, {r[1]}, {r[2]}, {r[3]}],")
     print("];")
 
+# --- tan_bounded: G = tan(sqrt z)/sqrt z - 1 on z in [0, 67/32), |x| up to
+# atan(8) (z = 2.0922); 67 cubic pieces, Q3.29 (G < 4.6).
+print("// TAN_BOUNDED_TABLE[k] = [b0, b1, b2, b3], Q3.29")
+rows = cubic_table(g_tan, pieces=67, bits=29)
+print("const TAN_BOUNDED_TABLE: [[i32; 4]; 67] = [")
+for r in rows:
+    print(f"    [{r[0]}, {r[1]}, {r[2]}, {r[3]}],")
+print("];")
+print(f"const TAN_BOUNDED_MAX_BITS: u32 = {int(floor(atan(8) * 65536))};")
+
 # --- exp: 2^(j/64) in Q1.31 and 2^(R/64) - 1 = R (c1 + R (c2 + R c3)) -----
 print("const EXP2_TABLE: [u32; 64] = [")
 print("    " + ", ".join(str(q(mpf(2) ** (mpf(j) / 64), 31)) for j in range(64)) + ",")

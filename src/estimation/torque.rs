@@ -313,6 +313,22 @@ pub const MAX_COUNTS_PER_OUTPUT_REV: f64 = 70_368_744_177_664.0;
 /// The name of the product `L·M·N` in errors.
 const LMN_NAME: &str = "link_counts_per_rev·motor_counts_per_rev·ratio";
 
+/// Largest accepted `c_f·max_torque` (the flexspline's stiffening
+/// coefficient times the estimate's limit): at `max_torque` the model's
+/// stiffness `K_f0(1 + (c_f τ)²)` is then at most 57.25 `K_f0`, and the
+/// argument of `tan` in eq. (3.10) at most `atan 7.5 = 1.4382` rad, inside
+/// the domain of [`Scalar::tan_bounded`] (`atan 8`) with a margin far
+/// above any rounding, so the estimator evaluates the inverse without the
+/// quotient near the pole. The SHD-17-100 of §2.4 at the 60 N·m of the
+/// examples is at 2.70 (identified `c_f = 0.04494` 1/(N·m)); every drive
+/// scaled from it keeps `c_f·T_rated = 0.719`, so up to 10.4 times the
+/// rated torque. Beyond it one torsion count is worth more than 57 times
+/// the torque it is worth at rest.
+pub const MAX_STIFFENING_TORQUE: f64 = 7.5;
+
+/// The name of the product `c_f·max_torque` in errors.
+const STIFFENING_TORQUE_NAME: &str = "c_f·max_torque";
+
 impl TorqueEstimatorParams {
     /// Validate, each rule once and naming what broke it:
     /// * `ratio` (the drive's `N`): an integer in `[1, 65535]`
@@ -321,6 +337,9 @@ impl TorqueEstimatorParams {
     ///   quadrature decoding): at least 1;
     /// * `max_torque`: finite, in `[0.001, 30 000]` N·m
     ///   ([`MIN_TORQUE_LIMIT`], [`MAX_TORQUE_LIMIT`]);
+    /// * the product `c_f·max_torque` (named as such,
+    ///   [`ParamError::CombinationOutOfRange`]): at most 7.5
+    ///   ([`MAX_STIFFENING_TORQUE`]);
     /// * the product `L·M·N` (named as such,
     ///   [`ParamError::CombinationOutOfRange`]): at most `2⁴⁶`
     ///   ([`MAX_COUNTS_PER_OUTPUT_REV`]), and small enough that 2³¹ counts of
@@ -355,6 +374,12 @@ impl TorqueEstimatorParams {
                 max: MAX_TORQUE_LIMIT,
             });
         }
+        combination(
+            STIFFENING_TORQUE_NAME,
+            drive.flexspline().c_f() * max_torque,
+            0.0,
+            MAX_STIFFENING_TORQUE,
+        )?;
         let p = TorqueEstimatorParams {
             drive,
             kinematic_error,
@@ -1227,7 +1252,7 @@ mod words {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::harmonic_drive::{CatalogueData, FlexsplineParams};
+    use crate::harmonic_drive::CatalogueData;
     use crate::scalar::I16F16;
     use proptest::prelude::*;
     use std::string::ToString;
@@ -1690,24 +1715,25 @@ mod tests {
 
     /// The saturation of `finish` by one comparison against the prepared
     /// `torsion_limit` equals the two direct tests it replaces (the `tan`
-    /// argument at or beyond π/2, then `|τ| > max_torque`) at every torsion
-    /// tried: on `I16F16` every code within twice the branch edge, on the
-    /// floats a thousand codes either side of the limit and a log sweep.
-    /// The limit is tight: the direct test passes at it and fails at the
-    /// next code up. Three set-ups: SHD-17-100 at 60 N·m and at the largest
-    /// `max_torque` (30 000 N·m; both limits are set by `max_torque`), and
-    /// a flexspline with `c_f = 1000 /(N·m)` (and `K_f0 = 1000 N·m/rad`, so
-    /// that its largest torsion, 1.6 µrad, is accepted) at 30 000 N·m, where `tan` of
-    /// the largest in-branch f32 argument gives only about 23 000 N·m, so
-    /// that the f32 limit is set by the branch edge (asserted).
+    /// argument beyond `atan 8`, the domain of `tan_bounded`, then
+    /// `|τ| > max_torque`) at every torsion tried: on `I16F16` every code
+    /// within twice the branch edge, on the floats a thousand codes either
+    /// side of the limit and a log sweep. The limit is tight: the direct
+    /// test passes at it and fails at the next code up, and it is set by
+    /// `max_torque`, not by the domain. Two set-ups: SHD-17-100 at 60 N·m
+    /// and at the largest accepted `max_torque`, `7.5/c_f = 166.9` N·m; a
+    /// limit above that is rejected by name.
     #[test]
     fn saturation_by_torsion_limit_equals_the_direct_tests() {
         fn direct<S: Scalar>(cfg: &TorqueEstimatorConfig<S>, ft: S) -> (S, bool) {
-            let t = cfg.flexspline.torque(ft);
-            let sat = t.saturated || t.torque.abs() > cfg.max_torque;
+            let f = &cfg.flexspline;
+            let angle = f.angle_of(ft);
+            let bound = S::from_f64(crate::harmonic_drive::compliance::TAN_BOUNDED_ARGUMENT);
+            let t = f.torque_in_branch(ft);
+            let sat = angle.abs() > bound || t.abs() > cfg.max_torque;
             let m = cfg.max_torque;
             let torque = match (sat, ft < S::ZERO) {
-                (false, _) => t.torque,
+                (false, _) => t,
                 (true, true) => m.neg(),
                 (true, false) => m,
             };
@@ -1717,8 +1743,13 @@ mod tests {
             let e = cfg.finish(ft, None, S::ZERO, S::ZERO, false, false);
             assert_eq!((e.torque, e.saturated), direct(cfg, ft), "at {ft:?}");
         }
+        /// Whether the torque (not the domain) fails just above the limit.
+        fn torque_bound<S: Scalar>(cfg: &TorqueEstimatorConfig<S>, up: S) -> bool {
+            let t = |x: S| cfg.flexspline.torque_in_branch(x).abs() > cfg.max_torque;
+            t(up) || t(up.neg())
+        }
         /// Checks one float configuration; returns whether the next torsion
-        /// above the limit leaves the branch (rather than `max_torque`).
+        /// above the limit fails by its torque.
         fn floats<S: Scalar + core::fmt::Debug>(
             cfg: &TorqueEstimatorConfig<S>,
             step: impl Fn(S, i32) -> S,
@@ -1741,42 +1772,32 @@ mod tests {
             for t in [S::ZERO, S::MAX, S::MAX.neg()] {
                 agree(cfg, t);
             }
-            cfg.flexspline.torque(up).saturated
+            torque_bound(cfg, up)
         }
-        let mut edge_bound = [false; 3];
-        for (case, (c_f, max)) in [(None, 60.0), (None, 30_000.0), (Some(1000.0), 30_000.0)]
-            .into_iter()
-            .enumerate()
-        {
-            let mut drive = CatalogueData::SHD_17_100.identify().unwrap();
-            if let Some(c_f) = c_f {
-                let f = FlexsplineParams::try_new(crate::harmonic_drive::FlexsplineSettings {
-                    k_f0: 1000.0,
-                    c_f,
-                })
-                .unwrap();
-                drive =
-                    HarmonicDriveParams::try_new(f, drive.wave_generator(), drive.ratio()).unwrap();
-            }
-            let p = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
-                drive,
-                kinematic_error: None,
-                link_counts_per_rev: L,
-                motor_counts_per_rev: M,
-                max_torque: max,
-            })
-            .unwrap();
-            edge_bound[case] = floats(&TorqueEstimatorConfig::<f32>::new(&p), |x, k| {
+        let drive = CatalogueData::SHD_17_100.identify().unwrap();
+        let c_f = drive.flexspline().c_f();
+        let settings = |max_torque: f64| TorqueEstimatorSettings {
+            drive,
+            kinematic_error: None,
+            link_counts_per_rev: L,
+            motor_counts_per_rev: M,
+            max_torque,
+        };
+        let largest = MAX_STIFFENING_TORQUE / c_f;
+        for max in [60.0, largest] {
+            let p = TorqueEstimatorParams::try_new(settings(max)).unwrap();
+            assert!(floats(&TorqueEstimatorConfig::<f32>::new(&p), |x, k| {
                 f32::from_bits((x.to_bits() as i32 + k) as u32)
-            });
-            floats(&TorqueEstimatorConfig::<f64>::new(&p), |x, k| {
+            }));
+            assert!(floats(&TorqueEstimatorConfig::<f64>::new(&p), |x, k| {
                 f64::from_bits((x.to_bits() as i64 + k as i64) as u64)
-            });
+            }));
             let cfg = TorqueEstimatorConfig::<I16F16>::new(&p);
             let a = cfg.torsion_limit.to_bits();
             assert!(!direct(&cfg, cfg.torsion_limit).1);
             let up = I16F16::from_bits(a + 1);
             assert!(direct(&cfg, up).1 || direct(&cfg, up.neg()).1);
+            assert!(torque_bound(&cfg, up));
             let edge = (drive.flexspline().max_torsion() * I16F16::UNITS.torsion * 65536.0) as i32;
             for b in -2 * edge..=2 * edge {
                 agree(&cfg, I16F16::from_bits(b));
@@ -1785,7 +1806,16 @@ mod tests {
                 agree(&cfg, I16F16::from_bits(b));
             }
         }
-        assert_eq!(edge_bound, [false, false, true]);
+        let over = largest * (1.0 + 1e-9);
+        assert_eq!(
+            TorqueEstimatorParams::try_new(settings(over)).unwrap_err(),
+            ParamError::CombinationOutOfRange {
+                name: "c_f·max_torque",
+                value: c_f * over,
+                min: 0.0,
+                max: MAX_STIFFENING_TORQUE,
+            }
+        );
     }
 
     #[test]

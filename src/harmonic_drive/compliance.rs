@@ -285,6 +285,12 @@ pub struct FlexsplineParams {
 /// (`c`, `1/c`, in stored units) at full 31-bit precision.
 pub const STIFFENING_RANGE: (f64, f64) = (1e-6, 1e6);
 
+/// The largest argument of [`Scalar::tan_bounded`] the torque estimator
+/// evaluates eq. (3.10) at, rad: `atan 8` (its torsion limit keeps the
+/// argument within it; see
+/// [`TorqueEstimatorParams::try_new`](crate::estimation::torque::TorqueEstimatorParams::try_new)).
+pub(crate) const TAN_BOUNDED_ARGUMENT: f64 = 1.446_441_332_248_135;
+
 /// Accepted range of the flexspline's largest torsion `π/(2 c_f K_f0)`,
 /// rad. Harmonic drives twist by milliradians (4.2 mrad for the
 /// SHD-17-100); the lower end is 65 steps of the fixed-point torsion unit,
@@ -427,13 +433,24 @@ impl<S: Scalar> FlexsplineConfig<S> {
     }
 
     /// Eq. (3.10) without the branch test, for a caller that has already
-    /// bounded the torsion (see [`torsion_within`](Self::torsion_within)).
+    /// bounded the torsion (see [`torsion_within`](Self::torsion_within)):
+    /// the argument of `tan` is then at most `atan(c_f·max_torque) ≤
+    /// atan 7.5` (the estimator's validated limit), inside the domain of
+    /// [`Scalar::tan_bounded`] (`atan 8`), which it takes.
     // Armv6-M: its own function (inlined into the estimator's finish step
     // it adds spills there). Elsewhere inlined.
     #[cfg_attr(all(target_arch = "arm", not(target_has_atomic = "32")), inline(never))]
     #[cfg_attr(not(all(target_arch = "arm", not(target_has_atomic = "32"))), inline)]
     pub(crate) fn torque_in_branch(&self, torsion: S) -> S {
-        self.torque_of_angle(torsion.mul_coef(&self.angle_per_torsion))
+        self.angle_of(torsion)
+            .tan_bounded()
+            .mul_coef(&self.torque_per_tan)
+    }
+
+    /// The argument `Δθ_f c_f K_f0` of `tan` in eq. (3.10), stored units.
+    #[inline(always)]
+    pub(crate) fn angle_of(&self, torsion: S) -> S {
+        torsion.mul_coef(&self.angle_per_torsion)
     }
 
     #[inline(always)]
@@ -441,27 +458,28 @@ impl<S: Scalar> FlexsplineConfig<S> {
         angle.tan().mul_coef(&self.torque_per_tan)
     }
 
-    /// The largest stored torsion `a ≥ 0` such that [`torque`](Self::torque)
-    /// at `a` and at `−a` is inside the branch (not `saturated`) with a
-    /// magnitude of at most `limit` (stored torque), while at the next
-    /// representable torsion above `a` one of the two is not. Found once,
-    /// at configuration time, by bisection on the backend's own arithmetic;
-    /// `branch_edge` is the torsion (stored units, as `f64`) where the
-    /// argument of `tan` reaches π/2, the start of the bracket.
+    /// The largest stored torsion `a ≥ 0` such that, at `a` and at `−a`,
+    /// the argument of `tan` is within `atan 8` (the domain of
+    /// [`Scalar::tan_bounded`], inside the branch) and
+    /// [`torque_in_branch`](Self::torque_in_branch) has a magnitude of at
+    /// most `limit` (stored torque), while at the next representable
+    /// torsion above `a` one of the two fails. Found once, at configuration
+    /// time, by bisection on the backend's own arithmetic; `branch_edge` is
+    /// the torsion (stored units, as `f64`) where the argument of `tan`
+    /// reaches π/2, beyond the bracket's start.
     ///
-    /// Every step of `torque` is non-decreasing in the torsion (the
-    /// products round monotonically; `tan` is proven monotone on f32 and
-    /// `I16F16`), so the torsions whose torque passes both tests are
-    /// exactly those with `|Δθ_f| ≤ a` when the backend is also odd (f32,
-    /// f64: the products and `tan` are exactly odd). On `I16F16` the
-    /// rounding of the products is not exactly odd; `a` is then the
-    /// smaller of the two sides, so `|Δθ_f| ≤ a` never admits a torsion
-    /// that the direct test rejects.
+    /// Every step of `torque_in_branch` is non-decreasing in the torsion
+    /// (the products round monotonically; `tan_bounded` is monotone on
+    /// `I16F16` at every input, `tan` proven monotone on f32), so the
+    /// torsions that pass both tests are exactly those with `|Δθ_f| ≤ a`
+    /// when the backend is also odd (f32, f64: the products and `tan` are
+    /// exactly odd). On `I16F16` the rounding of the products is not
+    /// exactly odd; `a` is then the smaller of the two sides, so
+    /// `|Δθ_f| ≤ a` never admits a torsion that the direct test rejects.
     pub(crate) fn torsion_within(&self, limit: S, branch_edge: f64) -> S {
-        let fits = |t: S| {
-            let f = self.torque(t);
-            !f.saturated && f.torque.abs() <= limit
-        };
+        let bound = S::from_f64(TAN_BOUNDED_ARGUMENT);
+        let fits =
+            |t: S| self.angle_of(t).abs() <= bound && self.torque_in_branch(t).abs() <= limit;
         let ok = |x: f64| {
             let t = S::from_f64(x);
             fits(t) && fits(t.neg())

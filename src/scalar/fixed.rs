@@ -665,6 +665,10 @@ impl Scalar for I16F16 {
         kernels::i16f16::atan(self)
     }
     #[inline]
+    fn tan_bounded(self) -> Self {
+        kernels::i16f16::tan_bounded(self)
+    }
+    #[inline]
     fn tan(self) -> Self {
         kernels::i16f16::tan(self)
     }

@@ -240,6 +240,16 @@ pub trait Scalar:
     /// returns `±` the backend's largest in-domain tangent (sign of the input),
     /// so `tan` is non-decreasing over every input.
     fn tan(self) -> Self;
+    /// [`tan`](Scalar::tan) for an argument known to lie in
+    /// `|x| ≤ atan 8 = 1.446441` rad (the torque estimator's, by the
+    /// validated `c_f·max_torque ≤ 7.5`). `I16F16`: one table polynomial
+    /// without the quotient near the pole ([`kernels::i16f16::tan_bounded`],
+    /// within 1 LSB, odd, non-decreasing; beyond the bound the argument is
+    /// clamped to it); the default is `tan`.
+    #[inline]
+    fn tan_bounded(self) -> Self {
+        self.tan()
+    }
     /// `e^self`; saturates at `MAX` and flushes to 0 below the backend's range.
     fn exp(self) -> Self;
     /// `e^{−|self|}`, the decaying exponential of the wave-generator
