@@ -347,6 +347,17 @@ pub(crate) fn mulhi(a: u32, b: u32) -> u32 {
     crate::scalar::fixed::wide_mul(a, b).0
 }
 
+/// `⌊a·b/2³²⌋ − e` with `e ∈ {0, 1, 2}`: [`mulhi`] without the low
+/// partial product and the carries of the middle ones (three `MULS`, no
+/// carry chain: `a_h b_h + ⌊a_h b_l/2¹⁶⌋ + ⌊a_l b_h/2¹⁶⌋`, each floor and
+/// the dropped `a_l b_l/2³²` below 1). For table polynomials whose
+/// accuracy is checked at every input ([`tan_bounded`]).
+#[inline(always)]
+fn mulhi_trunc(a: u32, b: u32) -> u32 {
+    let (ah, al, bh, bl) = (a >> 16, a & 0xFFFF, b >> 16, b & 0xFFFF);
+    ah * bh + ((ah * bl) >> 16) + ((al * bh) >> 16)
+}
+
 /// `⌊n·2ᵏ / d⌋` by restoring division, one quotient bit per step: the
 /// reference of [`div_frac_wide`] and [`div_ratio`] in the tests (the
 /// division `tan`, `atan` and `atan2` used before the reciprocal).
@@ -1002,20 +1013,24 @@ pub fn tan(x: I16F16) -> I16F16 {
 ///   `TAN_BOUNDED_TABLE` in `z = θ²` (fit error `< 1.8·10⁻⁶`, 0.17 LSB of
 ///   the result at the top of the domain, far less below), `θ` in `Q1.31`,
 ///   `z` in `Q2.30`, `G` in `Q3.29`, the sum in `Q4.28`, one rounding.
-/// * Cost: 5 `mulhi`, about half of [`tan`]'s path beyond π/4 (where its
-///   quotient is); 1,072 bytes of table.
+/// * Cost: 5 truncated high products of three `MULS` each, about a third
+///   of [`tan`]'s path beyond π/4 (where its quotient is); 1,072 bytes of
+///   table.
 pub fn tan_bounded(x: I16F16) -> I16F16 {
     let bits = x.to_bits();
     let a = bits.unsigned_abs().min(TAN_BOUNDED_MAX_BITS);
     let theta = a << 15; // Q1.31
-    let z = mulhi(theta, theta); // Q2.30, < 2.0922
+                         // The products truncated (`mulhi_trunc`: at most 2 units of the last
+                         // place each, below 10⁻³ LSB of the result in all).
+    let z = mulhi_trunc(theta, theta); // Q2.30, < 2.0922
     let row = TAN_BOUNDED_TABLE[((z >> 25) as usize).min(66)];
     let h = z << 7; // H = frac(32 z), Q0.32
-    let acc = row[2] + mulhi(h, row[3]);
-    let acc = row[1] + mulhi(h, acc);
-    let g = row[0] + mulhi(h, acc); // Q3.29, < 4.6
-                                    // θ + θ·G in Q4.28 (< 8): θ·2²⁸ = a·2¹², θ·G = (θ·2³¹)(G·2²⁹)/2³².
-    let t = (a << 12) + mulhi(theta, g);
+    let acc = row[2] + mulhi_trunc(h, row[3]);
+    let acc = row[1] + mulhi_trunc(h, acc);
+    // G in Q3.29 (< 4.6).
+    let g = row[0] + mulhi_trunc(h, acc);
+    // θ + θ·G in Q4.28 (< 8): θ·2²⁸ = a·2¹², θ·G = (θ·2³¹)(G·2²⁹)/2³².
+    let t = (a << 12) + mulhi_trunc(theta, g);
     with_sign(((t + (1 << 11)) >> 12) as i32, bits < 0)
 }
 
