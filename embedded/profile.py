@@ -3,7 +3,9 @@
 worst-case argument vector (or on every vector, `--all`) in the emulator,
 counts executed instructions per address and attributes them to source
 through the DWARF line tables of the `release-lines` profile (the `release`
-code with line tables; `llvm-addr2line -i` resolves the inlined frames).
+source with line tables, which can change some of LLVM's choices: its
+counts are close to the counted image's, not always equal;
+`llvm-addr2line -i` resolves the inlined frames).
 
 Prints, for the chosen entry: instructions by innermost function, by
 function at any inline depth (inclusive), and the hottest source lines.
