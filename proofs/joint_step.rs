@@ -142,21 +142,6 @@ pub(crate) mod kani_entries {
     use super::*;
     use crate::scalar::I16F16;
 
-    /// Postcondition of the stubbed `tan`: the sign of the argument.
-    fn tan_as_contract(x: I16F16) -> I16F16 {
-        let (x, y) = (x.to_bits(), kani::any::<i32>());
-        // Postcondition of the stubbed function (odd and non-decreasing:
-        // exhaustive_tan_i16f16).
-        kani::assume(if x > 0 {
-            y >= 0
-        } else if x < 0 {
-            y <= 0
-        } else {
-            y == 0
-        });
-        I16F16::from_bits(y)
-    }
-
     /// Postcondition of the stubbed `tan_bounded`: the sign of the
     /// argument.
     fn tan_bounded_as_contract(x: I16F16) -> I16F16 {
@@ -243,7 +228,6 @@ pub(crate) mod kani_entries {
     /// One joint tick from rest, every reading and target (kernels and
     /// `I16F16` products by contract).
     #[kani::proof]
-    #[kani::stub(crate::scalar::kernels::i16f16::tan, tan_as_contract)]
     #[kani::stub(crate::scalar::kernels::i16f16::tan_bounded, tan_bounded_as_contract)]
     #[kani::stub(crate::scalar::kernels::i16f16::exp_neg_abs, exp_neg_abs_as_contract)]
     #[kani::stub(crate::scalar::kernels::i16f16::cos_turn, cos_turn_as_contract)]
