@@ -54,7 +54,7 @@
 //!
 //! | kernel | contract | proven by |
 //! |---|---|---|
-//! | `kernels::i16f16::tan` (eq. 3.10 in the estimator) | the sign of the argument, 0 at 0 | `exhaustive_tan_i16f16` (odd and non-decreasing at all 2³² inputs) |
+//! | `kernels::i16f16::tan_bounded` (eq. 3.10 in the estimator) | the sign of the argument, 0 at 0 | `tan_bounded_is_within_one_lsb_at_every_input` (odd and non-decreasing at every input: every magnitude of its domain and beyond, where it clamps) |
 //! | `kernels::i16f16::exp_neg_abs` (the Stribeck term `e^{−f_τ q̇²}`, eq. 4.17, and the wave generator's `e^{−c_w|τ_w|}`, eq. 2.29) | `[0, 1]` | `exhaustive_exp_neg_abs_i16f16` (≤ 1 LSB, in `[0, 1]`, even and non-increasing in `|x|` at all 2³² inputs) |
 //! | `kernels::i16f16::cos_turn` (kinematic error, eq. 3.7) | `[−1, 1]` | `exhaustive_cos_turn_i16f16` (`|result| ≤ 1` at all 2³² turns) |
 //!
