@@ -28,7 +28,7 @@
 //!   eq. (5.23)–(5.27), with `J_c` the derivative of Ryew–Choi's
 //!   approximation (eq. 5.21 as corrected in [`super::alpha_beta`], errata
 //!   E5.8) and `J_2` the exact derivative of `(α, β) ↦ (δ, γ)` (errata
-//!   E5.9). Its force mapping differs from the exact one by up to 10 %
+//!   E5.9). Its force mapping differs from the exact one by up to 8.96 %
 //!   of `‖J‖` over the workspace (`tests::thesis_force_mapping_error`).
 //!
 //! # Singular configurations

@@ -543,7 +543,7 @@ fn unreachable_reference_saturates_onto_the_cone() {
     let phi = p.settings().kinematics.phi();
     let mut st = cfg.state(MotorAngles::default());
     // (0.6, 0.6) rad: outside the ±30° box and, once clamped to it,
-    // 42° of bend, beyond 2φ = 32°.
+    // 41.4° of bend (cos β = cos²30°), beyond 2φ = 32°.
     let out = cfg.update(
         &mut st,
         &WristReadings::from_si([0.0; 6], [0.0; 2], [0.0; 2]),
