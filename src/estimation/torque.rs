@@ -314,7 +314,8 @@ pub const MAX_COUNTS_PER_OUTPUT_REV: f64 = 70_368_744_177_664.0;
 const LMN_NAME: &str = "link_counts_per_rev·motor_counts_per_rev·ratio";
 
 /// Largest accepted `c_f·max_torque` (the flexspline's stiffening
-/// coefficient times the estimate's limit): at `max_torque` the model's
+/// coefficient, 1/(N·m), times the estimate's limit, N·m: a pure number):
+/// at `max_torque` the model's
 /// stiffness `K_f0(1 + (c_f τ)²)` is then at most 57.25 `K_f0`, and the
 /// argument of `tan` in eq. (3.10) at most `atan 7.5 = 1.4382` rad, inside
 /// the domain of [`Scalar::tan_bounded`] (`atan 8`) with a margin far

@@ -1720,6 +1720,11 @@ mod tests {
             assert_eq!(got, if bits < 0 { -edge } else { edge });
         }
         assert!((libm::atan(8.0) * 65536.0).floor() as u32 == TAN_BOUNDED_MAX_BITS);
+        // The estimator's domain bound is the same angle.
+        assert_eq!(
+            crate::harmonic_drive::compliance::TAN_BOUNDED_ARGUMENT,
+            libm::atan(8.0)
+        );
     }
 
     #[test]
