@@ -72,6 +72,24 @@ pub fn sin_cos_turn_f32_check(turn: u32) -> Verdict {
     Verdict::logical(s.to_bits() == s_ref.to_bits() && c.to_bits() == c_ref.to_bits())
 }
 
+/// `f32` table kernel `cos_turn_coarse`: within
+/// [`COS_TURN_COARSE_BOUND`](crate::scalar::kernels::f32::COS_TURN_COARSE_BOUND)
+/// absolute, `|c| ≤ 1`, and `sin_cos_turn_coarse(turn)` is bit for bit
+/// `(cos_turn_coarse(turn − 2³⁰), cos_turn_coarse(turn))`; error in units
+/// of 1e-6.
+pub fn cos_turn_coarse_f32_check(turn: u32) -> Verdict {
+    use crate::scalar::kernels::f32::{
+        cos_turn_coarse, sin_cos_turn_coarse, COS_TURN_COARSE_BOUND,
+    };
+    let got = cos_turn_coarse(turn);
+    let err = (got as f64 - reference_cos_turn(turn)).abs() / 1e-6;
+    let (s, c) = sin_cos_turn_coarse(turn);
+    let same = s.to_bits() == cos_turn_coarse(turn.wrapping_sub(1 << 30)).to_bits()
+        && c.to_bits() == got.to_bits();
+    Verdict::bounded(err, COS_TURN_COARSE_BOUND / 1e-6)
+        .and(Verdict::logical(same && (got as f64).abs() <= 1.0))
+}
+
 /// The edge angles: 0, every multiple of an eighth turn and its
 /// neighbours (±1, ±64: the I16F16 kernel drops 6 bits), the I16F16
 /// table knots of the first quadrant (multiples of 2²²), 2³¹ and
@@ -115,6 +133,65 @@ mod tests {
             assert_eq!(v as f64, r.round(), "COS_TURN_Q23[{i}]");
         }
         assert_eq!(t.len(), 257);
+    }
+
+    /// Every knot of the `f32` table is `cos(2π i/1024)` correctly
+    /// rounded (within half an ulp of the `f64` cosine, whose own error is
+    /// far below), the quarter turns exactly 0 and ±1.
+    #[test]
+    fn cos_turn_table_is_correctly_rounded() {
+        let t = crate::scalar::kernels::f32::COS_TURN_COARSE_KNOTS;
+        assert_eq!(t.len(), 1025);
+        for (i, &v) in t.iter().enumerate() {
+            let r = (i as f64 * core::f64::consts::PI / 512.0).cos();
+            let half_ulp = if v == 0.0 {
+                0.0
+            } else {
+                (f32::from_bits(v.to_bits() + 1) - v).abs() as f64 / 2.0
+            };
+            if i % 256 == 0 {
+                assert_eq!(v as f64, r.round(), "knot {i}");
+            } else {
+                assert!(
+                    (v as f64 - r).abs() <= half_ulp * (1.0 + 1e-9),
+                    "knot {i}: {v} vs {r}"
+                );
+            }
+        }
+    }
+
+    /// The table kernel is within its bound at every knot and its
+    /// neighbours, every midpoint (where the interpolation error peaks), a
+    /// dense stride and random angles, and its `(sin, cos)` equals two
+    /// calls; the worst error reaches most of the bound (not vacuous).
+    #[test]
+    fn cos_turn_coarse_within_its_bound() {
+        let knots = (0..1024u32).flat_map(|i| {
+            let b = i << 22;
+            [
+                b,
+                b.wrapping_sub(1),
+                b + 1,
+                b + (1 << 21),
+                b + (1 << 21) + 1,
+            ]
+        });
+        let stride = (0..=u32::MAX / 4099).map(|k| k * 4099);
+        let mut worst = 0.0f64;
+        for t in knots
+            .chain(stride)
+            .chain(edge_turns())
+            .chain(sample_turns(200_000))
+        {
+            let v = cos_turn_coarse_f32_check(t);
+            assert!(v.holds, "at {t:#010x}: error {} e-6", v.error);
+            worst = worst.max(v.error);
+        }
+        eprintln!("cos_turn_coarse: worst {worst:.4}e-6");
+        assert!(
+            worst > 4.5,
+            "worst {worst}e-6: the h²/8 remainder (4.71e-6) is reached"
+        );
     }
 
     #[test]
@@ -352,6 +429,21 @@ mod tests {
     }
 
     /// Every `u32` angle: `f32` within 2⁻²² absolute, even, `|c| ≤ 1`.
+    /// Every `u32` angle: the `f32` table kernel within 4.8e-6, `|c| ≤ 1`,
+    /// and its `(sin, cos)` equal to two calls.
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_cos_turn_coarse_f32() {
+        let t = Instant::now();
+        let r = exhaustive_u32(0, u32::MAX, cos_turn_coarse_f32_check);
+        eprintln!("(cos_turn_coarse f32: {:.1} s)", t.elapsed().as_secs_f64());
+        assert_eq!(r.failures, 0, "first failure at {:?}", r.first_failure);
+        println!(
+            "PROOF kernel=cos_turn_coarse backend=f32 domain=all bound=4.8e-6 max_err={:.6}e-6 at=turn:{:#010x} checked={} engine=exhaustive (sin_cos_turn_coarse bit-identical to two calls)",
+            r.max_error, r.argmax, r.checked
+        );
+    }
+
     #[test]
     #[ignore = "exhaustive: run in release by .ci/run"]
     fn exhaustive_cos_turn_f32() {

@@ -31,7 +31,7 @@
 //! `a_0 + R_l·cos_turn(θ_fo − φ_l) + R_1·cos_turn(θ_wi − φ_1) +
 //! R_2·cos_turn(2θ_wi − φ_2)`: three [`Scalar::cos_turn`], three
 //! [`Scalar::mul`], three additions (fixed point). Float backends take both
-//! motor harmonics from one [`Scalar::sin_cos_turn`] of `u = θ_wi − φ_1`
+//! motor harmonics from one [`Scalar::sin_cos_turn_coarse`] of `u = θ_wi − φ_1`
 //! by the double angle: with `δ = 2φ_1 − φ_2` (exact in binary angles, so
 //! `2u + δ` is exactly `2θ_wi − φ_2`) and `c² + s² = 1`,
 //! `R_1 cos u + R_2 cos(2u + δ) = c (R_1 + A c + B s) − R_2 cos δ`,
@@ -51,17 +51,22 @@
 //!   (while no sum saturates, i.e. for `A` far below the range): about
 //!   `3.5 q + q·ΣR_j`, below `6.5 q` when every amplitude is below 1
 //!   stored unit (1 mrad);
-//! * `f32` (relative rounding `u = 2⁻²⁴`; `cos_turn` and `sin_cos_turn`
-//!   `≤ 2⁻²² = 4u`, proven): the link term as before,
-//!   `R_l(2u + 4u + e_θ)`; the motor form `M(c, s) = c(R_1 + Ac + Bs)`
+//! * `f32` (relative rounding `u = 2⁻²⁴`): the cosines are
+//!   [`Scalar::cos_turn_coarse`] and [`Scalar::sin_cos_turn_coarse`], a
+//!   table interpolation within `ε_c = 4.8e-6` absolute (proven; the
+//!   harmonics are arcseconds, so `R_j ε_c` is far below an encoder count,
+//!   and it saves about 40 instructions per step on a Cortex-M4F over the
+//!   full-accuracy kernels). The link term is within
+//!   `R_l(2u + ε_c + e_θ)`; the motor form `M(c, s) = c(R_1 + Ac + Bs)`
 //!   has `|∂M/∂c| ≤ R_1 + 6R_2` and `|∂M/∂s| ≤ 2R_2`, so kernel and angle
-//!   errors add `≤ (R_1 + 8R_2)(4u + e_θ)`; rounding `A`, `B` and
-//!   `a_0 − R_2 cos δ` adds `≤ u(|a_0| + 5R_2)`, the products and sums
-//!   inside the form `≤ u(2R_1 + 10R_2)`, the two outer sums
-//!   `≤ 2u(|a_0| + R_l + R_1 + 3R_2)`: in all `|e| ≤ |a_0|u + R_l(6u +
-//!   e_θ) + (R_1 + 8R_2)(4u + e_θ) + u(2R_1 + 15R_2) + 2u(|a_0| + R_l +
-//!   R_1 + 3R_2)` to first order in `u`, plus second-order terms (bounded
-//!   by `40 u² A` in the test).
+//!   errors add `≤ (R_1 + 8R_2)(ε_c + e_θ)`, and `A dc² + B dc ds` at most
+//!   `4R_2(ε_c + e_θ)²` more; rounding `A`, `B` and `a_0 − R_2 cos δ` adds
+//!   `≤ u(|a_0| + 5R_2)`, the products and sums inside the form
+//!   `≤ u(2R_1 + 10R_2)`, the two outer sums
+//!   `≤ 2u(|a_0| + R_l + R_1 + 3R_2)`: in all `|e| ≤ |a_0|u + R_l(2u + ε_c
+//!   + e_θ) + (R_1 + 8R_2)(ε_c + e_θ) + 4R_2(ε_c + e_θ)² + u(2R_1 + 15R_2)
+//!   + 2u(|a_0| + R_l + R_1 + 3R_2)`, plus second-order terms in `u`
+//!   (bounded by `40 u² A` in the test).
 //!
 //! `kinematic_error_from_counts_within_bound` (tests below) checks these
 //! bounds for both backends over many counts.
@@ -872,9 +877,9 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
                     // Floats (folded at compile time): one sine and cosine
                     // of the motor angle for both motor harmonics.
                     let [o, a, b] = self.double_angle;
-                    let (s, c) = S::sin_cos_turn(motor.wrapping_sub(phi[1]));
+                    let (s, c) = S::sin_cos_turn_coarse(motor.wrapping_sub(phi[1]));
                     return o
-                        .add(r[0].mul(S::cos_turn(link.wrapping_sub(phi[0]))))
+                        .add(r[0].mul(S::cos_turn_coarse(link.wrapping_sub(phi[0]))))
                         .add(c.mul(r[1].add(a.mul(c).add(b.mul(s)))));
                 }
                 // |cos| ≤ 1 on every backend: the unit-range product.
@@ -1595,12 +1600,14 @@ mod tests {
             assert_eq!(S::NAME, "f32");
             // The double-angle form of the motor harmonics (module docs).
             let u = f32::EPSILON as f64 / 2.0; // 2⁻²⁴
-            let c = 4.0 * u; // cos_turn, sin_cos_turn: 2⁻²²
+                                               // cos_turn_coarse, sin_cos_turn_coarse: 4.8e-6.
+            let c = crate::scalar::kernels::f32::COS_TURN_COARSE_BOUND;
             a0 * u
                 + r[0] * (2.0 * u + c + e_theta)
                 + (r[1] + 8.0 * r[2]) * (c + e_theta)
                 + u * (2.0 * r[1] + 15.0 * r[2])
                 + 2.0 * u * (a0 + r[0] + r[1] + 3.0 * r[2])
+                + 4.0 * r[2] * (c + e_theta) * (c + e_theta)
                 + 40.0 * u * u * a
         };
         bound + reference

@@ -99,7 +99,8 @@ fn integrate_f64(v: f64, _residual: (), step: f64, lo: f64, hi: f64) -> (f64, ()
 }
 
 macro_rules! float_scalar {
-    ($t:ident, $name:literal, $k:ident, $countfn:ident, $conv:ident, $res:ty, $integrate:ident) => {
+    ($t:ident, $name:literal, $k:ident, $countfn:ident, $conv:ident, $res:ty, $integrate:ident,
+     $coarse:path, $sin_cos_coarse:path) => {
         impl Scalar for $t {
             const NAME: &'static str = $name;
             const ZERO: Self = 0.0;
@@ -245,6 +246,14 @@ macro_rules! float_scalar {
                 kernels::$k::sin_cos_turn(turn)
             }
             #[inline]
+            fn cos_turn_coarse(turn: u32) -> Self {
+                $coarse(turn)
+            }
+            #[inline]
+            fn sin_cos_turn_coarse(turn: u32) -> (Self, Self) {
+                $sin_cos_coarse(turn)
+            }
+            #[inline]
             fn atan2(self, x: Self) -> Self {
                 kernels::$k::atan2(self, x)
             }
@@ -260,8 +269,30 @@ macro_rules! float_scalar {
     };
 }
 
-float_scalar!(f32, "f32", f32, f32_value, count_to_f32, f32, integrate_f32);
-float_scalar!(f64, "f64", f64, value, count_to_f64, (), integrate_f64);
+// f32 takes the table kernels for the small model terms; f64 keeps its
+// full-accuracy `cos_turn` there too.
+float_scalar!(
+    f32,
+    "f32",
+    f32,
+    f32_value,
+    count_to_f32,
+    f32,
+    integrate_f32,
+    kernels::f32::cos_turn_coarse,
+    kernels::f32::sin_cos_turn_coarse
+);
+float_scalar!(
+    f64,
+    "f64",
+    f64,
+    value,
+    count_to_f64,
+    (),
+    integrate_f64,
+    kernels::f64::cos_turn,
+    kernels::f64::sin_cos_turn
+);
 
 #[cfg(test)]
 mod tests {

@@ -296,6 +296,22 @@ pub trait Scalar:
             Self::cos_turn(turn),
         )
     }
+    /// [`cos_turn`](Scalar::cos_turn) at the accuracy a small model term
+    /// needs (the harmonics of the kinematic error, eq. (3.7), whose
+    /// amplitudes are arcseconds). `f32`: linear interpolation in a
+    /// 1025-knot table, ≤ 4.8e-6 absolute
+    /// ([`kernels::f32::cos_turn_coarse`]); the default is `cos_turn`.
+    #[inline]
+    fn cos_turn_coarse(turn: u32) -> Self {
+        Self::cos_turn(turn)
+    }
+    /// `(sin, cos)` by [`cos_turn_coarse`](Scalar::cos_turn_coarse):
+    /// exactly `(cos_turn_coarse(turn − 2³⁰), cos_turn_coarse(turn))`; the
+    /// default is [`sin_cos_turn`](Scalar::sin_cos_turn).
+    #[inline]
+    fn sin_cos_turn_coarse(turn: u32) -> (Self, Self) {
+        Self::sin_cos_turn(turn)
+    }
     /// This angle (radians) as a binary angle (units of `2⁻³²` turn,
     /// wrapped), for [`cos_turn`](Scalar::cos_turn) and
     /// [`sin_cos_turn`](Scalar::sin_cos_turn). `I16F16`: from the raw bits
