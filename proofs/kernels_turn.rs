@@ -137,12 +137,13 @@ mod tests {
 
     /// Every knot of the `f32` table is `cos(2π i/1024)` correctly
     /// rounded (within half an ulp of the `f64` cosine, whose own error is
-    /// far below), the quarter turns exactly 0 and ±1.
+    /// far below), the quarter turns exactly 0 and ±1, and every slope is
+    /// the `f32` difference to the next knot (1 after the last) times 2⁻²².
     #[test]
     fn cos_turn_table_is_correctly_rounded() {
-        let t = crate::scalar::kernels::f32::COS_TURN_COARSE_KNOTS;
-        assert_eq!(t.len(), 1025);
-        for (i, &v) in t.iter().enumerate() {
+        let t = crate::scalar::kernels::f32::COS_TURN_COARSE_TABLE;
+        assert_eq!(t.len(), 1024);
+        for (i, &[v, slope]) in t.iter().enumerate() {
             let r = (i as f64 * core::f64::consts::PI / 512.0).cos();
             let half_ulp = if v == 0.0 {
                 0.0
@@ -157,6 +158,8 @@ mod tests {
                     "knot {i}: {v} vs {r}"
                 );
             }
+            let next = if i == 1023 { 1.0 } else { t[i + 1][0] };
+            assert_eq!(slope, (next - v) * (1.0 / 4_194_304.0), "slope {i}");
         }
     }
 
