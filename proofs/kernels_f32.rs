@@ -251,6 +251,22 @@ pub fn tan_odd_at(x: f32) -> Verdict {
     odd_at(k::tan, x)
 }
 
+/// `tan_bounded` is bit for bit `tan` for `|x| ≤ TAN_BOUNDED_MAX` and
+/// `±tan(TAN_BOUNDED_MAX)` beyond (NaN included, with its sign bit), so it
+/// inherits `tan`'s proven bound, monotonicity and oddness on its domain
+/// and stays non-decreasing and odd beyond. Engines: exhaustive, random.
+pub fn tan_bounded_is_tan_on_its_domain(x: f32) -> Verdict {
+    let got = k::tan_bounded(x).to_bits();
+    let sign = x.to_bits() & 0x8000_0000;
+    let a = f32::from_bits(x.to_bits() & !0x8000_0000);
+    let want = if a <= k::TAN_BOUNDED_MAX {
+        k::tan(x).to_bits()
+    } else {
+        k::tan(k::TAN_BOUNDED_MAX).to_bits() | sign
+    };
+    Verdict::logical(got == want && k::tan_bounded(-x).to_bits() == got ^ 0x8000_0000)
+}
+
 // ----------------------------------------------------------------- exp ----
 
 /// `exp` is within [`EXP_BOUND`] of `e^x` for `x ≤ EXP_MAX_ARG` (subnormal
@@ -994,6 +1010,24 @@ mod exhaustive {
 
     #[test]
     #[ignore = "exhaustive: run in release by .ci/run"]
+    fn exhaustive_tan_bounded_f32() {
+        let (lo, hi) = POSITIVE_CODES;
+        prove(
+            "tan_bounded",
+            &[
+                ("|x|<=1.4464413(atan8;all-f32)", "bit-identical-to-tan"),
+                ("|x|>1.4464413(all-f32;NaN)", "tan(1.4464413)-with-sign"),
+                ("all-f32", "odd"),
+            ],
+            lo,
+            hi,
+            show,
+            |c| tan_bounded_is_tan_on_its_domain(bits(c)),
+        );
+    }
+
+    #[test]
+    #[ignore = "exhaustive: run in release by .ci/run"]
     fn exhaustive_exp_f32() {
         prove(
             "exp",
@@ -1191,6 +1225,12 @@ mod random {
         fn tan_within_bound_on_principal_branch(x in -1.570_796_2f32..1.570_796_2) {
             prop_assert!(tan_within_bound(x).holds);
             prop_assert!(tan_monotone_at(x).holds);
+        }
+
+        /// Arguments of eq. (3.10) in the estimator, and beyond.
+        #[test]
+        fn tan_bounded_is_tan_on_the_estimator_arguments(x in -3.0f32..3.0) {
+            prop_assert!(tan_bounded_is_tan_on_its_domain(x).holds);
         }
 
         /// Exponents of the stiffness (eq. 2.29) and Stribeck (eq. 4.7) terms.

@@ -100,7 +100,7 @@ fn integrate_f64(v: f64, _residual: (), step: f64, lo: f64, hi: f64) -> (f64, ()
 
 macro_rules! float_scalar {
     ($t:ident, $name:literal, $k:ident, $countfn:ident, $conv:ident, $res:ty, $integrate:ident,
-     $coarse:path, $sin_cos_coarse:path) => {
+     $coarse:path, $sin_cos_coarse:path, $tan_bounded:path) => {
         impl Scalar for $t {
             const NAME: &'static str = $name;
             const ZERO: Self = 0.0;
@@ -246,6 +246,10 @@ macro_rules! float_scalar {
                 kernels::$k::sin_cos_turn(turn)
             }
             #[inline]
+            fn tan_bounded(self) -> Self {
+                $tan_bounded(self)
+            }
+            #[inline]
             fn cos_turn_coarse(turn: u32) -> Self {
                 $coarse(turn)
             }
@@ -269,8 +273,9 @@ macro_rules! float_scalar {
     };
 }
 
-// f32 takes the table kernels for the small model terms; f64 keeps its
-// full-accuracy `cos_turn` there too.
+// f32 takes the table kernels for the small model terms and the
+// estimator's bounded `tan`; f64 keeps its full-accuracy `cos_turn` and
+// its `tan` there.
 float_scalar!(
     f32,
     "f32",
@@ -280,7 +285,8 @@ float_scalar!(
     f32,
     integrate_f32,
     kernels::f32::cos_turn_coarse,
-    kernels::f32::sin_cos_turn_coarse
+    kernels::f32::sin_cos_turn_coarse,
+    kernels::f32::tan_bounded
 );
 float_scalar!(
     f64,
@@ -291,7 +297,8 @@ float_scalar!(
     (),
     integrate_f64,
     kernels::f64::cos_turn,
-    kernels::f64::sin_cos_turn
+    kernels::f64::sin_cos_turn,
+    kernels::f64::tan
 );
 
 #[cfg(test)]

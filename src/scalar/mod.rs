@@ -245,7 +245,9 @@ pub trait Scalar:
     /// validated `c_f·max_torque ≤ 7.5`). `I16F16`: one table polynomial
     /// without the quotient near the pole ([`kernels::i16f16::tan_bounded`],
     /// within 1 LSB, odd, non-decreasing; beyond the bound the argument is
-    /// clamped to it); the default is `tan`.
+    /// clamped to it); `f32`: `tan` itself with a cheaper limiting of the
+    /// argument ([`kernels::f32::tan_bounded`], bit for bit `tan` on the
+    /// domain); the default is `tan`.
     #[inline]
     fn tan_bounded(self) -> Self {
         self.tan()

@@ -212,11 +212,51 @@ pub fn tan(x: f32) -> f32 {
     } else {
         f32::from_bits(abits)
     };
-    let reflect = ax.to_bits() >= FRAC_PI_4_UP;
+    tan_of_magnitude(ax, ax.to_bits() >= FRAC_PI_4_UP, bits & SIGN)
+}
+
+/// The part of [`tan`] after the argument is limited: `tan ax` for `0 ≤
+/// ax ≤ TAN_DOMAIN_EDGE`, given `reflect = ax ≥ π/4` (rounded up, as
+/// `FRAC_PI_4_UP`) and the sign bit `sign`.
+#[inline(always)]
+fn tan_of_magnitude(ax: f32, reflect: bool, sign: u32) -> f32 {
     let (d, d_lo) = if reflect { tan_reflect(ax) } else { (ax, 0.0) };
     let t = tan_poly(d, d_lo);
     let r = if reflect { recip(t) } else { t };
-    with_sign(r, bits & SIGN)
+    with_sign(r, sign)
+}
+
+/// The largest argument of [`tan_bounded`]: `atan 8` rounded to `f32`
+/// (as the estimator converts its bound, `TAN_BOUNDED_ARGUMENT`).
+pub const TAN_BOUNDED_MAX: f32 = 1.446_441_332_248_135_f64 as f32;
+
+/// [`tan`] for `|x| ≤ atan 8`, the torque estimator's argument of eq.
+/// (3.10) ([`Scalar::tan_bounded`](crate::scalar::Scalar::tan_bounded)):
+/// the argument is limited by one floating-point comparison with
+/// [`TAN_BOUNDED_MAX`] instead of [`tan`]'s integer tests against the
+/// edge of the branch and NaN, and the rest is `tan`'s own code (fewer
+/// instructions on a Cortex-M4F: see `embedded/count.py`).
+///
+/// * Domain: `|x| ≤ TAN_BOUNDED_MAX`, where the result is **bit for bit**
+///   `tan(x)`, so it has `tan`'s proven bound (2 ulp), is non-decreasing
+///   and exactly odd. Beyond (`±∞` included) it is `±tan(TAN_BOUNDED_MAX)`
+///   (`±8.0000005`) with the sign of `x`, so it is non-decreasing over
+///   every number; a NaN is limited the same way (`±8.0000005`, the sign
+///   bit of the NaN; the estimator never passes one).
+///   `exhaustive_tan_bounded_f32` checks all of it at every magnitude.
+#[inline]
+pub fn tan_bounded(x: f32) -> f32 {
+    let bits = x.to_bits();
+    let a = f32::from_bits(bits & !SIGN);
+    // One comparison and a select; NaN fails it and takes the bound.
+    let ax = if a <= TAN_BOUNDED_MAX {
+        a
+    } else {
+        TAN_BOUNDED_MAX
+    };
+    // `ax` is a non-negative number: ordered as its bits.
+    let reflect = ax >= f32::from_bits(FRAC_PI_4_UP);
+    tan_of_magnitude(ax, reflect, bits & SIGN)
 }
 
 /// `π/2 − ax` as an unevaluated pair `(d, d_lo)` for `π/4 < ax < π/2`: the
