@@ -470,7 +470,8 @@ impl<S: Scalar> FlexsplineConfig<S> {
     ///
     /// Every step of `torque_in_branch` is non-decreasing in the torsion
     /// (the products round monotonically; `tan_bounded` is monotone on
-    /// `I16F16` at every input, `tan` proven monotone on f32), so the
+    /// `I16F16` at every input, and on f32 it is the proven-monotone `tan`
+    /// bit for bit on its domain, clamped beyond), so the
     /// torsions that pass both tests are exactly those with `|Δθ_f| ≤ a`
     /// when the backend is also odd (f32, f64: the products and `tan` are
     /// exactly odd). On `I16F16` the rounding of the products is not
