@@ -226,16 +226,17 @@ fn tan_of_magnitude(ax: f32, reflect: bool, sign: u32) -> f32 {
     with_sign(r, sign)
 }
 
-/// The largest argument of [`tan_bounded`]: `atan 8` rounded to `f32`
-/// (as the estimator converts its bound, `TAN_BOUNDED_ARGUMENT`).
+/// The largest argument of [`tan_bounded`] (rad): `atan 8` rounded to
+/// `f32` (as the estimator converts its bound, `TAN_BOUNDED_ARGUMENT`).
 pub const TAN_BOUNDED_MAX: f32 = 1.446_441_332_248_135_f64 as f32;
 
 /// [`tan`] for `|x| ≤ atan 8`, the torque estimator's argument of eq.
 /// (3.10) ([`Scalar::tan_bounded`](crate::scalar::Scalar::tan_bounded)):
 /// the argument is limited by one floating-point comparison with
 /// [`TAN_BOUNDED_MAX`] instead of [`tan`]'s integer tests against the
-/// edge of the branch and NaN, and the rest is `tan`'s own code (fewer
-/// instructions on a Cortex-M4F: see `embedded/count.py`).
+/// edge of the branch and NaN, and the rest is `tan`'s own code (the
+/// M4F joint step's bound is 5 instructions lower with it,
+/// `embedded/perfcheck.py joint_f32`).
 ///
 /// * Domain: `|x| ≤ TAN_BOUNDED_MAX`, where the result is **bit for bit**
 ///   `tan(x)`, so it has `tan`'s proven bound (2 ulp), is non-decreasing
@@ -704,12 +705,13 @@ fn coarse_at(i: usize, f: f32) -> f32 {
 /// * Domain: every `u32` (a binary angle in units of `2⁻³²` turn).
 /// * Proven bound: **≤ [`COS_TURN_COARSE_BOUND`] = 4.8e-6 absolute**
 ///   (derivation at the constant; the full-accuracy [`cos_turn`] is within
-///   `2⁻²²` = 2.4e-7). `cos_turn_coarse_within_its_bound` checks every knot,
-///   every midpoint and 4 million other angles against `f64` `cos`.
+///   `2⁻²²` = 2.4e-7), checked against `f64` `cos` at all 2³² angles by
+///   `exhaustive_cos_turn_coarse_f32` (max 4.748e-6), and in the plain
+///   suite at every knot and midpoint, a stride and random angles
+///   (`cos_turn_coarse_within_its_bound`).
 /// * Algorithm: knot `i = turn >> 22`, offset `f = turn mod 2²²` (exact),
 ///   `a_i + f·s_i` with the prepared slope `s_i = (a_{i+1} − a_i)·2⁻²²`.
-/// * Cost: about a dozen Thumb-2 instructions on a Cortex-M4F, no branch
-///   and no division.
+/// * Cost: no branch, no division, two loads from the table.
 #[inline]
 pub fn cos_turn_coarse(turn: u32) -> f32 {
     let (i, f) = coarse_knot(turn);
