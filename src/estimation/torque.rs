@@ -450,10 +450,15 @@ impl TorqueEstimatorParams {
     ///   step (proven), scaled by `1/c_f`, and the last rounding:
     ///   `2⁻¹⁶/c_f + 2⁻¹⁶` N·m, plus `2⁻²⁹` relative (31-bit coefficients).
     /// * `f32` (`u = 2⁻²⁴`): torsion `8u` of the torsion range, `8u A_w`,
-    ///   `(30u + 5.1e-9)` times the kinematic-error bound; torque `2⁻²⁰`
-    ///   relative (`tan` ≤ 2⁻²², proven, and three roundings).
+    ///   and the kinematic error of the module docs with its table
+    ///   cosines (`ε_c = 4.8e-6`, proven): `(30u + 8(ε_c + 5.1e-9))` times
+    ///   the kinematic-error bound `A` (the angle and kernel terms there
+    ///   are at most `(R_l + R_1 + 8R_2)(ε_c + e_θ) ≤ 8A(ε_c + e_θ)`, the
+    ///   roundings below `30uA`); torque `2⁻²⁰` relative (`tan` ≤ 2⁻²²,
+    ///   proven, and three roundings).
     /// * `f64`: zero (the reference itself).
     pub fn agreement_bound<S: Scalar>(&self) -> AgreementBound {
+        use crate::scalar::kernels::f32::COS_TURN_COARSE_BOUND;
         let ke = self.kinematic_error.map_or(0.0, |k| k.amplitude_bound());
         let wg = self.drive.output_wave_generator_torsion();
         let f = self.drive.flexspline();
@@ -478,7 +483,9 @@ impl TorqueEstimatorParams {
             let u = libm::exp2(-24.0);
             AgreementBound {
                 torsion: 2.0
-                    * (8.0 * u * self.torsion_range() + 8.0 * u * wg + (30.0 * u + e_theta) * ke),
+                    * (8.0 * u * self.torsion_range()
+                        + 8.0 * u * wg
+                        + (30.0 * u + 8.0 * (COS_TURN_COARSE_BOUND + e_theta)) * ke),
                 torque_relative: 2.0 * libm::exp2(-20.0),
                 torque_absolute: 1e-30,
             }
