@@ -1460,6 +1460,52 @@ mod tests {
         }
     }
 
+    /// f32 stays within its agreement bound with harmonics of millirad
+    /// (the `api_params` fuzz target found a drive with a 7.3 mrad one
+    /// beyond the bound that ignored the table cosine's error).
+    #[test]
+    fn f32_agreement_bound_covers_a_large_kinematic_error() {
+        let k = KinematicErrorModel::try_new([4.4e-5, 1e-7, 6.4e-5, -6.2e-5, -1e-7, 7.3e-3, 1e-7])
+            .unwrap();
+        let p = params(Some(k));
+        let bound = p.agreement_bound::<f32>();
+        let (c64, c32) = (
+            TorqueEstimatorConfig::<f64>::new(&p),
+            TorqueEstimatorConfig::<f32>::new(&p),
+        );
+        let rigid = params(None);
+        let mut worst = 0.0f64;
+        for i in 0..2000 {
+            let link = TAU * i as f64 / 2000.0;
+            for tau in [-30.0, -3.0, 0.0, 5.0, 40.0] {
+                let (c_l, p_m, _) = readings(&rigid, link, tau, 0.0);
+                let a = c64.update(&mut c64.state(p_m, 0), c_l, 0, 0.0);
+                let b = c32.update(&mut c32.state(p_m, 0), c_l, 0, 0.0);
+                let e = (b.flexspline_torsion_si() - a.flexspline_torsion).abs();
+                assert!(
+                    e <= bound.torsion,
+                    "{e} > {} at {c_l}, {p_m}",
+                    bound.torsion
+                );
+                worst = worst.max(e);
+            }
+        }
+        // Above what the full-accuracy cosines allowed (the former bound,
+        // `2(8u·range + 8u·A_w + (30u + e_θ)·A)`): the test fails without
+        // the table cosine's term.
+        let u = libm::exp2(-24.0);
+        let e_theta = 3.5 * TAU / 4_294_967_296.0;
+        let former = 2.0
+            * (8.0 * u * p.torsion_range()
+                + 8.0 * u * p.drive.output_wave_generator_torsion()
+                + (30.0 * u + e_theta) * k.amplitude_bound());
+        std::eprintln!(
+            "f32 Δθ_f worst {worst:e}, bound {:e}, former {former:e}",
+            bound.torsion
+        );
+        assert!(worst > former, "{worst:e} <= {former:e}");
+    }
+
     /// The agreement bound is not vacuous: at a loaded torsion the
     /// interval excludes 0 (a silent 0 fails it) and is narrower than
     /// 0.01 N·m on I16F16 and 1e-3 N·m on f32.
