@@ -23,7 +23,10 @@
 //! each only once the current mode lasted at least `dwell` samples. A
 //! collision onset switches at once to its reaction's mode and latches it
 //! until [`ModeConfig::acknowledge_collision`]; after that, Hold returns to
-//! Active (debounced) and Passive follows the rules above.
+//! Active (debounced) and Passive follows the rules above. An onset in
+//! Passive latches too: the joint stays Passive from that sample on (the
+//! release rule waits for the acknowledgement), and no onset sample ever
+//! switches into Active.
 //!
 //! *Why the release rule.* Under eq. (4.32)–(4.33) the passive joint is a
 //! free body of apparent inertia `K_p⁻¹` driven by the interaction torque:
@@ -793,6 +796,34 @@ impl<S: Scalar> ModeConfig<S> {
         sum
     }
 
+    /// Enter the mode of a collision `reaction` from Active or Hold
+    /// ([`seed`](Self::seed) for Hold or Passive). Returns whether the mode
+    /// changed (Hold under [`CollisionReaction::Stop`] stays, its hold
+    /// point kept).
+    #[inline(always)]
+    fn seed_reaction(
+        &self,
+        st: &mut ModeState<S>,
+        reaction: CollisionReaction,
+        x: &ControlInput<S>,
+    ) -> bool {
+        match reaction {
+            CollisionReaction::Stop if st.mode == JointMode::Hold => false,
+            CollisionReaction::Stop => {
+                st.mode = JointMode::Hold;
+                st.in_mode = 0;
+                st.hold = x.motor_position;
+                st.active.integral = S::ZERO;
+                true
+            }
+            CollisionReaction::Passive => {
+                st.mode = JointMode::Passive;
+                st.in_mode = 0;
+                true
+            }
+        }
+    }
+
     /// One sample: collision detection, mode decision (with seeding at a
     /// switch), the mode's law, and the state updates.
     // Inlined into its caller except on Armv6-M: the joint step is then
@@ -855,38 +886,44 @@ impl<S: Scalar> ModeConfig<S> {
                 },
             };
         }
-        let mut target = self.wanted(st, interaction, x.motor_velocity);
-        let mut immediate = false;
+        let mut reaction = None;
         if let Some(c) = &self.collision {
-            let o = c.update(&mut st.collision, x.joint_torque, x.expected_joint_torque);
-            if o.onset && st.mode != JointMode::Passive {
+            if c.update(&mut st.collision, x.joint_torque, x.expected_joint_torque)
+                .onset
+            {
                 st.latched = true;
-                immediate = true;
-                target = match c.reaction() {
-                    CollisionReaction::Stop => JointMode::Hold,
-                    CollisionReaction::Passive => JointMode::Passive,
-                };
-            } else if o.onset {
-                st.latched = true;
+                reaction = Some(c.reaction());
             }
         }
         st.in_mode = st.in_mode.saturating_add(1);
         let mut switched = false;
         let mut seeded = None;
-        if target != st.mode {
-            st.run = st.run.saturating_add(1);
-            // Passive → Active waits for the release rule's hold.
-            let needed = if st.mode == JointMode::Passive {
-                self.release_samples
-            } else {
-                self.debounce
-            };
-            if immediate || (st.run >= needed && st.in_mode > self.dwell) {
-                seeded = self.seed(st, target, x);
-                switched = true;
+        if let Some(reaction) = reaction {
+            // A collision onset: from Active or Hold at once to the
+            // reaction's mode; a Passive joint stays Passive, its release
+            // blocked by the latch from this sample on. Never into Active
+            // (a separate arm: the seeding of Active is not on its path).
+            st.run = 0;
+            if st.mode != JointMode::Passive {
+                switched = self.seed_reaction(st, reaction, x);
             }
         } else {
-            st.run = 0;
+            let target = self.wanted(st, interaction, x.motor_velocity);
+            if target != st.mode {
+                st.run = st.run.saturating_add(1);
+                // Passive → Active waits for the release rule's hold.
+                let needed = if st.mode == JointMode::Passive {
+                    self.release_samples
+                } else {
+                    self.debounce
+                };
+                if st.run >= needed && st.in_mode > self.dwell {
+                    seeded = self.seed(st, target, x);
+                    switched = true;
+                }
+            } else {
+                st.run = 0;
+            }
         }
         // τ_before: the previous command.
         let before = st.last_torque;

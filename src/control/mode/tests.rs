@@ -356,6 +356,61 @@ fn collision_passive_reaction_latches_passive() {
     }
 }
 
+/// A collision onset on the very sample a Passive joint would be released
+/// (detector threshold 0.5 N·m below `exit` = 1 N·m, its debounce ending
+/// there) latches and keeps the joint Passive, on every backend: the latch
+/// blocks the release from its onset on, until it is acknowledged.
+#[test]
+fn collision_onset_in_passive_blocks_the_release_on_its_sample() {
+    fn check<S: Scalar>() {
+        let col = CollisionParams::try_new(CollisionSettings {
+            threshold: 0.5,
+            release_threshold: 0.25,
+            debounce: 2,
+            release: 1,
+            reaction: CollisionReaction::Stop,
+        })
+        .unwrap();
+        let cfg = ModeConfig::<S>::new(&params(1, 0, Some(col)));
+        let mut st = cfg.initial_state();
+        // 3 N·m: the interaction rule switches to Passive; the detector
+        // counts its first sample over 0.5 N·m.
+        let o = step(&cfg, &mut st, 3.0);
+        assert!(
+            o.switched && o.mode == JointMode::Passive && !o.collision,
+            "{}",
+            S::NAME
+        );
+        // 0.8 N·m: below `exit` at rest (the release rule would switch to
+        // Active) and the detector's second sample over its threshold.
+        let o = step(&cfg, &mut st, 0.8);
+        assert!(o.collision, "{}", S::NAME);
+        assert!(
+            !o.switched && o.mode == JointMode::Passive,
+            "{} {:?}",
+            S::NAME,
+            o.mode
+        );
+        for _ in 0..20 {
+            assert_eq!(
+                step(&cfg, &mut st, 0.0).mode,
+                JointMode::Passive,
+                "{}",
+                S::NAME
+            );
+        }
+        cfg.acknowledge_collision(&mut st);
+        let mut k = 0;
+        while step(&cfg, &mut st, 0.0).mode != JointMode::Active {
+            k += 1;
+            assert!(k < 10, "{}", S::NAME);
+        }
+    }
+    check::<f64>();
+    check::<f32>();
+    check::<I16F16>();
+}
+
 /// After entering Active away from the desired trajectory, the rejoin
 /// offset decays like the critically damped continuous system
 /// `o(t) = (o₀ + (ȯ₀ + ω o₀) t) e^{−ωt}` (to the forward-difference error
