@@ -332,14 +332,17 @@ pub fn exp_reduced_contract_at(x: f32) -> Verdict {
 }
 
 /// Upper bound of `e^{−|x|}` where `exp_neg_abs` flushes to 0, as stated on
-/// the kernel (`e^{−EXP_NEG_ABS_MAX_ARG} = 8.31e-39`).
-pub const EXP_NEG_ABS_FLUSH_BOUND: f64 = 8.4e-39;
+/// the kernel (`e^{−EXP_NEG_ABS_MAX_ARG} = 1.169e-38`, below the smallest
+/// normal `f32`).
+pub const EXP_NEG_ABS_FLUSH_BOUND: f64 = 1.17e-38;
 
-/// `exp_neg_abs(x)` for `|x| ≤ EXP_NEG_ABS_MAX_ARG` is `exp(−|x|)` bit for
-/// bit and within [`EXP_BOUND`] of `e^{−|x|}` (measured against the
-/// reference here as well, so the summary line carries the error); above,
-/// it is exactly `+0.0` and `e^{−|x|} < EXP_NEG_ABS_FLUSH_BOUND`; NaN gives
-/// exactly 1. Engines: exhaustive (every magnitude), random, Kani.
+/// Proven ulp bound of `exp_neg_abs` on `|x| ≤ EXP_NEG_ABS_MAX_ARG`.
+pub const EXP_NEG_ABS_BOUND: f64 = 2.0;
+
+/// `exp_neg_abs(x)` for `|x| ≤ EXP_NEG_ABS_MAX_ARG` is within
+/// [`EXP_NEG_ABS_BOUND`] of `e^{−|x|}`; above, it is exactly `+0.0` and
+/// `e^{−|x|} < EXP_NEG_ABS_FLUSH_BOUND`; NaN gives exactly 1. Engines:
+/// exhaustive (every magnitude), random.
 pub fn exp_neg_abs_within_bound(x: f32) -> Verdict {
     let got = k::exp_neg_abs(x);
     if x.is_nan() {
@@ -350,7 +353,18 @@ pub fn exp_neg_abs_within_bound(x: f32) -> Verdict {
     if a > k::EXP_NEG_ABS_MAX_ARG {
         return Verdict::logical(got.to_bits() == 0 && reference < EXP_NEG_ABS_FLUSH_BOUND);
     }
-    Verdict::logical(got.to_bits() == k::exp(-a).to_bits()).and(within(got, reference, EXP_BOUND))
+    within(got, reference, EXP_NEG_ABS_BOUND)
+}
+
+/// `exp_neg_abs` does not increase from `|x|` to the next `f32` magnitude
+/// (the table kernel's segments join in order). Engine: exhaustive (every
+/// magnitude up to +∞).
+pub fn exp_neg_abs_non_increasing_at(x: f32) -> Verdict {
+    let a = f32::from_bits(x.to_bits() & 0x7fff_ffff);
+    if !(a < f32::INFINITY) {
+        return Verdict::logical(true);
+    }
+    Verdict::logical(k::exp_neg_abs(next_up(a)) <= k::exp_neg_abs(a))
 }
 
 /// `exp_neg_abs(-x) = exp_neg_abs(x)` bit for bit (NaNs of both signs
@@ -715,30 +729,11 @@ mod kani_entries {
         assert!(exp_neg_abs_within_bound(x).holds);
     }
 
-    static EXP_CORE: crate::proofs::uninterpreted::Memo<2> =
-        crate::proofs::uninterpreted::Memo::new();
-
-    /// `exp_reduced` (`e^x = p·2^k`) as an uninterpreted function: any
-    /// `(p, k)` for a new argument, the same again for the same argument.
-    fn exp_reduced_uninterpreted(x: f32) -> (f32, i32) {
-        let v = EXP_CORE.call(u64::from(x.to_bits()));
-        let k = (v >> 32) as i32;
-        // Postcondition of the stubbed function at the arguments
-        // `exp_neg_abs` passes (`−|x|` down to `−EXP_NEG_ABS_MAX_ARG`):
-        // `k ∈ [−126, 0]`, which its scaling `2^k` relies on.
-        kani::assume((-126..=0).contains(&k));
-        (f32::from_bits(v as u32), k)
-    }
-
-    /// `exp_neg_abs` is even, bit for bit (the part of the former
-    /// `kani_exp_neg_abs_f32` without the `f64` reference): the magnitude
-    /// and range logic and the final scaling, with the reduced exponential
-    /// as an uninterpreted function (with the real one, two copies of its
-    /// polynomial circuit on the same argument: TIMEOUT at 628 s). The
-    /// exhaustive engine checks evenness with the real kernel at every
-    /// `f32`.
+    /// `exp_neg_abs` is even, bit for bit, on the real kernel (the
+    /// magnitude is its only input: the part of the former
+    /// `kani_exp_neg_abs_f32` without the `f64` reference). The exhaustive
+    /// engine checks the same at every `f32`.
     #[kani::proof]
-    #[kani::stub(crate::scalar::kernels::f32::exp_reduced, exp_reduced_uninterpreted)]
     fn kani_exp_neg_abs_even_f32() {
         let x: f32 = kani::any();
         assert!(exp_neg_abs_even_at(x).holds);
@@ -1057,17 +1052,19 @@ mod exhaustive {
         prove(
             "exp_neg_abs",
             &[
-                ("|x|<=87.68312(all-f32;0-above)", "2"),
-                ("|x|<=87.68312(all-f32)", "bit-identical-to-exp(-|x|)"),
-                ("|x|>87.68312(all-f32)", "0(e^-|x|<8.4e-39)"),
+                ("|x|<=87.34196(all-f32;0-above)", "2"),
+                ("|x|>87.34196(all-f32)", "0(e^-|x|<1.17e-38)"),
                 ("all-f32", "even"),
+                ("all-f32", "non-increasing-in-|x|"),
             ],
             lo,
             hi,
             show,
             |c| {
                 let x = bits(c);
-                exp_neg_abs_within_bound(x).and(exp_neg_abs_even_at(x))
+                exp_neg_abs_within_bound(x)
+                    .and(exp_neg_abs_even_at(x))
+                    .and(exp_neg_abs_non_increasing_at(x))
             },
         );
     }
@@ -1246,17 +1243,14 @@ mod random {
         fn exp_neg_abs_within_bound_on_model_exponents(x in -120.0f32..120.0) {
             prop_assert!(exp_neg_abs_within_bound(x).holds);
             prop_assert!(exp_neg_abs_even_at(x).holds);
+            prop_assert!(exp_neg_abs_non_increasing_at(x).holds);
             let a = x.abs();
-            if a <= k::EXP_NEG_ABS_MAX_ARG {
-                prop_assert_eq!(k::exp_neg_abs(x).to_bits(), k::exp(-a).to_bits());
-            } else {
-                prop_assert_eq!(k::exp_neg_abs(x).to_bits(), 0);
-            }
-            // Against the f64 exponential directly (the proven bound of exp).
+            // Against the f64 exponential directly.
             let reference = (-(a as f64)).exp();
             if a <= k::EXP_NEG_ABS_MAX_ARG {
-                prop_assert!(ulp_error_f32(k::exp_neg_abs(x), reference) <= EXP_BOUND);
+                prop_assert!(ulp_error_f32(k::exp_neg_abs(x), reference) <= EXP_NEG_ABS_BOUND);
             } else {
+                prop_assert_eq!(k::exp_neg_abs(x).to_bits(), 0);
                 prop_assert!(reference < EXP_NEG_ABS_FLUSH_BOUND);
             }
         }
@@ -1294,15 +1288,27 @@ mod random {
     #[test]
     fn exp_neg_abs_edges() {
         let t = k::EXP_NEG_ABS_MAX_ARG;
-        // The threshold: 126.5·ln 2 < T < next_up(T), and e^{−T} < 8.4e-39.
-        let half_step = 126.5 * core::f64::consts::LN_2;
-        assert!((t as f64) > half_step && (next_up(t) as f64) - half_step < 2e-5);
+        // The threshold: k = round(a·64/ln 2) reaches 8065 = 126·64 + 1
+        // (whose table value scaled by 2^-126 is not normal) just above T,
+        // at 8064.5·ln 2/64, and e^{−T} is below the smallest normal f32.
+        let edge = 8064.5 * core::f64::consts::LN_2 / 64.0;
+        assert!((t as f64) <= edge && (next_up(t) as f64) - edge < 2e-5);
         assert!((-(t as f64)).exp() < EXP_NEG_ABS_FLUSH_BOUND);
-        assert!((-(t as f64)).exp() > 8.3e-39);
-        // The reduction at −T gives k = −126 (the tie 126.5 to even) and at
-        // −next_up(T) k = −127: the f32 product rounds to these.
-        assert_eq!(t * core::f32::consts::LOG2_E, 126.5);
-        assert!(next_up(t) * core::f32::consts::LOG2_E > 126.5);
+        assert!((-(t as f64)).exp() < f32::MIN_POSITIVE as f64);
+        assert!((-(t as f64)).exp() > 1.16e-38);
+        // The table: 2^{−j/64} (its entry less j·2¹⁷) against the f64 power,
+        // to the nearest f32 (no f64 value is within 1e-6 ulp of a midpoint
+        // between two f32s, so rounding it once more gives the correctly
+        // rounded f32).
+        for (j, &entry) in k::EXP_NEG_ABS_TABLE.iter().enumerate() {
+            let bits = entry - ((j as u32) << 17);
+            let v = 2f64.powf(-(j as f64) / 64.0);
+            let nearest = v as f32;
+            let ulp = (next_up(nearest) - nearest) as f64;
+            let off = (v - nearest as f64).abs() / ulp;
+            assert!((0.5 - off).abs() > 1e-6, "{j}: near a midpoint");
+            assert_eq!(bits, nearest.to_bits(), "{j}");
+        }
 
         // 1 at both zeros and for NaNs of both signs (NaN counts as 0).
         for x in [
@@ -1323,11 +1329,10 @@ mod random {
         }
         let a = 3.0 * 2f32.powi(-26); // e^{−a} ≈ 1 − 0.75·2^-24: nearest is 1 − 2^-24
         assert_eq!(k::exp_neg_abs(a), 1.0 - 2f32.powi(-24));
-        // At T: a subnormal, within 2 ulp (2^-149) of e^{−T} and equal to exp.
+        // At T: a subnormal, within 2 ulp (2^-149) of e^{−T}.
         let at_t = k::exp_neg_abs(t);
         assert!(at_t > 0.0 && at_t < f32::MIN_POSITIVE);
         assert!(((at_t as f64) - (-(t as f64)).exp()).abs() <= 2.0 * 2f64.powi(-149));
-        assert_eq!(at_t.to_bits(), k::exp(-t).to_bits());
         assert_eq!(k::exp_neg_abs(-t).to_bits(), at_t.to_bits());
         // Above T: +0, while exp(−a) is still a positive subnormal there.
         for x in [next_up(t), 100.0, f32::MAX, f32::INFINITY] {
@@ -1338,7 +1343,10 @@ mod random {
         // Mid-range against the f64 exponential.
         for a in [0.5f32, 1.0, 10.0, 50.0, 87.0] {
             let got = k::exp_neg_abs(-a);
-            assert!(ulp_error_f32(got, (-(a as f64)).exp()) <= EXP_BOUND, "{a}");
+            assert!(
+                ulp_error_f32(got, (-(a as f64)).exp()) <= EXP_NEG_ABS_BOUND,
+                "{a}"
+            );
         }
     }
 
