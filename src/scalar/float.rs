@@ -19,8 +19,10 @@ fn count_to_f32(c: i64) -> f32 {
     // −2⁴⁷ ≤ c < 2⁴⁷ exactly when the high word `⌊c/2³²⌋` is in
     // [−2¹⁵, 2¹⁵): one add and one shift on a 32-bit core.
     let high = (c >> 32) as i32;
-    let (t, scale) = if ((high as u32).wrapping_add(1 << 15)) >> 16 == 0 {
-        (c, 1.0)
+    // The split `t = hi·2²⁴ + lo` of `t = c` or of `t = ⌊c/2¹⁶⌋ | sticky`,
+    // each part from the words of `c` directly.
+    let (hi, lo, scale) = if ((high as u32).wrapping_add(1 << 15)) >> 16 == 0 {
+        ((c >> 24) as i32, c as i32 & 0xFF_FFFF, 1.0)
     } else {
         // |c| ≥ 2⁴⁷: the f32 values near `c` are multiples of 2²⁴ and the
         // rounding midpoints multiples of 2²³, so all are multiples of
@@ -28,13 +30,15 @@ fn count_to_f32(c: i64) -> f32 {
         // 2¹⁶ between the same two consecutive multiples of 2¹⁶ as `c`
         // (the floor when it is odd, one above when it is even): never a
         // midpoint, and no midpoint or f32 value between it and `c`, so
-        // both round alike. `t ∈ [−2⁴⁷, 2⁴⁷)` splits exactly as below.
-        ((c >> 16) | (c & 0xFFFF != 0) as i64, 65_536.0)
+        // both round alike. `t ∈ [−2⁴⁷, 2⁴⁷)` splits exactly as below:
+        // `⌊t/2²⁴⌋ = ⌊c/2⁴⁰⌋` (the sticky bit is bit 0) and `t mod 2²⁴`
+        // is bits 16..40 of `c` with bit 0 set by the sticky bit.
+        let sticky = (c as u32 & 0xFFFF != 0) as i32;
+        (high >> 8, ((c >> 16) as i32 & 0xFF_FFFF) | sticky, 65_536.0)
     };
-    let hi = (t >> 24) as i32 as f32;
-    let lo = (t & 0xFF_FFFF) as i32 as f32;
-    // Times 1 or 2¹⁶: exact.
-    (hi * 16_777_216.0 + lo) * scale
+    // |hi| < 2²³ and 0 ≤ lo < 2²⁴: both exact, and so is hi·2²⁴; the sum
+    // rounds once; times 1 or 2¹⁶: exact.
+    (hi as f32 * 16_777_216.0 + lo as f32) * scale
 }
 
 /// `c as f64` (correctly rounded; not on a hot path of any target).
