@@ -130,8 +130,8 @@ pub trait Scalar:
 
     /// One step of a slow integrator (adapted parameters): the value
     /// `v = self + residual` advanced by `x·c` and kept within `[lo, hi]`
-    /// (`lo ≤ hi` assumed), returned as the new value (the one a law reads)
-    /// and residual. A clamped sum has residual 0; a NaN step (floats)
+    /// (`lo ≤ hi`, both finite, assumed), returned as the new value (the
+    /// one a law reads) and residual. A clamped sum has residual 0; a NaN step (floats)
     /// keeps `self`, clamped.
     ///
     /// * `I16F16`: `x·c` is rounded to `2⁻⁴⁸` (the coefficient's 31-bit
