@@ -433,13 +433,21 @@ const EXP_NEG_ABS_STEP_LO: f32 = f32::from_bits(0xb65e_8083); // -3.315_538_2e-6
 ///   is in the README (`embedded/count.py`).
 #[inline]
 pub fn exp_neg_abs(x: f32) -> f32 {
-    const ROUNDER: f32 = 12_582_912.0;
     let a = f32::from_bits(x.to_bits() & !SIGN);
     // One comparison, false for NaN and for the flush range.
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
     if !(a <= EXP_NEG_ABS_MAX_ARG) {
         return if a.is_nan() { 1.0 } else { 0.0 };
     }
+    exp_neg_of_magnitude(a)
+}
+
+/// `e^{−a}` for `0 ≤ a ≤ EXP_NEG_ABS_MAX_ARG`: the table and polynomial of
+/// [`exp_neg_abs`] (its own function so that a proof of the sign and range
+/// logic around it can take it as uninterpreted).
+#[inline(always)]
+pub(crate) fn exp_neg_of_magnitude(a: f32) -> f32 {
+    const ROUNDER: f32 = 12_582_912.0;
     // a·64/ln 2 ≤ 8064.5 < 2²²: the sum's last 22 bits are k.
     let t = a * EXP_NEG_ABS_STEPS_PER_UNIT + ROUNDER;
     let kf = t - ROUNDER;
