@@ -361,7 +361,7 @@ pub fn exp_neg_abs_within_bound(x: f32) -> Verdict {
 /// magnitude up to +∞).
 pub fn exp_neg_abs_non_increasing_at(x: f32) -> Verdict {
     let a = f32::from_bits(x.to_bits() & 0x7fff_ffff);
-    if !(a < f32::INFINITY) {
+    if !a.is_finite() {
         return Verdict::logical(true);
     }
     Verdict::logical(k::exp_neg_abs(next_up(a)) <= k::exp_neg_abs(a))

@@ -73,6 +73,7 @@ fn clamp_or_keep<T: Scalar>(v: T, keep: T, lo: T, hi: T) -> (T, bool) {
 /// value (`2⁻²⁵` relative: Table 4.1's `f̂_τ` steps are ~`5e-8` of `f̂_τ ≈ 1`)
 /// accumulates instead of being lost. A clamped (or NaN) sum has residual 0.
 #[inline(always)]
+#[allow(clippy::eq_op)] // `lo − lo`: the +0 residual, formed where it is needed
 fn integrate_f32(v: f32, residual: f32, step: f32, lo: f32, hi: f32) -> (f32, f32) {
     let b = step + residual;
     let s = v + b;

@@ -398,7 +398,7 @@ pub(crate) const EXP_NEG_ABS_TABLE: [u32; 64] = [
 const EXP_NEG_ABS_STEPS_PER_UNIT: f32 = f32::from_bits(0x42b8_aa3b); // 92.332_48
 /// `ln 2/64 = STEP_HI + STEP_LO` (to `1e-13`): `STEP_HI = 1420·2⁻¹⁷` has
 /// 11 significant bits, so `k·STEP_HI` is exact for every `k ≤ 8064`.
-const EXP_NEG_ABS_STEP_HI: f32 = 0.010_833_740_234_375;
+const EXP_NEG_ABS_STEP_HI: f32 = f32::from_bits(0x3c31_8000); // 0.010_833_740_234_375
 const EXP_NEG_ABS_STEP_LO: f32 = f32::from_bits(0xb65e_8083); // -3.315_538_2e-6
 
 /// `e^{−|x|}`, the decaying exponential of the wave-generator torsion
