@@ -416,8 +416,11 @@ const EXP_NEG_ABS_STEP_LO: f32 = f32::from_bits(0xb65e_8083); // -3.315_538_2e-6
 ///   EXP_NEG_ABS_MAX_ARG` that fails for NaN and the flush range alike;
 ///   `k = round(a·64/ln 2)` by adding and subtracting `1.5·2²³` (`k` is then
 ///   the low bits of the sum's encoding, `k ≤ 8064`), `r = k·ln 2/64 − a`
-///   (`|r| ≤ ln 2/128 + 3e-6`: `k·STEP_HI` exact, its difference with `a`
-///   exact by Sterbenz's lemma, then `+ k·STEP_LO`), and
+///   (`|r| ≤ ln 2/128 + 8e-6`, the rounded product `a·64/ln 2` being
+///   within `6e-4` of the exact one: `k·STEP_HI` exact, its difference
+///   with `a` exact — by Sterbenz's lemma, or just above the step to
+///   `k = 1`, where `STEP_HI` exceeds `2a` by less than `4e-6`, as a
+///   multiple of `a`'s ulp `2⁻³¹` below `2⁻⁷` — then `+ k·STEP_LO`), and
 ///   `e^{−a} = 2^{−k/64}·e^r ≈ s + s·(r + r²/2)` with `s = 2^{−j/64}·2^{−m}`
 ///   (`k = 64m + j`): the table value with `m` subtracted from its
 ///   exponent field in an integer register (a normal `f32`: `m ≤ 126`, and
