@@ -7,8 +7,12 @@
 //!    with `kani::any()`; run with `cargo kani` where Kani is installed.
 //! 2. **Exhaustive** — the same body over *every* input of a type
 //!    (`engine::exhaustive_u32`); a complete proof for that type. These are
-//!    `#[ignore]`d unit tests named `exhaustive_*`, run in release by CI:
+//!    `#[ignore]`d unit tests named `exhaustive_*`, run in release:
 //!    `cargo test --release --lib -- --ignored exhaustive --test-threads 1 --nocapture`.
+//!    CI runs them through `proofs/proof_cache.py`, which fingerprints each
+//!    proof by the LLVM IR its test reaches in the release test binary and
+//!    runs only those whose fingerprint is not in `proofs/exhaustive-record.tsv`
+//!    (the others are cited with their recorded bounds, commit and time).
 //! 3. **Random** — proptest strategies over physically meaningful ranges, run
 //!    by plain `cargo test`.
 //!
