@@ -32,6 +32,7 @@ pub mod docs {
     /// joint controller on a microcontroller.
     #[doc = ""]
     #[doc = "[performance]: crate::docs::performance"]
+    #[doc = "[errata]: crate::docs::errata"]
     #[doc = ""]
     #[doc = include_str!("../docs/GUIDE.md")]
     pub mod guide {}
