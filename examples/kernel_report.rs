@@ -2,7 +2,7 @@
 //!
 //! For every kernel and backend: the largest error seen on a dense sweep of
 //! its domain against the `f64` reference of the platform's C library (the
-//! *proven* bounds come from the exhaustive engine, see README), and the host
+//! *proven* bounds come from the exhaustive engine, see docs/verification.md), and the host
 //! time per call (x86 host numbers, for orientation only; target instruction
 //! counts are measured separately). Then the fixed-point unit table.
 //!

@@ -1736,7 +1736,7 @@ pub fn md_cell(s: &str) -> String {
     s.replace('|', "\\|")
 }
 
-/// The per-figure comparison as a Markdown table (for the README).
+/// The per-figure comparison as a Markdown table (for docs/reproduction.md).
 fn summary_md(chapters: &[(&str, Vec<Figure>)], quick: bool) -> String {
     let mut m = format!(
         "| figure | thesis reports | this run ({}) |\n|---|---|---|\n",

@@ -7,7 +7,7 @@
 //!   kernel's domain (`atan2`: a 4096 × 4096 grid of codes). These are the
 //!   proofs of the bounds stated on the kernels. Each prints one line
 //!   `PROOF kernel=… backend=f32 domain=… bound=… max_err=… at=… checked=…
-//!   engine=exhaustive` (the README kernel table is built from them). Run:
+//!   engine=exhaustive` (the kernel table of docs/verification.md is built from them). Run:
 //!   `cargo test --release --lib -- --ignored exhaustive_ --test-threads 1 --nocapture`
 //!   (about 6–8 minutes for this file on two cores).
 //! * **Random** — `proptest` over physically meaningful ranges (motor angles,

@@ -1,7 +1,11 @@
 // Link targets of the README's reference-style links when it is read as
 // the crate's front page (the first definition of a label wins, so these
-// take precedence over the README's own file links, which serve GitHub).
+// intra-doc paths take precedence over the README's own docs.rs links,
+// which serve the repository page and crates.io).
 #![doc = "[equations]: crate::docs::equations\n[errata]: crate::docs::errata\n[guide]: crate::docs::guide\n"]
+#![doc = "[verification]: crate::docs::verification\n[kani]: crate::docs::verification#kani\n[kernel-bounds]: crate::docs::verification#kernel-bounds\n"]
+#![doc = "[performance]: crate::docs::performance\n[reproduction]: crate::docs::reproduction\n[figures]: crate::docs::reproduction#figures-thesis-against-reproduction\n"]
+#![doc = "[Scalar]: crate::scalar::Scalar\n[api]: crate\n"]
 #![doc = include_str!("../README.md")]
 #![cfg_attr(not(any(feature = "std", test, kani)), no_std)]
 // docs.rs (nightly, `--cfg docsrs`): mark feature-gated items with their feature.
@@ -20,10 +24,15 @@ pub mod sim;
 pub mod wrist;
 
 /// Reference pages shipped with the crate: the guide from a catalogue sheet
-/// to a running joint, the equation index and the errata of the thesis.
+/// to a running joint, the equation index, the errata of the thesis, the
+/// verification record, the performance on target and the thesis
+/// reproductions.
 pub mod docs {
     /// From a harmonic-drive catalogue sheet to a torque estimator and a
     /// joint controller on a microcontroller.
+    #[doc = ""]
+    #[doc = "[performance]: crate::docs::performance"]
+    #[doc = "[errata]: crate::docs::errata"]
     #[doc = ""]
     #[doc = include_str!("../docs/GUIDE.md")]
     pub mod guide {}
@@ -39,6 +48,28 @@ pub mod docs {
     #[doc = ""]
     #[doc = include_str!("../docs/ERRATA.md")]
     pub mod errata {}
+
+    /// What is proven and how: the Kani harnesses, the exhaustive kernel
+    /// bounds and the commands that rerun them.
+    #[doc = ""]
+    #[doc = "[reproduction]: crate::docs::reproduction"]
+    #[doc = ""]
+    #[doc = include_str!("../docs/verification.md")]
+    pub mod verification {}
+
+    /// Instruction counts and budgets of every kernel and step on a
+    /// Cortex-M4F and a Cortex-M0+, and what the counts assume.
+    #[doc = ""]
+    #[doc = include_str!("../docs/performance.md")]
+    pub mod performance {}
+
+    /// The thesis's experiments and figures rerun by the library and its
+    /// simulator, with the commands that print the numbers.
+    #[doc = ""]
+    #[doc = "[errata]: crate::docs::errata"]
+    #[doc = ""]
+    #[doc = include_str!("../docs/reproduction.md")]
+    pub mod reproduction {}
 }
 
 pub use error::ParamError;

@@ -11,6 +11,9 @@ use mrr_control::{Scalar, I16F16};
 
 const ERRATA: &str = include_str!("../docs/ERRATA.md");
 const README: &str = include_str!("../README.md");
+const REPRODUCTION: &str = include_str!("../docs/reproduction.md");
+const VERIFICATION: &str = include_str!("../docs/verification.md");
+const PERFORMANCE: &str = include_str!("../docs/performance.md");
 const KINEMATIC_ERROR_RS: &str = include_str!("../src/harmonic_drive/kinematic_error.rs");
 const THESIS_CH2_3_RS: &str = include_str!("thesis_ch2_3.rs");
 
@@ -32,7 +35,8 @@ fn assert_printed(id: &str, text: &str) {
 }
 
 /// K_f0 by hand from the §2.4 inputs (eq. 2.33), and every `K_f0`-like
-/// number `83xx.x` printed in the errata and the README is that value.
+/// number `83xx.x` printed in the errata, the README and the pages moved
+/// out of it (reproduction, verification, performance) is that value.
 #[test]
 fn e2_3_k_f0_is_8335_98_everywhere() {
     let (k1, k2, t1, t2) = (8.4e3f64, 9.4e3f64, 3.9f64, 12.0f64);
@@ -46,7 +50,15 @@ fn e2_3_k_f0_is_8335_98_everywhere() {
     assert!((hand - lib).abs() < 1e-9 * hand);
     assert_eq!(format!("{hand:.2}"), "8335.98");
     assert_printed("E2.3", "8 335.98 N·m/rad");
-    for doc in [ERRATA, README, THESIS_CH2_3_RS] {
+    assert!(REPRODUCTION.contains(&format!("`K_f0 = {hand:.2} N·m/rad`")));
+    for doc in [
+        ERRATA,
+        README,
+        REPRODUCTION,
+        VERIFICATION,
+        PERFORMANCE,
+        THESIS_CH2_3_RS,
+    ] {
         for wrong in ["8 336.1", "8336.1", "8336.07", "8.336e3"] {
             assert!(!doc.contains(wrong), "`{wrong}` printed");
         }

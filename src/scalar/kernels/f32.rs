@@ -430,10 +430,10 @@ const EXP_NEG_ABS_STEP_LO: f32 = f32::from_bits(0xb65e_8083); // -3.315_538_2e-6
 /// * Proven bound: **2 ulp**, 0 above [`EXP_NEG_ABS_MAX_ARG`] with `e^{−|x|}
 ///   < 1.17e-38`, 1 for NaN, exact evenness: all by the exhaustive engine
 ///   over every `f32` magnitude, `exhaustive_exp_neg_abs_f32`, which
-///   reports the measured maximum (README, kernel table).
+///   reports the measured maximum ([kernel bounds](crate::docs::verification#kernel-bounds)).
 /// * Cost: no polynomial beyond degree 2, no conversion instruction, no
 ///   division; the Cortex-M4F count of the joint step that calls it twice
-///   is in the README (`embedded/count.py`).
+///   is in [`docs::performance`](crate::docs::performance) (`embedded/count.py`).
 #[inline]
 pub fn exp_neg_abs(x: f32) -> f32 {
     let a = f32::from_bits(x.to_bits() & !SIGN);
