@@ -29,7 +29,9 @@
 //! exactly one round value, `φ = 16°` ([`WristParams::THESIS_PHI_DEG`];
 //! test `tests::phi_is_recovered_from_the_printed_branch_test`). The
 //! product order of the first line of eq. (5.4) gives the same numbers with
-//! both signs flipped.
+//! both signs flipped. The rejected root is public,
+//! [`WristConfig::forward_plus_root`], so that the search can be rerun
+//! from the API (its example does).
 //!
 //! # Forward kinematics, eq. (5.8)–(5.12)
 //!
