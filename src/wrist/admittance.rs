@@ -124,8 +124,10 @@ impl AdmittanceParams {
     /// * `gain = [K_c,δ, K_c,γ]` in rad/(s·N·m), each in
     ///   `(0, a_max(d)/(T K_t))` ([`max_admittance_gain`]);
     /// * `stiffness` — the largest environment stiffness `K_t` the wrist
-    ///   may meet, N·m/rad, `> 0` (`K_r + K_e` of eq. 6.28 about a wrist
-    ///   axis);
+    ///   may meet, N·m/rad, `> 0`: the contact's torque per rad about a
+    ///   wrist axis, eq. (6.28); for a gripper `K_r` and an environment
+    ///   `K_e` in series, `K_r K_e/(K_r + K_e)` (§6.2's `K_r + K_e` is an
+    ///   upper bound, safe here; errata E6.7);
     /// * `sample_period` `T ∈ [1e-6, 1]` s; `lag_samples = d ≤ 16`;
     /// * `limits` — the workspace `|δ| ≤ limits[0]`, `|γ| ≤ limits[1]`,
     ///   rad, in `(0, π/2]` (Remark 3: ±30°, [`AdmittanceParams::thesis`]);
@@ -452,6 +454,74 @@ mod tests {
             }
         }
         last / tau0
+    }
+
+    /// Errata E6.7: §6.2 calls `K_r`, `K_e` compliances and adds them,
+    /// `K_t = K_r + K_e`, then uses `K_t` as a stiffness in eq. (6.28),
+    /// `f = K_t X`. A gripper spring `K_r` and an environment spring `K_e`
+    /// (both stiffnesses, N·m/rad) in series between the wrist and the
+    /// surface give the wrist the torque `τ = −K_r (x − y)`, with the tip
+    /// `y` where the two balance, `K_r (x − y) = K_e (y − x_e)`: solved
+    /// here for `y` on every sample, without any `K_t`. The library's law
+    /// (lag `d = 0`) then contracts `Δτ` by `1 − T K_c K_t` per sample with
+    /// `K_t = K_r K_e/(K_r + K_e)` (the compliances add), not with
+    /// `K_r + K_e`; and a gain that is stable for the series stiffness is
+    /// rejected when validated for the sum: the sum is a safe upper bound.
+    #[test]
+    fn series_springs_set_the_loop_rate_not_their_sum() {
+        let (kr, ke, t, kc) = (1000.0, 1000.0, 0.004, 0.9);
+        let p = AdmittanceParams::try_new(AdmittanceSettings {
+            gain: [kc, kc],
+            stiffness: 1e-9,
+            sample_period: t,
+            lag_samples: 0,
+            limits: [1.5, 1.5],
+            max_rate: 1e3,
+            deadband: 0.0,
+            desired_torque: [0.0; 2],
+        })
+        .unwrap();
+        let cfg = AdmittanceConfig::<f64>::new(&p);
+        let xe = 1e-3;
+        let mut st = cfg.state_at([0.0, 0.0]);
+        let torque = |x: f64| {
+            let y = (kr * x + ke * xe) / (kr + ke);
+            -kr * (x - y)
+        };
+        let mut x = 0.0;
+        let mut taus = std::vec::Vec::new();
+        for _ in 0..6 {
+            let tau = torque(x);
+            taus.push(tau);
+            x = cfg.update(&mut st, [0.0, tau]).reference[1];
+        }
+        let series = kr * ke / (kr + ke);
+        for k in 1..taus.len() {
+            let ratio = taus[k] / taus[k - 1];
+            let k_loop = (1.0 - ratio) / (t * kc);
+            assert!(
+                (k_loop - series).abs() < 1e-6 * series,
+                "{k_loop} vs {series}"
+            );
+        }
+        // Stable (|1 − T K_c K_t| = 0.8 < 1) and converging ...
+        assert!(taus[5].abs() < 0.5 * taus[0].abs(), "{taus:?}");
+        // ... at a gain that validation against K_r + K_e rejects
+        // (max 2/(T (K_r + K_e)) = 0.25) and against K_t accepts (max 1).
+        let validate = |stiffness: f64| {
+            AdmittanceParams::try_new(AdmittanceSettings {
+                gain: [kc, kc],
+                stiffness,
+                sample_period: t,
+                lag_samples: 0,
+                limits: [1.5, 1.5],
+                max_rate: 1e3,
+                deadband: 0.0,
+                desired_torque: [0.0; 2],
+            })
+        };
+        assert!(validate(kr + ke).is_err());
+        assert!(validate(series).is_ok());
     }
 
     /// The closed-form range, checked by simulating the discrete loop just

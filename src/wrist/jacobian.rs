@@ -249,7 +249,9 @@ impl<S: Scalar> ForceMapping<S> {
     }
 
     /// Eq. (5.29): the output torques `(τ_δ, τ_γ) = J⁻ᵀ (τ1, τ3)` at the
-    /// motor angles (rad); regularized and flagged where
+    /// motor angles (rad). For the thesis chain `J = J_2 J_c` this is
+    /// `(J_2ᵀ)⁻¹ (J_cᵀ)⁻¹ (τ1, τ3)`, the inverse of eq. (5.28); eq. (5.29)
+    /// prints the two inverses in the other order (errata E5.13). Regularized and flagged where
     /// `|det J| < DET_MIN` (the factor `1/det` becomes `det/DET_MIN²`, so
     /// `|τ| ≤ ‖adj J‖ |τ_motor| / DET_MIN`).
     pub fn task_torques(&self, motors: MotorAngles<S>, motor: [S; 2]) -> MappedTorques<S> {
@@ -447,6 +449,78 @@ mod tests {
             [1.0, 1.0],
         );
         assert!(r.singular && r.torque[0].is_finite() && r.torque[0].abs() < 1e3);
+    }
+
+    /// Errata E5.13: eq. (5.28) is `τ13 = J_cᵀ J_2ᵀ τ`, so its inverse is
+    /// `τ = (J_2ᵀ)⁻¹ (J_cᵀ)⁻¹ τ13`; eq. (5.29) prints the factors in the
+    /// other order, `(J_cᵀ)⁻¹ (J_2ᵀ)⁻¹`. With `J_c`, `J_2` of the library
+    /// (each checked against finite differences of its map) and 2×2
+    /// inverses written out here, over the workspace away from the
+    /// singular set: `task_torques` (thesis chain) equals the correct
+    /// order and inverts eq. (5.28); the printed order misses by more than
+    /// the torque itself somewhere.
+    #[test]
+    fn eq_5_29_inverts_eq_5_28_only_in_the_reverse_order() {
+        let c = cfg();
+        let p = WristParams::thesis();
+        let fm = ForceMapping::<f64>::new(&p, JacobianKind::Thesis);
+        let inv = |m: [[f64; 2]; 2]| {
+            let det = m[0][0] * m[1][1] - m[0][1] * m[1][0];
+            [
+                [m[1][1] / det, -m[0][1] / det],
+                [-m[1][0] / det, m[0][0] / det],
+            ]
+        };
+        let tr = |m: [[f64; 2]; 2]| [[m[0][0], m[1][0]], [m[0][1], m[1][1]]];
+        let app = |m: [[f64; 2]; 2], v: [f64; 2]| {
+            [
+                m[0][0] * v[0] + m[0][1] * v[1],
+                m[1][0] * v[0] + m[1][1] * v[1],
+            ]
+        };
+        let norm = |v: [f64; 2]| v[0].hypot(v[1]);
+        let (mut worst_lib, mut worst_printed, mut checked) = (0.0f64, 0.0f64, 0);
+        let n = 41;
+        for i in 0..n {
+            for j in 0..n {
+                let d = -p.max_bend() + 2.0 * p.max_bend() * i as f64 / (n - 1) as f64;
+                let g = -p.max_bend() + 2.0 * p.max_bend() * j as f64 / (n - 1) as f64;
+                if !p.is_reachable(d, g) {
+                    continue;
+                }
+                let m = c.inverse(PitchYaw { delta: d, gamma: g }).motors;
+                let u = m.theta1 + m.theta3;
+                let beta = -2.0 * (p.phi().tan() * (u / 2.0).sin()).atan();
+                let alpha = (m.theta3 - m.theta1) / 2.0 + PI;
+                let jc = c.jc_approx(m);
+                let j2 = c.j2(AlphaBeta { alpha, beta });
+                let det = |a: [[f64; 2]; 2]| a[0][0] * a[1][1] - a[0][1] * a[1][0];
+                if det(jc).abs() < 0.05 || det(j2).abs() < 0.05 {
+                    continue; // near the singular set (E5.10)
+                }
+                for t13 in [[1.0, 0.0], [0.0, 1.0], [0.6, -0.8]] {
+                    let right = app(inv(tr(j2)), app(inv(tr(jc)), t13));
+                    let printed = app(inv(tr(jc)), app(inv(tr(j2)), t13));
+                    let lib = fm.task_torques(m, t13);
+                    assert!(!lib.singular);
+                    // The correct order inverts eq. (5.28).
+                    let back = app(tr(jc), app(tr(j2), right));
+                    assert!(norm([back[0] - t13[0], back[1] - t13[1]]) < 1e-12);
+                    let e = [lib.torque[0] - right[0], lib.torque[1] - right[1]];
+                    worst_lib = worst_lib.max(norm(e) / norm(right));
+                    let e = [printed[0] - right[0], printed[1] - right[1]];
+                    worst_printed = worst_printed.max(norm(e) / norm(right));
+                }
+                checked += 1;
+            }
+        }
+        std::println!(
+            "{checked} poses: library vs (J2^T)^-1 (Jc^T)^-1 {worst_lib:.1e}; printed order off by {:.0} % of |tau|",
+            100.0 * worst_printed
+        );
+        assert!(checked > 500, "{checked}");
+        assert!(worst_lib < 1e-12, "{worst_lib}");
+        assert!(worst_printed > 1.0, "{worst_printed}");
     }
 
     /// How far the thesis's force mapping is from the exact one over the

@@ -29,7 +29,9 @@
 //! exactly one round value, `φ = 16°` ([`WristParams::THESIS_PHI_DEG`];
 //! test `tests::phi_is_recovered_from_the_printed_branch_test`). The
 //! product order of the first line of eq. (5.4) gives the same numbers with
-//! both signs flipped.
+//! both signs flipped. The rejected root is public,
+//! [`WristConfig::forward_plus_root`], so that the search can be rerun
+//! from the API (its example does).
 //!
 //! # Forward kinematics, eq. (5.8)–(5.12)
 //!
@@ -177,8 +179,8 @@ pub struct PitchYaw<S> {
 pub struct Forward<S> {
     /// The output angles, `|δ|, |γ| ≤ 2φ` (up to the backend's rounding).
     pub pose: PitchYaw<S>,
-    /// The oblique joint angle `θ4 ∈ (−π, π]` (rad) of the physical root,
-    /// eq. (5.12).
+    /// The oblique joint angle `θ4 ∈ (−π, π]` (rad) of the root evaluated:
+    /// the physical one, eq. (5.12), for [`WristConfig::forward`].
     pub theta4: S,
 }
 
@@ -309,6 +311,48 @@ impl<S: Scalar> WristConfig<S> {
     /// NaN and infinities are read as 0) to the pose and the oblique joint angle. Every
     /// motor position is a pose of the wrist: there is no error case.
     pub fn forward(&self, m: MotorAngles<S>) -> Forward<S> {
+        self.forward_on_root(m, false)
+    }
+
+    /// The forward kinematics on the other root of eq. (5.10),
+    /// `θ4 = a + acos(C/b)`: the root the thesis rejects in §5.2. It is a
+    /// solution of the closure eq. (5.7)–(5.8) but not a pose of the wrist
+    /// (`cos δ < 0` everywhere on it: the outer universal joint turned
+    /// past 90°; module docs), so controllers use [`forward`](Self::forward).
+    /// It is exposed so that the branch test of §5.2, and the search for
+    /// the unstated `φ` that it permits (errata E5.3), can be rerun from
+    /// the public API. Motor angles in rad (NaN and infinities read as 0);
+    /// `δ = atan2(−t31, t11)`, `γ = atan2(−t23, t22)` of eq. (5.11) on
+    /// that root, so `|δ| > π/2` is expected.
+    ///
+    /// ```
+    /// use mrr_control::wrist::{MotorAngles, WristConfig, WristParams};
+    /// // §5.2: at θ1 = 1, θ3 = −1 the `+` root gives δ = −2.6681, γ = 2.8342.
+    /// let m = MotorAngles { theta1: 1.0f64, theta3: -1.0 };
+    /// let other = |phi: f64| {
+    ///     WristConfig::<f64>::new(&WristParams::try_new(phi).unwrap()).forward_plus_root(m)
+    /// };
+    /// let p = other(16f64.to_radians()).pose;
+    /// assert!((p.delta + 2.6681).abs() < 5e-5 && (p.gamma - 2.8342).abs() < 5e-5);
+    /// // The physical root is the straight pose there.
+    /// let cfg = WristConfig::<f64>::new(&WristParams::thesis());
+    /// assert!(cfg.forward(m).pose.delta.abs() < 1e-12);
+    /// // The φ search: bisect the printed γ = 2.8342 for φ on [10°, 25°]
+    /// // (γ on the `+` root falls as φ grows).
+    /// let (mut lo, mut hi) = (10f64.to_radians(), 25f64.to_radians());
+    /// for _ in 0..50 {
+    ///     let mid = 0.5 * (lo + hi);
+    ///     if other(mid).pose.gamma > 2.8342 { lo = mid } else { hi = mid }
+    /// }
+    /// assert!((lo.to_degrees() - 16.0).abs() < 2e-3, "{}", lo.to_degrees());
+    /// ```
+    pub fn forward_plus_root(&self, m: MotorAngles<S>) -> Forward<S> {
+        self.forward_on_root(m, true)
+    }
+
+    /// Eq. (5.8)–(5.11) on the root `θ4 = a ∓ acos(C/b)` of eq. (5.10):
+    /// `−` (eq. 5.12, the physical one) for `plus = false`.
+    fn forward_on_root(&self, m: MotorAngles<S>, plus: bool) -> Forward<S> {
         let (s1, c1) = denan(m.theta1).sin_cos();
         let (s3, c3) = denan(m.theta3).sin_cos();
         let (cp, sp, cp2, sp2) = (self.cos_phi, self.sin_phi, self.cos_phi_sq, self.sin_phi_sq);
@@ -320,7 +364,12 @@ impl<S: Scalar> WristConfig<S> {
         // Eq. (5.10) and the physical root, eq. (5.12), repeated as (5.18).
         let b = hypot(a_coef, b_coef);
         let a = b_coef.atan2(a_coef);
-        let theta4 = wrap(a.sub(c_coef.div(b).acos()));
+        let half_width = c_coef.div(b).acos();
+        let theta4 = wrap(if plus {
+            a.add(half_width)
+        } else {
+            a.sub(half_width)
+        });
         let (s4, c4) = theta4.sin_cos();
         let v = S::ONE.sub(c4);
         // Entries of eq. (5.5) (t11 with the term the print drops, E5.2).
@@ -753,6 +802,164 @@ pub(crate) mod tests {
                 }
             }
         }
+    }
+
+    /// `forward_plus_root` is the other root of eq. (5.10), found here by
+    /// a scan of `t21(θ4)`: its `θ4` is the scanned root that is not the
+    /// physical one, its pose is that root's `R_y(δ)R_x(γ)`, and `cos δ < 0`
+    /// on it.
+    #[test]
+    fn plus_root_is_the_other_solution_of_the_constraint() {
+        let phi = WristParams::thesis().phi();
+        let cfg = WristConfig::<f64>::new(&WristParams::thesis());
+        for i in 0..12 {
+            for j in 0..12 {
+                let t1 = -PI + 2.0 * PI * i as f64 / 12.0 + 0.01;
+                let t3 = -PI + 2.0 * PI * j as f64 / 12.0 + 0.02;
+                let m = MotorAngles {
+                    theta1: t1,
+                    theta3: t3,
+                };
+                let (phys, plus) = (cfg.forward(m), cfg.forward_plus_root(m));
+                let roots = roots_by_scan(phi, t1, t3);
+                assert_eq!(roots.len(), 2);
+                let other = if ang_dist(roots[0], phys.theta4) < 1e-9 {
+                    roots[1]
+                } else {
+                    roots[0]
+                };
+                assert!(ang_dist(plus.theta4, other) < 1e-9, "{t1} {t3}");
+                let r = chain(phi, t1, other, t3);
+                let pose = pitch_yaw(plus.pose.delta, plus.pose.gamma);
+                assert!(dist(&r, &pose) < 1e-9, "{t1} {t3}");
+                assert!(plus.pose.delta.cos() < 0.0, "{t1} {t3}");
+            }
+        }
+    }
+
+    /// Errata E5.11: eq. (5.5)'s `t12` ends in `−S1 S3 Sφ²`; the chain has
+    /// `−S1 C3 Sφ²`. The printed entry misses by `S1 Sφ² (C3 − S3)`, at
+    /// most `√2 sin²φ` = 0.1074 (`φ = 16°`), at `θ1 = ±π/2`,
+    /// `θ3 = −π/4` or `3π/4`, for any `θ4`.
+    #[test]
+    fn printed_t12_has_s3_for_c3_in_its_last_term() {
+        let phi = WristParams::thesis().phi();
+        let (cp, sp) = (phi.cos(), phi.sin());
+        let n = 72; // 5° steps: the grid holds the worst point
+        let (mut worst_printed, mut worst_fixed, mut at) = (0.0f64, 0.0f64, (0.0, 0.0));
+        for i in 0..n {
+            for j in 0..n {
+                let t1 = -PI + 2.0 * PI * i as f64 / n as f64;
+                let t3 = -PI + 2.0 * PI * j as f64 / n as f64;
+                for t4 in [-2.0, 0.0, 0.7, PI] {
+                    let (s1, c1, s3, c3, s4, c4) = (
+                        t1.sin(),
+                        t1.cos(),
+                        t3.sin(),
+                        t3.cos(),
+                        f64::sin(t4),
+                        f64::cos(t4),
+                    );
+                    let head = s1 * s4 * s3 * cp
+                        - c1 * c4 * s3
+                        - c1 * s4 * c3 * cp
+                        - s1 * c4 * c3 * cp * cp;
+                    let printed = head - s1 * s3 * sp * sp;
+                    let fixed = head - s1 * c3 * sp * sp;
+                    let t12 = chain(phi, t1, t4, t3)[0][1];
+                    worst_fixed = worst_fixed.max((fixed - t12).abs());
+                    if (printed - t12).abs() > worst_printed {
+                        worst_printed = (printed - t12).abs();
+                        at = (t1, t3);
+                    }
+                }
+            }
+        }
+        std::println!(
+            "printed t12 off by {worst_printed:.5} at theta1 = {:.4}, theta3 = {:.4}",
+            at.0,
+            at.1
+        );
+        assert!(worst_fixed < 1e-14, "{worst_fixed}");
+        let sup = 2f64.sqrt() * sp * sp;
+        assert!(
+            (worst_printed - sup).abs() < 1e-12,
+            "{worst_printed} vs {sup}"
+        );
+        assert!((at.0.abs() - PI / 2.0).abs() < 1e-12, "{at:?}");
+        assert!(((at.1 + PI / 4.0).rem_euclid(PI)).abs() < 1e-12, "{at:?}");
+    }
+
+    /// Errata E5.12: §5.3 repeats `t31` and `t32` of eq. (5.5) with sign
+    /// errors: `t31 = S3CφSφ + S4C3Sφ − C4S3SφCφ` (the `(1 − C4) S3 CφSφ`
+    /// part negated) and `t32 = S4S3Sφ − C3CφSφ + C4C3SφCφ` (the `S4S3Sφ`
+    /// term negated). On the wrist (physical root of eq. 5.10) they miss
+    /// the chain by up to `2 sin 2φ` = 1.0598 (at `θ1 = θ3 = −π/2`,
+    /// `θ4 = π`) and nearly `2 sin φ` = 0.5513. The `C3`, `S3` that §5.3
+    /// derives from them (with `S4` for the printed `S2`, E5.4) hold with
+    /// the corrected entries, to 1e-12: the slip is in the transcription.
+    #[test]
+    fn section_5_3_prints_t31_and_t32_with_sign_errors() {
+        let phi = WristParams::thesis().phi();
+        let (cp, sp) = (phi.cos(), phi.sin());
+        let cfg = WristConfig::<f64>::new(&WristParams::thesis());
+        let n = 72;
+        let mut worst = [0.0f64; 2];
+        let mut at = [(0.0, 0.0); 2];
+        let mut worst_fixed = 0.0f64;
+        let mut worst_c3s3 = 0.0f64;
+        for i in 0..n {
+            for j in 0..n {
+                let t1 = -PI + 2.0 * PI * i as f64 / n as f64;
+                let t3 = -PI + 2.0 * PI * j as f64 / n as f64;
+                let f = cfg.forward(MotorAngles {
+                    theta1: t1,
+                    theta3: t3,
+                });
+                let t4 = f.theta4;
+                let (s3, c3, s4, c4) = (t3.sin(), t3.cos(), t4.sin(), t4.cos());
+                let r = chain(phi, t1, t4, t3);
+                let p31 = s3 * cp * sp + s4 * c3 * sp - c4 * s3 * sp * cp;
+                let p32 = s4 * s3 * sp - c3 * cp * sp + c4 * c3 * sp * cp;
+                let f31 = -s3 * cp * sp + s4 * c3 * sp + c4 * s3 * sp * cp;
+                let f32 = -s4 * s3 * sp - c3 * cp * sp + c4 * c3 * sp * cp;
+                worst_fixed = worst_fixed.max((f31 - r[2][0]).abs().max((f32 - r[2][1]).abs()));
+                for (k, e) in [(p31 - r[2][0]).abs(), (p32 - r[2][1]).abs()]
+                    .into_iter()
+                    .enumerate()
+                {
+                    if e > worst[k] {
+                        worst[k] = e;
+                        at[k] = (t1, t3);
+                    }
+                }
+                // §5.3's C3, S3 against the true θ3, away from θ4 = 0.
+                let (sd, cd) = f.pose.delta.sin_cos();
+                let (sg, _) = f.pose.gamma.sin_cos();
+                let den = s4 * s4 * sp * sp + (c4 - 1.0).powi(2) * cp * cp * sp * sp;
+                if den > 1e-3 {
+                    let c3p = -((1.0 - c4) * cp * sp * sg * cd + s4 * sp * sd) / den;
+                    let s3p = ((1.0 - c4) * cp * sp * sd - cd * sg * s4 * sp) / den;
+                    worst_c3s3 = worst_c3s3.max((c3p - c3).abs().max((s3p - s3).abs()));
+                }
+            }
+        }
+        std::println!(
+            "printed t31 off by {:.4} at {:?}, t32 by {:.4} at {:?}",
+            worst[0],
+            at[0],
+            worst[1],
+            at[1]
+        );
+        assert!(worst_fixed < 1e-12, "{worst_fixed}");
+        assert!(worst_c3s3 < 1e-12, "{worst_c3s3}");
+        let sup31 = 2.0 * (2.0 * phi).sin();
+        assert!((worst[0] - sup31).abs() < 1e-9, "{} vs {sup31}", worst[0]);
+        assert!(
+            worst[1] > 0.55 && worst[1] <= 2.0 * sp + 1e-12,
+            "{}",
+            worst[1]
+        );
     }
 
     /// FK against the rotation-matrix identity: the chain with the

@@ -24,7 +24,9 @@
 //! The entry points a controller needs:
 //! * [`WristConfig::inverse`] / [`WristConfig::update`] — `(δ, γ)` to the
 //!   motor angles `(θ1, θ3)`, saturating and flagged outside the workspace;
-//! * [`WristConfig::forward`] — motor angles to `(δ, γ)`;
+//! * [`WristConfig::forward`] — motor angles to `(δ, γ)`
+//!   ([`WristConfig::forward_plus_root`]: the other root of eq. 5.10, which
+//!   the thesis rejects in §5.2, to rerun that test);
 //! * [`ForceMapping`] — interaction torques `(τ_δ, τ_γ)` to motor torques
 //!   `(τ1, τ3)`, eq. (5.28)/(6.1), and back, eq. (5.29); the exact
 //!   Jacobian by default.

@@ -57,7 +57,19 @@
 //!    side, the ch. 4 sign of eq. 4.1/6.4; `τ` is the environment's torque
 //!    on the wrist), with the exact Jacobian of [`super::jacobian`]
 //!    evaluated at the reference (`θ1_r` and the pose reached, whose sines
-//!    and cosines step 3 computed: no forward kinematics).
+//!    and cosines step 3 computed: no forward kinematics). Motor 2 drives
+//!    `θ3` through the inner universal joint (eq. 5.1–5.3), so the load on
+//!    its shaft is not the `θ3` component of `−Jᵀτ` but, by virtual work,
+//!    that component times `dθ3/dθ2 = (cos²θ3 + cos²β sin²θ3)/cos β`
+//!    (eq. 5.3, `β` the bend, `cos β = cos δ cos γ`), a factor in
+//!    `[cos 2φ, 1/cos 2φ]` = `[0.848, 1.179]` for `φ = 16°`; eq. (6.1)
+//!    applies the `θ3` torque of eq. (5.28) to motor 2 unchanged (errata
+//!    E6.6). The step feeds motor 2's law the shaft torque. As in eq.
+//!    (5.1)–(5.3), the inner joint is taken at the wrist's bend `β` with
+//!    `θ3` as its angle, and the change of `β` along a motion is not
+//!    modelled. Motor 2's law still tracks in `θ3`, the coordinate the
+//!    readings give: its speed differs from the shaft's by the same factor,
+//!    which its robust and adaptive terms absorb (not compensated here).
 //! 6. **Both motor laws** ([`WristActiveConfig`], eq. 6.12–6.15) on the
 //!    joint coordinates `(θ1, θ3)`: reference, rates, measured position and
 //!    speed, and `τ_t`.
@@ -70,10 +82,12 @@
 //!   reads the motor-2 shaft angle `θ2` converts it to `θ3` through the
 //!   universal joint of eq. (5.1) ([`super::ujoint`]) before the step.
 //! * Torques: [`WristOutput::motor_torque`] is positive driving its joint
-//!   coordinate forward (`θ1`, `θ3` increasing);
+//!   coordinate forward (`θ1`, `θ3` increasing; for motor 2 the torque of
+//!   its shaft `θ2`, which turns the same way as `θ3`);
 //!   [`WristOutput::interaction`] is the environment's torque on the wrist,
 //!   positive tending to increase `δ` (`γ`) (eq. 6.3 as corrected);
-//!   [`WristOutput::joint_torque`] is `τ_t = −Jᵀ·interaction`.
+//!   [`WristOutput::joint_torque`] is `τ_t = −Jᵀ·interaction` with its
+//!   second component carried to motor 2's shaft by eq. (5.3).
 //!
 //! # Units
 //! [`WristReadings`] and [`WristTarget`] hold stored values: gauge signals
@@ -401,8 +415,11 @@ pub struct WristOutput<S> {
     /// stored link-torque units, positive tending to increase `δ` (`γ`);
     /// 0 when the sensor reading was invalid.
     pub interaction: [S; 2],
-    /// `τ_t = −Jᵀ·interaction` fed to each motor law (eq. 6.1, ch. 4
-    /// sign), stored link-torque units; 0 when the sensor reading was
+    /// `[τ_t1, τ_t2]` fed to each motor law (eq. 6.1, ch. 4 sign), stored
+    /// link-torque units: `τ_t1 = (−Jᵀ·interaction)_1` and, for motor 2,
+    /// which drives `θ3` through the inner universal joint,
+    /// `τ_t2 = (−Jᵀ·interaction)_3 · dθ3/dθ2` (eq. 5.3; errata E6.6);
+    /// 0 when the sensor reading was
     /// invalid or, on floats, when this product overflows (flagged
     /// [`invalid_input`](Self::invalid_input)).
     pub joint_torque: [S; 2],
@@ -503,6 +520,9 @@ struct Ik<S> {
     /// the straight pose.
     reduced: Option<([S; 2], (S, S))>,
     saturated: bool,
+    /// `dθ3/dθ2` of the inner universal joint at this pose, eq. (5.3):
+    /// `(cos²θ3 + cos²β sin²θ3)/cos β`, in `[cos 2φ, 1/cos 2φ]`.
+    transmission: S,
 }
 
 impl<S: Scalar> WristStepConfig<S> {
@@ -661,6 +681,8 @@ impl<S: Scalar> WristStepConfig<S> {
         let cb = cd.mul_unit_range(cg);
         let saturated = cb < self.cos_2phi;
         let mut pose = r;
+        // dθ3/dθ2 of eq. (5.3); 1 at the straight pose (cos β = 1).
+        let mut transmission = S::ONE;
         // −X·P̄ = (−(x px + y py), x py − y px) for X = (x, y).
         let rot = |x: S, y: S, px: S, py: S| {
             (
@@ -699,6 +721,13 @@ impl<S: Scalar> WristStepConfig<S> {
                 ux.mul_unit_range(self.sin_2phi),
                 uy.mul_unit_range(self.sin_2phi),
             );
+            // Eq. (5.3) on the cone (cos β = cos 2φ): (sin θ3, cos θ3) ∝
+            // (u_x, cos 2φ·u_y), so 1 − sin²β sin²θ3 = cos²2φ/w with
+            // w = u_x² + cos²2φ·u_y², and dθ3/dθ2 = cos 2φ/w.
+            let uy_c = uy.mul_unit_range(self.cos_2phi);
+            transmission = self
+                .cos_2phi
+                .div(ux.mul_unit_range(ux).add(uy_c.mul_unit_range(uy_c)));
             sg = by.neg();
             sd = inv_cg.mul_unit_range(bx);
             cd = inv_cg.mul_unit_range(self.cos_2phi);
@@ -734,6 +763,14 @@ impl<S: Scalar> WristStepConfig<S> {
                 // cos β)/2 ≤ 1), normalized by its own computed length;
                 // (0, 1) with atan2(0, 0) = 0 should both round to 0.
                 let s1c1 = v1.1.unit_vector(v1.0).unwrap_or((S::ZERO, S::ONE));
+                // Eq. (5.3), dθ3/dθ2 = (1 − sin²β sin²θ3)/cos β. |V3| =
+                // |B|·|P'| with |B| = sin β and |P'| = (1 + cos β)/2, so
+                // sin β sin θ3 = 2 V3_y/(1 + cos β) and
+                // dθ3/dθ2 = ((1 + cos β)² − 4 V3_y²)/((1 + cos β)² cos β):
+                // one quotient, no root.
+                let q2 = one_cb.mul(one_cb);
+                let y2 = v3.1.add(v3.1);
+                transmission = q2.sub(y2.mul(y2)).div(q2.mul_unit_range(cb));
                 Some(([v1.1.atan2(v1.0), v3.1.atan2(v3.0)], s1c1))
             }
         };
@@ -745,6 +782,7 @@ impl<S: Scalar> WristStepConfig<S> {
             cg,
             reduced,
             saturated,
+            transmission,
         }
     }
 
@@ -816,7 +854,8 @@ impl<S: Scalar> WristStepConfig<S> {
         }
         st.rate = rate;
         // 5. Eq. (6.1): τ_t = −Jᵀ τ, the exact Jacobian at the reference
-        // (module docs of `super::jacobian`; D ≥ cos 3φ > 0 on the cone).
+        // (module docs of `super::jacobian`; D ≥ cos 3φ > 0 on the cone),
+        // its θ3 component carried to motor 2's shaft by eq. (5.3).
         let (sd, cd, sg, cg) = (ik.sd, ik.cd, ik.sg, ik.cg);
         let sp_s1 = s1.mul_unit_range(self.sin_phi);
         let sp_c1 = c1.mul_unit_range(self.sin_phi);
@@ -840,11 +879,13 @@ impl<S: Scalar> WristStepConfig<S> {
                 .sub(tg.mul_unit_range(sp_s1))
                 .mul(inv_d)
                 .neg(),
-            td.mul_unit_range(sg).sub(
-                td.mul_unit_range(a_cg)
-                    .add(tg.mul_unit_range(cg_e))
-                    .mul(inv_d),
-            ),
+            td.mul_unit_range(sg)
+                .sub(
+                    td.mul_unit_range(a_cg)
+                        .add(tg.mul_unit_range(cg_e))
+                        .mul(inv_d),
+                )
+                .mul(ik.transmission),
         ];
         // A finite wrench within a factor ‖J‖ of the float range can
         // overflow here: handled like an invalid gauge reading (0, flagged).
