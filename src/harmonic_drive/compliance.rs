@@ -931,7 +931,7 @@ mod tests {
             (f(0.0, 0.045), "parameter `k_f0` must be > 0, got 0"),
             (
                 f(8.3e3, -0.045),
-                "parameter `c_f` must lie in [0.000001, 1000000], got -0.045",
+                "parameter `c_f` must lie in [1e-6, 1e6], got -0.045",
             ),
             (
                 f(f64::INFINITY, 0.045),
@@ -943,11 +943,11 @@ mod tests {
             ),
             (
                 w(0.83, -83.0),
-                "parameter `c_w` must lie in [0.000001, 1000000], got -83",
+                "parameter `c_w` must lie in [1e-6, 1e6], got -83",
             ),
             (
                 w(0.83, 0.0),
-                "parameter `c_w` must lie in [0.000001, 1000000], got 0",
+                "parameter `c_w` must lie in [1e-6, 1e6], got 0",
             ),
         ];
         for (got, want) in cases {
