@@ -1904,7 +1904,7 @@ mod tests {
         );
         assert_eq!(
             e.to_string(),
-            "parameter `ratio` must be an integer in [1, 65535], got 100.5"
+            "parameter `drive.ratio` must be an integer in [1, 65535], got 100.5"
         );
         let drive = CatalogueData::SHD_17_100.identify().unwrap();
         assert!(matches!(
@@ -2050,7 +2050,7 @@ mod tests {
         }
         assert!(e
             .to_string()
-            .starts_with("`link_counts_per_rev·motor_counts_per_rev·ratio` must lie in [1, "));
+            .starts_with("`link_counts_per_rev·motor_counts_per_rev·drive.ratio` must lie in [1, "));
     }
 
     /// `update_radians` with NaN or infinite readings: every field finite,
