@@ -192,8 +192,9 @@ const LAYER_MAX_STORED: f64 = 30_000.0;
 /// SI unit); the error states the range in SI.
 fn layer(name: &'static str, value: f64, scale: f64) -> Result<f64, ParamError> {
     let value = positive(name, value)?;
+    // The bounds in SI, compared as printed.
     let (min, max) = (1.0 / 65536.0 / scale, LAYER_MAX_STORED / scale);
-    if value * scale < 1.0 / 65536.0 || value * scale > LAYER_MAX_STORED {
+    if value < min || value > max {
         return Err(ParamError::OutOfRange {
             name,
             value,
@@ -260,7 +261,7 @@ impl RobustAdaptiveParams {
     /// named in the fields' names ([`ParamError::CombinationOutOfRange`]):
     /// the robust gain `K_r` at most [`ROBUST_GAIN_MAX`] N·m, and every
     /// prepared coefficient at most `1e11` in fixed-point units:
-    /// `λ² I_m ≤ 1e8` and `λ I_m ≤ 5e7` (SI), `K_I T ≤ 1e8`,
+    /// `λ² I_m ≤ 1e8` (SI), `K_I T ≤ 1e8`,
     /// `μ_j T ≤ [1e8, 1e8, 1e8, 1e14]`, and the variable-part bounds
     /// `ρ_Fj ≤ [1e8, 1e8, 1e8, 1e11]`.
     pub fn try_new(d: RobustAdaptiveDesign) -> Result<Self, ParamError> {
@@ -277,7 +278,7 @@ impl RobustAdaptiveParams {
         for (j, m) in d.adaptation_gain.iter().enumerate() {
             non_negative(ADAPTATION_GAIN[j], *m)?;
         }
-        let eps_r = layer("eps_r", d.eps_r, fx.speed)?;
+        layer("eps_r", d.eps_r, fx.speed)?;
         layer("eps_velocity", d.eps_velocity, fx.speed)?;
         let ys = regressor_scales::<crate::scalar::I16F16>();
         for (j, e) in d.eps_f.iter().enumerate() {
@@ -344,18 +345,14 @@ impl RobustAdaptiveParams {
         // Every prepared coefficient (in the largest, fixed-point, unit
         // scales) within the range a `Coef` represents exactly; stated in
         // SI. `K_r/ε_r` needs no check: `K_r ≤ 30` N·m and `ε_r ≥ 2⁻¹⁶`
-        // rad/s keep it below `2e9` stored.
+        // rad/s keep it below `2e9` stored; nor does `2λ I_m`, at most
+        // `2·√(1e8 · 30) ≈ 1.1e5` N·m·s/rad once `λ² I_m ≤ 1e8` and
+        // `I_m ≤ 30`.
         combination(
             "lambda²·rotor_inertia",
             lambda * lambda * im,
             0.0,
             COEF_MAX / mt,
-        )?;
-        combination(
-            "lambda·rotor_inertia",
-            lambda * im,
-            0.0,
-            COEF_MAX / (2.0 * mt),
         )?;
         combination("integral_gain·sample_period", k_i * t, 0.0, COEF_MAX / mt)?;
         let ps = parameter_scales::<crate::scalar::I16F16>();
@@ -370,7 +367,6 @@ impl RobustAdaptiveParams {
             )?;
             in_range(VARIABLE_BOUND[j], rho[j], 0.0, COEF_MAX * ys[j] / mt)?;
         }
-        let _ = eps_r;
         Ok(RobustAdaptiveParams { design: d })
     }
 

@@ -534,12 +534,13 @@ pub struct WaveGeneratorParams {
 impl WaveGeneratorParams {
     /// Validates `K_w0 > 0` (N·m/rad, wave-generator side) and `c_w`
     /// (1/(N·m)) in [`STIFFENING_RANGE`], both finite; the largest
-    /// wave-generator torsion `1/(c_w K_w0)` must be a finite number.
+    /// wave-generator torsion `1/(c_w K_w0)` must be a finite number, that
+    /// is `c_w·k_w0 ≥ 1/f64::MAX` (named `"c_w·k_w0"`).
     pub fn try_new(settings: WaveGeneratorSettings) -> Result<Self, ParamError> {
         let WaveGeneratorSettings { k_w0, c_w } = settings;
         let k_w0 = positive("k_w0", k_w0)?;
         let c_w = in_range("c_w", c_w, STIFFENING_RANGE.0, STIFFENING_RANGE.1)?;
-        combination("1/(c_w·k_w0)", 1.0 / (c_w * k_w0), 0.0, f64::MAX)?;
+        combination("c_w·k_w0", c_w * k_w0, 1.0 / f64::MAX, f64::INFINITY)?;
         Ok(WaveGeneratorParams { k_w0, c_w })
     }
 

@@ -210,7 +210,7 @@ fn wave_generator_name(name: &'static str) -> &'static str {
     match name {
         "k_w0" => "k_w0 = 2·starting_torque/(ratio·hysteresis_loss)",
         "c_w" => "c_w = 2/(ratio·k_w0·hysteresis_loss) = 1/starting_torque",
-        "1/(c_w·k_w0)" => "1/(c_w·k_w0) = ratio·hysteresis_loss/2",
+        "c_w·k_w0" => "c_w·k_w0 = 2/(ratio·hysteresis_loss)",
         "1/(c_w·ratio·k_w0)" => "1/(c_w·ratio·k_w0) = hysteresis_loss/2",
         other => other,
     }

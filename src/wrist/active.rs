@@ -282,7 +282,7 @@ macro_rules! law_fields {
 
 /// Every name [`RobustAdaptiveParams::try_new`] reports, with its path
 /// under `designs[i].law.`.
-const LAW_FIELDS: [(&str, [&str; 2]); 36] = law_fields![
+const LAW_FIELDS: [(&str, [&str; 2]); 35] = law_fields![
     "rotor_inertia",
     "ratio",
     "lambda",
@@ -313,7 +313,6 @@ const LAW_FIELDS: [(&str, [&str; 2]); 36] = law_fields![
     "friction_bounds.variable[2]",
     "friction_bounds.variable[3]",
     "lambda²·rotor_inertia",
-    "lambda·rotor_inertia",
     "integral_gain·sample_period",
     "adaptation_gain[0]·sample_period",
     "adaptation_gain[1]·sample_period",
