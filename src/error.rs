@@ -551,6 +551,110 @@ mod tests {
         }
     }
 
+    /// Numbers print with their shortest round-trip digits, in scientific
+    /// notation outside `[1e-4, 1e6)`: never hundreds of digits.
+    #[test]
+    fn display_prints_readable_numbers() {
+        extern crate std;
+        use std::string::ToString;
+        let e = |v: f64| {
+            ParamError::NotPositive {
+                name: "x",
+                value: v,
+            }
+            .to_string()
+        };
+        for (v, want) in [
+            (1e300, "1e300"),
+            (-1e304, "-1e304"),
+            (5e-324, "5e-324"),
+            (1.5e-5, "1.5e-5"),
+            (1e-4, "0.0001"),
+            (999_999.5, "999999.5"),
+            (1e6, "1e6"),
+            (0.1 + 0.2, "0.30000000000000004"),
+            (2_631_578.947_368_421, "2.631578947368421e6"),
+            (0.0, "0"),
+            (-0.0, "-0"),
+            (f64::NEG_INFINITY, "-inf"),
+        ] {
+            assert_eq!(e(v), std::format!("parameter `x` must be > 0, got {want}"));
+        }
+    }
+
+    /// The variants added for field paths, word for word.
+    #[test]
+    fn display_of_pair_element_override_and_result_variants() {
+        extern crate std;
+        use std::string::ToString;
+        let cases = [
+            (
+                ParamError::Exceeds {
+                    lower: "min.viscous",
+                    lower_value: 2e-4,
+                    upper: "max.viscous",
+                    upper_value: 1e-4,
+                },
+                "parameter `min.viscous` (0.0002) must be <= `max.viscous` (0.0001)",
+            ),
+            (
+                ParamError::ElementOutOfRange {
+                    name: "cw",
+                    index: 3,
+                    value: f64::NAN,
+                    min: f64::MIN,
+                    max: f64::MAX,
+                },
+                "parameter `cw` (i = 3) must be finite, got NaN",
+            ),
+            (
+                ParamError::ElementOutOfRange {
+                    name: "cw[i] - ccw[i] (wrapped)",
+                    index: 0,
+                    value: 0.5,
+                    min: -0.25,
+                    max: 0.25,
+                },
+                "parameter `cw[i] - ccw[i] (wrapped)` (i = 0) must lie in [-0.25, 0.25], got 0.5",
+            ),
+            (
+                ParamError::Overridden {
+                    name: "law.rotor_inertia",
+                    value: 1.0,
+                    expected: 0.5,
+                },
+                "parameter `law.rotor_inertia` is set from other fields: leave it 0 or give 0.5, got 1",
+            ),
+            (
+                ParamError::ResultNotFinite {
+                    name: "a + b",
+                    value: f64::INFINITY,
+                },
+                "result `a + b` of finite arguments is not finite (inf): the arguments are too large",
+            ),
+        ];
+        for (e, want) in cases {
+            assert_eq!(e.to_string(), want);
+        }
+    }
+
+    /// `map_names` reaches every name of a pair; `renamed` every name.
+    #[test]
+    fn names_map_to_field_paths() {
+        let e = increasing(("t1", 2.0), ("t2", 1.0)).unwrap_err();
+        let m = e.map_names(|n| if n == "t1" { "curve.t1" } else { "curve.t2" });
+        assert!(matches!(
+            m,
+            ParamError::NotIncreasing {
+                lower: "curve.t1",
+                upper: "curve.t2",
+                ..
+            }
+        ));
+        assert_eq!(m.name(), "curve.t1");
+        assert_eq!(positive("k", -1.0).unwrap_err().renamed("law.k").name(), "law.k");
+    }
+
     /// `ParamError` is a `core::error::Error` without any feature, so `?`
     /// converts it into `Box<dyn Error>`.
     #[test]
