@@ -652,7 +652,10 @@ mod tests {
             }
         ));
         assert_eq!(m.name(), "curve.t1");
-        assert_eq!(positive("k", -1.0).unwrap_err().renamed("law.k").name(), "law.k");
+        assert_eq!(
+            positive("k", -1.0).unwrap_err().renamed("law.k").name(),
+            "law.k"
+        );
     }
 
     /// `ParamError` is a `core::error::Error` without any feature, so `?`

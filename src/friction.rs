@@ -62,7 +62,12 @@ fn prefixed(name: &'static str, paths: [&'static str; 4]) -> &'static str {
 fn min_path(name: &'static str) -> &'static str {
     prefixed(
         name,
-        ["min.viscous", "min.coulomb", "min.stribeck", "min.stribeck_shape"],
+        [
+            "min.viscous",
+            "min.coulomb",
+            "min.stribeck",
+            "min.stribeck_shape",
+        ],
     )
 }
 
@@ -70,7 +75,12 @@ fn min_path(name: &'static str) -> &'static str {
 fn max_path(name: &'static str) -> &'static str {
     prefixed(
         name,
-        ["max.viscous", "max.coulomb", "max.stribeck", "max.stribeck_shape"],
+        [
+            "max.viscous",
+            "max.coulomb",
+            "max.stribeck",
+            "max.stribeck_shape",
+        ],
     )
 }
 

@@ -608,7 +608,10 @@ fn every_settings_field_names_itself() {
     let mut failures = Vec::new();
     for r in &rows {
         match &r.got {
-            Ok(()) => failures.push(format!("{}.{}: accepted, wanted {:?}", r.ty, r.field, r.want)),
+            Ok(()) => failures.push(format!(
+                "{}.{}: accepted, wanted {:?}",
+                r.ty, r.field, r.want
+            )),
             Err(e) if e.to_string() != r.want => failures.push(format!(
                 "{}.{}:\n   got  {}\n   want {}",
                 r.ty, r.field, e, r.want
@@ -616,7 +619,13 @@ fn every_settings_field_names_itself() {
             Err(_) => {}
         }
     }
-    assert!(failures.is_empty(), "{} of {} rows:\n{}", failures.len(), rows.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} of {} rows:\n{}",
+        failures.len(),
+        rows.len(),
+        failures.join("\n")
+    );
     // The table's reach, recorded here so that a lost row is noticed.
     let mut keys: Vec<_> = rows.iter().map(|r| (r.ty, r.field)).collect();
     keys.sort();
@@ -734,7 +743,16 @@ fn boundaries_friction() {
     // The box: f_τ,min ≥ 1e-3; min ≤ max per component; ρ_F ≥ 0.
     edges(
         "min.stribeck_shape",
-        |v| FrictionBounds::try_new(FrictionParams { stribeck_shape: v, ..box_min() }, box_max(), VARIABLE),
+        |v| {
+            FrictionBounds::try_new(
+                FrictionParams {
+                    stribeck_shape: v,
+                    ..box_min()
+                },
+                box_max(),
+                VARIABLE,
+            )
+        },
         1e-3,
         10.0,
     );
@@ -742,7 +760,16 @@ fn boundaries_friction() {
     // it the pair is out of order, named by its first member.
     edges(
         "min.coulomb",
-        |v| FrictionBounds::try_new(FrictionParams { coulomb: v, ..box_min() }, box_max(), VARIABLE),
+        |v| {
+            FrictionBounds::try_new(
+                FrictionParams {
+                    coulomb: v,
+                    ..box_min()
+                },
+                box_max(),
+                VARIABLE,
+            )
+        },
         0.0,
         0.012,
     );
@@ -772,22 +799,54 @@ fn boundaries_robust_adaptive_design() {
     edges("rotor_inertia", d(|d, v| d.rotor_inertia = v), TINY, 30.0);
     edges("ratio", d(|d, v| d.ratio = v), 1.0, INF);
     // λ alone, with an inertia small enough for λ² I_m ≤ 1e8 at λ = 1e11.
-    edges("lambda", d(|d, v| { d.rotor_inertia = 1e-20; d.lambda = v }), TINY, 1e11);
+    edges(
+        "lambda",
+        d(|d, v| {
+            d.rotor_inertia = 1e-20;
+            d.lambda = v
+        }),
+        TINY,
+        1e11,
+    );
     // λ² I_m ≤ 1e8 N·m/rad: at I_m = 1, λ = 1e4 exactly.
-    upper_edge("lambda²·rotor_inertia", d(|d, v| { d.rotor_inertia = 1.0; d.lambda = v }), 1e4);
+    upper_edge(
+        "lambda²·rotor_inertia",
+        d(|d, v| {
+            d.rotor_inertia = 1.0;
+            d.lambda = v
+        }),
+        1e4,
+    );
     // K_I ≥ 0, and K_I T ≤ 1e8: at T = 1 s, K_I = 1e8.
-    let k_i = d(|d, v| { d.sample_period = 1.0; d.integral_gain = v });
+    let k_i = d(|d, v| {
+        d.sample_period = 1.0;
+        d.integral_gain = v
+    });
     assert!(k_i(0.0).is_ok());
     rejected_naming("integral_gain", k_i((0.0f64).next_down()), "-0");
     upper_edge("integral_gain·sample_period", k_i, 1e8);
     for (j, hi) in [1e8, 1e8, 1e8, 1e14].into_iter().enumerate() {
-        let name = ["adaptation_gain[0]", "adaptation_gain[1]", "adaptation_gain[2]", "adaptation_gain[3]"][j];
-        let at = move |v: f64| design(|d| { d.sample_period = 1.0; d.adaptation_gain[j] = v });
+        let name = [
+            "adaptation_gain[0]",
+            "adaptation_gain[1]",
+            "adaptation_gain[2]",
+            "adaptation_gain[3]",
+        ][j];
+        let at = move |v: f64| {
+            design(|d| {
+                d.sample_period = 1.0;
+                d.adaptation_gain[j] = v
+            })
+        };
         // The lower end names the gain, the upper end the step μ_j T.
         assert!(at(0.0).is_ok() && at(hi).is_ok(), "{name}");
         assert_eq!(at((0.0f64).next_down()).unwrap_err().name(), name);
-        let product = ["adaptation_gain[0]·sample_period", "adaptation_gain[1]·sample_period",
-                       "adaptation_gain[2]·sample_period", "adaptation_gain[3]·sample_period"][j];
+        let product = [
+            "adaptation_gain[0]·sample_period",
+            "adaptation_gain[1]·sample_period",
+            "adaptation_gain[2]·sample_period",
+            "adaptation_gain[3]·sample_period",
+        ][j];
         assert_eq!(at(hi.next_up()).unwrap_err().name(), product);
     }
     let lsb = 1.0 / 65536.0;
@@ -798,7 +857,12 @@ fn boundaries_robust_adaptive_design() {
     edges("eps_f[2]", d(|d, v| d.eps_f[2] = v), lsb, 30_000.0);
     // Y_4 is stored in mN·m·rad²/s²: the layer's range is 1e3 times lower.
     edges("eps_f[3]", d(|d, v| d.eps_f[3] = v), lsb / 1e3, 30.0);
-    edges("uncertainty.boundary_layer", d(|d, v| d.uncertainty.boundary_layer = v), 0.0, 30.0);
+    edges(
+        "uncertainty.boundary_layer",
+        d(|d, v| d.uncertainty.boundary_layer = v),
+        0.0,
+        30.0,
+    );
     edges(
         "uncertainty.nonparametric_friction",
         d(|d, v| d.uncertainty.nonparametric_friction = v),
@@ -808,15 +872,27 @@ fn boundaries_robust_adaptive_design() {
     // ρ_base ≤ 30/I_m: at I_m = 1 kg·m², 30 rad/s².
     edges(
         "uncertainty.base_acceleration",
-        d(|d, v| { d.rotor_inertia = 1.0; d.lambda = 1.0; d.uncertainty.base_acceleration = v }),
+        d(|d, v| {
+            d.rotor_inertia = 1.0;
+            d.lambda = 1.0;
+            d.uncertainty.base_acceleration = v
+        }),
         0.0,
         30.0,
     );
     // ρ_τt ≤ 30 N: at N = 100, 3000 N·m.
-    edges("uncertainty.torque_estimate", d(|d, v| d.uncertainty.torque_estimate = v), 0.0, 3000.0);
+    edges(
+        "uncertainty.torque_estimate",
+        d(|d, v| d.uncertainty.torque_estimate = v),
+        0.0,
+        3000.0,
+    );
     // The sum K_r ≤ 30 N·m, reached as 28 + 2 (one ulp of 28 is one ulp
     // of 30, so the next value of the first term moves the sum).
-    let sum = d(|d, v| { d.uncertainty.nonparametric_friction = 2.0; d.uncertainty.boundary_layer = v });
+    let sum = d(|d, v| {
+        d.uncertainty.nonparametric_friction = 2.0;
+        d.uncertainty.boundary_layer = v
+    });
     assert!(sum(28.0).is_ok());
     assert!(matches!(
         sum(28f64.next_up()),
@@ -826,14 +902,38 @@ fn boundaries_robust_adaptive_design() {
     edges("integral_limit", d(|d, v| d.integral_limit = v), 0.0, 16.0);
     edges("sample_period", d(|d, v| d.sample_period = v), 1e-7, 1.0);
     // The initial estimate inside Table 4.1's box.
-    edges("initial_friction.viscous", d(|d, v| d.initial_friction.viscous = v), 0.0, 1e-4);
-    edges("initial_friction.coulomb", d(|d, v| d.initial_friction.coulomb = v), 0.0, 0.012);
-    edges("initial_friction.stribeck", d(|d, v| d.initial_friction.stribeck = v), 0.0, 0.012);
-    edges("initial_friction.stribeck_shape", d(|d, v| d.initial_friction.stribeck_shape = v), 0.01, 10.0);
+    edges(
+        "initial_friction.viscous",
+        d(|d, v| d.initial_friction.viscous = v),
+        0.0,
+        1e-4,
+    );
+    edges(
+        "initial_friction.coulomb",
+        d(|d, v| d.initial_friction.coulomb = v),
+        0.0,
+        0.012,
+    );
+    edges(
+        "initial_friction.stribeck",
+        d(|d, v| d.initial_friction.stribeck = v),
+        0.0,
+        0.012,
+    );
+    edges(
+        "initial_friction.stribeck_shape",
+        d(|d, v| d.initial_friction.stribeck_shape = v),
+        0.01,
+        10.0,
+    );
     // ρ_F within the coefficient range: [1e8, 1e8, 1e8, 1e11].
     for (j, hi) in [1e8, 1e8, 1e8, 1e11].into_iter().enumerate() {
-        let name = ["friction_bounds.variable[0]", "friction_bounds.variable[1]",
-                    "friction_bounds.variable[2]", "friction_bounds.variable[3]"][j];
+        let name = [
+            "friction_bounds.variable[0]",
+            "friction_bounds.variable[1]",
+            "friction_bounds.variable[2]",
+            "friction_bounds.variable[3]",
+        ][j];
         let at = move |v: f64| {
             let mut rho = VARIABLE;
             rho[j] = v;
@@ -847,26 +947,71 @@ fn boundaries_robust_adaptive_design() {
 
 #[test]
 fn boundaries_passive_mode_collision() {
-    let p = |f: fn(&mut PassiveSettings, f64)| {
-        move |v: f64| passive(|s| f(s, v))
-    };
+    let p = |f: fn(&mut PassiveSettings, f64)| move |v: f64| passive(|s| f(s, v));
     // With no gain the inertia has no upper limit.
-    edges("rotor_inertia", p(|s, v| { s.gain = 0.0; s.rotor_inertia = v }), TINY, INF);
+    edges(
+        "rotor_inertia",
+        p(|s, v| {
+            s.gain = 0.0;
+            s.rotor_inertia = v
+        }),
+        TINY,
+        INF,
+    );
     // I_m·gain/N ≤ 1e6: at I_m = N = 1, gain ≤ 1e6.
-    edges("gain", p(|s, v| { s.rotor_inertia = 1.0; s.ratio = 1.0; s.gain = v }), 0.0, 1e6);
+    edges(
+        "gain",
+        p(|s, v| {
+            s.rotor_inertia = 1.0;
+            s.ratio = 1.0;
+            s.gain = v
+        }),
+        0.0,
+        1e6,
+    );
     edges("ratio", p(|s, v| s.ratio = v), 1.0, INF);
-    edges("eps_velocity", p(|s, v| s.eps_velocity = v), 1.0 / 65536.0, INF);
+    edges(
+        "eps_velocity",
+        p(|s, v| s.eps_velocity = v),
+        1.0 / 65536.0,
+        INF,
+    );
     edges("torque_limit", p(|s, v| s.torque_limit = v), TINY, 16.0);
-    edges("nominal_friction.viscous", p(|s, v| s.nominal_friction.viscous = v), 0.0, INF);
+    edges(
+        "nominal_friction.viscous",
+        p(|s, v| s.nominal_friction.viscous = v),
+        0.0,
+        INF,
+    );
 
     let m = |f: fn(&mut ModeSettings, f64)| move |v: f64| mode(|s| f(s, v));
     // exit < enter ≤ 30 000 N·m (Table preset: exit 1, enter 2).
-    edges("enter_passive", m(|s, v| s.enter_passive = v), 1f64.next_up(), 30_000.0);
-    edges("exit_passive", m(|s, v| s.exit_passive = v), TINY, 2f64.next_down());
+    edges(
+        "enter_passive",
+        m(|s, v| s.enter_passive = v),
+        1f64.next_up(),
+        30_000.0,
+    );
+    edges(
+        "exit_passive",
+        m(|s, v| s.exit_passive = v),
+        TINY,
+        2f64.next_down(),
+    );
     integer_edges("debounce", |v| mode(|s| s.debounce = v as u16), 1, None);
     // ω T ≤ 0.5 at T = 4 ms: ω ≤ 125 rad/s.
-    edges("rejoin_bandwidth", m(|s, v| s.rejoin_bandwidth = v), TINY, 125.0);
-    edges("bias_time_constant", m(|s, v| s.bias_time_constant = v), 0.004, INF);
+    edges(
+        "rejoin_bandwidth",
+        m(|s, v| s.rejoin_bandwidth = v),
+        TINY,
+        125.0,
+    );
+    edges(
+        "bias_time_constant",
+        m(|s, v| s.bias_time_constant = v),
+        0.004,
+        INF,
+    );
     let release = |speed: f64, samples: u16| {
         mode(|_| {}).and_then(|m| m.with_release(ReleaseRule { speed, samples }))
     };
@@ -874,9 +1019,27 @@ fn boundaries_passive_mode_collision() {
     integer_edges("rule.samples", |v| release(0.1, v as u16), 3, None);
 
     let c = |f: fn(&mut CollisionSettings, f64)| move |v: f64| collision(|s| f(s, v));
-    edges("threshold", c(|s, v| { s.release_threshold = TINY; s.threshold = v }), TINY, 30_000.0);
-    edges("release_threshold", c(|s, v| s.release_threshold = v), TINY, 5.0);
-    integer_edges("debounce", |v| collision(|s| s.debounce = v as u16), 1, None);
+    edges(
+        "threshold",
+        c(|s, v| {
+            s.release_threshold = TINY;
+            s.threshold = v
+        }),
+        TINY,
+        30_000.0,
+    );
+    edges(
+        "release_threshold",
+        c(|s, v| s.release_threshold = v),
+        TINY,
+        5.0,
+    );
+    integer_edges(
+        "debounce",
+        |v| collision(|s| s.debounce = v as u16),
+        1,
+        None,
+    );
     integer_edges("release", |v| collision(|s| s.release = v as u16), 1, None);
 }
 
@@ -884,26 +1047,59 @@ fn boundaries_passive_mode_collision() {
 fn boundaries_drive_and_estimator() {
     // A drive whose c_f (0.0625 = 2⁻⁴, exact) keeps c_f·max_torque exact.
     let soft = HarmonicDriveParams::try_new(
-        FlexsplineParams::try_new(FlexsplineSettings { k_f0: 8000.0, c_f: 0.0625 }).unwrap(),
+        FlexsplineParams::try_new(FlexsplineSettings {
+            k_f0: 8000.0,
+            c_f: 0.0625,
+        })
+        .unwrap(),
         drive().wave_generator(),
         100.0,
     )
     .unwrap();
     let e = |f: fn(&mut TorqueEstimatorSettings, f64)| {
-        move |v: f64| estimator(|s| { s.drive = soft; f(s, v) })
+        move |v: f64| {
+            estimator(|s| {
+                s.drive = soft;
+                f(s, v)
+            })
+        }
     };
     // c_f·max_torque ≤ 7.5: max_torque ≤ 120 N·m for this drive.
     upper_edge("drive.c_f·max_torque", e(|s, v| s.max_torque = v), 120.0);
     // A drive stiff enough (c_f = 1e-6) for the full torque range.
     let stiff = HarmonicDriveParams::try_new(
-        FlexsplineParams::try_new(FlexsplineSettings { k_f0: 1e7, c_f: 1e-6 }).unwrap(),
+        FlexsplineParams::try_new(FlexsplineSettings {
+            k_f0: 1e7,
+            c_f: 1e-6,
+        })
+        .unwrap(),
         drive().wave_generator(),
         100.0,
     )
     .unwrap();
-    edges("max_torque", |v| estimator(|s| { s.drive = stiff; s.max_torque = v }), 1e-3, 30_000.0);
-    integer_edges("link_counts_per_rev", |v| estimator(|s| s.link_counts_per_rev = v), 1, None);
-    integer_edges("motor_counts_per_rev", |v| estimator(|s| s.motor_counts_per_rev = v), 1, None);
+    edges(
+        "max_torque",
+        |v| {
+            estimator(|s| {
+                s.drive = stiff;
+                s.max_torque = v
+            })
+        },
+        1e-3,
+        30_000.0,
+    );
+    integer_edges(
+        "link_counts_per_rev",
+        |v| estimator(|s| s.link_counts_per_rev = v),
+        1,
+        None,
+    );
+    integer_edges(
+        "motor_counts_per_rev",
+        |v| estimator(|s| s.motor_counts_per_rev = v),
+        1,
+        None,
+    );
     // N an integer in [1, 65535]; below 1 no drive is built.
     let with_ratio = |n: f64| {
         let d = HarmonicDriveParams::try_new(drive().flexspline(), drive().wave_generator(), n)?;
@@ -928,9 +1124,27 @@ fn boundaries_drive_and_estimator() {
     edges("k1", curve_at(|c, v| c.k1 = v), TINY, INF);
     edges("k3", curve_at(|c, v| c.k3 = v), TINY, INF);
     edges("t2", curve_at(|c, v| c.t2 = v), 3.9f64.next_up(), INF);
-    edges("t1", curve_at(|c, v| { c.t2 = INF.next_down(); c.t1 = v }), TINY, INF.next_down().next_down());
-    edges("a1", |v| CubicStiffness::try_new(CubicStiffnessSettings { a1: v, a3: 0.0 }), TINY, INF);
-    edges("a3", |v| CubicStiffness::try_new(CubicStiffnessSettings { a1: 1.0, a3: v }), 0.0, INF);
+    edges(
+        "t1",
+        curve_at(|c, v| {
+            c.t2 = INF.next_down();
+            c.t1 = v
+        }),
+        TINY,
+        INF.next_down().next_down(),
+    );
+    edges(
+        "a1",
+        |v| CubicStiffness::try_new(CubicStiffnessSettings { a1: v, a3: 0.0 }),
+        TINY,
+        INF,
+    );
+    edges(
+        "a3",
+        |v| CubicStiffness::try_new(CubicStiffnessSettings { a1: 1.0, a3: v }),
+        0.0,
+        INF,
+    );
     // c_f over its whole range, with a K_f0 that keeps π/(2 c_f K_f0) in
     // [1e-6, 1] rad at either end.
     edges(
@@ -942,7 +1156,12 @@ fn boundaries_drive_and_estimator() {
         1e-6,
         1e6,
     );
-    edges("c_w", |c_w| WaveGeneratorParams::try_new(WaveGeneratorSettings { k_w0: 1.0, c_w }), 1e-6, 1e6);
+    edges(
+        "c_w",
+        |c_w| WaveGeneratorParams::try_new(WaveGeneratorSettings { k_w0: 1.0, c_w }),
+        1e-6,
+        1e6,
+    );
     // k_w0 > 0 alone; with c_w = 1 the torsion 1/(c_w k_w0) is finite
     // from k_w0 = 1/f64::MAX on.
     let wg = |k_w0: f64| WaveGeneratorParams::try_new(WaveGeneratorSettings { k_w0, c_w: 1.0 });
@@ -950,15 +1169,45 @@ fn boundaries_drive_and_estimator() {
     rejected_naming("c_w·k_w0", wg((1.0 / f64::MAX).next_down()), "1/MAX-");
     rejected_naming("k_w0", wg(0.0), "0");
     rejected_naming("k_w0", wg(INF), "inf");
-    edges("k_a", |k_a| TwoSpringParams::try_new(TwoSpringSettings { k_a, k_b: 1.0, friction: 0.0 }), TINY, INF);
-    edges("friction", |friction| TwoSpringParams::try_new(TwoSpringSettings { k_a: 1.0, k_b: 1.0, friction }), 0.0, INF);
+    edges(
+        "k_a",
+        |k_a| {
+            TwoSpringParams::try_new(TwoSpringSettings {
+                k_a,
+                k_b: 1.0,
+                friction: 0.0,
+            })
+        },
+        TINY,
+        INF,
+    );
+    edges(
+        "friction",
+        |friction| {
+            TwoSpringParams::try_new(TwoSpringSettings {
+                k_a: 1.0,
+                k_b: 1.0,
+                friction,
+            })
+        },
+        0.0,
+        INF,
+    );
     edges(
         "ratio",
-        |ratio| WaveGeneratorTorqueParams::try_new(WaveGeneratorTorqueSettings { backdrive_friction: 1.0, ratio }),
+        |ratio| {
+            WaveGeneratorTorqueParams::try_new(WaveGeneratorTorqueSettings {
+                backdrive_friction: 1.0,
+                ratio,
+            })
+        },
         1.0,
         INF,
     );
-    for (i, name) in ["a0", "a_l1", "b_l1", "a_w1", "b_w1", "a_w2", "b_w2"].into_iter().enumerate() {
+    for (i, name) in ["a0", "a_l1", "b_l1", "a_w1", "b_w1", "a_w2", "b_w2"]
+        .into_iter()
+        .enumerate()
+    {
         edges(
             name,
             |v| {
@@ -981,27 +1230,83 @@ fn boundaries_drive_and_estimator() {
 fn boundaries_catalogue() {
     // `at` passes the field's own range (accepted, or rejected naming
     // another rule), `out` is rejected by it.
-    let own = |name: &str, at: Result<HarmonicDriveParams, ParamError>, out: Result<HarmonicDriveParams, ParamError>| {
+    let own = |name: &str,
+               at: Result<HarmonicDriveParams, ParamError>,
+               out: Result<HarmonicDriveParams, ParamError>| {
         if let Err(e) = at {
             assert!(
-                !e.to_string().starts_with(&format!("parameter `{name}` must lie in [")),
+                !e.to_string()
+                    .starts_with(&format!("parameter `{name}` must lie in [")),
                 "{name}: {e}"
             );
         }
         let e = out.unwrap_err().to_string();
-        assert!(e.starts_with(&format!("parameter `{name}` must lie in [")), "{name}: {e}");
+        assert!(
+            e.starts_with(&format!("parameter `{name}` must lie in [")),
+            "{name}: {e}"
+        );
     };
     let (k_lo, k_hi, t_lo, t_hi) = (1e-6f64, 1e12f64, 1e-6f64, 1e6f64);
-    own("k1", catalogue(|c| { c.k2 = 2e-6; c.k1 = k_lo }), catalogue(|c| { c.k2 = 2e-6; c.k1 = k_lo.next_down() }));
-    own("k2", catalogue(|c| { c.k1 = 1e11; c.k2 = k_hi }), catalogue(|c| { c.k1 = 1e11; c.k2 = k_hi.next_up() }));
-    own("t1", catalogue(|c| { c.t2 = 1e-5; c.t1 = t_lo }), catalogue(|c| { c.t2 = 1e-5; c.t1 = t_lo.next_down() }));
-    own("t2", catalogue(|c| { c.t1 = 5e5; c.t2 = t_hi }), catalogue(|c| { c.t1 = 5e5; c.t2 = t_hi.next_up() }));
+    own(
+        "k1",
+        catalogue(|c| {
+            c.k2 = 2e-6;
+            c.k1 = k_lo
+        }),
+        catalogue(|c| {
+            c.k2 = 2e-6;
+            c.k1 = k_lo.next_down()
+        }),
+    );
+    own(
+        "k2",
+        catalogue(|c| {
+            c.k1 = 1e11;
+            c.k2 = k_hi
+        }),
+        catalogue(|c| {
+            c.k1 = 1e11;
+            c.k2 = k_hi.next_up()
+        }),
+    );
+    own(
+        "t1",
+        catalogue(|c| {
+            c.t2 = 1e-5;
+            c.t1 = t_lo
+        }),
+        catalogue(|c| {
+            c.t2 = 1e-5;
+            c.t1 = t_lo.next_down()
+        }),
+    );
+    own(
+        "t2",
+        catalogue(|c| {
+            c.t1 = 5e5;
+            c.t2 = t_hi
+        }),
+        catalogue(|c| {
+            c.t1 = 5e5;
+            c.t2 = t_hi.next_up()
+        }),
+    );
     // Edges that do identify: T1 = 1 µN·m with T2 = 2 µN·m and slopes
     // 1 and 2 N·m/rad (c_f ≈ 7.6e5 1/(N·m)); T2 = 1e6 N·m with T1 half of
     // it and slopes 1e7, 2e7.
-    let small = catalogue(|c| { c.k1 = 1.0; c.k2 = 2.0; c.t1 = 1e-6; c.t2 = 2e-6 });
+    let small = catalogue(|c| {
+        c.k1 = 1.0;
+        c.k2 = 2.0;
+        c.t1 = 1e-6;
+        c.t2 = 2e-6
+    });
     assert!(small.is_ok(), "{small:?}");
-    let large = catalogue(|c| { c.k1 = 1e7; c.k2 = 2e7; c.t1 = 5e5; c.t2 = 1e6 });
+    let large = catalogue(|c| {
+        c.k1 = 1e7;
+        c.k2 = 2e7;
+        c.t1 = 5e5;
+        c.t2 = 1e6
+    });
     assert!(large.is_ok(), "{large:?}");
     edges("ratio", |v| catalogue(|c| c.ratio = v), 1.0, INF);
 }
@@ -1009,7 +1314,12 @@ fn boundaries_catalogue() {
 #[test]
 fn boundaries_wrist() {
     edges("gain", GaugeAmplifier::try_new, 1.0, 1e4);
-    edges("offset", |v| FtSensorParams::try_new(DecouplingMatrix::example(), v), 0.0, 1.0);
+    edges(
+        "offset",
+        |v| FtSensorParams::try_new(DecouplingMatrix::example(), v),
+        0.0,
+        1.0,
+    );
     // κ₁ = 8 for the diagonal matrix: max_condition ≥ 1 is its own rule,
     // and 8 is the smallest that accepts this matrix.
     // The identity (κ₁ = 1) for `max_condition`'s own rule, `[1, ∞)`.
@@ -1017,12 +1327,26 @@ fn boundaries_wrist() {
     for (i, row) in identity.iter_mut().enumerate() {
         row[i] = 1.0;
     }
-    edges("max_condition", |v| DecouplingMatrix::try_new(identity, v), 1.0, INF);
+    edges(
+        "max_condition",
+        |v| DecouplingMatrix::try_new(identity, v),
+        1.0,
+        INF,
+    );
     // κ₁ = 8 for the diagonal matrix: 8 is the smallest limit that
     // accepts it.
     assert!(DecouplingMatrix::try_new(diagonal(), 8.0).is_ok());
-    rejected_naming("κ₁(matrix)", DecouplingMatrix::try_new(diagonal(), 8f64.next_down()), "8-");
-    edges("phi", WristParams::try_new, 1f64.to_radians(), 30f64.to_radians());
+    rejected_naming(
+        "κ₁(matrix)",
+        DecouplingMatrix::try_new(diagonal(), 8f64.next_down()),
+        "8-",
+    );
+    edges(
+        "phi",
+        WristParams::try_new,
+        1f64.to_radians(),
+        30f64.to_radians(),
+    );
 
     let a = |f: fn(&mut AdmittanceSettings, f64)| move |v: f64| admittance(|s| f(s, v));
     // K_c < a_max(1)/(T K_t) = 2 sin(π/6)/(0.004·1000): the open end.
@@ -1030,23 +1354,79 @@ fn boundaries_wrist() {
     edges("gain[0]", a(|s, v| s.gain[0] = v), TINY, kmax.next_down());
     edges("gain[1]", a(|s, v| s.gain[1] = v), TINY, kmax.next_down());
     // Stiffness: K_c = 0.1 stays stable up to K_t < 2500 N·m/rad.
-    edges("stiffness", a(|s, v| { s.gain = [TINY; 2]; s.stiffness = v }), TINY, INF);
-    edges("sample_period", a(|s, v| { s.gain = [TINY; 2]; s.sample_period = v }), 1e-6, 1.0);
-    integer_edges("lag_samples", |v| admittance(|s| { s.gain = [TINY; 2]; s.lag_samples = v as u8 }), 0, Some(16));
+    edges(
+        "stiffness",
+        a(|s, v| {
+            s.gain = [TINY; 2];
+            s.stiffness = v
+        }),
+        TINY,
+        INF,
+    );
+    edges(
+        "sample_period",
+        a(|s, v| {
+            s.gain = [TINY; 2];
+            s.sample_period = v
+        }),
+        1e-6,
+        1.0,
+    );
+    integer_edges(
+        "lag_samples",
+        |v| {
+            admittance(|s| {
+                s.gain = [TINY; 2];
+                s.lag_samples = v as u8
+            })
+        },
+        0,
+        Some(16),
+    );
     let half_pi = core::f64::consts::FRAC_PI_2;
     edges("limits[0]", a(|s, v| s.limits[0] = v), TINY, half_pi);
     edges("limits[1]", a(|s, v| s.limits[1] = v), TINY, half_pi);
     edges("max_rate", a(|s, v| s.max_rate = v), TINY, 1e3);
     edges("deadband", a(|s, v| s.deadband = v), 0.0, 1e3);
-    edges("desired_torque[0]", a(|s, v| s.desired_torque[0] = v), -1e3, 1e3);
-    edges("desired_torque[1]", a(|s, v| s.desired_torque[1] = v), -1e3, 1e3);
+    edges(
+        "desired_torque[0]",
+        a(|s, v| s.desired_torque[0] = v),
+        -1e3,
+        1e3,
+    );
+    edges(
+        "desired_torque[1]",
+        a(|s, v| s.desired_torque[1] = v),
+        -1e3,
+        1e3,
+    );
 
     let w = |f: fn(&mut WristModeSettings, f64)| move |v: f64| wrist_modes(|s| f(s, v));
-    edges("enter_passive", w(|s, v| s.enter_passive = v), 0.5f64.next_up(), 1e3);
-    edges("exit_passive", w(|s, v| s.exit_passive = v), TINY, 1f64.next_down());
+    edges(
+        "enter_passive",
+        w(|s, v| s.enter_passive = v),
+        0.5f64.next_up(),
+        1e3,
+    );
+    edges(
+        "exit_passive",
+        w(|s, v| s.exit_passive = v),
+        TINY,
+        1f64.next_down(),
+    );
     edges("rest_speed", w(|s, v| s.rest_speed = v), TINY, INF);
-    edges("rejoin_bandwidth", w(|s, v| s.rejoin_bandwidth = v), TINY, 125.0);
-    integer_edges("debounce", |v| wrist_modes(|s| s.debounce = v as u16), 1, None);
+    edges(
+        "rejoin_bandwidth",
+        w(|s, v| s.rejoin_bandwidth = v),
+        TINY,
+        125.0,
+    );
+    integer_edges(
+        "debounce",
+        |v| wrist_modes(|s| s.debounce = v as u16),
+        1,
+        None,
+    );
 
     // The motors: I_mi N_i ≤ 30 kg·m² (N = 531).
     let im_max = 30.0 / 531.0;
@@ -1065,12 +1445,32 @@ fn boundaries_wrist() {
     };
     // I_mi > 0, and I_mi N_i ≤ 30 kg·m²: at N = 1, I_mi ≤ 30.
     let _ = im_max;
-    let im = m(|d, v| { d.base_acceleration = 0.0; d.law.ratio = 1.0; d.rotor_inertia = v });
+    let im = m(|d, v| {
+        d.base_acceleration = 0.0;
+        d.law.ratio = 1.0;
+        d.rotor_inertia = v
+    });
     assert!(im(TINY).is_ok());
     rejected_naming("designs[0].rotor_inertia", im(0.0), "0");
     upper_edge("designs[0].rotor_inertia·designs[0].law.ratio", im, 30.0);
-    edges("designs[0].law.ratio", m(|d, v| { d.rotor_inertia = TINY; d.law.ratio = v }), 1.0, INF);
+    edges(
+        "designs[0].law.ratio",
+        m(|d, v| {
+            d.rotor_inertia = TINY;
+            d.law.ratio = v
+        }),
+        1.0,
+        INF,
+    );
     // ρ_base ≥ 0, and ρ_base/N ≤ 30/(I_mi N): at I_mi = 1 kg·m²,
     // ρ_base ≤ 30 rad/s² (N = 531).
-    edges("designs[0].base_acceleration", m(|d, v| { d.rotor_inertia = 1.0 / 531.0; d.base_acceleration = v }), 0.0, 30.0 * 531.0);
+    edges(
+        "designs[0].base_acceleration",
+        m(|d, v| {
+            d.rotor_inertia = 1.0 / 531.0;
+            d.base_acceleration = v
+        }),
+        0.0,
+        30.0 * 531.0,
+    );
 }

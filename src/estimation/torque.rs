@@ -2048,9 +2048,9 @@ mod tests {
             }
             other => panic!("{other:?}"),
         }
-        assert!(e
-            .to_string()
-            .starts_with("`link_counts_per_rev·motor_counts_per_rev·drive.ratio` must lie in [1, "));
+        assert!(e.to_string().starts_with(
+            "`link_counts_per_rev·motor_counts_per_rev·drive.ratio` must lie in [1, "
+        ));
     }
 
     /// `update_radians` with NaN or infinite readings: every field finite,

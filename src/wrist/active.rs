@@ -255,7 +255,10 @@ fn design_path(i: usize, name: &'static str) -> &'static str {
         ),
         (
             "base_acceleration",
-            ["designs[0].base_acceleration", "designs[1].base_acceleration"],
+            [
+                "designs[0].base_acceleration",
+                "designs[1].base_acceleration",
+            ],
         ),
         (
             "rotor_inertia·law.ratio",
@@ -264,14 +267,15 @@ fn design_path(i: usize, name: &'static str) -> &'static str {
                 "designs[1].rotor_inertia·designs[1].law.ratio",
             ],
         ),
-        ("law.ratio", ["designs[0].law.ratio", "designs[1].law.ratio"]),
+        (
+            "law.ratio",
+            ["designs[0].law.ratio", "designs[1].law.ratio"],
+        ),
     ];
-    OWN.iter()
-        .find(|(n, _)| *n == name)
-        .map_or_else(
-            || law_path(i, name.trim_start_matches("law.")),
-            |(_, p)| p[i.min(1)],
-        )
+    OWN.iter().find(|(n, _)| *n == name).map_or_else(
+        || law_path(i, name.trim_start_matches("law.")),
+        |(_, p)| p[i.min(1)],
+    )
 }
 
 macro_rules! law_fields {
@@ -355,13 +359,9 @@ impl WristActiveParams {
             let path = |name: &'static str| design_path(i, name);
             let im = positive(path("rotor_inertia"), d.rotor_inertia)?;
             let rho_base = non_negative(path("base_acceleration"), d.base_acceleration)?;
-            let n = crate::error::gear_ratio(d.law.ratio).map_err(|e| e.renamed(path("law.ratio")))?;
-            crate::error::combination(
-                path("rotor_inertia·law.ratio"),
-                im * n,
-                0.0,
-                30.0,
-            )?;
+            let n =
+                crate::error::gear_ratio(d.law.ratio).map_err(|e| e.renamed(path("law.ratio")))?;
+            crate::error::combination(path("rotor_inertia·law.ratio"), im * n, 0.0, 30.0)?;
             let derived = d.law_design();
             let set = [
                 (

@@ -222,8 +222,8 @@ impl DecouplingMatrix {
         }
         let inverse = invert(&matrix);
         let condition = inverse.map_or(f64::INFINITY, |i| n * norm1(&i));
-        // `false` for NaN and for ∞ > max.
-        if !(condition <= max_condition) {
+        let within = condition <= max_condition; // false for NaN and ∞ > max
+        if !within {
             return Err(ParamError::CombinationOutOfRange {
                 name: "κ₁(matrix)",
                 value: condition,
