@@ -443,6 +443,19 @@ fn all_rows() -> Vec<Row> {
             "parameter `k_w0` must be > 0, got 0"),
         row("WaveGeneratorSettings", "c_w", WaveGeneratorParams::try_new(WaveGeneratorSettings { k_w0: 0.83, c_w: 0.0 }),
             "parameter `c_w` must lie in [1e-6, 1e6], got 0"),
+        row("FlexsplineSettings", "k_f0 (π/(2·c_f·k_f0))",
+            FlexsplineParams::try_new(FlexsplineSettings { k_f0: 8.3e7, c_f: 1.0 }),
+            "`π/(2·c_f·k_f0)` must lie in [1e-6, 1], got 1.8925256949336102e-8"),
+        row("WaveGeneratorSettings", "k_w0 (c_w·k_w0)",
+            WaveGeneratorParams::try_new(WaveGeneratorSettings { k_w0: 1e-303, c_w: 1e-6 }),
+            "`c_w·k_w0` must lie in [5.562684646268003e-309, inf], got 1e-309"),
+        row("HarmonicDriveParams", "wave_generator",
+            HarmonicDriveParams::try_new(
+                drive().flexspline(),
+                WaveGeneratorParams::try_new(WaveGeneratorSettings { k_w0: 1e-3, c_w: 1.0 }).unwrap(),
+                1.0,
+            ),
+            "`1/(wave_generator.c_w·ratio·wave_generator.k_w0)` must lie in [0, 1], got 1000"),
         row("HarmonicDriveParams", "ratio",
             HarmonicDriveParams::try_new(drive().flexspline(), drive().wave_generator(), 0.5),
             "parameter `ratio` must lie in [1, inf], got 0.5"),
@@ -635,7 +648,7 @@ fn every_settings_field_names_itself() {
 }
 
 /// Number of (type, field) rows of the table.
-const ROWS: usize = 148;
+const ROWS: usize = 151;
 
 /// No message carries a value in long decimal form: every number has at
 /// most 17 significant digits and no run of zeros.

@@ -655,7 +655,8 @@ pub const MAX_WAVE_GENERATOR_TORSION: f64 = 1.0;
 impl HarmonicDriveParams {
     /// Validates the ratio (`N ≥ 1`, finite; `ratio`) and the composite:
     /// the output-side wave-generator torsion `1/(c_w N K_w0)` (rad) at most
-    /// [`MAX_WAVE_GENERATOR_TORSION`]. The parts were validated by their
+    /// [`MAX_WAVE_GENERATOR_TORSION`] (named
+    /// `1/(wave_generator.c_w·ratio·wave_generator.k_w0)`). The parts were validated by their
     /// own `try_new`.
     pub fn try_new(
         flexspline: FlexsplineParams,
@@ -669,7 +670,7 @@ impl HarmonicDriveParams {
             ratio,
         };
         combination(
-            "1/(c_w·ratio·k_w0)",
+            "1/(wave_generator.c_w·ratio·wave_generator.k_w0)",
             p.output_wave_generator_torsion(),
             0.0,
             MAX_WAVE_GENERATOR_TORSION,
@@ -985,7 +986,7 @@ mod tests {
         .unwrap();
         let e = HarmonicDriveParams::try_new(fl, wg, 2.0).unwrap_err();
         assert!(
-            matches!(e, ParamError::CombinationOutOfRange { name: "1/(c_w·ratio·k_w0)", value, .. } if value == 1.0 / (1e-3 * 2.0 * 1e-3)),
+            matches!(e, ParamError::CombinationOutOfRange { name: "1/(wave_generator.c_w·ratio·wave_generator.k_w0)", value, .. } if value == 1.0 / (1e-3 * 2.0 * 1e-3)),
             "{e:?}"
         );
         let e = HarmonicDriveParams::try_new(

@@ -211,7 +211,9 @@ fn wave_generator_name(name: &'static str) -> &'static str {
         "k_w0" => "k_w0 = 2·starting_torque/(ratio·hysteresis_loss)",
         "c_w" => "c_w = 2/(ratio·k_w0·hysteresis_loss) = 1/starting_torque",
         "c_w·k_w0" => "c_w·k_w0 = 2/(ratio·hysteresis_loss)",
-        "1/(c_w·ratio·k_w0)" => "1/(c_w·ratio·k_w0) = hysteresis_loss/2",
+        "1/(wave_generator.c_w·ratio·wave_generator.k_w0)" => {
+            "1/(c_w·ratio·k_w0) = hysteresis_loss/2"
+        }
         other => other,
     }
 }
