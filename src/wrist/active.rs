@@ -358,7 +358,7 @@ impl WristActiveParams {
         for (i, (law, d)) in laws.iter_mut().zip(designs.iter()).enumerate() {
             let path = |name: &'static str| design_path(i, name);
             let im = positive(path("rotor_inertia"), d.rotor_inertia)?;
-            let rho_base = non_negative(path("base_acceleration"), d.base_acceleration)?;
+            non_negative(path("base_acceleration"), d.base_acceleration)?;
             let n =
                 crate::error::gear_ratio(d.law.ratio).map_err(|e| e.renamed(path("law.ratio")))?;
             crate::error::combination(path("rotor_inertia·law.ratio"), im * n, 0.0, 30.0)?;
@@ -384,7 +384,6 @@ impl WristActiveParams {
                     });
                 }
             }
-            let _ = rho_base;
             *law = RobustAdaptiveParams::try_new(derived).map_err(|e| {
                 e.map_names(|name| match name {
                     // Set from the motor's fields, checked above; only a
