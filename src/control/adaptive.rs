@@ -253,7 +253,7 @@ impl RobustAdaptiveParams {
     /// boundary layers positive and representable on every backend (at
     /// least one `I16F16` LSB, at most `30 000`, in their stored units),
     /// `ρ_f, ρ_fq ∈ [0, 30]` N·m, `ρ_base ∈ [0, 30/I_m]`,
-    /// `ρ_τt ∈ [0, 30 N]`, torque and integral limits in `(0, 16]` and
+    /// `ρ_τt ∈ [0, 30·N]` N·m, torque and integral limits in `(0, 16]` and
     /// `[0, 16]` N·m (so that sums of two limits stay inside the `I16F16`
     /// range of mN·m, which the bumpless switching of [`super::mode`]
     /// relies on), `T ∈ [1e-7, 1]` s, the initial estimate a valid
