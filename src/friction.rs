@@ -42,6 +42,74 @@ pub struct FrictionParams {
 /// Names of the four parameters, in vector order (for errors and reports).
 pub const PARAMETER_NAMES: [&str; 4] = ["viscous", "coulomb", "stribeck", "stribeck_shape"];
 
+/// Smallest accepted lower bound of the Stribeck shape `f_τ` in a
+/// [`FrictionBounds`] box, s²/rad².
+pub const STRIBECK_SHAPE_MIN: f64 = 1e-3;
+
+/// Field paths of the variable-part bounds in [`FrictionBounds::try_new`].
+const VARIABLE_PATHS: [&str; 4] = ["variable[0]", "variable[1]", "variable[2]", "variable[3]"];
+
+/// A [`FrictionParams`] field name under `prefix`: the field paths of a
+/// composite's errors. Names that are not fields pass unchanged.
+fn prefixed(name: &'static str, paths: [&'static str; 4]) -> &'static str {
+    PARAMETER_NAMES
+        .iter()
+        .position(|n| *n == name)
+        .map_or(name, |j| paths[j])
+}
+
+/// `min.<field>` of [`FrictionBounds::try_new`].
+fn min_path(name: &'static str) -> &'static str {
+    prefixed(
+        name,
+        [
+            "min.viscous",
+            "min.coulomb",
+            "min.stribeck",
+            "min.stribeck_shape",
+        ],
+    )
+}
+
+/// `max.<field>` of [`FrictionBounds::try_new`].
+fn max_path(name: &'static str) -> &'static str {
+    prefixed(
+        name,
+        [
+            "max.viscous",
+            "max.coulomb",
+            "max.stribeck",
+            "max.stribeck_shape",
+        ],
+    )
+}
+
+/// `nominal_friction.<field>` of the passive law's settings.
+pub(crate) fn nominal_friction_path(name: &'static str) -> &'static str {
+    prefixed(
+        name,
+        [
+            "nominal_friction.viscous",
+            "nominal_friction.coulomb",
+            "nominal_friction.stribeck",
+            "nominal_friction.stribeck_shape",
+        ],
+    )
+}
+
+/// `initial_friction.<field>` of a robust adaptive design.
+pub(crate) fn initial_friction_path(name: &'static str) -> &'static str {
+    prefixed(
+        name,
+        [
+            "initial_friction.viscous",
+            "initial_friction.coulomb",
+            "initial_friction.stribeck",
+            "initial_friction.stribeck_shape",
+        ],
+    )
+}
+
 impl FrictionParams {
     /// Validate the named fields: `b, f_c, f_s ≥ 0`, `f_τ > 0`, all finite
     /// (errors name the field). The fields are named, so none can be
@@ -148,46 +216,38 @@ impl FrictionBounds {
     /// term of a fixed-point backend could not be evaluated beyond
     /// `|q̇| = 181 rad/s`, where `q̇²` leaves the `I16F16` range while
     /// `e^{−f_τ q̇²}` is still above one LSB (with `f_τ ≥ 1e-3` it is
-    /// below `e^{−32}`).
+    /// below `e^{−32}`). Errors name the argument's field as
+    /// `min.viscous`, `max.stribeck_shape`, `variable[2]`, … (a box
+    /// corner out of order is [`ParamError::Exceeds`] naming both
+    /// corners' fields).
     pub fn try_new(
         min: FrictionParams,
         max: FrictionParams,
         variable: [f64; 4],
     ) -> Result<Self, ParamError> {
-        let min = FrictionParams {
-            viscous: min.viscous,
-            coulomb: min.coulomb,
-            stribeck: min.stribeck,
-            stribeck_shape: min.stribeck_shape,
-        }
-        .validated()?;
-        let max = FrictionParams {
-            viscous: max.viscous,
-            coulomb: max.coulomb,
-            stribeck: max.stribeck,
-            stribeck_shape: max.stribeck_shape,
-        }
-        .validated()?;
+        let min = min.validated().map_err(|e| e.map_names(min_path))?;
+        let max = max.validated().map_err(|e| e.map_names(max_path))?;
         let (lo, hi) = (min.to_array(), max.to_array());
         for j in 0..4 {
+            non_negative(VARIABLE_PATHS[j], variable[j])?;
+        }
+        if lo[3] < STRIBECK_SHAPE_MIN {
+            return Err(ParamError::OutOfRange {
+                name: "min.stribeck_shape",
+                value: lo[3],
+                min: STRIBECK_SHAPE_MIN,
+                max: f64::INFINITY,
+            });
+        }
+        for j in 0..4 {
             if lo[j] > hi[j] {
-                return Err(ParamError::NotIncreasing {
-                    lower: PARAMETER_NAMES[j],
+                return Err(ParamError::Exceeds {
+                    lower: min_path(PARAMETER_NAMES[j]),
                     lower_value: lo[j],
-                    upper: PARAMETER_NAMES[j],
+                    upper: max_path(PARAMETER_NAMES[j]),
                     upper_value: hi[j],
                 });
             }
-            let v = non_negative("variable_bound", variable[j])?;
-            let _ = v;
-        }
-        if lo[3] < 1e-3 {
-            return Err(ParamError::OutOfRange {
-                name: "stribeck_shape",
-                value: lo[3],
-                min: 1e-3,
-                max: f64::INFINITY,
-            });
         }
         Ok(FrictionBounds {
             min: lo,
@@ -672,8 +732,9 @@ mod tests {
         .unwrap();
         assert!(matches!(
             FrictionBounds::try_new(lo, hi, [0.0; 4]),
-            Err(ParamError::NotIncreasing {
-                lower: "coulomb",
+            Err(ParamError::Exceeds {
+                lower: "min.coulomb",
+                upper: "max.coulomb",
                 ..
             })
         ));
@@ -688,7 +749,7 @@ mod tests {
         assert!(matches!(
             FrictionBounds::try_new(lo, hi, [0.0; 4]),
             Err(ParamError::OutOfRange {
-                name: "stribeck_shape",
+                name: "min.stribeck_shape",
                 ..
             })
         ));

@@ -124,7 +124,7 @@ impl JointParams {
     /// with the drive's ratio as both bounds); `speed_window` in
     /// `[1, MAX_SPEED_WINDOW]`; the motor speed resolution
     /// `2π/(M·w·T)` at most 32 768 rad/s (named
-    /// `2π/(motor_counts_per_rev·speed_window·sample_period)`). The
+    /// `2π/(estimator.motor_counts_per_rev·speed_window·mode.active.sample_period)`). The
     /// estimator and mode parameters were validated by their own
     /// `try_new`.
     pub fn try_new(settings: JointSettings) -> Result<Self, ParamError> {
@@ -148,7 +148,7 @@ impl JointParams {
         }
         let p = JointParams { settings };
         crate::error::combination(
-            "2π/(motor_counts_per_rev·speed_window·sample_period)",
+            "2π/(estimator.motor_counts_per_rev·speed_window·mode.active.sample_period)",
             p.speed_resolution(),
             0.0,
             32_768.0,

@@ -44,7 +44,7 @@
 //! holds exactly uses the backend's own, bit-identical product).
 
 use super::{clamp_or_keep_symmetric, ControlInput};
-use crate::error::{non_negative, positive, ParamError};
+use crate::error::{combination, in_range, non_negative, positive, ParamError};
 use crate::friction::{
     mul_unit, parameter_scales, regressor_scales, FrictionBounds, FrictionConfig, FrictionParams,
 };
@@ -184,49 +184,127 @@ fn at_most(name: &'static str, value: f64, max: f64) -> Result<f64, ParamError> 
     }
 }
 
+/// Largest stored value of a boundary layer (`I16F16` units).
+const LAYER_MAX_STORED: f64 = 30_000.0;
+
 /// A boundary layer must survive quantization on every backend: at least
-/// one `I16F16` LSB in its stored unit.
+/// one `I16F16` LSB and at most `30 000` in its stored unit (`scale` per
+/// SI unit); the error states the range in SI.
 fn layer(name: &'static str, value: f64, scale: f64) -> Result<f64, ParamError> {
     let value = positive(name, value)?;
-    if value * scale < 1.0 / 65536.0 || value * scale > 30_000.0 {
-        return Err(ParamError::NotRepresentable { name, value });
+    // The bounds in SI, compared as printed.
+    let (min, max) = (1.0 / 65536.0 / scale, LAYER_MAX_STORED / scale);
+    if value < min || value > max {
+        return Err(ParamError::OutOfRange {
+            name,
+            value,
+            min,
+            max,
+        });
     }
     Ok(value)
 }
 
+/// Field paths of [`RobustAdaptiveDesign::eps_f`]'s components.
+const EPS_F: [&str; 4] = ["eps_f[0]", "eps_f[1]", "eps_f[2]", "eps_f[3]"];
+/// Field paths of [`RobustAdaptiveDesign::adaptation_gain`]'s components.
+const ADAPTATION_GAIN: [&str; 4] = [
+    "adaptation_gain[0]",
+    "adaptation_gain[1]",
+    "adaptation_gain[2]",
+    "adaptation_gain[3]",
+];
+/// Each `μ_j T` (SI) at most `1e11` once scaled to the stored `I16F16`
+/// units of the step `F̂_j ← F̂_j − μ_j T r Y_j`.
+const ADAPTATION_STEP: [&str; 4] = [
+    "adaptation_gain[0]·sample_period",
+    "adaptation_gain[1]·sample_period",
+    "adaptation_gain[2]·sample_period",
+    "adaptation_gain[3]·sample_period",
+];
+/// Field paths of the variable-part bounds `ρ_F` in the design.
+const VARIABLE_BOUND: [&str; 4] = [
+    "friction_bounds.variable[0]",
+    "friction_bounds.variable[1]",
+    "friction_bounds.variable[2]",
+    "friction_bounds.variable[3]",
+];
+/// Field paths of the initial estimate's components.
+const INITIAL_FRICTION: [&str; 4] = [
+    "initial_friction.viscous",
+    "initial_friction.coulomb",
+    "initial_friction.stribeck",
+    "initial_friction.stribeck_shape",
+];
+
+/// Largest magnitude of a prepared coefficient in stored units (the range
+/// a `Coef` represents exactly is `2⁴⁰ ≈ 1.1e12`).
+const COEF_MAX: f64 = 1e11;
+
+/// Largest robust gain `K_r`, N·m (motor side).
+pub const ROBUST_GAIN_MAX: f64 = 30.0;
+
 impl RobustAdaptiveParams {
-    /// Validate a design: `I_m ∈ (0, 30]`, `N ≥ 1`, `λ, T > 0`,
-    /// `K_I, μ_j, ρ ≥ 0`, boundary layers positive and representable on
-    /// every backend, torque and integral limits in `(0, 16]` and `[0, 16]`
-    /// N·m (so that sums of two limits stay inside the `I16F16` range of
-    /// mN·m, which the bumpless switching of [`super::mode`] relies on),
-    /// `T ∈ [1e-7, 1]` s, the initial estimate inside the friction box, and
-    /// every prepared coefficient (e.g. `λ² I_m` in mN·m/rad) at most
-    /// `1e11` in fixed-point units (the exact range of a `Coef`).
+    /// Validate a design. Every field is checked on its own first, in
+    /// declaration order, and each error names the field as written
+    /// (`uncertainty.boundary_layer`, `eps_f[2]`,
+    /// `initial_friction.viscous`, …) with the value given:
+    /// `I_m ∈ (0, 30]` kg·m², `N ≥ 1`, `λ ∈ (0, 1e11]`, `K_I, μ_j ≥ 0`,
+    /// boundary layers positive and representable on every backend (at
+    /// least one `I16F16` LSB, at most `30 000`, in their stored units),
+    /// `ρ_f, ρ_fq ∈ [0, 30]` N·m, `ρ_base ∈ [0, 30/I_m]`,
+    /// `ρ_τt ∈ [0, 30·N]` N·m, torque and integral limits in `(0, 16]` and
+    /// `[0, 16]` N·m (so that sums of two limits stay inside the `I16F16`
+    /// range of mN·m, which the bumpless switching of [`super::mode`]
+    /// relies on), `T ∈ [1e-7, 1]` s, the initial estimate a valid
+    /// [`FrictionParams`] inside the friction box. Then the combinations,
+    /// named in the fields' names ([`ParamError::CombinationOutOfRange`]):
+    /// the robust gain `K_r` at most [`ROBUST_GAIN_MAX`] N·m, and every
+    /// prepared coefficient at most `1e11` in fixed-point units:
+    /// `λ² I_m ≤ 1e8` (SI), `K_I T ≤ 1e8`,
+    /// `μ_j T ≤ [1e8, 1e8, 1e8, 1e14]`, and the variable-part bounds
+    /// `ρ_Fj ≤ [1e8, 1e8, 1e8, 1e11]`.
     pub fn try_new(d: RobustAdaptiveDesign) -> Result<Self, ParamError> {
         let fx = units::FIXED;
-        at_most(
+        let mt = fx.motor_torque;
+        let im = at_most(
             "rotor_inertia",
             positive("rotor_inertia", d.rotor_inertia)?,
             30.0,
         )?;
-        crate::error::gear_ratio(d.ratio)?;
-        positive("lambda", d.lambda)?;
-        non_negative("integral_gain", d.integral_gain)?;
-        for m in d.adaptation_gain {
-            non_negative("adaptation_gain", m)?;
+        let n = crate::error::gear_ratio(d.ratio)?;
+        let lambda = at_most("lambda", positive("lambda", d.lambda)?, COEF_MAX)?;
+        let k_i = non_negative("integral_gain", d.integral_gain)?;
+        for (j, m) in d.adaptation_gain.iter().enumerate() {
+            non_negative(ADAPTATION_GAIN[j], *m)?;
         }
         layer("eps_r", d.eps_r, fx.speed)?;
         layer("eps_velocity", d.eps_velocity, fx.speed)?;
         let ys = regressor_scales::<crate::scalar::I16F16>();
         for (j, e) in d.eps_f.iter().enumerate() {
-            layer("eps_f", *e, fx.speed * ys[j])?;
+            layer(EPS_F[j], *e, fx.speed * ys[j])?;
         }
         let u = d.uncertainty;
-        non_negative("boundary_layer", u.boundary_layer)?;
-        non_negative("nonparametric_friction", u.nonparametric_friction)?;
-        non_negative("base_acceleration", u.base_acceleration)?;
-        non_negative("torque_estimate", u.torque_estimate)?;
+        let k_max = ROBUST_GAIN_MAX;
+        in_range("uncertainty.boundary_layer", u.boundary_layer, 0.0, k_max)?;
+        in_range(
+            "uncertainty.nonparametric_friction",
+            u.nonparametric_friction,
+            0.0,
+            k_max,
+        )?;
+        in_range(
+            "uncertainty.base_acceleration",
+            u.base_acceleration,
+            0.0,
+            k_max / im,
+        )?;
+        in_range(
+            "uncertainty.torque_estimate",
+            u.torque_estimate,
+            0.0,
+            k_max * n,
+        )?;
         at_most(
             "torque_limit",
             positive("torque_limit", d.torque_limit)?,
@@ -238,14 +316,7 @@ impl RobustAdaptiveParams {
             16.0,
         )?;
         let t = positive("sample_period", d.sample_period)?;
-        if !(1e-7..=1.0).contains(&t) {
-            return Err(ParamError::OutOfRange {
-                name: "sample_period",
-                value: t,
-                min: 1e-7,
-                max: 1.0,
-            });
-        }
+        in_range("sample_period", t, 1e-7, 1.0)?;
         let f = d.initial_friction;
         FrictionParams {
             viscous: f.viscous,
@@ -253,58 +324,48 @@ impl RobustAdaptiveParams {
             stribeck: f.stribeck,
             stribeck_shape: f.stribeck_shape,
         }
-        .validated()?;
-        if !d.friction_bounds.contains(&f) {
-            let (lo, hi, a) = (
-                d.friction_bounds.min(),
-                d.friction_bounds.max(),
-                f.to_array(),
-            );
-            let j = (0..4).find(|&j| a[j] < lo[j] || a[j] > hi[j]).unwrap_or(0);
-            return Err(ParamError::OutOfRange {
-                name: crate::friction::PARAMETER_NAMES[j],
-                value: a[j],
-                min: lo[j],
-                max: hi[j],
-            });
+        .validated()
+        .map_err(|e| e.map_names(crate::friction::initial_friction_path))?;
+        let (lo, hi, a) = (
+            d.friction_bounds.min(),
+            d.friction_bounds.max(),
+            f.to_array(),
+        );
+        for j in 0..4 {
+            in_range(INITIAL_FRICTION[j], a[j], lo[j], hi[j])?;
         }
+        // The combinations, every factor already finite and in range.
+        combination(
+            "uncertainty.boundary_layer + uncertainty.nonparametric_friction \
+             + rotor_inertia·uncertainty.base_acceleration + uncertainty.torque_estimate/ratio",
+            d.robust_gain(),
+            0.0,
+            k_max,
+        )?;
         // Every prepared coefficient (in the largest, fixed-point, unit
-        // scales) within the range a `Coef` represents exactly (≤ 2⁴⁰).
-        let mt = fx.motor_torque;
+        // scales) within the range a `Coef` represents exactly; stated in
+        // SI. `K_r/ε_r` needs no check: `K_r ≤ 30` N·m and `ε_r ≥ 2⁻¹⁶`
+        // rad/s keep it below `2e9` stored; nor does `2λ I_m`, at most
+        // `2·√(1e8 · 30) ≈ 1.1e5` N·m·s/rad once `λ² I_m ≤ 1e8` and
+        // `I_m ≤ 30`.
+        combination(
+            "lambda²·rotor_inertia",
+            lambda * lambda * im,
+            0.0,
+            COEF_MAX / mt,
+        )?;
+        combination("integral_gain·sample_period", k_i * t, 0.0, COEF_MAX / mt)?;
         let ps = parameter_scales::<crate::scalar::I16F16>();
-        let mut coefs = [
-            ("lambda", d.lambda * d.lambda * d.rotor_inertia * mt),
-            ("lambda", 2.0 * d.lambda * d.rotor_inertia * mt),
-            ("lambda", d.lambda),
-            ("integral_gain", d.integral_gain * d.sample_period * mt),
-            ("eps_r", d.robust_gain() * mt / d.eps_r),
-            ("adaptation_gain", 0.0),
-            ("variable_bound", 0.0),
-        ];
+        let rho = d.friction_bounds.variable();
         for j in 0..4 {
             let ry = fx.speed * ys[j];
-            let a = d.adaptation_gain[j] * d.sample_period * ps[j] / ry;
-            let r = d.friction_bounds.variable()[j] * mt / ys[j];
-            coefs[5].1 = f64::max(coefs[5].1, a);
-            coefs[6].1 = f64::max(coefs[6].1, r);
-        }
-        for (name, v) in coefs {
-            if v > 1e11 {
-                return Err(ParamError::OutOfRange {
-                    name,
-                    value: v,
-                    min: 0.0,
-                    max: 1e11,
-                });
-            }
-        }
-        if d.robust_gain() > 30.0 {
-            return Err(ParamError::OutOfRange {
-                name: "robust_gain",
-                value: d.robust_gain(),
-                min: 0.0,
-                max: 30.0,
-            });
+            combination(
+                ADAPTATION_STEP[j],
+                d.adaptation_gain[j] * t,
+                0.0,
+                COEF_MAX * ry / ps[j],
+            )?;
+            in_range(VARIABLE_BOUND[j], rho[j], 0.0, COEF_MAX * ys[j] / mt)?;
         }
         Ok(RobustAdaptiveParams { design: d })
     }

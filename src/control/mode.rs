@@ -300,7 +300,7 @@ impl ModeParams {
         let pl = passive_limit(&passive);
         if pl != d.torque_limit {
             return Err(ParamError::OutOfRange {
-                name: "passive_torque_limit",
+                name: "passive.torque_limit",
                 value: pl,
                 min: d.torque_limit,
                 max: d.torque_limit,
@@ -360,10 +360,10 @@ impl ModeParams {
     /// most `30 000` so that it is representable on every backend) and
     /// `samples ≥ debounce`.
     pub fn with_release(mut self, rule: ReleaseRule) -> Result<Self, ParamError> {
-        let v = positive("release_speed", rule.speed)?;
+        let v = positive("rule.speed", rule.speed)?;
         if v > 30_000.0 {
             return Err(ParamError::OutOfRange {
-                name: "release_speed",
+                name: "rule.speed",
                 value: v,
                 min: 0.0,
                 max: 30_000.0,
@@ -371,7 +371,7 @@ impl ModeParams {
         }
         if rule.samples < self.debounce {
             return Err(ParamError::OutOfRange {
-                name: "release_samples",
+                name: "rule.samples",
                 value: rule.samples as f64,
                 min: self.debounce as f64,
                 max: u16::MAX as f64,

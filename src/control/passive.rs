@@ -80,9 +80,11 @@ impl PassiveParams {
         gear_ratio(ratio)?;
         positive("eps_velocity", eps_velocity)?;
         if eps_velocity < 1.0 / 65536.0 {
-            return Err(ParamError::NotRepresentable {
+            return Err(ParamError::OutOfRange {
                 name: "eps_velocity",
                 value: eps_velocity,
+                min: 1.0 / 65536.0,
+                max: f64::INFINITY,
             });
         }
         let f = nominal_friction;
@@ -92,7 +94,8 @@ impl PassiveParams {
             stribeck: f.stribeck,
             stribeck_shape: f.stribeck_shape,
         }
-        .validated()?;
+        .validated()
+        .map_err(|e| e.map_names(crate::friction::nominal_friction_path))?;
         positive("torque_limit", torque_limit)?;
         if torque_limit > 16.0 {
             return Err(ParamError::OutOfRange {

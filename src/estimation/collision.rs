@@ -63,21 +63,21 @@ impl CollisionParams {
             reaction,
         } = settings;
         positive("threshold", threshold)?;
-        positive("release_threshold", release_threshold)?;
-        if release_threshold > threshold {
-            return Err(ParamError::NotIncreasing {
-                lower: "release_threshold",
-                lower_value: release_threshold,
-                upper: "threshold",
-                upper_value: threshold,
-            });
-        }
         if threshold > 30_000.0 {
             return Err(ParamError::OutOfRange {
                 name: "threshold",
                 value: threshold,
                 min: 0.0,
                 max: 30_000.0,
+            });
+        }
+        positive("release_threshold", release_threshold)?;
+        if release_threshold > threshold {
+            return Err(ParamError::Exceeds {
+                lower: "release_threshold",
+                lower_value: release_threshold,
+                upper: "threshold",
+                upper_value: threshold,
             });
         }
         for (name, v) in [("debounce", debounce), ("release", release)] {
@@ -358,7 +358,7 @@ mod tests {
                 release_threshold: 2.0,
                 ..settings(1, 1, CollisionReaction::Passive)
             }),
-            Err(ParamError::NotIncreasing { .. })
+            Err(ParamError::Exceeds { .. })
         ));
         assert!(matches!(
             CollisionParams::try_new(settings(0, 1, CollisionReaction::Passive)),

@@ -316,7 +316,7 @@ pub const MAX_TORQUE_LIMIT: f64 = 30_000.0;
 pub const MAX_COUNTS_PER_OUTPUT_REV: f64 = 70_368_744_177_664.0;
 
 /// The name of the product `L·M·N` in errors.
-const LMN_NAME: &str = "link_counts_per_rev·motor_counts_per_rev·ratio";
+const LMN_NAME: &str = "link_counts_per_rev·motor_counts_per_rev·drive.ratio";
 
 /// Largest accepted `c_f·max_torque` (the flexspline's stiffening
 /// coefficient, 1/(N·m), times the estimate's limit, N·m: a pure number):
@@ -333,20 +333,21 @@ const LMN_NAME: &str = "link_counts_per_rev·motor_counts_per_rev·ratio";
 pub const MAX_STIFFENING_TORQUE: f64 = 7.5;
 
 /// The name of the product `c_f·max_torque` in errors.
-const STIFFENING_TORQUE_NAME: &str = "c_f·max_torque";
+const STIFFENING_TORQUE_NAME: &str = "drive.c_f·max_torque";
 
 impl TorqueEstimatorParams {
     /// Validate, each rule once and naming what broke it:
-    /// * `ratio` (the drive's `N`): an integer in `[1, 65535]`
+    /// * `drive.ratio` (the drive's `N`): an integer in `[1, 65535]`
     ///   ([`ParamError::NotInteger`]);
     /// * `link_counts_per_rev` `L` and `motor_counts_per_rev` `M` (after
     ///   quadrature decoding): at least 1;
     /// * `max_torque`: finite, in `[0.001, 30 000]` N·m
     ///   ([`MIN_TORQUE_LIMIT`], [`MAX_TORQUE_LIMIT`]);
-    /// * the product `c_f·max_torque` (named as such,
+    /// * the product `drive.c_f·max_torque` (named as such,
     ///   [`ParamError::CombinationOutOfRange`]): at most 7.5
     ///   ([`MAX_STIFFENING_TORQUE`]);
-    /// * the product `L·M·N` (named as such,
+    /// * the product `L·M·N` (named
+    ///   `link_counts_per_rev·motor_counts_per_rev·drive.ratio`,
     ///   [`ParamError::CombinationOutOfRange`]): at most `2⁴⁶`
     ///   ([`MAX_COUNTS_PER_OUTPUT_REV`]), and small enough that 2³¹ counts of
     ///   `2π/(LMN)` cover twice the [`torsion_range`](Self::torsion_range)
@@ -362,7 +363,7 @@ impl TorqueEstimatorParams {
             motor_counts_per_rev,
             max_torque,
         } = settings;
-        let n = integer("ratio", drive.ratio(), 1.0, 65535.0)?;
+        let n = integer("drive.ratio", drive.ratio(), 1.0, 65535.0)?;
         for (name, v) in [
             ("link_counts_per_rev", link_counts_per_rev),
             ("motor_counts_per_rev", motor_counts_per_rev),
@@ -1871,7 +1872,7 @@ mod tests {
         assert_eq!(
             TorqueEstimatorParams::try_new(settings(over)).unwrap_err(),
             ParamError::CombinationOutOfRange {
-                name: "c_f·max_torque",
+                name: "drive.c_f·max_torque",
                 value: c_f * over,
                 min: 0.0,
                 max: MAX_STIFFENING_TORQUE,
@@ -1895,7 +1896,7 @@ mod tests {
         assert_eq!(
             e,
             ParamError::NotInteger {
-                name: "ratio",
+                name: "drive.ratio",
                 value: 100.5,
                 min: 1.0,
                 max: 65535.0
@@ -1903,7 +1904,7 @@ mod tests {
         );
         assert_eq!(
             e.to_string(),
-            "parameter `ratio` must be an integer in [1, 65535], got 100.5"
+            "parameter `drive.ratio` must be an integer in [1, 65535], got 100.5"
         );
         let drive = CatalogueData::SHD_17_100.identify().unwrap();
         assert!(matches!(
@@ -2035,7 +2036,7 @@ mod tests {
                 min,
                 max,
             } => {
-                assert_eq!(name, "link_counts_per_rev·motor_counts_per_rev·ratio");
+                assert_eq!(name, "link_counts_per_rev·motor_counts_per_rev·drive.ratio");
                 assert_eq!(value, lmn);
                 assert_eq!(min, 1.0);
                 // The torsion range rule binds before 2⁴⁶ for this drive:
@@ -2047,9 +2048,9 @@ mod tests {
             }
             other => panic!("{other:?}"),
         }
-        assert!(e
-            .to_string()
-            .starts_with("`link_counts_per_rev·motor_counts_per_rev·ratio` must lie in [1, "));
+        assert!(e.to_string().starts_with(
+            "`link_counts_per_rev·motor_counts_per_rev·drive.ratio` must lie in [1, "
+        ));
     }
 
     /// `update_radians` with NaN or infinite readings: every field finite,

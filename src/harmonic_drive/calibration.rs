@@ -60,9 +60,10 @@ fn pitch(ratio: u32) -> Result<f64, ParamError> {
 ///
 /// Errors: `ratio = 0`; `cw` or `ccw` empty, of different lengths
 /// (`name = "ccw.len()"`), or containing a non-finite reading
-/// (`name = "reading"`); a pair at least a pitch apart
-/// (`OutOfRange { name: "cw[i] - ccw[i]", min: −P, max: P }`, the value
-/// being the wrapped difference); midpoints so spread that their circular
+/// ([`ParamError::ElementOutOfRange`] named `"cw"` or `"ccw"` with the
+/// reading's index); a pair at least a pitch apart
+/// (`ElementOutOfRange { name: "cw[i] - ccw[i] (wrapped)", index: i, min:
+/// −P, max: P }`, the value being the wrapped difference); midpoints so spread that their circular
 /// mean is undefined (`NotRepresentable { name: "readings" }`).
 pub fn encoder_offset(cw: &[f64], ccw: &[f64], ratio: u32) -> Result<f64, ParamError> {
     use core::f64::consts::PI;
@@ -79,13 +80,14 @@ pub fn encoder_offset(cw: &[f64], ccw: &[f64], ratio: u32) -> Result<f64, ParamE
     let wrap = |x: f64, h: f64| x - 2.0 * h * libm::floor((x + h) / (2.0 * h));
     // Pass 1: validate, and the circular mean of the midpoints modulo P.
     let (mut s, mut c) = (0.0, 0.0);
-    for (&a, &b) in cw.iter().zip(ccw) {
-        let a = finite("reading", a)?;
-        let b = finite("reading", b)?;
+    for (i, (&a, &b)) in cw.iter().zip(ccw).enumerate() {
+        let a = reading("cw", i, a)?;
+        let b = reading("ccw", i, b)?;
         let d = wrap(a - b, PI);
         if d.abs() >= p {
-            return Err(ParamError::OutOfRange {
-                name: "cw[i] - ccw[i]",
+            return Err(ParamError::ElementOutOfRange {
+                name: "cw[i] - ccw[i] (wrapped)",
+                index: i,
                 value: d,
                 min: -p,
                 max: p,
@@ -126,6 +128,11 @@ pub fn encoder_offset(cw: &[f64], ccw: &[f64], ratio: u32) -> Result<f64, ParamE
 /// `θ = offset + P · round((θ_fo0 − offset)/P) + θ_IE`, with `round` to
 /// nearest (`floor(x + ½)`). The printed `int(x + 0.5)` truncates toward zero
 /// and is one index off for negative angles (errata E2.6).
+///
+/// Errors: `ratio = 0`; an argument that is not finite (named by the
+/// argument); finite arguments whose result overflows (e.g. `offset =
+/// 1e308`, `link_at_first_index = −1e308`):
+/// [`ParamError::ResultNotFinite`].
 pub fn absolute_motor_position(
     offset: f64,
     link_at_first_index: f64,
@@ -137,7 +144,29 @@ pub fn absolute_motor_position(
     let theta0 = finite("link_at_first_index", link_at_first_index)?;
     let inc = finite("incremental_since_index", incremental_since_index)?;
     let k = libm::floor((theta0 - offset) / p + 0.5);
-    Ok(offset + p * k + inc)
+    let theta = offset + p * k + inc;
+    if !theta.is_finite() {
+        return Err(ParamError::ResultNotFinite {
+            name: "offset + P·round((link_at_first_index − offset)/P) + incremental_since_index",
+            value: theta,
+        });
+    }
+    Ok(theta)
+}
+
+/// Reading `i` of the run `name`: finite, or the error naming it.
+fn reading(name: &'static str, i: usize, value: f64) -> Result<f64, ParamError> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(ParamError::ElementOutOfRange {
+            name,
+            index: i,
+            value,
+            min: f64::MIN,
+            max: f64::MAX,
+        })
+    }
 }
 
 #[cfg(test)]
@@ -262,8 +291,9 @@ mod tests {
         for lag in [0.5, 0.6, -0.5, -0.7] {
             let (cw, ccw) = readings(n, 0.3 * p, lag, 0, &[0.0; 200]);
             match encoder_offset(&cw, &ccw, n) {
-                Err(ParamError::OutOfRange {
-                    name: "cw[i] - ccw[i]",
+                Err(ParamError::ElementOutOfRange {
+                    name: "cw[i] - ccw[i] (wrapped)",
+                    index: 0,
                     value,
                     min,
                     max,
@@ -372,8 +402,17 @@ mod tests {
         ));
         assert!(matches!(
             encoder_offset(&[f64::NAN], &[0.0], 1),
-            Err(ParamError::NotFinite {
-                name: "reading",
+            Err(ParamError::ElementOutOfRange {
+                name: "cw",
+                index: 0,
+                ..
+            })
+        ));
+        assert!(matches!(
+            encoder_offset(&[0.0, 0.1], &[0.0, f64::INFINITY], 1),
+            Err(ParamError::ElementOutOfRange {
+                name: "ccw",
+                index: 1,
                 ..
             })
         ));

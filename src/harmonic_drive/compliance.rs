@@ -534,12 +534,13 @@ pub struct WaveGeneratorParams {
 impl WaveGeneratorParams {
     /// Validates `K_w0 > 0` (N·m/rad, wave-generator side) and `c_w`
     /// (1/(N·m)) in [`STIFFENING_RANGE`], both finite; the largest
-    /// wave-generator torsion `1/(c_w K_w0)` must be a finite number.
+    /// wave-generator torsion `1/(c_w K_w0)` must be a finite number, that
+    /// is `c_w·k_w0 ≥ 1/f64::MAX` (named `"c_w·k_w0"`).
     pub fn try_new(settings: WaveGeneratorSettings) -> Result<Self, ParamError> {
         let WaveGeneratorSettings { k_w0, c_w } = settings;
         let k_w0 = positive("k_w0", k_w0)?;
         let c_w = in_range("c_w", c_w, STIFFENING_RANGE.0, STIFFENING_RANGE.1)?;
-        combination("1/(c_w·k_w0)", 1.0 / (c_w * k_w0), 0.0, f64::MAX)?;
+        combination("c_w·k_w0", c_w * k_w0, 1.0 / f64::MAX, f64::INFINITY)?;
         Ok(WaveGeneratorParams { k_w0, c_w })
     }
 
@@ -654,7 +655,8 @@ pub const MAX_WAVE_GENERATOR_TORSION: f64 = 1.0;
 impl HarmonicDriveParams {
     /// Validates the ratio (`N ≥ 1`, finite; `ratio`) and the composite:
     /// the output-side wave-generator torsion `1/(c_w N K_w0)` (rad) at most
-    /// [`MAX_WAVE_GENERATOR_TORSION`]. The parts were validated by their
+    /// [`MAX_WAVE_GENERATOR_TORSION`] (named
+    /// `1/(wave_generator.c_w·ratio·wave_generator.k_w0)`). The parts were validated by their
     /// own `try_new`.
     pub fn try_new(
         flexspline: FlexsplineParams,
@@ -668,7 +670,7 @@ impl HarmonicDriveParams {
             ratio,
         };
         combination(
-            "1/(c_w·ratio·k_w0)",
+            "1/(wave_generator.c_w·ratio·wave_generator.k_w0)",
             p.output_wave_generator_torsion(),
             0.0,
             MAX_WAVE_GENERATOR_TORSION,
@@ -931,7 +933,7 @@ mod tests {
             (f(0.0, 0.045), "parameter `k_f0` must be > 0, got 0"),
             (
                 f(8.3e3, -0.045),
-                "parameter `c_f` must lie in [0.000001, 1000000], got -0.045",
+                "parameter `c_f` must lie in [1e-6, 1e6], got -0.045",
             ),
             (
                 f(f64::INFINITY, 0.045),
@@ -943,11 +945,11 @@ mod tests {
             ),
             (
                 w(0.83, -83.0),
-                "parameter `c_w` must lie in [0.000001, 1000000], got -83",
+                "parameter `c_w` must lie in [1e-6, 1e6], got -83",
             ),
             (
                 w(0.83, 0.0),
-                "parameter `c_w` must lie in [0.000001, 1000000], got 0",
+                "parameter `c_w` must lie in [1e-6, 1e6], got 0",
             ),
         ];
         for (got, want) in cases {
@@ -984,7 +986,7 @@ mod tests {
         .unwrap();
         let e = HarmonicDriveParams::try_new(fl, wg, 2.0).unwrap_err();
         assert!(
-            matches!(e, ParamError::CombinationOutOfRange { name: "1/(c_w·ratio·k_w0)", value, .. } if value == 1.0 / (1e-3 * 2.0 * 1e-3)),
+            matches!(e, ParamError::CombinationOutOfRange { name: "1/(wave_generator.c_w·ratio·wave_generator.k_w0)", value, .. } if value == 1.0 / (1e-3 * 2.0 * 1e-3)),
             "{e:?}"
         );
         let e = HarmonicDriveParams::try_new(

@@ -47,7 +47,7 @@ use super::compliance::{
     FlexsplineParams, FlexsplineSettings, HarmonicDriveParams, WaveGeneratorParams,
     WaveGeneratorSettings,
 };
-use crate::error::{gear_ratio, increasing, positive, ParamError};
+use crate::error::{gear_ratio, in_range, increasing, positive, ParamError};
 
 /// Catalogue data of a harmonic drive and two measured friction torques.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -116,8 +116,17 @@ impl CatalogueData {
             ratio: n,
         };
         // Extreme inputs can overflow or underflow a derived value; the
-        // identification's own checks name it.
-        c.identify()?;
+        // identification's check names it, spelled in this function's
+        // arguments.
+        c.identify().map_err(|e| {
+            e.map_names(|name| match name {
+                "k1" => "k1 = (8.4/9.4)·k2",
+                "t1" => "t1 = 3.9·rated_torque/16",
+                "t2" => "t2 = 12·rated_torque/16",
+                "starting_torque" => "starting_torque = 0.012·(rated_torque/16)·(100/ratio)",
+                other => other,
+            })
+        })?;
         Ok(c)
     }
 
@@ -127,13 +136,20 @@ impl CatalogueData {
     /// positive; `T2 ≤ T1` or `K2 ≤ K1` ([`ParamError::NotIncreasing`]: the
     /// model stiffens with torque, so a flat or softening catalogue has no
     /// real `c_f`); `K2/K1 ≥ ((T1+T2)/T1)²` ([`ParamError::OutOfRange`] on
-    /// `k2`: the stiffening would be faster than eq. 2.24 can produce); and a
-    /// ratio below 1.
+    /// `k2`: the stiffening would be faster than eq. 2.24 can produce); a
+    /// ratio below 1; slopes outside [`CATALOGUE_STIFFNESS_RANGE`] and
+    /// knee torques outside [`CATALOGUE_TORQUE_RANGE`]. Every field is
+    /// checked before anything is derived from it; a derived constant out
+    /// of its model's range (e.g. `c_w` for an extreme starting torque) is
+    /// a [`ParamError::CombinationOutOfRange`] spelled in the catalogue's
+    /// fields.
     pub fn identify(&self) -> Result<HarmonicDriveParams, ParamError> {
-        let k1 = positive("k1", self.k1)?;
-        let k2 = positive("k2", self.k2)?;
-        let t1 = positive("t1", self.t1)?;
-        let t2 = positive("t2", self.t2)?;
+        let (k_lo, k_hi) = CATALOGUE_STIFFNESS_RANGE;
+        let (t_lo, t_hi) = CATALOGUE_TORQUE_RANGE;
+        let k1 = in_range("k1", positive("k1", self.k1)?, k_lo, k_hi)?;
+        let k2 = in_range("k2", positive("k2", self.k2)?, k_lo, k_hi)?;
+        let t1 = in_range("t1", positive("t1", self.t1)?, t_lo, t_hi)?;
+        let t2 = in_range("t2", positive("t2", self.t2)?, t_lo, t_hi)?;
         let psi = positive("hysteresis_loss", self.hysteresis_loss)?;
         let tau_fs = positive("starting_torque", self.starting_torque)?;
         let n = gear_ratio(self.ratio)?;
@@ -142,7 +158,8 @@ impl CatalogueData {
         // Eq. (2.33)–(2.34) divided through by T1², in terms of
         // r² = ((T1 + T2)/T1)², so that no product of torques can underflow
         // or overflow: K_f0 = (K1 r² − K2)/(r² − 1) and
-        // c_f = 2 √((K2 − K1)/(K1 r² − K2)) / T1.
+        // c_f = 2 √((K2 − K1)/(K1 r² − K2)) / T1. With the ranges above
+        // r² ≤ (1 + 1e12)² and K1 r² ≤ 1e36: every step is finite.
         let r = (t1 + t2) / t1;
         let r2 = r * r;
         let denom = k1 * r2 - k2;
@@ -158,11 +175,69 @@ impl CatalogueData {
         let c_f = 2.0 * libm::sqrt((k2 - k1) / denom) / t1; // eq. (2.34)
         let k_w0 = 2.0 * tau_fs / (n * psi); // eq. (2.35)
         let c_w = 2.0 / (n * k_w0 * psi); // eq. (2.37)
-        HarmonicDriveParams::try_new(
-            FlexsplineParams::try_new(FlexsplineSettings { k_f0, c_f })?,
-            WaveGeneratorParams::try_new(WaveGeneratorSettings { k_w0, c_w })?,
-            n,
-        )
+        let flexspline = FlexsplineParams::try_new(FlexsplineSettings { k_f0, c_f })
+            .map_err(|e| as_combination(e, flexspline_name))?;
+        let wave_generator = WaveGeneratorParams::try_new(WaveGeneratorSettings { k_w0, c_w })
+            .map_err(|e| as_combination(e, wave_generator_name))?;
+        HarmonicDriveParams::try_new(flexspline, wave_generator, n)
+            .map_err(|e| as_combination(e, wave_generator_name))
+    }
+}
+
+/// Accepted catalogue slopes `K1`, `K2`, N·m/rad: wide enough for every
+/// drive, narrow enough that no step of eq. (2.33)–(2.34) overflows.
+pub const CATALOGUE_STIFFNESS_RANGE: (f64, f64) = (1e-6, 1e12);
+
+/// Accepted catalogue knee torques `T1`, `T2`, N·m (the reciprocal of
+/// the stiffening range [`super::compliance::STIFFENING_RANGE`] that
+/// `c_f ≈ 1/T` must land in).
+pub const CATALOGUE_TORQUE_RANGE: (f64, f64) = (1e-6, 1e6);
+
+/// The flexspline constants of eq. (2.33)–(2.34), spelled in the
+/// catalogue's fields.
+fn flexspline_name(name: &'static str) -> &'static str {
+    match name {
+        "k_f0" => "k_f0 = (k1·r² − k2)/(r² − 1), r = (t1 + t2)/t1",
+        "c_f" => "c_f = 2·√((k2 − k1)/(k1·r² − k2))/t1, r = (t1 + t2)/t1",
+        "π/(2·c_f·k_f0)" => "π/(2·c_f·k_f0) from k1, k2, t1, t2",
+        other => other,
+    }
+}
+
+/// The wave-generator constants of eq. (2.35)–(2.37), spelled in the
+/// catalogue's fields.
+fn wave_generator_name(name: &'static str) -> &'static str {
+    match name {
+        "k_w0" => "k_w0 = 2·starting_torque/(ratio·hysteresis_loss)",
+        "c_w" => "c_w = 2/(ratio·k_w0·hysteresis_loss) = 1/starting_torque",
+        "c_w·k_w0" => "c_w·k_w0 = 2/(ratio·hysteresis_loss)",
+        "1/(wave_generator.c_w·ratio·wave_generator.k_w0)" => {
+            "1/(c_w·ratio·k_w0) = hysteresis_loss/2"
+        }
+        other => other,
+    }
+}
+
+/// A derived constant's error as the combination of catalogue fields it
+/// comes from, so that no error names a quantity the user did not write.
+fn as_combination(e: ParamError, spell: fn(&'static str) -> &'static str) -> ParamError {
+    let (value, min, max) = match e {
+        ParamError::NotFinite { value, .. } => (value, f64::MIN, f64::MAX),
+        ParamError::NotPositive { value, .. } => (value, f64::MIN_POSITIVE, f64::MAX),
+        ParamError::OutOfRange {
+            value, min, max, ..
+        }
+        | ParamError::CombinationOutOfRange {
+            value, min, max, ..
+        } => (value, min, max),
+        // The ratio was validated above; other variants are not produced.
+        other => return other,
+    };
+    ParamError::CombinationOutOfRange {
+        name: spell(e.name()),
+        value,
+        min,
+        max,
     }
 }
 

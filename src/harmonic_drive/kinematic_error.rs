@@ -28,7 +28,7 @@
 //! [`KinematicErrorFit`] fits it by linear least squares from samples of one
 //! output revolution, without allocation.
 
-use crate::error::{finite, ParamError};
+use crate::error::{finite, in_range, ParamError};
 use crate::scalar::Scalar;
 use core::f64::consts::PI;
 use nalgebra::{SMatrix, SVector};
@@ -141,12 +141,16 @@ pub const MAX_KINEMATIC_ERROR: f64 = 0.01;
 
 impl KinematicErrorModel {
     /// Validates the coefficients `[a0, a_l1, b_l1, a_w1, b_w1, a_w2,
-    /// b_w2]` (rad): each finite (named as in [`COEFFICIENT_NAMES`]), and
+    /// b_w2]` (rad): each finite and in `[−0.01, 0.01]` (named as in
+    /// [`COEFFICIENT_NAMES`]), and
     /// the largest error they can produce, `|a0| + Σ √(a² + b²)`, at most
     /// [`MAX_KINEMATIC_ERROR`].
     pub fn try_new(coefficients: [f64; 7]) -> Result<Self, ParamError> {
+        // Each coefficient alone is at most the amplitude bound, so a
+        // coefficient beyond it is named before the sum is formed (which
+        // then cannot overflow).
         for (name, &c) in COEFFICIENT_NAMES.iter().zip(&coefficients) {
-            finite(name, c)?;
+            in_range(name, c, -MAX_KINEMATIC_ERROR, MAX_KINEMATIC_ERROR)?;
         }
         let m = KinematicErrorModel { coefficients };
         crate::error::combination(
@@ -369,11 +373,18 @@ mod tests {
         c[4] = f64::NEG_INFINITY;
         let e = KinematicErrorModel::try_new(c).unwrap_err();
         assert_eq!(e.to_string(), "parameter `b_w1` must be finite, got -inf");
-        // 3-4-5: the first motor harmonic alone has amplitude 0.05 rad.
-        let e = KinematicErrorModel::try_new([0.0, 0.0, 0.0, 0.03, 0.04, 0.0, 0.0]).unwrap_err();
+        // A coefficient alone above the bound is named before the sum.
+        let e = KinematicErrorModel::try_new([0.0, 0.0, 0.0, 0.03, 0.0, 0.0, 0.0]).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "parameter `a_w1` must lie in [-0.01, 0.01], got 0.03"
+        );
+        // 3-4-5: the first motor harmonic has amplitude 0.0125 rad, each
+        // coefficient within the bound.
+        let e = KinematicErrorModel::try_new([0.0, 0.0, 0.0, 0.0075, 0.01, 0.0, 0.0]).unwrap_err();
         match e {
             ParamError::CombinationOutOfRange { value, max, .. } => {
-                assert!((value - 0.05).abs() < 1e-15);
+                assert!((value - 0.0125).abs() < 1e-15);
                 assert_eq!(max, MAX_KINEMATIC_ERROR);
             }
             other => panic!("{other:?}"),

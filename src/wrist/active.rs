@@ -65,7 +65,7 @@ use crate::control::{
     ActiveOutput, ControlInput, RobustAdaptiveConfig, RobustAdaptiveDesign, RobustAdaptiveParams,
     RobustAdaptiveState, UltimateBound, UncertaintyBounds,
 };
-use crate::error::{finite, non_negative, positive, ParamError};
+use crate::error::{non_negative, positive, ParamError};
 use crate::friction::{FrictionBounds, FrictionParams};
 use crate::scalar::Scalar;
 
@@ -136,9 +136,11 @@ pub struct WristMotorDesign {
     /// torque), `μ_Fic`, `ε_ri` (rad/s of `q̇_i`), `ε_q̇i`, `ε_Fij`, `ρ_fi`,
     /// `ρ_fqi` (N·m, motor side), `ρ_τti` (N·m, joint side), the friction
     /// box and `ρ_Fi` (`b` in N·m·s/rad of `q̇_i`), limits (N·m, motor) and
-    /// `T`. Its `rotor_inertia` and `uncertainty.base_acceleration` are not
-    /// read: [`law_design`](Self::law_design) sets them from the two
-    /// fields above.
+    /// `T`. Its `rotor_inertia` and `uncertainty.base_acceleration` are
+    /// set by [`law_design`](Self::law_design) from the two fields above:
+    /// leave them `0` (or give exactly the value they are set to);
+    /// [`WristActiveParams::try_new`] rejects anything else rather than
+    /// ignore it.
     pub law: RobustAdaptiveDesign,
 }
 
@@ -233,12 +235,102 @@ impl WristMotorDesign {
     fn fallback() -> Self {
         let mut d = RobustAdaptiveDesign::table_4_1();
         d.ratio = 531.0;
+        // Set by `law_design` from the two fields below.
+        d.rotor_inertia = 0.0;
+        d.uncertainty.base_acceleration = 0.0;
         WristMotorDesign {
             rotor_inertia: 1.05e-6,
             base_acceleration: 50.0,
             law: d,
         }
     }
+}
+
+/// `designs[i].<name>` for the motor's own fields.
+fn design_path(i: usize, name: &'static str) -> &'static str {
+    const OWN: [(&str, [&str; 2]); 4] = [
+        (
+            "rotor_inertia",
+            ["designs[0].rotor_inertia", "designs[1].rotor_inertia"],
+        ),
+        (
+            "base_acceleration",
+            [
+                "designs[0].base_acceleration",
+                "designs[1].base_acceleration",
+            ],
+        ),
+        (
+            "rotor_inertia·law.ratio",
+            [
+                "designs[0].rotor_inertia·designs[0].law.ratio",
+                "designs[1].rotor_inertia·designs[1].law.ratio",
+            ],
+        ),
+        (
+            "law.ratio",
+            ["designs[0].law.ratio", "designs[1].law.ratio"],
+        ),
+    ];
+    OWN.iter().find(|(n, _)| *n == name).map_or_else(
+        || law_path(i, name.trim_start_matches("law.")),
+        |(_, p)| p[i.min(1)],
+    )
+}
+
+macro_rules! law_fields {
+    ($($name:literal),* $(,)?) => {
+        [$(($name, [concat!("designs[0].law.", $name), concat!("designs[1].law.", $name)])),*]
+    };
+}
+
+/// Every name [`RobustAdaptiveParams::try_new`] reports, with its path
+/// under `designs[i].law.`.
+const LAW_FIELDS: [(&str, [&str; 2]); 35] = law_fields![
+    "rotor_inertia",
+    "ratio",
+    "lambda",
+    "integral_gain",
+    "adaptation_gain[0]",
+    "adaptation_gain[1]",
+    "adaptation_gain[2]",
+    "adaptation_gain[3]",
+    "eps_r",
+    "eps_velocity",
+    "eps_f[0]",
+    "eps_f[1]",
+    "eps_f[2]",
+    "eps_f[3]",
+    "uncertainty.boundary_layer",
+    "uncertainty.nonparametric_friction",
+    "uncertainty.base_acceleration",
+    "uncertainty.torque_estimate",
+    "torque_limit",
+    "integral_limit",
+    "sample_period",
+    "initial_friction.viscous",
+    "initial_friction.coulomb",
+    "initial_friction.stribeck",
+    "initial_friction.stribeck_shape",
+    "friction_bounds.variable[0]",
+    "friction_bounds.variable[1]",
+    "friction_bounds.variable[2]",
+    "friction_bounds.variable[3]",
+    "lambda²·rotor_inertia",
+    "integral_gain·sample_period",
+    "adaptation_gain[0]·sample_period",
+    "adaptation_gain[1]·sample_period",
+    "adaptation_gain[2]·sample_period",
+    "adaptation_gain[3]·sample_period",
+];
+
+/// `designs[i].law.<name>` for a name of the law's validation (names not
+/// in the table, such as the robust-gain sum, pass unchanged).
+fn law_path(i: usize, name: &'static str) -> &'static str {
+    LAW_FIELDS
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map_or(name, |(_, p)| p[i.min(1)])
 }
 
 /// Validated designs of both wrist motors.
@@ -249,21 +341,63 @@ pub struct WristActiveParams {
 }
 
 impl WristActiveParams {
-    /// Validate both motors: `I_mi > 0` and `ρ_base ≥ 0` (finite), the
-    /// law design by [`RobustAdaptiveParams::try_new`], and one sample
-    /// period for both.
+    /// Validate both motors. For motor `i`, every error names the field
+    /// as written, `designs[i].<field>` (e.g. `designs[0].law.ratio`),
+    /// with the value given: `I_mi > 0` and `I_mi N_i ≤ 30` kg·m²,
+    /// `ρ_base ≥ 0` (finite), then the law design by
+    /// [`RobustAdaptiveParams::try_new`] (its field names prefixed by
+    /// `designs[i].law.`), and one sample period for both.
+    ///
+    /// `law.rotor_inertia` and `law.uncertainty.base_acceleration` are
+    /// set by [`WristMotorDesign::law_design`] from the motor's own
+    /// fields: each must be left `0` or equal the value it would be set
+    /// to, otherwise [`ParamError::Overridden`] names it (a value there
+    /// would be ignored).
     pub fn try_new(designs: [WristMotorDesign; 2]) -> Result<Self, ParamError> {
         let mut laws = [RobustAdaptiveParams::table_4_1()?; 2];
-        for (law, d) in laws.iter_mut().zip(designs.iter()) {
-            positive("rotor_inertia", d.rotor_inertia)?;
-            non_negative("base_acceleration", d.base_acceleration)?;
-            finite("ratio", d.law.ratio)?;
-            *law = RobustAdaptiveParams::try_new(d.law_design())?;
+        for (i, (law, d)) in laws.iter_mut().zip(designs.iter()).enumerate() {
+            let path = |name: &'static str| design_path(i, name);
+            let im = positive(path("rotor_inertia"), d.rotor_inertia)?;
+            non_negative(path("base_acceleration"), d.base_acceleration)?;
+            let n =
+                crate::error::gear_ratio(d.law.ratio).map_err(|e| e.renamed(path("law.ratio")))?;
+            crate::error::combination(path("rotor_inertia·law.ratio"), im * n, 0.0, 30.0)?;
+            let derived = d.law_design();
+            let set = [
+                (
+                    "law.rotor_inertia",
+                    d.law.rotor_inertia,
+                    derived.rotor_inertia,
+                ),
+                (
+                    "law.uncertainty.base_acceleration",
+                    d.law.uncertainty.base_acceleration,
+                    derived.uncertainty.base_acceleration,
+                ),
+            ];
+            for (name, value, expected) in set {
+                if value != 0.0 && value != expected {
+                    return Err(ParamError::Overridden {
+                        name: path(name),
+                        value,
+                        expected,
+                    });
+                }
+            }
+            *law = RobustAdaptiveParams::try_new(derived).map_err(|e| {
+                e.map_names(|name| match name {
+                    // Set from the motor's fields, checked above; only a
+                    // rounding edge of `ρ_base/N` can reach here.
+                    "rotor_inertia" => path("rotor_inertia"),
+                    "uncertainty.base_acceleration" => path("base_acceleration"),
+                    other => law_path(i, other),
+                })
+            })?;
         }
         let (t0, t1) = (designs[0].law.sample_period, designs[1].law.sample_period);
         if t0 != t1 {
             return Err(ParamError::OutOfRange {
-                name: "sample_period",
+                name: "designs[1].law.sample_period",
                 value: t1,
                 min: t0,
                 max: t0,
@@ -530,7 +664,7 @@ mod tests {
         assert!(matches!(
             WristActiveParams::try_new(d),
             Err(ParamError::OutOfRange {
-                name: "sample_period",
+                name: "designs[1].law.sample_period",
                 ..
             })
         ));

@@ -54,7 +54,7 @@
 //! loop tolerates environments up to `K_t = 2/(0.004·0.1) = 5000 N·m/rad`
 //! with `d = 0`, 2500 with `d = 1`. [`AdmittanceParams::try_new`] rejects a
 //! gain outside `(0, a_max/(T K_t))` for the stated stiffness with
-//! [`ParamError::OutOfRange`] named `"admittance_gain"`.
+//! [`ParamError::OutOfRange`] named `"gain[0]"` or `"gain[1]"`.
 
 // Two- and six-element arrays indexed in parallel (axes, rows): index loops
 // read better than zipped iterators here.
@@ -148,7 +148,7 @@ impl AdmittanceParams {
             deadband,
             desired_torque,
         } = settings;
-        let k = positive("environment_stiffness", stiffness)?;
+        let k = positive("stiffness", stiffness)?;
         let t = positive("sample_period", sample_period)?;
         if !(1e-6..=1.0).contains(&t) {
             return Err(ParamError::OutOfRange {
@@ -167,22 +167,24 @@ impl AdmittanceParams {
             });
         }
         let kmax = max_admittance_gain(k, t, lag_samples);
-        for g in gain {
-            let g = finite("admittance_gain", g)?;
+        for (i, g) in gain.into_iter().enumerate() {
+            let name = ["gain[0]", "gain[1]"][i];
+            let g = finite(name, g)?;
             if !(g > 0.0 && g < kmax) {
                 return Err(ParamError::OutOfRange {
-                    name: "admittance_gain",
+                    name,
                     value: g,
                     min: 0.0,
                     max: kmax,
                 });
             }
         }
-        for l in limits {
-            let l = positive("workspace_limit", l)?;
+        for (i, l) in limits.into_iter().enumerate() {
+            let name = ["limits[0]", "limits[1]"][i];
+            let l = positive(name, l)?;
             if l > core::f64::consts::FRAC_PI_2 {
                 return Err(ParamError::OutOfRange {
-                    name: "workspace_limit",
+                    name,
                     value: l,
                     min: 0.0,
                     max: core::f64::consts::FRAC_PI_2,
@@ -199,11 +201,12 @@ impl AdmittanceParams {
             });
         }
         let deadband = non_negative("deadband", deadband)?;
-        for d in desired_torque {
-            let d = finite("desired_torque", d)?;
+        for (i, d) in desired_torque.into_iter().enumerate() {
+            let name = ["desired_torque[0]", "desired_torque[1]"][i];
+            let d = finite(name, d)?;
             if d.abs() > 1e3 {
                 return Err(ParamError::OutOfRange {
-                    name: "desired_torque",
+                    name,
                     value: d,
                     min: -1e3,
                     max: 1e3,
@@ -561,7 +564,7 @@ mod tests {
                 desired_torque: [0.0; 2],
             });
             assert!(
-                matches!(bad, Err(ParamError::OutOfRange { name: "admittance_gain", max, .. }) if (max - kmax).abs() < 1e-12)
+                matches!(bad, Err(ParamError::OutOfRange { name: "gain[0]" | "gain[1]", max, .. }) if (max - kmax).abs() < 1e-12)
             );
         }
         // Hand values of a_max: 2, 1, 2 sin(π/10) = 0.618034.

@@ -42,7 +42,7 @@
 // read better than zipped iterators here.
 #![allow(clippy::needless_range_loop)]
 
-use crate::error::{finite, positive, ParamError};
+use crate::error::{finite, in_range, ParamError};
 use crate::scalar::{Coef, Scalar};
 
 /// The gauge amplifier of eq. (6.34), `V_out = V_ref + G (V_IN+ − V_IN−)`.
@@ -55,10 +55,10 @@ impl GaugeAmplifier {
     /// Validate the gain `G` (dimensionless): finite, in `[1, 10 000]`
     /// (the AD8221's programmable range is 1–1000).
     pub fn try_new(gain: f64) -> Result<Self, ParamError> {
-        let g = positive("amplifier_gain", gain)?;
+        let g = finite("gain", gain)?;
         if !(1.0..=1e4).contains(&g) {
             return Err(ParamError::OutOfRange {
-                name: "amplifier_gain",
+                name: "gain",
                 value: g,
                 min: 1.0,
                 max: 1e4,
@@ -159,31 +159,73 @@ fn invert(a: &[[f64; 6]; 6]) -> Option<[[f64; 6]; 6]> {
     inv.iter().flatten().all(|v| v.is_finite()).then_some(inv)
 }
 
+/// The names of `matrix[r][c]`, row-major.
+const MATRIX_ENTRIES: [&str; 36] = [
+    "matrix[0][0]",
+    "matrix[0][1]",
+    "matrix[0][2]",
+    "matrix[0][3]",
+    "matrix[0][4]",
+    "matrix[0][5]",
+    "matrix[1][0]",
+    "matrix[1][1]",
+    "matrix[1][2]",
+    "matrix[1][3]",
+    "matrix[1][4]",
+    "matrix[1][5]",
+    "matrix[2][0]",
+    "matrix[2][1]",
+    "matrix[2][2]",
+    "matrix[2][3]",
+    "matrix[2][4]",
+    "matrix[2][5]",
+    "matrix[3][0]",
+    "matrix[3][1]",
+    "matrix[3][2]",
+    "matrix[3][3]",
+    "matrix[3][4]",
+    "matrix[3][5]",
+    "matrix[4][0]",
+    "matrix[4][1]",
+    "matrix[4][2]",
+    "matrix[4][3]",
+    "matrix[4][4]",
+    "matrix[4][5]",
+    "matrix[5][0]",
+    "matrix[5][1]",
+    "matrix[5][2]",
+    "matrix[5][3]",
+    "matrix[5][4]",
+    "matrix[5][5]",
+];
+
 impl DecouplingMatrix {
-    /// Validate a certificate matrix: every entry finite, `‖M‖₁ > 0`, `M`
-    /// invertible and `κ₁(M) = ‖M‖₁ ‖M⁻¹‖₁ ≤ max_condition` (with
-    /// `max_condition ≥ 1`; see [`DEFAULT_MAX_CONDITION`]). A singular or
-    /// ill-conditioned matrix gives
-    /// [`ParamError::OutOfRange`] named `"decoupling_condition"` carrying
-    /// `κ₁` (`∞` when singular).
+    /// Validate a certificate matrix: `max_condition` finite and at least
+    /// 1 (checked first, `"max_condition"`; see
+    /// [`DEFAULT_MAX_CONDITION`]), every entry finite (named by its
+    /// position, e.g. `"matrix[2][3]"`), `‖M‖₁ > 0`, `M` invertible and
+    /// `κ₁(M) = ‖M‖₁ ‖M⁻¹‖₁ ≤ max_condition`. A singular or
+    /// ill-conditioned matrix gives [`ParamError::CombinationOutOfRange`]
+    /// named `"κ₁(matrix)"` carrying `κ₁` (`∞` when singular) and the
+    /// range `[1, max_condition]`.
     pub fn try_new(matrix: [[f64; 6]; 6], max_condition: f64) -> Result<Self, ParamError> {
-        let max_condition = positive("max_condition", max_condition)?;
-        for v in matrix.iter().flatten() {
-            finite("decoupling_matrix", *v)?;
+        let max_condition = in_range("max_condition", max_condition, 1.0, f64::INFINITY)?;
+        for (k, v) in matrix.iter().flatten().enumerate() {
+            finite(MATRIX_ENTRIES[k], *v)?;
         }
         let n = norm1(&matrix);
         if n == 0.0 {
             return Err(ParamError::NotPositive {
-                name: "decoupling_matrix",
+                name: "‖matrix‖₁",
                 value: 0.0,
             });
         }
         let inverse = invert(&matrix);
         let condition = inverse.map_or(f64::INFINITY, |i| n * norm1(&i));
         let within = condition <= max_condition; // false for NaN and ∞ > max
-        if !within || max_condition < 1.0 {
-            return Err(ParamError::OutOfRange {
-                name: "decoupling_condition",
+        if !within {
+            return Err(ParamError::CombinationOutOfRange {
+                name: "κ₁(matrix)",
                 value: condition,
                 min: 1.0,
                 max: max_condition,
@@ -285,10 +327,10 @@ pub struct FtSensorParams {
 impl FtSensorParams {
     /// Validate: `l` finite, in `[0, 1]` m.
     pub fn try_new(decoupling: DecouplingMatrix, offset: f64) -> Result<Self, ParamError> {
-        let l = finite("sensor_offset", offset)?;
+        let l = finite("offset", offset)?;
         if !(0.0..=1.0).contains(&l) {
             return Err(ParamError::OutOfRange {
-                name: "sensor_offset",
+                name: "offset",
                 value: l,
                 min: 0.0,
                 max: 1.0,
@@ -452,8 +494,8 @@ mod tests {
         assert!((d.condition() - 8.0).abs() < 1e-12);
         assert_eq!(
             DecouplingMatrix::try_new(m, 7.9),
-            Err(ParamError::OutOfRange {
-                name: "decoupling_condition",
+            Err(ParamError::CombinationOutOfRange {
+                name: "κ₁(matrix)",
                 value: 8.0,
                 min: 1.0,
                 max: 7.9
@@ -464,7 +506,7 @@ mod tests {
         s[5] = s[4];
         assert!(matches!(
             DecouplingMatrix::try_new(s, 1e4),
-            Err(ParamError::OutOfRange { name: "decoupling_condition", value, .. }) if value > 1e4
+            Err(ParamError::CombinationOutOfRange { name: "κ₁(matrix)", value, .. }) if value > 1e4
         ));
         // Nearly singular: a row perturbed toward another by 1e-9.
         let mut n = *DecouplingMatrix::example().matrix();
@@ -477,7 +519,7 @@ mod tests {
         assert!(matches!(
             DecouplingMatrix::try_new(nan, 1e4),
             Err(ParamError::NotFinite {
-                name: "decoupling_matrix",
+                name: "matrix[2][3]",
                 ..
             })
         ));

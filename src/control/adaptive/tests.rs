@@ -82,14 +82,17 @@ fn try_new_names_the_bad_value() {
     d.eps_f[0] = 1e-6;
     assert!(matches!(
         RobustAdaptiveParams::try_new(d),
-        Err(ParamError::NotRepresentable { name: "eps_f", .. })
+        Err(ParamError::OutOfRange {
+            name: "eps_f[0]",
+            ..
+        })
     ));
     let mut d = RobustAdaptiveDesign::table_4_1();
     d.initial_friction.coulomb = 0.02;
     assert!(matches!(
         RobustAdaptiveParams::try_new(d),
         Err(ParamError::OutOfRange {
-            name: "coulomb",
+            name: "initial_friction.coulomb",
             ..
         })
     ));
@@ -97,7 +100,10 @@ fn try_new_names_the_bad_value() {
     d.lambda = 1e9;
     assert!(matches!(
         RobustAdaptiveParams::try_new(d),
-        Err(ParamError::OutOfRange { name: "lambda", .. })
+        Err(ParamError::CombinationOutOfRange {
+            name: "lambda²·rotor_inertia",
+            ..
+        })
     ));
     let mut d = RobustAdaptiveDesign::table_4_1();
     d.sample_period = 1e-300;

@@ -236,7 +236,7 @@ fn release_rule_is_validated() {
             samples: 10
         }),
         Err(ParamError::NotPositive {
-            name: "release_speed",
+            name: "rule.speed",
             ..
         })
     ));
@@ -246,7 +246,7 @@ fn release_rule_is_validated() {
             samples: 10
         }),
         Err(ParamError::NotFinite {
-            name: "release_speed",
+            name: "rule.speed",
             ..
         })
     ));
@@ -256,7 +256,7 @@ fn release_rule_is_validated() {
             samples: 10
         }),
         Err(ParamError::OutOfRange {
-            name: "release_speed",
+            name: "rule.speed",
             ..
         })
     ));
@@ -266,7 +266,7 @@ fn release_rule_is_validated() {
             samples: 4
         }),
         Err(ParamError::OutOfRange {
-            name: "release_samples",
+            name: "rule.samples",
             ..
         })
     ));
