@@ -16,11 +16,11 @@
 //!
 //! integrated by RK4 at 50 µs (80 steps per tick).
 
+use mrr_control::control::UltimateBound;
 use mrr_control::joint::{JointConfig, JointParams, JointReadings, JointTarget};
 use mrr_control::prelude::JointMode;
 use mrr_control::Scalar;
 use mrr_control::I16F16;
-use mrr_control::control::UltimateBound;
 use std::f64::consts::TAU;
 
 /// The plant's numbers, SI.
@@ -187,7 +187,6 @@ fn table_4_1_leaves_active_within_ticks_at_4ms() {
     }
 }
 
-
 /// The tracking criterion of a preset, from its own Theorem 1 bound
 /// ([`UltimateBound::new`] on the preset's active law): after the reaching
 /// time of eq. (4.31), `|e| ≤ r_S/λ` for the error the law sees; the true
@@ -266,4 +265,70 @@ fn table_4_1_fails_its_own_tracking_criterion_at_4ms() {
         assert!(r.max_motor_error > bound, "{r:?}");
         assert!(r.ticks_not_active > 0);
     }
+}
+
+/// The design rule against the plant: variants of the 4 ms design with a
+/// larger `λ` or a thinner `ε_r` (the parametric layers `ε_F2,3` kept
+/// equal to it), whose sampled pole radius
+/// ([`sampled_pole_radius`](mrr_control::control::design::sampled_pole_radius)
+/// on this plant's link inertia) is at most 0.9 stay Active and within
+/// their own bound; those at 1.15 or more leave Active within the run.
+/// (Between the two the model, which neglects the link's friction, makes
+/// no claim.)
+#[test]
+fn pole_radius_separates_designs_that_hold_from_those_that_fall() {
+    use mrr_control::control::design::{sampled_pole_radius, SampledJoint};
+    use mrr_control::control::{ModeParams, ModeSettings, RobustAdaptiveParams};
+    use mrr_control::joint::JointSettings;
+    let p = JointParams::table_4_1_at(0.004).unwrap();
+    let chosen = *p.settings().mode.settings().active.design();
+    let joint = SampledJoint {
+        sample_period: 0.004,
+        ratio: PLANT.ratio,
+        stiffness: [PLANT.k1, PLANT.k2],
+        rotor_inertia: PLANT.rotor_inertia,
+        link_inertia: [PLANT.link_inertia; 2],
+        motor_counts_per_rev: 2000,
+        max_motor_speed: 100.0,
+        max_pole_radius: 0.9,
+    };
+    let (mut held, mut fell) = (0, 0);
+    for lambda in [chosen.lambda, 80.0, 200.0] {
+        for shrink in [1.0, 0.5, 0.05, 0.02] {
+            let mut d = chosen;
+            d.lambda = lambda;
+            d.eps_r = chosen.eps_r * shrink;
+            d.eps_f[1] = d.eps_r;
+            d.eps_f[2] = d.eps_r;
+            let active = RobustAdaptiveParams::try_new(d).unwrap();
+            let mode = ModeParams::try_new(ModeSettings {
+                active,
+                ..p.settings().mode.settings()
+            })
+            .unwrap();
+            let q = JointParams::try_new(JointSettings {
+                mode,
+                ..p.settings()
+            })
+            .unwrap();
+            let radius = sampled_pole_radius(&d, &joint);
+            let (bound, reach) = criterion(&q);
+            let r = run::<f64>(&q, &PLANT, DURATION, reach);
+            println!(
+                "λ {lambda:.1} ε_r {:.1}: radius {radius:.3}, left Active at {:?}, \
+                 max error {:.3} rad (bound {bound:.3})",
+                d.eps_r, r.left_active_at, r.max_motor_error
+            );
+            if radius <= 0.9 {
+                assert_eq!(r.left_active_at, None);
+                assert!(r.max_motor_error <= bound);
+                held += 1;
+            } else if radius >= 1.15 {
+                assert!(r.left_active_at.is_some(), "{radius} {r:?}");
+                fell += 1;
+            }
+        }
+    }
+    // Both sides of the rule were exercised.
+    assert!(held >= 2 && fell >= 4, "{held} {fell}");
 }

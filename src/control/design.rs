@@ -376,9 +376,8 @@ fn pole_radius(a: &[[f64; 6]; 6]) -> f64 {
 fn corners(d: &RobustAdaptiveDesign, joint: &SampledJoint) -> [[[f64; 6]; 6]; 16] {
     let t = joint.sample_period;
     let n2 = joint.ratio * joint.ratio;
-    let nu_max =
-        d.friction_bounds.max()[0] + (d.friction_bounds.max()[1] + d.friction_bounds.max()[2])
-            / d.eps_velocity;
+    let nu_max = d.friction_bounds.max()[0]
+        + (d.friction_bounds.max()[1] + d.friction_bounds.max()[2]) / d.eps_velocity;
     let slopes = [
         d.robust_gain() / d.eps_r,
         robust_slope_at(d, joint.max_motor_speed),
@@ -769,11 +768,35 @@ mod tests {
     fn design_at_4ms_meets_its_criterion() {
         let p = design_for_period(&table_4_1_known_stribeck_shape(), &joint()).unwrap();
         let d = p.params.design();
-        std::println!("{d:?}\n{:?}\nradius {} slope {}", p.bound, p.pole_radius, p.robust_slope);
+        std::println!(
+            "{d:?}\n{:?}\nradius {} slope {}",
+            p.bound,
+            p.pole_radius,
+            p.robust_slope
+        );
         assert!(p.pole_radius <= 0.9);
         assert!(p.bound.sliding_radius <= d.eps_r);
         assert!(TAU / 2000.0 / 0.004 + d.lambda * TAU / 2000.0 <= d.eps_r / 2.0);
         assert_eq!(d.sample_period, 0.004);
+        // The numbers `JointParams::table_4_1_at` documents.
+        assert!((d.lambda - 56.78).abs() < 0.01, "{}", d.lambda);
+        assert!((d.eps_r - 525.25).abs() < 0.01, "{}", d.eps_r);
+        assert!((d.eps_velocity - 66.36).abs() < 0.01, "{}", d.eps_velocity);
+        assert_eq!(d.eps_f[0], 30_000.0);
+        assert_eq!(d.eps_f[1], d.eps_r);
+        assert_eq!(d.eps_f[3], 0.1);
+        assert_eq!(d.integral_gain, 0.0);
+        assert!((p.pole_radius - 0.899).abs() < 1e-3, "{}", p.pole_radius);
+        // Eq. (4.28)'s constant by hand: K_r = 0.044 + 0.002 + 0.114 + 0.01
+        // = 0.170 N·m; c = (K_r ε_r + ρ_F1 ε_F1 + ρ_F2 ε_F2 + ρ_F3 ε_F3)/4.
+        let c = (0.170 * d.eps_r + 1e-3 * 3e4 + 0.01 * d.eps_r * 2.0) / 4.0;
+        assert!((p.bound.dissipation - c).abs() < 1e-9 * c);
+        let rs = (2.0 * c / (1.14e-5 * d.lambda)).sqrt();
+        assert!((p.bound.sliding_radius - rs).abs() < 1e-9 * rs);
+        assert!((rs - 316.6).abs() < 0.1 && (rs / d.lambda - 5.577).abs() < 1e-3);
+        // S is the slope with ε_F1 capped: K_r/ε_r + ρ_F1 q̇²/ε_F1 + 2ρ/ε.
+        let s_capped = 0.170 / d.eps_r + 1e-3 * 1e4 / 3e4 + 0.02 / d.eps_r;
+        assert!((p.robust_slope - s_capped).abs() < 1e-12);
     }
 
     /// Table 4.1's own base (Stribeck shape adapted over `[0.01, 10]`)
@@ -782,7 +805,9 @@ mod tests {
     fn table_4_1_base_has_no_sampled_design() {
         let e = design_for_period(&RobustAdaptiveDesign::table_4_1(), &joint()).unwrap_err();
         std::println!("{e}");
-        assert!(matches!(e, DesignError::NoSampledDesign { smallest_radius, .. } if smallest_radius > 0.9));
+        assert!(
+            matches!(e, DesignError::NoSampledDesign { smallest_radius, .. } if smallest_radius > 0.9)
+        );
         // The known-shape base validates (it is a law the joint accepts).
         RobustAdaptiveParams::try_new(table_4_1_known_stribeck_shape()).unwrap();
     }
