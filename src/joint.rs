@@ -236,6 +236,16 @@ impl JointParams {
     /// `UltimateBound::new(p.settings().mode.settings().active.design())`
     /// recomputes the bound.
     ///
+    /// Other periods: the rule asks for a pole radius of 0.9 *per tick*,
+    /// and the link's oscillation against the spring, which the law's
+    /// joint-torque feedback `τ̂_t/N` leaves to the link's own friction in
+    /// continuous time, gets its damping here only from the sampling. The
+    /// smallest radius on the design grid is 0.981 at 1 ms, 0.917 at 2 ms,
+    /// 0.9986 at 8 ms and 1.020 at 10 ms, so those periods return
+    /// [`DesignError::NoSampledDesign`] (test
+    /// `table_4_1_at_other_periods_is_a_typed_error`); the preset is made
+    /// and checked for the thesis's 4 ms.
+    ///
     /// Errors: a period outside `[1e-6, 0.1]` s
     /// ([`DesignError::Param`] naming `sample_period`), or one at which no
     /// design meets the criterion ([`DesignError::NoSampledDesign`]).

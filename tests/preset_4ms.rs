@@ -168,7 +168,24 @@ fn run<S: Scalar>(params: &JointParams, plant: &Plant, duration: f64, settle: f6
 }
 
 /// The issue: `JointParams::table_4_1()` at its own 4 ms leaves Active
-/// within a few ticks on every backend.
+/// within a few ticks on every backend (at the 6th: the manager's 5-tick
+/// dwell, then its 3-tick debounce already met).
+///
+/// The mechanism (traced on `f64`, target at rest): at the first tick the
+/// estimator reads 0.69 N·m at zero torsion (its Table 3.2 kinematic-error
+/// model against a plant without one — within Table 4.1's `ρ_τt = 1 N·m`)
+/// and the law feeds `τ̂_t/N = 6.9e-3 N·m` forward; the 1.14e-5 kg·m²
+/// rotor turns by 1.4 counts in 4 ms, so the measured `r = 0.785 + 120 ·
+/// 0.00314 = 1.16 rad/s`, beyond `ε_r = 0.1`, and the robust term commands
+/// `−K_r = −0.170 N·m`. Held for 4 ms that changes the motor speed by
+/// `K_r T/I_m = 60 rad/s`; the next sample is far outside the layer on
+/// the other side (the sampled layer needs `T < 13.4 µs`, errata E4.4),
+/// and the command alternates near `±K_r` and the 0.188 N·m limit. The
+/// torsion follows: the estimate reads −5.3, 5.1, 20.1 N·m at ticks 3–5,
+/// beyond the 2 N·m entry threshold of the mode manager, which switches
+/// to Passive — correctly, on what it sees. The collision detector is off
+/// in this preset: it is the chattering law, not the manager or the
+/// torsion check, that makes the interaction torque.
 #[test]
 fn table_4_1_leaves_active_within_ticks_at_4ms() {
     let p = JointParams::table_4_1().unwrap();
@@ -331,4 +348,46 @@ fn pole_radius_separates_designs_that_hold_from_those_that_fall() {
     }
     // Both sides of the rule were exercised.
     assert!(held >= 2 && fell >= 4, "{held} {fell}");
+}
+
+/// `table_4_1_at` answers other periods with a typed error, never a
+/// design that does not meet its rule: a non-period names `sample_period`,
+/// and at 1 ms and 10 ms no design on the grid reaches the 0.9 pole radius
+/// (the link's oscillation, which the joint-torque feedback `τ̂_t/N` leaves
+/// to the link's own friction, decays too little per tick at 1 ms; at
+/// 10 ms the sampled feedback destabilises it).
+#[test]
+fn table_4_1_at_other_periods_is_a_typed_error() {
+    use mrr_control::control::design::DesignError;
+    use mrr_control::ParamError;
+    for t in [0.0, -1.0, 0.5] {
+        assert!(matches!(
+            JointParams::table_4_1_at(t),
+            Err(DesignError::Param(ParamError::OutOfRange {
+                name: "sample_period",
+                ..
+            }))
+        ));
+    }
+    assert!(matches!(
+        JointParams::table_4_1_at(f64::NAN),
+        Err(DesignError::Param(ParamError::NotFinite {
+            name: "sample_period",
+            ..
+        }))
+    ));
+    for t in [0.001, 0.01] {
+        match JointParams::table_4_1_at(t) {
+            Err(DesignError::NoSampledDesign {
+                sample_period,
+                smallest_radius,
+                max_pole_radius,
+            }) => {
+                println!("T = {t}: smallest radius {smallest_radius}");
+                assert_eq!(sample_period, t);
+                assert!(smallest_radius > max_pole_radius);
+            }
+            other => panic!("{t}: {other:?}"),
+        }
+    }
 }
