@@ -4,8 +4,9 @@
 //! [`JointConfig::update`] per servo tick.
 //!
 //! The component has the crate's shape: [`JointParams`] (SI, validated by
-//! [`JointParams::try_new`] from named [`JointSettings`], or the
-//! [`JointParams::table_4_1`] preset) → [`JointConfig<S>`] (quantized once
+//! [`JointParams::try_new`] from named [`JointSettings`], or a preset:
+//! [`JointParams::table_4_1_at`] for the 4 ms servo tick, or the thesis's
+//! own [`JointParams::table_4_1`], which does not hold at 4 ms) → [`JointConfig<S>`] (quantized once
 //! for backend `S`) → [`JointState<S>`] (estimator, mode manager and speed
 //! meter state) → `update(&self, &mut state, &readings, &target)` →
 //! [`JointOutput<S>`]. The step never panics, never allocates and never
