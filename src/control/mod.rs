@@ -25,6 +25,7 @@
 
 pub mod adaptive;
 pub mod bound;
+pub mod design;
 pub mod mode;
 pub mod passive;
 
