@@ -35,6 +35,7 @@ pub mod experiments;
 pub mod friction;
 pub mod integrator;
 pub mod mrr;
+pub mod plants;
 pub mod sensors;
 pub mod transmission;
 pub mod wrist_bench;
