@@ -29,6 +29,7 @@
 // one index; iterator chains over four zipped slices would read worse.
 #![allow(clippy::needless_range_loop)]
 
+pub mod claims;
 pub mod closed_loop;
 pub mod door;
 pub mod experiments;
