@@ -225,7 +225,11 @@ impl DrivePlant {
     fn step_held(&self, s: &mut State, flexspline_torque: f64) -> Response {
         // Flexspline twist `y = x − o` from its own balance.
         let y0 = self.backbone.torsion(flexspline_torque);
-        let y = solve_increasing(|y| self.flexspline_torque(s, y) - flexspline_torque, y0, 1e-7);
+        let y = solve_increasing(
+            |y| self.flexspline_torque(s, y) - flexspline_torque,
+            y0,
+            1e-7,
+        );
         self.flexspline_hysteresis.commit(&mut s.flexspline, y);
         // Node lag `u = a − x = −x`: W(u) − M(−u) = T_f.
         let u = solve_increasing(
@@ -448,9 +452,8 @@ pub fn calibrate(choice: &PlantChoice) -> DrivePlant {
     );
     plant.wave_generator = bearing.scaled(s);
     if choice.node_share < 1.0 {
-        let shape = |total: f64| {
-            MaxwellSlip::from_shares(total, &SLIP_SHARES, &FLEXSPLINE_PRESLIDING)
-        };
+        let shape =
+            |total: f64| MaxwellSlip::from_shares(total, &SLIP_SHARES, &FLEXSPLINE_PRESLIDING);
         let total = calibrate_scale(
             |t| {
                 let mut p = plant.clone();
@@ -550,7 +553,11 @@ mod tests {
         for c in choices().iter().step_by(5) {
             let p = calibrate(c);
             let w = p.catalogue_loop_width();
-            assert!((w / HYSTERESIS_LOSS - 1.0).abs() < 0.02, "{}: {w}", p.label());
+            assert!(
+                (w / HYSTERESIS_LOSS - 1.0).abs() < 0.02,
+                "{}: {w}",
+                p.label()
+            );
         }
     }
 
@@ -585,6 +592,9 @@ mod tests {
         let by_hand = 2.0 * p.wave_generator.torsion(f);
         // Pre-sliding leaves the elements short of full slip by at most
         // their largest pre-sliding displacement.
-        assert!((w - by_hand).abs() < 2.0 * MESH_PRESLIDING[3], "{w} vs {by_hand}");
+        assert!(
+            (w - by_hand).abs() < 2.0 * MESH_PRESLIDING[3],
+            "{w} vs {by_hand}"
+        );
     }
 }
