@@ -481,9 +481,11 @@ fn least_squares<const M: usize>(cols: &[[f64; M]], b: &[f64], prior: [f64; M]) 
             }
         }
     }
+    // Ridge relative to each column's own norm (so columns of different
+    // scales are not biased), floored for a column the data never excite.
     let trace: f64 = (0..M).map(|i| ata[i][i]).sum::<f64>() / M as f64;
-    let lambda = 1e-9 * trace.max(1e-300);
     for i in 0..M {
+        let lambda = 1e-9 * ata[i][i].max(1e-12 * trace).max(1e-300);
         ata[i][i] += lambda;
         atb[i] += lambda * prior[i];
     }
@@ -716,7 +718,9 @@ mod tests {
     fn least_squares_recovers_exact_coefficients() {
         let cols: Vec<[f64; 3]> = (0..20)
             .map(|i| {
-                let x = i as f64;
+                // Centred and scaled so the normal equations are well
+                // conditioned (the ridge's relative bias is 1e-9).
+                let x = i as f64 / 9.5 - 1.0;
                 [1.0, x, x * x]
             })
             .collect();
@@ -724,5 +728,13 @@ mod tests {
         let c = least_squares(&cols, &b, [0.0; 3]);
         assert!((c[0] - 2.0).abs() < 1e-6 && (c[1] + 3.0).abs() < 1e-7);
         assert!((c[2] - 0.5).abs() < 1e-8);
+        // A column that is zero everywhere keeps its prior.
+        let cols: Vec<[f64; 2]> = (0..20).map(|i| [i as f64, 0.0]).collect();
+        let b: Vec<f64> = cols.iter().map(|c| 4.0 * c[0]).collect();
+        let c = least_squares(&cols, &b, [0.0, 7.0]);
+        assert!(
+            (c[0] - 4.0).abs() < 1e-6 && (c[1] - 7.0).abs() < 1e-9,
+            "{c:?}"
+        );
     }
 }
