@@ -516,6 +516,10 @@ fn least_squares<const M: usize>(cols: &[[f64; M]], b: &[f64], prior: [f64; M]) 
 }
 
 /// Oracle fits of both models to a noise-free run.
+///
+/// The fits minimise the squared error over the run, not the peak error
+/// the claims judge: an oracle is the best each structure does *on
+/// average*, not a lower bound on its peak error.
 #[derive(Debug, Clone, Copy)]
 pub struct OracleModels {
     /// Eq. (2.30), best over a log grid of `(c_f, c_w)` with `K_f0`, `K_w0`

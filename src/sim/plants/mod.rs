@@ -19,6 +19,12 @@
 //! amplitude, the split of `Ψ` between the mesh/bearing mechanism and the
 //! flexspline, the mesh break-away between the two measured torques, the
 //! backbone and bearing shapes and the ripple ([`drive::family`]).
+//!
+//! Left out on purpose or for now: the motor's own brush friction between
+//! the torque command and the bearing (only a ±2 % torque-constant error
+//! separates them), the position controller's finite stiffness in the
+//! held-input test (the input is held rigidly), and any rate dependence
+//! (the plant is quasi-static and rate-independent).
 
 pub mod drive;
 pub mod elements;
