@@ -29,12 +29,14 @@
 // one index; iterator chains over four zipped slices would read worse.
 #![allow(clippy::needless_range_loop)]
 
+pub mod claims;
 pub mod closed_loop;
 pub mod door;
 pub mod experiments;
 pub mod friction;
 pub mod integrator;
 pub mod mrr;
+pub mod plants;
 pub mod sensors;
 pub mod transmission;
 pub mod wrist_bench;

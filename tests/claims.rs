@@ -1,0 +1,150 @@
+//! The claims registry in its quick form, the criterion logic on synthetic
+//! metric sets, and the independence of the plant family's sources.
+
+use mrr_control::sim::claims::{
+    evaluate, registry, run, ClaimError, Condition, Criterion, Rule, Verdict,
+};
+use mrr_control::sim::plants::{quick_family, DrivePlant};
+
+fn reduction_criterion() -> Criterion {
+    Criterion::try_new(
+        Rule {
+            condition: Condition::AtLeast(0.2),
+            share: 0.8,
+        },
+        Rule {
+            condition: Condition::AtMost(0.0),
+            share: 0.5,
+        },
+    )
+    .unwrap()
+}
+
+/// The verdict function on hand-made metric sets, one per outcome and at
+/// the edges of each share.
+#[test]
+fn verdicts_on_synthetic_metrics() {
+    let c = reduction_criterion();
+    // 8 of 10 at ≥ 0.2: supported (exactly the share).
+    let v = [0.3, 0.25, 0.2, 0.4, 0.5, 0.21, 0.22, 0.9, 0.1, -0.5];
+    assert_eq!(c.verdict(&v).unwrap(), Verdict::Supported);
+    // 7 of 10: not supported; 2 worse: not refuted.
+    let v = [0.3, 0.25, 0.2, 0.4, 0.5, 0.21, 0.22, 0.1, 0.1, -0.5];
+    assert_eq!(c.verdict(&v).unwrap(), Verdict::Undecided);
+    // 5 of 10 worse (≤ 0): refuted.
+    let v = [0.3, 0.25, 0.2, 0.4, 0.1, 0.0, -0.1, -0.2, -0.3, -0.5];
+    assert_eq!(c.verdict(&v).unwrap(), Verdict::Refuted);
+    // 4 of 10 worse: undecided.
+    let v = [0.3, 0.25, 0.2, 0.4, 0.1, 0.05, -0.1, -0.2, -0.3, -0.5];
+    assert_eq!(c.verdict(&v).unwrap(), Verdict::Undecided);
+    // An AtMost-supported criterion (an error level).
+    let level = Criterion::try_new(
+        Rule {
+            condition: Condition::AtMost(1.7e-4),
+            share: 0.8,
+        },
+        Rule {
+            condition: Condition::AtLeast(2.3e-4),
+            share: 0.5,
+        },
+    )
+    .unwrap();
+    assert_eq!(level.verdict(&[1.0e-4; 5]).unwrap(), Verdict::Supported);
+    assert_eq!(level.verdict(&[3.0e-4; 5]).unwrap(), Verdict::Refuted);
+    assert_eq!(level.verdict(&[2.0e-4; 5]).unwrap(), Verdict::Undecided);
+}
+
+#[test]
+fn bad_metrics_and_criteria_are_typed_errors() {
+    let c = reduction_criterion();
+    assert_eq!(c.verdict(&[]), Err(ClaimError::NoMetrics));
+    assert!(matches!(
+        c.verdict(&[0.3, f64::NAN]),
+        Err(ClaimError::NotFinite { run: 1, .. })
+    ));
+    let at_least = |t, share| Rule {
+        condition: Condition::AtLeast(t),
+        share,
+    };
+    let at_most = |t, share| Rule {
+        condition: Condition::AtMost(t),
+        share,
+    };
+    // Overlapping conditions, a share outside (0, 1], shares that could
+    // both hold, a NaN threshold.
+    assert!(Criterion::try_new(at_least(0.2, 0.8), at_most(0.3, 0.5)).is_err());
+    assert!(Criterion::try_new(at_least(0.2, 0.8), at_least(0.3, 0.5)).is_err());
+    assert!(Criterion::try_new(at_least(0.2, 1.5), at_most(0.0, 0.5)).is_err());
+    assert!(Criterion::try_new(at_least(0.2, 0.5), at_most(0.0, 0.5)).is_err());
+    assert!(Criterion::try_new(at_least(f64::NAN, 0.8), at_most(0.0, 0.5)).is_err());
+    assert!(matches!(
+        run(&[], 3),
+        Err(ClaimError::NoRuns { name: "family" })
+    ));
+    let one: Vec<DrivePlant> = quick_family().into_iter().take(1).collect();
+    assert!(matches!(
+        run(&one, 0),
+        Err(ClaimError::NoRuns { name: "seeds" })
+    ));
+}
+
+/// The quick registry: every claim gets a verdict from finite metrics over
+/// 4 plants × 2 seeds, and the metrics are physically sized (a peak error
+/// between a count of the motor encoder seen at the output, 3e-5 rad, and
+/// a tenth of the drive's torsion at rated torque, 2e-3 rad).
+#[test]
+fn quick_registry_gives_every_claim_a_verdict() {
+    let plants = quick_family();
+    let runs = run(&plants, 2).unwrap();
+    assert_eq!(runs.len(), plants.len() * 2);
+    for m in &runs {
+        for e in [
+            m.locked_classic_blind,
+            m.locked_proposed_blind,
+            m.locked_classic_oracle,
+            m.locked_proposed_oracle,
+            m.held_proposed_blind,
+        ] {
+            assert!((1e-5..2e-3).contains(&e), "{m:?}");
+        }
+    }
+    let claims = registry().unwrap();
+    let results = evaluate(&claims, &runs).unwrap();
+    assert_eq!(results.len(), claims.len());
+    for r in &results {
+        assert_eq!(r.runs, runs.len());
+        assert!(r.spread.min <= r.spread.median && r.spread.median <= r.spread.max);
+    }
+}
+
+/// The plants share no model code with what they test: no source file of
+/// `src/sim/plants/` names the library's model modules.
+#[test]
+fn plants_share_no_model_code() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/src/sim/plants");
+    let forbidden = [
+        "harmonic_drive",
+        "estimation",
+        "control::",
+        "crate::friction",
+        "sim::transmission",
+        "sim::experiments",
+        "sim::friction",
+    ];
+    let mut files = 0;
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "rs") {
+            files += 1;
+            let text = std::fs::read_to_string(&path).unwrap();
+            for line in text.lines() {
+                // Code only: prose may name the models it is not.
+                let code = line.split("//").next().unwrap_or("");
+                for f in forbidden {
+                    assert!(!code.contains(f), "{}: `{}`", path.display(), line.trim());
+                }
+            }
+        }
+    }
+    assert!(files >= 3, "found {files} plant sources");
+}
