@@ -84,7 +84,7 @@ use crate::control::design::{
 };
 use crate::control::{
     ControlInput, JointMode, ModeConfig, ModeOutput, ModeParams, ModeSettings, ModeState,
-    PassiveParams,
+    PassiveParams, RobustAdaptiveState,
 };
 use crate::error::ParamError;
 use crate::estimation::torque::{
@@ -357,9 +357,20 @@ impl<S: Scalar> JointState<S> {
     pub fn motor_position_counts(&self) -> i64 {
         self.motor_count
     }
+    /// The active law's adapted state (friction estimate and integral;
+    /// SI readers [`RobustAdaptiveState::friction_si`] and
+    /// [`RobustAdaptiveState::integral_si`]).
+    pub fn active_state(&self) -> &RobustAdaptiveState<S> {
+        self.mode.active_state()
+    }
     /// The last motor torque command, stored motor-torque units.
     pub fn last_command(&self) -> S {
         self.mode.last_torque()
+    }
+    /// The last motor torque command `τ_m` in N·m, positive driving the
+    /// link forward.
+    pub fn last_command_si(&self) -> f64 {
+        self.mode.last_torque_si()
     }
     /// This state with the mode manager's state replaced by `mode` (one
     /// reached by running the same [`ModeConfig`], e.g. to resume a joint
