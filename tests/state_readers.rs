@@ -36,7 +36,8 @@ fn one_step<S: Scalar>() -> RobustAdaptiveState<S> {
 /// `Y_2 = sat(q̇/ε_q̇) = 1`, `Y_3 = e^{−f̂_τ q̇²}·1` (eq. 4.17).
 fn by_hand() -> [f64; 4] {
     let (k_i, t, mu, r, qd) = (10.0, 0.004, 0.1, -0.05, 0.5_f64);
-    let y = [qd, 1.0, (-1.0 * qd * qd).exp()];
+    let f_tau = 1.0;
+    let y = [qd, 1.0, (-f_tau * qd * qd).exp()];
     [
         5e-5 - mu * t * r * y[0],
         0.006 - mu * t * r * y[1],
@@ -69,7 +70,12 @@ fn check<S: Scalar>(torque: f64, speed: f64, tol: f64) -> FrictionParams {
     for j in 0..4 {
         assert_eq!(stored[j].to_f64(), si[j] * scales[j], "{} F̂_{j}", S::NAME);
     }
-    assert_eq!(st.integral().to_f64(), st.integral_si() * torque, "{} z", S::NAME);
+    assert_eq!(
+        st.integral().to_f64(),
+        st.integral_si() * torque,
+        "{} z",
+        S::NAME
+    );
     f
 }
 
@@ -85,9 +91,15 @@ fn si_readers_give_the_same_physical_state_on_every_backend() {
     // The Stribeck shape has no hand value here (its regressor is the
     // product of three small terms); it must agree across backends.
     let shape = |f: FrictionParams| f.stribeck_shape;
-    assert!((shape(f32s) - shape(f64s)).abs() < 1e-6, "{f32s:?} {f64s:?}");
+    assert!(
+        (shape(f32s) - shape(f64s)).abs() < 1e-6,
+        "{f32s:?} {f64s:?}"
+    );
     // Stored in s²/rad² on I16F16, LSB 2⁻¹⁶.
-    assert!((shape(fxs) - shape(f64s)).abs() < 2.0 / 65536.0, "{fxs:?} {f64s:?}");
+    assert!(
+        (shape(fxs) - shape(f64s)).abs() < 2.0 / 65536.0,
+        "{fxs:?} {f64s:?}"
+    );
 }
 
 fn friction(v: [f64; 4]) -> FrictionParams {

@@ -552,10 +552,14 @@ pub struct ActiveOutput<S> {
     pub torque: S,
     /// The law's value before the output limit (eq. 4.19).
     pub law_torque: S,
-    /// The output was limited (or the input was invalid).
+    /// The torque is not the law's value: it was limited to
+    /// `±torque_limit`, or the sample was invalid (then also
+    /// `invalid_input`); the limit alone is `saturated && !invalid_input`
+    /// ([status flags](crate::joint#status-flags)).
     pub saturated: bool,
     /// An input was NaN or infinite, or the law overflowed to NaN: the
-    /// torque is 0 and the state was not advanced.
+    /// torque is 0 and the state was not advanced. The state itself cannot
+    /// be the cause (it is always finite and in its box).
     pub invalid_input: bool,
     /// Tracking error `e = q_m − q_m^d`, stored angle units.
     pub tracking_error: S,

@@ -521,7 +521,10 @@ impl<S: Scalar> ModeState<S> {
     /// the Active law (the reference the law tracks is `q_m^d + o`).
     pub fn rejoin_offset_si(&self) -> (f64, f64) {
         let u = S::UNITS;
-        (self.offset.to_f64() / u.angle, self.offset_rate.to_f64() / u.speed)
+        (
+            self.offset.to_f64() / u.angle,
+            self.offset_rate.to_f64() / u.speed,
+        )
     }
 }
 
@@ -534,7 +537,10 @@ pub struct ModeOutput<S> {
     pub mode: JointMode,
     /// The mode changed at this sample.
     pub switched: bool,
-    /// The law or the biased sum was limited.
+    /// The command is not the law's value: the law or the biased sum was
+    /// limited, or the sample was invalid (then also `invalid_input`); the
+    /// limit alone is `saturated && !invalid_input` ([status
+    /// flags](crate::joint#status-flags)).
     pub saturated: bool,
     /// An input was NaN or infinite (torque 0, state unchanged), or the
     /// law overflowed to NaN on absurd finite float inputs (the law counts
