@@ -179,3 +179,48 @@ fn joint_state_readers_in_si() {
     let (o, od) = m.rejoin_offset();
     assert_eq!((o.to_f64(), od.to_f64()), m.rejoin_offset_si());
 }
+
+/// The flags of the joint's output keep the meaning of the `joint` module
+/// docs ("Status flags"): a NaN target is an invalid sample (torque 0,
+/// `control.saturated` set, `torque_saturated()` not), a far target is a
+/// valid law value limited to the torque limit (`torque_saturated()`).
+#[test]
+fn joint_flags_separate_invalid_samples_from_the_limit() {
+    let p = JointParams::table_4_1_at(0.004).unwrap();
+    fn run<S: Scalar>(p: &JointParams) {
+        let cfg = JointConfig::<S>::new(p);
+        let limit = cfg.mode().torque_limit().to_f64() / S::UNITS.motor_torque;
+        let mut st = cfg.state(0, 0);
+        let before = *st.active_state();
+        // `from_si` keeps a NaN on floats (I16F16 cannot hold one).
+        let nan = JointTarget::<S>::from_si(f64::NAN, 0.0, 0.0);
+        if S::NAME != "I16F16" {
+            let o = cfg.update(&mut st, &JointReadings::counts(0, 0), &nan);
+            assert!(o.invalid_input && o.control.invalid_input, "{o:?}");
+            assert!(o.control.saturated && !o.torque_saturated(), "{o:?}");
+            assert_eq!(o.motor_torque_si(), 0.0);
+            assert_eq!(*st.active_state(), before);
+        }
+        // One rad ahead on the link (100 rad at the motor), the joint held
+        // at 0: once the rejoin offset has decayed, far beyond the limit.
+        let far = JointTarget::from_si(1.0, 0.0, 0.0);
+        let mut limited = 0;
+        for _ in 0..500 {
+            let o = cfg.update(&mut st, &JointReadings::counts(0, 0), &far);
+            assert!(!o.invalid_input, "{} {o:?}", S::NAME);
+            assert_eq!(o.torque_saturated(), o.control.saturated);
+            if o.torque_saturated() {
+                assert!(
+                    (o.motor_torque_si() - limit).abs() < 1e-6,
+                    "{} {o:?}",
+                    S::NAME
+                );
+                limited += 1;
+            }
+        }
+        assert!(limited > 0, "{}", S::NAME);
+    }
+    run::<f64>(&p);
+    run::<f32>(&p);
+    run::<I16F16>(&p);
+}

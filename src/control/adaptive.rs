@@ -468,7 +468,7 @@ pub struct RobustAdaptiveConfig<S> {
 /// projection box and `|z| ≤ integral_limit`. Writing a field does not
 /// compile:
 ///
-/// ```compile_fail
+/// ```compile_fail,E0616
 /// use mrr_control::control::{RobustAdaptiveConfig, RobustAdaptiveParams};
 /// let cfg = RobustAdaptiveConfig::<f32>::new(&RobustAdaptiveParams::table_4_1().unwrap());
 /// let mut st = cfg.initial_state();
