@@ -49,6 +49,45 @@
 //! [`JointOutput::motor_torque`] is in stored motor-torque units (N·m on
 //! floats, mN·m on `I16F16`); the `_si` readers give SI on every backend.
 //!
+//! # Status flags
+//! The flags mean the same on every output of the crate's control steps —
+//! the laws ([`ActiveOutput`](crate::control::ActiveOutput),
+//! [`PassiveOutput`](crate::control::PassiveOutput)), the mode manager
+//! ([`ModeOutput`]), the joint ([`JointOutput`]) and the wrist
+//! ([`WristOutput`](crate::wrist::WristOutput)):
+//!
+//! * **`invalid_input`** — this sample could not be used: an input was NaN
+//!   or infinite or an impossible reading (a link count not below `L`, a
+//!   counter jump), or, on floats, finite inputs so large that the law
+//!   overflowed to NaN. The command is the documented fallback (0 N·m from
+//!   a law; in the mode manager 0 for a non-finite input, the decaying
+//!   bump-transfer bias for an overflow) and the adapted state is not
+//!   advanced. The cause is always the sample: the adapted state cannot
+//!   hold a NaN or leave its box (its fields are private and
+//!   [`RobustAdaptiveConfig::state`](crate::control::RobustAdaptiveConfig::state)
+//!   validates), so an invalid flag clears as soon as the inputs are valid.
+//! * **`saturated` of one law or of the mode manager** (`ActiveOutput`,
+//!   `PassiveOutput`, `ModeOutput`, hence [`JointOutput::control`]) — the
+//!   command is not the law's value: it was limited to `±L` (the law or,
+//!   after a switch, the law plus the bias), **or** it is the fallback of
+//!   an invalid sample. So `invalid_input` implies `saturated` there.
+//! * **`torque_saturated`** — a valid law value was limited to `±L`:
+//!   `saturated && !invalid_input` of the law. The wrist reports it per
+//!   step ([`WristOutput::torque_saturated`](crate::wrist::WristOutput::torque_saturated),
+//!   either motor), the joint through [`JointOutput::torque_saturated`]. An
+//!   invalid sample never sets it.
+//! * **the wrist's `saturated`** — `reference_saturated ||
+//!   torque_saturated`: something valid was limited, never an invalid
+//!   sample alone.
+//!
+//! So a NaN target on the joint gives `motor_torque` 0 with
+//! `invalid_input`, `control.saturated` and `control.invalid_input` set,
+//! and `torque_saturated()` false — as on the wrist, whose
+//! `torque_saturated` stays false and whose `laws[i].saturated` is set.
+//! (The per-law `saturated` keeps the fallback in its meaning rather than
+//! being narrowed to the limit alone, so that the joint step's code is
+//! unchanged.)
+//!
 //! # Example
 //! The Table 4.1 joint at rest, then a motor counter that ran ahead of the
 //! link by 10 counts (a torsion): the estimate follows eq. (3.9)–(3.10),
@@ -84,7 +123,7 @@ use crate::control::design::{
 };
 use crate::control::{
     ControlInput, JointMode, ModeConfig, ModeOutput, ModeParams, ModeSettings, ModeState,
-    PassiveParams,
+    PassiveParams, RobustAdaptiveState,
 };
 use crate::error::ParamError;
 use crate::estimation::torque::{
@@ -357,9 +396,20 @@ impl<S: Scalar> JointState<S> {
     pub fn motor_position_counts(&self) -> i64 {
         self.motor_count
     }
+    /// The active law's adapted state (friction estimate and integral;
+    /// SI readers [`RobustAdaptiveState::friction_si`] and
+    /// [`RobustAdaptiveState::integral_si`]).
+    pub fn active_state(&self) -> &RobustAdaptiveState<S> {
+        self.mode.active_state()
+    }
     /// The last motor torque command, stored motor-torque units.
     pub fn last_command(&self) -> S {
         self.mode.last_torque()
+    }
+    /// The last motor torque command `τ_m` in N·m, positive driving the
+    /// link forward.
+    pub fn last_command_si(&self) -> f64 {
+        self.mode.last_torque_si()
     }
     /// This state with the mode manager's state replaced by `mode` (one
     /// reached by running the same [`ModeConfig`], e.g. to resume a joint
@@ -485,7 +535,8 @@ pub struct JointOutput<S> {
     /// The measured motor speed `q̇_m` (count difference over the window),
     /// stored speed units.
     pub motor_velocity: S,
-    /// An input was impossible, at either stage: a link count not below
+    /// An input was impossible, at either stage (the meaning is shared with
+    /// the wrist: [status flags](self#status-flags)): a link count not below
     /// `L`, a counter jump or torsion no torque can produce, a NaN or
     /// infinite motor torque (estimator), a NaN or infinite target, or a
     /// law that overflowed (mode manager). The values that replace it are
@@ -493,11 +544,21 @@ pub struct JointOutput<S> {
     pub invalid_input: bool,
     /// The estimator's output, in the estimator's sign (errata E2.10).
     pub estimate: TorqueEstimate<S>,
-    /// The mode manager's output (switch, saturation, collision, reference).
+    /// The mode manager's output (switch, saturation, collision, reference);
+    /// its `saturated` is also set on an invalid sample
+    /// ([status flags](self#status-flags); the limit alone is
+    /// [`torque_saturated`](Self::torque_saturated)).
     pub control: ModeOutput<S>,
 }
 
 impl<S: Scalar> JointOutput<S> {
+    /// A valid law value was limited to the torque limit:
+    /// `control.saturated && !control.invalid_input` (the meaning of the
+    /// wrist's [`torque_saturated`](crate::wrist::WristOutput::torque_saturated);
+    /// see [the flags](self#status-flags)). `false` on an invalid sample.
+    pub fn torque_saturated(&self) -> bool {
+        self.control.saturated && !self.control.invalid_input
+    }
     /// [`motor_torque`](Self::motor_torque) in N·m.
     pub fn motor_torque_si(&self) -> f64 {
         dequantize(self.motor_torque, S::UNITS.motor_torque)

@@ -142,15 +142,14 @@ fn active<S: Scalar>(p: &RobustAdaptiveParams, xs: &[ControlInput<f64>], compare
         .ok()
         .map(|q| RobustAdaptiveConfig::<f64>::new(&q));
     let mut st = cfg.initial_state();
-    let mt = S::UNITS.motor_torque;
     for x in xs {
         let xq = ControlInput::<S>::from_si(x);
         let before = st;
         let o = cfg.update(&mut st, &xq);
         assert!(!o.torque.is_nan() && o.torque_si().abs() <= limit, "{o:?}");
-        assert!(!st.integral.is_nan() && st.integral.abs() <= cfg.integral_limit());
+        assert!(!st.integral().is_nan() && st.integral().abs() <= cfg.integral_limit());
         for j in 0..4 {
-            let f = st.friction[j];
+            let f = st.friction()[j];
             assert!(
                 f >= cfg.lower_bounds()[j] && f <= cfg.upper_bounds()[j],
                 "{st:?}"
@@ -167,10 +166,14 @@ fn active<S: Scalar>(p: &RobustAdaptiveParams, xs: &[ControlInput<f64>], compare
         let Some(c64) = reference.as_ref().filter(|_| compare && physical(x)) else {
             continue;
         };
-        let mut st64 = RobustAdaptiveState::<f64>::new(
-            FrictionConfig::<S>::dequantize(&before.friction).to_array(),
-            before.integral.to_f64() / mt,
-        );
+        // The same state in SI, kept in the box that the reference
+        // validates against (dequantizing can leave it by a rounding).
+        let d = c64.params().design();
+        let (lo, hi) = (d.friction_bounds.min(), d.friction_bounds.max());
+        let f = before.friction_si().to_array();
+        let f = FrictionParams::from_array(core::array::from_fn(|j| f[j].clamp(lo[j], hi[j])));
+        let z = before.integral_si().clamp(-d.integral_limit, d.integral_limit);
+        let mut st64: RobustAdaptiveState<f64> = c64.state(f, z).expect("a state inside the box");
         let a = c64.update(&mut st64, &xq.to_si());
         let tol = law_error_budget(&cfg, &before, &xq) + (c64.torque_limit() - limit).abs();
         assert!(

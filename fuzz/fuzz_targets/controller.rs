@@ -45,9 +45,10 @@ fn run<S: Scalar>(
         let x = input::<S>(v);
         let o = a.update(&mut st, &x);
         assert!(!o.torque.is_nan() && o.torque.abs() <= a.torque_limit());
-        assert!(st.integral.abs() <= a.integral_limit());
+        assert!(st.integral().abs() <= a.integral_limit());
         for j in 0..4 {
-            assert!(st.friction[j] >= a.lower_bounds()[j] && st.friction[j] <= a.upper_bounds()[j]);
+            let f = st.friction()[j];
+            assert!(f >= a.lower_bounds()[j] && f <= a.upper_bounds()[j]);
         }
         let po = p.update(&x);
         assert!(!po.torque.is_nan() && po.torque.abs() <= p.torque_limit());

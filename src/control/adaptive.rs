@@ -458,28 +458,90 @@ pub struct RobustAdaptiveConfig<S> {
 /// `K_I T r` is `40·r` stored (Table 4.1 and 6.1: `K_I = 10`, `T = 4 ms`,
 /// mN·m per rad/s), so the smallest non-zero `r` (one LSB) moves `z` by 40
 /// LSB: nothing is lost (checked by `slow_integrators_move_at_table_gains`).
+///
+/// # Reading and building a state
+/// The fields are private: a state comes from
+/// [`RobustAdaptiveConfig::initial_state`], from
+/// [`RobustAdaptiveConfig::state`] (SI values, validated against the
+/// configuration's box and integral limit) or from the steps, so every
+/// state reachable through the public API is finite, has `F̂^c` inside the
+/// projection box and `|z| ≤ integral_limit`. Writing a field does not
+/// compile:
+///
+/// ```compile_fail,E0616
+/// use mrr_control::control::{RobustAdaptiveConfig, RobustAdaptiveParams};
+/// let cfg = RobustAdaptiveConfig::<f32>::new(&RobustAdaptiveParams::table_4_1().unwrap());
+/// let mut st = cfg.initial_state();
+/// st.friction = [f32::NAN; 4];
+/// ```
+///
+/// Read the values in SI with [`friction_si`](Self::friction_si) and
+/// [`integral_si`](Self::integral_si) (the same physical value on every
+/// backend, within its resolution), or in the backend's stored units with
+/// [`friction`](Self::friction) and [`integral`](Self::integral).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RobustAdaptiveState<S: Scalar> {
     /// `F̂^c = [b̂, f̂_c, f̂_s, f̂_τ]`, stored units; always inside the box.
-    pub friction: [S; 4],
+    pub(crate) friction: [S; 4],
     /// What rounding `F̂^c` to the backend left over
-    /// ([`Scalar::Residual`]); the default after setting `friction` by
-    /// hand.
-    pub friction_residual: [S::Residual; 4],
+    /// ([`Scalar::Residual`]).
+    pub(crate) friction_residual: [S::Residual; 4],
     /// `z = K_I ∫ r dt`, stored motor torque; `|z| ≤ integral_limit`.
-    pub integral: S,
+    pub(crate) integral: S,
 }
 
 impl<S: Scalar> RobustAdaptiveState<S> {
-    /// A state with estimates `friction` (stored units, inside the
-    /// projection box) and integral `integral` (stored motor torque), and
-    /// no residual.
-    pub fn new(friction: [S; 4], integral: S) -> Self {
+    /// A state with estimates `friction` (stored units) and integral
+    /// `integral` (stored motor torque), and no residual; unchecked, for
+    /// the crate's own tests and proofs (users call
+    /// [`RobustAdaptiveConfig::state`]).
+    pub(crate) fn from_stored(friction: [S; 4], integral: S) -> Self {
         RobustAdaptiveState {
             friction,
             friction_residual: Default::default(),
             integral,
         }
+    }
+
+    /// The friction estimate `F̂^c = [b̂, f̂_c, f̂_s, f̂_τ]` of eq. (4.16) in
+    /// SI, motor side: `viscous` `b̂` in N·m·s/rad, `coulomb` `f̂_c` and
+    /// `stribeck` `f̂_s` in N·m, `stribeck_shape` `f̂_τ` in s²/rad². Signs:
+    /// every component is inside the projection box of
+    /// [`FrictionBounds`] (non-negative for a box that is); the friction
+    /// torque they give opposes the motion (eq. 4.17). Each is the stored
+    /// value divided by its scale: `motor_torque/speed`, `motor_torque`,
+    /// `motor_torque` and `1/speed²` of [`Scalar::UNITS`] (all `1` on
+    /// floats; on `I16F16` the stored units are mN·m and rad/s, so
+    /// `b̂` and `f̂_c`, `f̂_s` are stored 1000 times larger than in SI).
+    pub fn friction_si(&self) -> FrictionParams {
+        FrictionConfig::<S>::dequantize(&self.friction)
+    }
+
+    /// The integral torque `z = K_I ∫ r dt` of eq. (4.19) in N·m, motor
+    /// side: the stored value divided by `S::UNITS.motor_torque` (`1` on
+    /// floats, `1000` on `I16F16`). It enters the law with a minus sign
+    /// (`τ_m = … − z`): a positive `z` (the motor has run ahead of its
+    /// reference, `r > 0`) lowers the command. `|z| ≤ integral_limit`.
+    pub fn integral_si(&self) -> f64 {
+        self.integral.to_f64() / S::UNITS.motor_torque
+    }
+
+    /// `F̂^c` in the backend's stored units (see
+    /// [`friction_si`](Self::friction_si) for SI and the scales).
+    pub fn friction(&self) -> [S; 4] {
+        self.friction
+    }
+
+    /// What rounding `F̂^c` to the backend left over
+    /// ([`Scalar::Residual`], the sub-resolution part of each estimate).
+    pub fn friction_residual(&self) -> [S::Residual; 4] {
+        self.friction_residual
+    }
+
+    /// `z` in stored motor-torque units (see
+    /// [`integral_si`](Self::integral_si) for N·m).
+    pub fn integral(&self) -> S {
+        self.integral
     }
 }
 
@@ -490,10 +552,14 @@ pub struct ActiveOutput<S> {
     pub torque: S,
     /// The law's value before the output limit (eq. 4.19).
     pub law_torque: S,
-    /// The output was limited (or the input was invalid).
+    /// The torque is not the law's value: it was limited to
+    /// `±torque_limit`, or the sample was invalid (then also
+    /// `invalid_input`); the limit alone is `saturated && !invalid_input`
+    /// ([status flags](crate::joint#status-flags)).
     pub saturated: bool,
     /// An input was NaN or infinite, or the law overflowed to NaN: the
-    /// torque is 0 and the state was not advanced.
+    /// torque is 0 and the state was not advanced. The state itself cannot
+    /// be the cause (it is always finite and in its box).
     pub invalid_input: bool,
     /// Tracking error `e = q_m − q_m^d`, stored angle units.
     pub tracking_error: S,
@@ -575,7 +641,68 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
 
     /// The initial state: `F̂^c(0)` of the design, `z = 0`.
     pub fn initial_state(&self) -> RobustAdaptiveState<S> {
-        RobustAdaptiveState::new(self.initial, S::ZERO)
+        RobustAdaptiveState::from_stored(self.initial, S::ZERO)
+    }
+
+    /// A state with the friction estimate `friction` (SI, see
+    /// [`RobustAdaptiveState::friction_si`]) and the integral torque
+    /// `integral` (N·m, motor side, sign of
+    /// [`RobustAdaptiveState::integral_si`]), and no residual: e.g. to
+    /// resume from estimates saved with those readers.
+    ///
+    /// # Errors
+    /// [`ParamError::NotFinite`] for a NaN or infinite value and
+    /// [`ParamError::OutOfRange`] for an estimate outside the projection
+    /// box of the design's [`FrictionBounds`] or an integral with
+    /// `|z| > integral_limit`, each naming the argument's field
+    /// (`friction.viscous`, `friction.coulomb`, `friction.stribeck`,
+    /// `friction.stribeck_shape`, `integral`).
+    ///
+    /// ```
+    /// use mrr_control::control::{RobustAdaptiveConfig, RobustAdaptiveParams};
+    /// use mrr_control::friction::FrictionParams;
+    /// use mrr_control::scalar::I16F16;
+    /// let cfg = RobustAdaptiveConfig::<I16F16>::new(&RobustAdaptiveParams::table_4_1()?);
+    /// let f = FrictionParams { viscous: 2e-5, coulomb: 0.004, stribeck: 0.003, stribeck_shape: 2.0 };
+    /// let st = cfg.state(f, 0.05)?;
+    /// assert!((st.integral_si() - 0.05).abs() < 1e-3);
+    /// assert!((st.friction_si().coulomb - 0.004).abs() < 1e-3);
+    /// // A NaN estimate is refused, naming the field.
+    /// let bad = FrictionParams { coulomb: f64::NAN, ..f };
+    /// assert!(cfg.state(bad, 0.0).unwrap_err().to_string().contains("friction.coulomb"));
+    /// # Ok::<(), mrr_control::ParamError>(())
+    /// ```
+    pub fn state(
+        &self,
+        friction: FrictionParams,
+        integral: f64,
+    ) -> Result<RobustAdaptiveState<S>, ParamError> {
+        const NAMES: [&str; 4] = [
+            "friction.viscous",
+            "friction.coulomb",
+            "friction.stribeck",
+            "friction.stribeck_shape",
+        ];
+        let d = &self.params.design;
+        let (lo, hi, a) = (
+            d.friction_bounds.min(),
+            d.friction_bounds.max(),
+            friction.to_array(),
+        );
+        for j in 0..4 {
+            in_range(NAMES[j], a[j], lo[j], hi[j])?;
+        }
+        in_range("integral", integral, -d.integral_limit, d.integral_limit)?;
+        let ps = parameter_scales::<S>();
+        let mut f = [S::ZERO; 4];
+        for j in 0..4 {
+            // Rounding is monotone, so the quantized value is inside the
+            // quantized box; the clamp only guards that statement.
+            f[j] = S::from_f64(a[j] * ps[j]).clamp(self.lower[j], self.upper[j]);
+        }
+        let z = S::from_f64(integral * S::UNITS.motor_torque)
+            .clamp(self.integral_limit.neg(), self.integral_limit);
+        Ok(RobustAdaptiveState::from_stored(f, z))
     }
 
     /// The friction model of the law (`eq. 4.17` with the layer `ε_v`),
@@ -818,7 +945,7 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
     /// let o = cfg.update(&mut st, &x);
     /// assert!(!o.saturated && (o.torque + 0.17016).abs() < 1e-5);
     /// // The integral has moved by K_I T r = 10·0.004·0.12 = 4.8e-3 N·m.
-    /// assert!((st.integral - 4.8e-3).abs() < 1e-7);
+    /// assert!((st.integral_si() - 4.8e-3).abs() < 1e-7);
     /// # Ok::<(), mrr_control::ParamError>(())
     /// ```
     pub fn update(&self, st: &mut RobustAdaptiveState<S>, x: &ControlInput<S>) -> ActiveOutput<S> {

@@ -478,13 +478,24 @@ impl<S: Scalar> ModeState<S> {
     pub fn mode(&self) -> JointMode {
         self.mode
     }
-    /// The active law's adapted state.
+    /// The active law's adapted state (read it in SI with
+    /// [`RobustAdaptiveState::friction_si`] and
+    /// [`RobustAdaptiveState::integral_si`]). The passive law of this
+    /// manager uses the same friction estimate.
     pub fn active_state(&self) -> &RobustAdaptiveState<S> {
         &self.active
     }
-    /// The bumpless-transfer bias, stored motor torque.
+    /// The bumpless-transfer bias, stored motor torque (see
+    /// [`bias_si`](Self::bias_si)).
     pub fn bias(&self) -> S {
         self.bias
+    }
+    /// The bumpless-transfer bias in N·m, motor side: the amount added to
+    /// the new mode's law after a switch so that the command does not
+    /// jump, with the sign of a motor torque (positive driving the link
+    /// forward); it decays to 0.
+    pub fn bias_si(&self) -> f64 {
+        self.bias.to_f64() / S::UNITS.motor_torque
     }
     /// `true` while a collision reaction is latched.
     pub fn collision_latched(&self) -> bool {
@@ -495,10 +506,25 @@ impl<S: Scalar> ModeState<S> {
     pub fn last_torque(&self) -> S {
         self.last_torque
     }
+    /// [`last_torque`](Self::last_torque) in N·m, motor side, positive
+    /// driving the link forward.
+    pub fn last_torque_si(&self) -> f64 {
+        self.last_torque.to_f64() / S::UNITS.motor_torque
+    }
     /// The rejoin offset `(o, ȯ)` of the Active reference, stored angle and
     /// speed units.
     pub fn rejoin_offset(&self) -> (S, S) {
         (self.offset, self.offset_rate)
+    }
+    /// [`rejoin_offset`](Self::rejoin_offset) in SI: `o` in rad and `ȯ` in
+    /// rad/s, motor side, added to the desired motor position and speed of
+    /// the Active law (the reference the law tracks is `q_m^d + o`).
+    pub fn rejoin_offset_si(&self) -> (f64, f64) {
+        let u = S::UNITS;
+        (
+            self.offset.to_f64() / u.angle,
+            self.offset_rate.to_f64() / u.speed,
+        )
     }
 }
 
@@ -511,7 +537,10 @@ pub struct ModeOutput<S> {
     pub mode: JointMode,
     /// The mode changed at this sample.
     pub switched: bool,
-    /// The law or the biased sum was limited.
+    /// The command is not the law's value: the law or the biased sum was
+    /// limited, or the sample was invalid (then also `invalid_input`); the
+    /// limit alone is `saturated && !invalid_input` ([status
+    /// flags](crate::joint#status-flags)).
     pub saturated: bool,
     /// An input was NaN or infinite (torque 0, state unchanged), or the
     /// law overflowed to NaN on absurd finite float inputs (the law counts

@@ -532,9 +532,14 @@ pub struct PassiveOutput<S> {
     pub torque: S,
     /// The law's value before the limit.
     pub law_torque: S,
-    /// The output was limited (or the input invalid).
+    /// The torque is not the law's value: it was limited, or the input
+    /// was invalid (then also `invalid_input`); the limit alone is
+    /// `saturated && !invalid_input` ([status
+    /// flags](crate::joint#status-flags)).
     pub saturated: bool,
-    /// An input was NaN or infinite: torque 0.
+    /// An input (or a friction estimate given to
+    /// [`update_with_friction`](PassiveConfig::update_with_friction)) was
+    /// NaN or infinite, or the law overflowed: torque 0.
     pub invalid_input: bool,
 }
 

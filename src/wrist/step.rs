@@ -431,18 +431,26 @@ pub struct WristOutput<S> {
     pub motor_reference: MotorAngles<S>,
     /// `[θ̇1_r, θ̇3_r]` by difference (module docs), stored speed units.
     pub motor_reference_rate: [S; 2],
-    /// `reference_saturated || torque_saturated`.
+    /// `reference_saturated || torque_saturated`: something valid was
+    /// limited; never set by an invalid sample alone (the flags are shared
+    /// with the joint: [status flags](crate::joint#status-flags)).
     pub saturated: bool,
     /// The task reference was limited: by the mode manager (workspace box,
     /// admittance rate limit) or by the inverse kinematics (outside the
     /// reachable cone, projected).
     pub reference_saturated: bool,
-    /// A motor law's torque was at its limit (valid inputs only).
+    /// A motor law's valid value was limited to its torque limit:
+    /// `laws[i].saturated && !laws[i].invalid_input` for either motor. An
+    /// invalid sample never sets it (the law's own `saturated` is set then:
+    /// [status flags](crate::joint#status-flags); the joint's equivalent
+    /// is [`JointOutput::torque_saturated`](crate::joint::JointOutput::torque_saturated)).
     pub torque_saturated: bool,
     /// The Jacobian at the reference is singular (`|det J| < DET_MIN`,
     /// near the straight pose or the boundary); the mapping stays bounded.
     pub singular: bool,
-    /// An input was NaN or infinite: a gauge signal (the interaction reads
+    /// The sample could not be used in full ([status
+    /// flags](crate::joint#status-flags)). An input was NaN or infinite: a
+    /// gauge signal (the interaction reads
     /// 0), the target (the reference holds), or a measured position or
     /// speed (that motor's torque is 0 and its law's state is kept). On
     /// floats, finite readings so large that a product overflows (a

@@ -131,7 +131,7 @@ proptest! {
         d.torque_limit = 16.0;
         let p = RobustAdaptiveParams::try_new(d).unwrap();
         let cfg = RobustAdaptiveConfig::<f64>::new(&p);
-        let st = RobustAdaptiveState::new(f.to_array(), z);
+        let st = RobustAdaptiveState::from_stored(f.to_array(), z);
         let got = cfg.law(&st, &x).law;
         let want = reference_law(&d, &f, z, &x);
         prop_assert!((got - want).abs() <= 1e-12 * (1.0 + want.abs()), "{got} vs {want}");
@@ -153,7 +153,7 @@ proptest! {
         wide.friction_bounds = FrictionBounds::from_checked([-1.0, -1.0, -1.0, 1e-3], [1.0, 1.0, 1.0, 1e3], [0.0; 4]);
         let p = RobustAdaptiveParams::try_new(wide).unwrap();
         let cfg = RobustAdaptiveConfig::<f64>::new(&p);
-        let mut st = RobustAdaptiveState::new(f.to_array(), 0.0);
+        let mut st = RobustAdaptiveState::from_stored(f.to_array(), 0.0);
         let before = st.friction;
         cfg.update(&mut st, &x);
         let r = (x.motor_velocity - x.desired_velocity) + d.lambda * (x.motor_position - x.desired_position);
@@ -195,7 +195,7 @@ proptest! {
         no_rho.uncertainty = UncertaintyBounds { boundary_layer: 0.0, nonparametric_friction: 0.0, base_acceleration: 0.0, torque_estimate: 0.0 };
         no_rho.friction_bounds = FrictionBounds::from_checked(d.friction_bounds.min(), d.friction_bounds.max(), [0.0; 4]);
         let cfg0 = RobustAdaptiveConfig::<f64>::new(&RobustAdaptiveParams::try_new(no_rho).unwrap());
-        let st = RobustAdaptiveState::new(f.to_array(), 0.0);
+        let st = RobustAdaptiveState::from_stored(f.to_array(), 0.0);
         let robust = cfg.law(&st, &x).law - cfg0.law(&st, &x).law;
         prop_assert!(r * robust <= 1e-15);
     }
@@ -309,7 +309,7 @@ fn agree<S: Scalar>(
     let p = RobustAdaptiveParams::try_new(d).unwrap();
     let cfg = RobustAdaptiveConfig::<S>::new(&p);
     let xs = to_backend::<S>(x);
-    let st = RobustAdaptiveState::new(
+    let st = RobustAdaptiveState::from_stored(
         FrictionConfig::<S>::quantize(f),
         S::from_f64(z * S::UNITS.motor_torque),
     );
@@ -327,7 +327,7 @@ fn agree<S: Scalar>(
         joint_torque: xs.joint_torque.to_f64() / u.link_torque,
         ..Default::default()
     };
-    let st64 = RobustAdaptiveState::new(
+    let st64 = RobustAdaptiveState::from_stored(
         FrictionConfig::<S>::dequantize(&st.friction).to_array(),
         st.integral.to_f64() / u.motor_torque,
     );
@@ -539,7 +539,7 @@ proptest! {
         d.uncertainty = UncertaintyBounds { boundary_layer: 0.0, nonparametric_friction: 0.0, base_acceleration: 0.0, torque_estimate: 0.0 };
         d.friction_bounds = FrictionBounds::from_checked(d.friction_bounds.min(), d.friction_bounds.max(), [0.0; 4]);
         let cfg = RobustAdaptiveConfig::<f64>::new(&RobustAdaptiveParams::try_new(d).unwrap());
-        let st = RobustAdaptiveState::new(f.to_array(), 0.0);
+        let st = RobustAdaptiveState::from_stored(f.to_array(), 0.0);
         let tau = cfg.law(&st, &x).law;
         let qdd = (tau - f.nominal(x.motor_velocity, d.eps_velocity) - x.joint_torque / d.ratio) / d.rotor_inertia;
         let ed = x.motor_velocity - x.desired_velocity;
