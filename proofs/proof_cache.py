@@ -371,14 +371,13 @@ def main():
         ran[test] = [test, fp, "ok" if ok else "FAILED", "%.1f" % secs,
                      commit + ("+" if dirty else ""),
                      datetime.date.today().isoformat(), rustc_release, " || ".join(proofs)]
-    if args.record and ran:
-        for test, fields in ran.items():
-            if fields[2] == "ok":
-                record[test] = fields
-        if not args.filter:  # forget proofs whose test no longer exists
-            record = {t: f for t, f in record.items() if t in tests}
-        RECORD.write_text(HEADER + "".join("\t".join(record[t]) + "\n" for t in sorted(record)))
-        print("recorded %d proofs in %s" % (len(ran), RECORD.relative_to(ROOT)))
+        if args.record and ok:  # after each proof, so an interrupted run keeps what it proved
+            record[test] = ran[test]
+            if not args.filter:  # forget proofs whose test no longer exists
+                record = {t: f for t, f in record.items() if t in tests}
+            RECORD.write_text(HEADER + "".join("\t".join(record[t]) + "\n" for t in sorted(record)))
+    if args.record:
+        print("recorded %d proofs in %s" % (sum(f[2] == "ok" for f in ran.values()), RECORD.relative_to(ROOT)))
     if not args.hashes:
         print("exhaustive proofs: %d run, %d cited, %.0f s" % (len(ran), len(tests) - len(ran), time.time() - t0))
     return status
