@@ -371,8 +371,8 @@ fn control_law_readers_are_the_stored_value_in_si_and_agree_across_backends() {
         (laws::<I16F16>(), "I16F16", libm::exp2(-16.0)),
     ] {
         // The sample: rounded once (half a step, or f32's relative 2⁻²⁴).
-        for i in 0..3 {
-            near("sample", backend, a[i], b[i], lsb / 2.0 + 1e-7 * a[i].abs());
+        for (x, y) in a[..3].iter().zip(&b[..3]) {
+            near("sample", backend, *x, *y, lsb / 2.0 + 1e-7 * x.abs());
         }
         near("tracking error", backend, a[5], b[5], lsb + 1e-7);
         // Limits and the saturated command: the limit quantized once
