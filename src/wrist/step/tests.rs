@@ -1046,3 +1046,58 @@ fn ik_boundaries_are_strict() {
     });
     run::<I16F16>(|x: I16F16, k| I16F16::from_bits(x.to_bits() + k));
 }
+
+/// `singular` is strict: a reference with `|det J|` exactly `DET_MIN` in
+/// the step's arithmetic (`|a cγ sδ − b sγ| = DET_MIN·D`, update's closed
+/// form) is not singular. Such ties exist on `I16F16`, whose values are
+/// multiples of 2⁻¹⁶: found by stepping `δ` at `γ = 0` near the straight
+/// pose (where `|det J|` falls to 0) through the representable values.
+#[test]
+fn singular_is_strict_at_the_threshold() {
+    let cfg = WristStepConfig::<I16F16>::new(&params());
+    let z = I16F16::ZERO;
+    let parts = |d: I16F16| {
+        let ik = cfg.ik(PitchYaw { delta: d, gamma: z });
+        let (_, (s1, c1)) = ik.reduced?;
+        let (sp_s1, sp_c1) = (
+            s1.mul_unit_range(cfg.sin_phi),
+            c1.mul_unit_range(cfg.sin_phi),
+        );
+        let dd = ik
+            .sd
+            .mul_unit_range(sp_s1)
+            .add(ik.cd.mul_unit_range(cfg.cos_phi));
+        let a_cg = sp_c1.mul_unit_range(ik.cg);
+        let num = a_cg.mul_unit_range(ik.sd).sub(ik.sg.mul_unit_range(sp_s1));
+        Some((num.abs(), dd.mul_unit_range(cfg.det_min)))
+    };
+    let (mut tie, mut below, mut above) = (None, None, None);
+    for bits in 1..(1 << 13) {
+        let d = I16F16::from_bits(bits);
+        let Some((num, thr)) = parts(d) else { continue };
+        match num.cmp(&thr) {
+            core::cmp::Ordering::Less => below = below.or(Some(d)),
+            core::cmp::Ordering::Equal => tie = tie.or(Some(d)),
+            core::cmp::Ordering::Greater => above = above.or(Some(d)),
+        }
+    }
+    let run = |d: I16F16| {
+        let m = motors_at(d.to_f64(), 0.0);
+        let mut st = cfg.state(MotorAngles {
+            theta1: I16F16::from_f64(m.theta1),
+            theta3: I16F16::from_f64(m.theta3),
+        });
+        let x = WristTarget {
+            pose: PitchYaw { delta: d, gamma: z },
+            ..WristTarget::default()
+        };
+        let r = WristReadings::<I16F16>::from_si([0.0; 6], [m.theta1, m.theta3], [0.0; 2]);
+        let out = cfg.update(&mut st, &r, &x);
+        assert_eq!((out.reference.delta, out.reference.gamma), (d, z));
+        out.singular
+    };
+    let (tie, below, above) = (tie.expect("a tie"), below.unwrap(), above.unwrap());
+    assert!(!run(tie), "tie at δ = {tie}");
+    assert!(run(below), "below at δ = {below}");
+    assert!(!run(above), "above at δ = {above}");
+}
