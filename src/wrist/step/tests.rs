@@ -1101,3 +1101,37 @@ fn singular_is_strict_at_the_threshold() {
     assert!(run(below), "below at δ = {below}");
     assert!(!run(above), "above at δ = {above}");
 }
+
+/// `reference_saturated` is either limit alone: the mode manager's box
+/// (a target beyond ±30° whose clamped pose the wrist reaches) or the
+/// cone (a target inside the box bent beyond 2φ); neither for a target
+/// inside both.
+#[test]
+fn reference_saturated_is_either_limit_alone() {
+    let p = params();
+    let cfg = WristStepConfig::<f64>::new(&p);
+    let two_phi = 2.0 * p.settings().kinematics.phi();
+    let box_limit = 30f64.to_radians();
+    // [δ, γ] of the target; bend of the clamped pose against 2φ, box.
+    for (x, box_hit, cone_hit) in [
+        ([0.6, 0.0], true, false),
+        ([0.45, 0.45], false, true),
+        ([0.3, -0.2], false, false),
+    ] {
+        let clamped = x.map(|v: f64| v.clamp(-box_limit, box_limit));
+        let bend = libm::acos(libm::cos(clamped[0]) * libm::cos(clamped[1]));
+        assert_eq!((x != clamped, bend > two_phi), (box_hit, cone_hit), "{x:?}");
+        let m = motors_at(0.0, 0.0);
+        let mut st = cfg.state(m);
+        let out = cfg.update(
+            &mut st,
+            &WristReadings::from_si([0.0; 6], [m.theta1, m.theta3], [0.0; 2]),
+            &target([x[0], x[1], 0.0, 0.0]),
+        );
+        let want = box_hit || cone_hit;
+        assert_eq!(out.reference_saturated, want, "{x:?}: {out:?}");
+        if want {
+            assert!(out.saturated);
+        }
+    }
+}
