@@ -571,3 +571,217 @@ fn with_mode_state_resumes_the_manager() {
     assert_eq!(ra.control, rb.control);
     assert_eq!(ra.estimate, rb.estimate);
 }
+
+/// The largest accepted window is `MAX_SPEED_WINDOW` (inclusive bound of
+/// `JointSettings::speed_window`), the next is rejected naming the field,
+/// and the smallest accepted is 1; an accepted window is the one used
+/// (the speed resolution `2π/(M w T)`).
+#[test]
+fn speed_window_bounds_are_inclusive() {
+    let p = firmware_params().settings();
+    let with = |w: u8| {
+        JointParams::try_new(JointSettings {
+            speed_window: w,
+            ..p
+        })
+    };
+    for w in [1, 2, MAX_SPEED_WINDOW - 1, MAX_SPEED_WINDOW] {
+        let j = with(w).unwrap_or_else(|e| panic!("window {w} rejected: {e:?}"));
+        let want = TAU / (2000.0 * w as f64 * 0.004);
+        assert!((j.speed_resolution() - want).abs() < 1e-12 * want, "{w}");
+    }
+    for w in [0, MAX_SPEED_WINDOW + 1, u8::MAX] {
+        match with(w) {
+            Err(ParamError::OutOfRange { name, value, .. }) => {
+                assert_eq!((name, value), ("speed_window", w as f64));
+            }
+            other => panic!("window {w}: {other:?}"),
+        }
+    }
+}
+
+/// A backend's stored number read without the crate's unit tables:
+/// floats store SI; `I16F16` stores `bits · 2^-FRAC_NBITS` of its
+/// documented unit (mN·m for motor torque, N·m, rad and rad/s otherwise:
+/// the table of `scalar::units`).
+trait Stored: Scalar {
+    fn stored(self) -> f64;
+    /// SI per stored unit (`motor`: a motor torque).
+    fn unit(motor: bool) -> f64;
+}
+impl Stored for f64 {
+    fn stored(self) -> f64 {
+        self
+    }
+    fn unit(_: bool) -> f64 {
+        1.0
+    }
+}
+impl Stored for f32 {
+    fn stored(self) -> f64 {
+        self as f64
+    }
+    fn unit(_: bool) -> f64 {
+        1.0
+    }
+}
+impl Stored for I16F16 {
+    fn stored(self) -> f64 {
+        self.to_bits() as f64 * libm::exp2(-(I16F16::FRAC_NBITS as f64))
+    }
+    fn unit(motor: bool) -> f64 {
+        if motor {
+            1e-3
+        } else {
+            1.0
+        }
+    }
+}
+
+/// `got` equals `stored` times its unit, and is none of 0, 1, −1 (so a
+/// reader replaced by a constant cannot pass).
+fn conv<S: Stored>(name: &str, got: f64, stored: S, motor: bool) -> f64 {
+    let want = stored.stored() * S::unit(motor);
+    assert!(
+        [0.0, 1.0, -1.0].iter().all(|c| (want - c).abs() > 1e-7),
+        "{} {name}: trivial value {want}",
+        S::NAME
+    );
+    assert!(
+        (got - want).abs() <= 1e-12 * want.abs(),
+        "{} {name}: reader {got}, stored × unit {want}",
+        S::NAME
+    );
+    got
+}
+
+/// The Table 4.1 joint at rest at count 0, then one tick with the motor
+/// counter 10 counts ahead (a torsion; a speed of 10·2π/(2000·4 ms)) and
+/// a target 0.5 rad ahead (the law saturates): the seven readers of
+/// `JointOutput` and `JointMeasurement`, and the estimate's flexspline
+/// torsion (rad, for the agreement bound).
+fn si_tick<S: Stored>() -> ([f64; 7], f64) {
+    let p = JointParams::table_4_1().unwrap();
+    let cfg = JointConfig::<S>::new(&p);
+    let readings = JointReadings {
+        link_count: 0,
+        motor_counter: 10,
+        motor_torque: Some(S::ZERO),
+    };
+    let mut st = cfg.state(0, 0);
+    let out = cfg.update(&mut st, &readings, &JointTarget::from_si(0.5, 0.0, 0.0));
+    assert!(out.control.saturated && !out.invalid_input, "{out:?}");
+    let mut st = cfg.state(0, 0);
+    let m = cfg.measure(&mut st, &readings);
+    let o = &out;
+    (
+        [
+            conv(
+                "JointOutput::motor_torque_si",
+                o.motor_torque_si(),
+                o.motor_torque,
+                true,
+            ),
+            conv(
+                "JointOutput::joint_torque_si",
+                o.joint_torque_si(),
+                o.joint_torque,
+                false,
+            ),
+            conv(
+                "JointOutput::motor_position_si",
+                o.motor_position_si(),
+                o.motor_position,
+                false,
+            ),
+            conv(
+                "JointOutput::motor_velocity_si",
+                o.motor_velocity_si(),
+                o.motor_velocity,
+                false,
+            ),
+            conv(
+                "JointMeasurement::joint_torque_si",
+                m.joint_torque_si(),
+                m.joint_torque,
+                false,
+            ),
+            conv(
+                "JointMeasurement::motor_position_si",
+                m.motor_position_si(),
+                m.motor_position,
+                false,
+            ),
+            conv(
+                "JointMeasurement::motor_velocity_si",
+                m.motor_velocity_si(),
+                m.motor_velocity,
+                false,
+            ),
+        ],
+        o.estimate.flexspline_torsion.to_f64() / S::UNITS.torsion,
+    )
+}
+
+/// Every SI reader of the joint on every backend: the stored value times
+/// its unit, and, physically, the `f64` tick computed independently and
+/// the other backends within their documented bounds of it.
+#[test]
+fn si_readers_are_the_stored_value_in_si_on_every_backend() {
+    let (a, dtheta_f) = si_tick::<f64>();
+    // Independent: q_m = 10·2π/2000 rad, q̇_m = q_m/T (one-tick window),
+    // the command at the +0.188 N·m limit of Table 4.1, and the joint
+    // torque of eq. (3.9)–(3.10) as the module example computes it.
+    let qm = 10.0 * TAU / 2000.0;
+    for (i, want) in [
+        (0, 0.188),
+        (2, qm),
+        (3, qm / 0.004),
+        (5, qm),
+        (6, qm / 0.004),
+    ] {
+        assert!((a[i] - want).abs() < 1e-9, "{i}: {} vs {want}", a[i]);
+    }
+    let drive = CatalogueData::SHD_17_100.identify().unwrap();
+    let ke = KinematicErrorModel::table_3_2();
+    let theta_wi = -qm;
+    let f = drive.flexspline();
+    let tau_t =
+        -(f.c_f() * f.k_f0() * (theta_wi / 100.0 - ke.evaluate(0.0, theta_wi))).tan() / f.c_f();
+    assert!(tau_t > 1.0, "{tau_t}");
+    for i in [1, 4] {
+        assert!((a[i] - tau_t).abs() < 1e-3 * tau_t, "{} vs {tau_t}", a[i]);
+    }
+    let est = JointParams::table_4_1().unwrap().settings().estimator;
+    for (b, bound, lsb) in [
+        (si_tick::<f32>().0, est.agreement_bound::<f32>(), 0.0),
+        (
+            si_tick::<I16F16>().0,
+            est.agreement_bound::<I16F16>(),
+            libm::exp2(-16.0),
+        ),
+    ] {
+        // Estimated torque: the documented agreement interval (estimator
+        // sign, so negated) at the f64 flexspline torsion.
+        let (lo, hi) = bound.torque_interval(&est, dtheta_f);
+        for i in [1, 4] {
+            assert!(
+                lo <= -b[i] && -b[i] <= hi,
+                "{i}: {} not in [{lo}, {hi}]",
+                -b[i]
+            );
+        }
+        // Counts times 2π/M (2π/(M w T)), rounded once: one LSB on
+        // I16F16, f32's relative rounding.
+        for i in [2, 3, 5, 6] {
+            assert!(
+                (b[i] - a[i]).abs() <= lsb + 1e-6 * a[i].abs(),
+                "{i}: {} vs {}",
+                b[i],
+                a[i]
+            );
+        }
+        // The saturated command: the limit, quantized once.
+        assert!((b[0] - a[0]).abs() < 1e-7, "{} vs {}", b[0], a[0]);
+    }
+}

@@ -706,3 +706,543 @@ fn parameters_are_validated() {
     }
     assert_eq!(p.sample_period(), 0.004);
 }
+
+// ------------------------------------------------------------------
+// The SI readers, the state's pose, the target's request, and the
+// output flags users act on (`singular`, `torque_saturated`,
+// `invalid_input`), each driven both ways from its documented rule.
+
+/// A backend's stored number read without the crate's unit tables:
+/// floats store SI; `I16F16` stores `bits · 2^-FRAC_NBITS` of its
+/// documented unit (mN·m for motor torque; N·m, rad and rad/s otherwise:
+/// the table of `scalar::units`).
+trait Stored: Scalar {
+    fn stored(self) -> f64;
+    /// SI per stored unit (`motor`: a motor torque).
+    fn unit(motor: bool) -> f64;
+}
+impl Stored for f64 {
+    fn stored(self) -> f64 {
+        self
+    }
+    fn unit(_: bool) -> f64 {
+        1.0
+    }
+}
+impl Stored for f32 {
+    fn stored(self) -> f64 {
+        self as f64
+    }
+    fn unit(_: bool) -> f64 {
+        1.0
+    }
+}
+impl Stored for I16F16 {
+    fn stored(self) -> f64 {
+        self.to_bits() as f64 * libm::exp2(-(I16F16::FRAC_NBITS as f64))
+    }
+    fn unit(motor: bool) -> f64 {
+        if motor {
+            1e-3
+        } else {
+            1.0
+        }
+    }
+}
+
+/// Both readings equal the stored values times their unit, and none is
+/// 0, 1 or −1 (so a reader replaced by a constant cannot pass).
+fn conv2<S: Stored>(name: &str, got: [f64; 2], stored: [S; 2], motor: bool) -> [f64; 2] {
+    for i in 0..2 {
+        let want = stored[i].stored() * S::unit(motor);
+        assert!(
+            [0.0, 1.0, -1.0].iter().all(|c| (want - c).abs() > 1e-7),
+            "{} {name}[{i}]: trivial value {want}",
+            S::NAME
+        );
+        assert!(
+            (got[i] - want).abs() <= 1e-12 * want.abs(),
+            "{} {name}[{i}]: reader {}, stored × unit {want}",
+            S::NAME,
+            got[i]
+        );
+    }
+    got
+}
+
+/// The motors at rest at `(δ, γ)` (rad), by the library's inverse.
+fn motors_at(delta: f64, gamma: f64) -> MotorAngles<f64> {
+    WristConfig::<f64>::new(&params().settings().kinematics)
+        .inverse(PitchYaw { delta, gamma })
+        .motors
+}
+
+/// At rest at (0.2, −0.1) rad, one tick with the wrench
+/// `(F, τ) = (0, 0, 0, 1.5, −2, 0.7)` at the sensor, the target moved to
+/// (0.21, −0.11) rad and the measured motors 0.3 rad off their references
+/// (both laws saturate): the six readers of `WristOutput`.
+fn si_tick<S: Stored>() -> [[f64; 2]; 6] {
+    let p = params();
+    let cfg = WristStepConfig::<S>::new(&p);
+    let m = motors_at(0.2, -0.1);
+    let mut st = cfg.state(MotorAngles {
+        theta1: S::from_f64(m.theta1),
+        theta3: S::from_f64(m.theta3),
+    });
+    let sg = p
+        .settings()
+        .sensor
+        .decoupling()
+        .gauge_signals(&[0.0, 0.0, 0.0, 1.5, -2.0, 0.7]);
+    let r = WristReadings::<S>::from_si(sg, [m.theta1 - 0.3, m.theta3 + 0.3], [0.0; 2]);
+    let o = cfg.update(&mut st, &r, &target([0.21, -0.11, 0.0, 0.0]));
+    assert!(o.torque_saturated && !o.invalid_input, "{o:?}");
+    let rf = [o.reference.delta, o.reference.gamma];
+    let mr = [o.motor_reference.theta1, o.motor_reference.theta3];
+    [
+        conv2("motor_torque_si", o.motor_torque_si(), o.motor_torque, true),
+        conv2("interaction_si", o.interaction_si(), o.interaction, false),
+        conv2(
+            "joint_torque_si",
+            o.joint_torque_si(),
+            o.joint_torque,
+            false,
+        ),
+        conv2("reference_si", o.reference_si(), rf, false),
+        conv2("motor_reference_si", o.motor_reference_si(), mr, false),
+        conv2(
+            "motor_reference_rate_si",
+            o.motor_reference_rate_si(),
+            o.motor_reference_rate,
+            false,
+        ),
+    ]
+}
+
+/// Every SI reader of `WristOutput` on every backend: the stored value
+/// times its unit; physically, the `f64` tick against eq. (6.3) and the
+/// Table 6.1 limit computed here, the other backends within their
+/// documented bounds of it.
+#[test]
+fn si_readers_are_the_stored_value_in_si_on_every_backend() {
+    let a = si_tick::<f64>();
+    // Eq. (6.3) at the start pose's yaw γ = −0.1: τ_δ = cγ m_x − sγ τ_z
+    // with m_x = τ_x − l F_y = 1.5, τ_γ = −m_y with m_y = τ_y + l F_x = −2.
+    let (s, c) = libm::sincos(-0.1);
+    let want = [c * 1.5 - s * 0.7, 2.0];
+    for i in 0..2 {
+        assert!((a[1][i] - want[i]).abs() < 1e-6, "{:?} vs {want:?}", a[1]);
+        // Both laws at the 0.6 N·m limit, each pushing its motor back
+        // towards its reference (θ1 behind, θ3 ahead).
+        assert!((a[0][i].abs() - 0.6).abs() < 1e-12, "{:?}", a[0]);
+    }
+    assert!(a[0][0] > 0.0 && a[0][1] < 0.0);
+    // τ_t = −Jᵀτ with the exact Jacobian at the motor reference.
+    let kin = WristConfig::<f64>::new(&params().settings().kinematics);
+    let mr = MotorAngles {
+        theta1: a[4][0],
+        theta3: a[4][1],
+    };
+    let j = kin.jacobian(mr).m;
+    for i in 0..2 {
+        let jt = -(j[0][i] * a[1][0] + j[1][i] * a[1][1]);
+        assert!((a[2][i] - jt).abs() < 1e-6, "{i}: {} vs {jt}", a[2][i]);
+    }
+    // The reference's rate by difference from the start motors.
+    let m0 = motors_at(0.2, -0.1);
+    let rate = [(a[4][0] - m0.theta1) / 0.004, (a[4][1] - m0.theta3) / 0.004];
+    for i in 0..2 {
+        assert!((a[5][i] - rate[i]).abs() < 1e-6, "{:?} vs {rate:?}", a[5]);
+    }
+    // Bounds of the other backends: angles 2e-5 rad (f32) and 5e-3 rad
+    // (I16F16) (the inverse kinematics' bound, `ik`), rates those over T;
+    // the saturated torques the limit quantized once; the torques of
+    // eq. (6.3) and (6.1) a few products of gauge signals of order 1 V:
+    // 1e-3 N·m (interaction), 1e-2 N·m (through 1/D).
+    for (b, angle) in [(si_tick::<f32>(), 2e-5), (si_tick::<I16F16>(), 5e-3)] {
+        for i in 0..2 {
+            let tol = [1e-7, 1e-3, 1e-2, angle, angle, 2.0 * angle / 0.004];
+            for k in 0..6 {
+                assert!(
+                    (b[k][i] - a[k][i]).abs() <= tol[k],
+                    "reader {k}[{i}]: {} vs f64 {}",
+                    b[k][i],
+                    a[k][i]
+                );
+            }
+        }
+    }
+}
+
+/// `pose_reference`: the forward kinematics of the start motors, then the
+/// step's reference.
+#[test]
+fn pose_reference_is_the_last_reference() {
+    let cfg = WristStepConfig::<f64>::new(&params());
+    let m = motors_at(0.2, -0.1);
+    let mut st = cfg.state(m);
+    let r0 = st.pose_reference();
+    assert!(
+        (r0.delta - 0.2).abs() < 1e-9 && (r0.gamma + 0.1).abs() < 1e-9,
+        "{r0:?}"
+    );
+    let out = cfg.update(
+        &mut st,
+        &WristReadings::from_si([0.0; 6], [m.theta1, m.theta3], [0.0; 2]),
+        &target([0.25, -0.05, 0.0, 0.0]),
+    );
+    assert_eq!(st.pose_reference(), out.reference);
+    assert!(
+        out.reference.delta > 0.2 && out.reference.gamma > -0.1,
+        "{out:?}"
+    );
+}
+
+/// `with_request` keeps the pose and rate and adds the request, which the
+/// step obeys on the same tick.
+#[test]
+fn with_request_keeps_the_target_and_switches_now() {
+    let t = WristTarget::<f64>::from_si(0.2, -0.1, 0.3, -0.4);
+    let r = t.with_request(WristMode::Passive);
+    assert_eq!(r.request, Some(WristMode::Passive));
+    assert_eq!((r.pose, r.rate), (t.pose, t.rate));
+    assert_eq!(
+        t.with_request(WristMode::Active).request,
+        Some(WristMode::Active)
+    );
+    let cfg = WristStepConfig::<f64>::new(&params());
+    let m = motors_at(0.2, -0.1);
+    let mut st = cfg.state(m);
+    let still = WristReadings::from_si([0.0; 6], [m.theta1, m.theta3], [0.0; 2]);
+    let out = cfg.update(&mut st, &still, &r);
+    assert!(out.switched && out.mode == WristMode::Passive, "{out:?}");
+}
+
+/// `singular` is `|det J| < DET_MIN` at the reference: on a grid of poses
+/// through the straight pose and out to the cone, each held from rest
+/// (the reference is the pose), the flag equals the test on the exact
+/// Jacobian of the forward kinematics (`WristConfig::jacobian`), and both
+/// values occur.
+#[test]
+fn singular_flags_a_small_jacobian_determinant() {
+    let p = params();
+    let cfg = WristStepConfig::<f64>::new(&p);
+    let kin = WristConfig::<f64>::new(&p.settings().kinematics);
+    let (mut yes, mut no) = (0, 0);
+    for i in -12..=12 {
+        for k in -12..=12 {
+            let (d, g) = (i as f64 * 0.045, k as f64 * 0.045);
+            let m = motors_at(d, g);
+            if libm::cos(d) * libm::cos(g) < libm::cos(2.0 * kin.phi()) {
+                continue; // outside the cone: projected
+            }
+            let mut st = cfg.state(m);
+            let out = cfg.update(
+                &mut st,
+                &WristReadings::from_si([0.0; 6], [m.theta1, m.theta3], [0.0; 2]),
+                &target([d, g, 0.0, 0.0]),
+            );
+            let det = kin.jacobian(out.motor_reference).det;
+            if (det.abs() - DET_MIN).abs() < 1e-6 {
+                continue; // too close to the threshold to call
+            }
+            assert_eq!(out.singular, det.abs() < DET_MIN, "({d}, {g}): det {det}");
+            if out.singular {
+                yes += 1;
+            } else {
+                no += 1;
+            }
+        }
+    }
+    assert!(yes >= 1 && no > 100, "{yes} {no}");
+}
+
+/// `torque_saturated`: a motor law at its limit with valid inputs, either
+/// motor; a law flagged invalid (its torque 0) does not count.
+#[test]
+fn torque_saturated_is_a_valid_law_at_its_limit() {
+    fn run<S: Scalar>() {
+        let cfg = WristStepConfig::<S>::new(&params());
+        let m = motors_at(0.2, -0.1);
+        let hold = target::<S>([0.2, -0.1, 0.0, 0.0]);
+        let limit = 0.6; // Table 6.1, N·m
+                         // [θ1 offset, θ3 offset] (rad; NaN: an invalid reading), expected.
+        let nan = f64::NAN;
+        let fixed = S::RESOLUTION.to_f64() >= 1e-6;
+        let cases: &[([f64; 2], bool)] = &[
+            ([0.0, 0.0], false),
+            ([-0.3, 0.0], true),
+            ([0.0, 0.3], true),
+            ([nan, 0.0], false),
+            ([0.0, nan], false),
+            ([nan, 0.3], true),
+            ([-0.3, nan], true),
+        ];
+        for &(off, want) in cases {
+            if fixed && off.iter().any(|v| v.is_nan()) {
+                continue; // fixed point cannot hold NaN
+            }
+            let mut st = cfg.state(MotorAngles {
+                theta1: S::from_f64(m.theta1),
+                theta3: S::from_f64(m.theta3),
+            });
+            let r = WristReadings::<S>::from_si(
+                [0.0; 6],
+                [m.theta1 + off[0], m.theta3 + off[1]],
+                [0.0; 2],
+            );
+            let out = cfg.update(&mut st, &r, &hold);
+            assert_eq!(out.torque_saturated, want, "{} {off:?}: {out:?}", S::NAME);
+            assert_eq!(out.saturated, want, "{} {off:?}", S::NAME);
+            for i in 0..2 {
+                let t = out.motor_torque_si()[i];
+                if off[i].is_nan() {
+                    // The invalid law: flagged, saturated, torque 0.
+                    assert!(out.laws[i].invalid_input && out.laws[i].saturated);
+                    assert_eq!(t, 0.0);
+                } else if off[i] != 0.0 {
+                    assert!((t.abs() - limit).abs() < 1e-6, "{t}");
+                } else {
+                    assert!(t.abs() < 0.5 * limit, "{t}");
+                }
+            }
+        }
+    }
+    run::<f64>();
+    run::<f32>();
+    run::<I16F16>();
+}
+
+/// `invalid_input`: each impossible input alone sets it (a gauge signal,
+/// the target, a motor's position or speed), and a good tick clears it.
+#[test]
+fn invalid_input_is_set_by_each_source_alone() {
+    fn run<S: Scalar>() {
+        let cfg = WristStepConfig::<S>::new(&params());
+        let m = motors_at(0.2, -0.1);
+        let good: Tick = (
+            [0.01; 6],
+            [m.theta1, m.theta3],
+            [0.0; 2],
+            [0.2, -0.1, 0.0, 0.0],
+        );
+        let nan = f64::NAN;
+        let mut cases = std::vec![(good, false)];
+        for i in 0..16 {
+            let mut t = good;
+            let bad = if i % 2 == 0 { nan } else { f64::INFINITY };
+            match i / 2 {
+                0 => t.0[0] = bad,
+                1 => t.0[5] = bad,
+                2 => t.3[0] = bad,
+                3 => t.3[3] = bad,
+                4 => t.1[0] = bad,
+                5 => t.1[1] = bad,
+                6 => t.2[0] = bad,
+                _ => t.2[1] = bad,
+            }
+            cases.push((t, true));
+        }
+        for (k, ((g, mo, v, x), want)) in cases.into_iter().enumerate() {
+            let mut st = cfg.state(MotorAngles {
+                theta1: S::from_f64(m.theta1),
+                theta3: S::from_f64(m.theta3),
+            });
+            let out = cfg.update(&mut st, &WristReadings::from_si(g, mo, v), &target(x));
+            assert_eq!(out.invalid_input, want, "case {k}: {out:?}");
+            let next = cfg.update(
+                &mut st,
+                &WristReadings::from_si(good.0, good.1, good.2),
+                &target(good.3),
+            );
+            assert!(!next.invalid_input, "after case {k}");
+        }
+    }
+    run::<f64>();
+    run::<f32>();
+}
+
+/// The two strict comparisons of `ik`: a pose exactly on the cone
+/// (`cos β = cos 2φ` in the backend's arithmetic) is not projected, the
+/// next pose out is; a bend with `sin β` exactly `min_bend` is not the
+/// straight pose, the next one in is. The boundary poses are found by
+/// stepping `δ` (at `γ = 0`) through the backend's own representable
+/// values near the threshold.
+#[test]
+fn ik_boundaries_are_strict() {
+    fn run<S: Scalar>(next: impl Fn(S, i32) -> S) {
+        let cfg = WristStepConfig::<S>::new(&params());
+        let z = S::ZERO;
+        let sc = |a: S| {
+            if S::RESOLUTION.to_f64() >= 1e-6 {
+                S::sin_cos_turn(a.to_turn())
+            } else {
+                a.sin_cos()
+            }
+        };
+        let (sg, cg) = sc(z);
+        // cos β = cos δ·cos γ: the δ on the cone, and one step beyond.
+        let d0 = S::from_f64(libm::acos(cfg.cos_2phi.to_f64()));
+        let cb = |d: S| sc(d).1.mul_unit_range(cg);
+        let on = (-2000..2000)
+            .map(|k| next(d0, k))
+            .find(|&d| d > z && cb(d) == cfg.cos_2phi)
+            .expect("a pose exactly on the cone");
+        let ik = cfg.ik(PitchYaw {
+            delta: on,
+            gamma: z,
+        });
+        assert!(!ik.saturated && ik.reduced.is_some(), "{} on", S::NAME);
+        assert_eq!((ik.pose.delta, ik.pose.gamma), (on, z));
+        let mut out = on;
+        while cb(out) >= cfg.cos_2phi {
+            out = next(out, 1);
+        }
+        assert!(
+            cfg.ik(PitchYaw {
+                delta: out,
+                gamma: z
+            })
+            .saturated,
+            "{} out",
+            S::NAME
+        );
+        // sin β = |(sδ cγ, −sγ)|: the δ with sin β = min_bend.
+        let n = |d: S| sc(d).0.mul_unit_range(cg).hypot_unit(sg.neg());
+        let d1 = S::from_f64(libm::asin(cfg.min_bend.to_f64()));
+        let at = (-2000..2000)
+            .map(|k| next(d1, k))
+            .find(|&d| d > z && n(d) == cfg.min_bend)
+            .expect("a bend of exactly min_bend");
+        assert!(
+            cfg.ik(PitchYaw {
+                delta: at,
+                gamma: z
+            })
+            .reduced
+            .is_some(),
+            "{} at",
+            S::NAME
+        );
+        let mut inside = at;
+        while n(inside) >= cfg.min_bend {
+            inside = next(inside, -1);
+        }
+        assert!(
+            cfg.ik(PitchYaw {
+                delta: inside,
+                gamma: z
+            })
+            .reduced
+            .is_none(),
+            "{} in: δ {inside:?} sin β {:?} < {:?}, at {at:?}",
+            S::NAME,
+            n(inside),
+            cfg.min_bend
+        );
+    }
+    run::<f64>(|x: f64, k| {
+        let mut y = x;
+        for _ in 0..k.unsigned_abs() {
+            y = if k > 0 { y.next_up() } else { y.next_down() };
+        }
+        y
+    });
+    run::<f32>(|x: f32, k| {
+        let mut y = x;
+        for _ in 0..k.unsigned_abs() {
+            y = if k > 0 { y.next_up() } else { y.next_down() };
+        }
+        y
+    });
+    run::<I16F16>(|x: I16F16, k| I16F16::from_bits(x.to_bits() + k));
+}
+
+/// `singular` is strict: a reference with `|det J|` exactly `DET_MIN` in
+/// the step's arithmetic (`|a cγ sδ − b sγ| = DET_MIN·D`, update's closed
+/// form) is not singular. Such ties exist on `I16F16`, whose values are
+/// multiples of 2⁻¹⁶: found by stepping `δ` at `γ = 0` near the straight
+/// pose (where `|det J|` falls to 0) through the representable values.
+#[test]
+fn singular_is_strict_at_the_threshold() {
+    let cfg = WristStepConfig::<I16F16>::new(&params());
+    let z = I16F16::ZERO;
+    let parts = |d: I16F16| {
+        let ik = cfg.ik(PitchYaw { delta: d, gamma: z });
+        let (_, (s1, c1)) = ik.reduced?;
+        let (sp_s1, sp_c1) = (
+            s1.mul_unit_range(cfg.sin_phi),
+            c1.mul_unit_range(cfg.sin_phi),
+        );
+        let dd = ik
+            .sd
+            .mul_unit_range(sp_s1)
+            .add(ik.cd.mul_unit_range(cfg.cos_phi));
+        let a_cg = sp_c1.mul_unit_range(ik.cg);
+        let num = a_cg.mul_unit_range(ik.sd).sub(ik.sg.mul_unit_range(sp_s1));
+        Some((num.abs(), dd.mul_unit_range(cfg.det_min)))
+    };
+    let (mut tie, mut below, mut above) = (None, None, None);
+    for bits in 1..(1 << 13) {
+        let d = I16F16::from_bits(bits);
+        let Some((num, thr)) = parts(d) else { continue };
+        match num.cmp(&thr) {
+            core::cmp::Ordering::Less => below = below.or(Some(d)),
+            core::cmp::Ordering::Equal => tie = tie.or(Some(d)),
+            core::cmp::Ordering::Greater => above = above.or(Some(d)),
+        }
+    }
+    let run = |d: I16F16| {
+        let m = motors_at(d.to_f64(), 0.0);
+        let mut st = cfg.state(MotorAngles {
+            theta1: I16F16::from_f64(m.theta1),
+            theta3: I16F16::from_f64(m.theta3),
+        });
+        let x = WristTarget {
+            pose: PitchYaw { delta: d, gamma: z },
+            ..WristTarget::default()
+        };
+        let r = WristReadings::<I16F16>::from_si([0.0; 6], [m.theta1, m.theta3], [0.0; 2]);
+        let out = cfg.update(&mut st, &r, &x);
+        assert_eq!((out.reference.delta, out.reference.gamma), (d, z));
+        out.singular
+    };
+    let (tie, below, above) = (tie.expect("a tie"), below.unwrap(), above.unwrap());
+    assert!(!run(tie), "tie at δ = {tie}");
+    assert!(run(below), "below at δ = {below}");
+    assert!(!run(above), "above at δ = {above}");
+}
+
+/// `reference_saturated` is either limit alone: the mode manager's box
+/// (a target beyond ±30° whose clamped pose the wrist reaches) or the
+/// cone (a target inside the box bent beyond 2φ); neither for a target
+/// inside both.
+#[test]
+fn reference_saturated_is_either_limit_alone() {
+    let p = params();
+    let cfg = WristStepConfig::<f64>::new(&p);
+    let two_phi = 2.0 * p.settings().kinematics.phi();
+    let box_limit = 30f64.to_radians();
+    // [δ, γ] of the target; bend of the clamped pose against 2φ, box.
+    for (x, box_hit, cone_hit) in [
+        ([0.6, 0.0], true, false),
+        ([0.45, 0.45], false, true),
+        ([0.3, -0.2], false, false),
+    ] {
+        let clamped = x.map(|v: f64| v.clamp(-box_limit, box_limit));
+        let bend = libm::acos(libm::cos(clamped[0]) * libm::cos(clamped[1]));
+        assert_eq!((x != clamped, bend > two_phi), (box_hit, cone_hit), "{x:?}");
+        let m = motors_at(0.0, 0.0);
+        let mut st = cfg.state(m);
+        let out = cfg.update(
+            &mut st,
+            &WristReadings::from_si([0.0; 6], [m.theta1, m.theta3], [0.0; 2]),
+            &target([x[0], x[1], 0.0, 0.0]),
+        );
+        let want = box_hit || cone_hit;
+        assert_eq!(out.reference_saturated, want, "{x:?}: {out:?}");
+        if want {
+            assert!(out.saturated);
+        }
+    }
+}
