@@ -844,8 +844,15 @@ fn si_readers_are_the_stored_value_in_si_on_every_backend() {
         theta3: a[4][1],
     };
     let j = kin.jacobian(mr).m;
+    // Motor 2 drives θ3 through the universal joint of eq. (5.1) at the
+    // reference's bend β (errata E6.6): its shaft carries the θ3 torque
+    // divided by dθ2/dθ3, here by central differences of (5.1).
+    let beta = (a[3][0].cos() * a[3][1].cos()).clamp(-1.0, 1.0).acos();
+    let theta2 = |t3: f64| (beta.cos() * t3.sin()).atan2(t3.cos());
+    let h = 1e-6;
+    let dt2 = reduce(theta2(mr.theta3 + h) - theta2(mr.theta3 - h)) / (2.0 * h);
     for i in 0..2 {
-        let jt = -(j[0][i] * a[1][0] + j[1][i] * a[1][1]);
+        let jt = -(j[0][i] * a[1][0] + j[1][i] * a[1][1]) / if i == 1 { dt2 } else { 1.0 };
         assert!((a[2][i] - jt).abs() < 1e-6, "{i}: {} vs {jt}", a[2][i]);
     }
     // The reference's rate by difference from the start motors.
