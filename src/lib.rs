@@ -5,7 +5,7 @@
 #![doc = "[equations]: crate::docs::equations\n[errata]: crate::docs::errata\n[guide]: crate::docs::guide\n"]
 #![doc = "[verification]: crate::docs::verification\n[kani]: crate::docs::verification#kani\n[kernel-bounds]: crate::docs::verification#kernel-bounds\n"]
 #![doc = "[performance]: crate::docs::performance\n[reproduction]: crate::docs::reproduction\n[figures]: crate::docs::reproduction#figures-thesis-against-reproduction\n"]
-#![doc = "[Scalar]: crate::scalar::Scalar\n[api]: crate\n[design]: crate::control::design\n[claims]: crate::sim::claims\n"]
+#![doc = "[Scalar]: crate::scalar::Scalar\n[api]: crate\n[design]: crate::control::design\n[claims]: crate::sim::claims\n[mutants]: crate::docs::mutants\n"]
 #![doc = include_str!("../README.md")]
 #![cfg_attr(not(any(feature = "std", test, kani)), no_std)]
 // docs.rs (nightly, `--cfg docsrs`): mark feature-gated items with their feature.
@@ -70,6 +70,12 @@ pub mod docs {
     #[doc = ""]
     #[doc = include_str!("../docs/reproduction.md")]
     pub mod reproduction {}
+
+    /// Mutation testing: per module, how many mutants of the code the
+    /// library's own tests catch, and why each survivor is equivalent.
+    #[doc = ""]
+    #[doc = include_str!("../docs/MUTANTS.md")]
+    pub mod mutants {}
 }
 
 pub use error::ParamError;
