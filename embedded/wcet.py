@@ -881,11 +881,10 @@ def analyze(elf, entry, cycles):
 
 def main():
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-    import count
+    import cycles
 
     elf, entry = sys.argv[1], sys.argv[2]
-    core = count.CORES["M0+" if "thumbv6m" in elf else "M4F"]
-    b, prog = analyze(elf, entry, core.cycles)
+    b, prog = analyze(elf, entry, cycles.m0p_cycles if "thumbv6m" in elf else cycles.m4_cycles)
     print(f"{entry}: bound {b.insns} instructions, {b.cycles} cycles; {len(b.functions)} functions, "
           f"{len(b.loops)} loops, {b.panic_sites} panic sites excluded")
     for f in sorted(b.functions):

@@ -140,7 +140,7 @@ fn main() -> std::io::Result<()> {
     }
 
     println!("\nAssumption 5 (eq. 4.14): the estimator's error in the ch. 3-4 loops");
-    let survey = mrr_control::sim::experiments::estimator_error_survey();
+    let survey = mrr_control::sim::closed_loop::estimator_error_survey();
     for c in &survey {
         println!(
             "  {:<58} max |error| {:>6.3} N m",

@@ -471,8 +471,8 @@ fn hand_guidance_does_not_cycle_the_modes() {
 /// the law chatters (errata E4.4), it exceeds even that.
 #[test]
 fn estimator_error_is_within_the_variant_c_bound() {
+    use mrr_control::sim::closed_loop::estimator_error_survey;
     use mrr_control::sim::closed_loop::ESTIMATED_TORQUE_ERROR_BOUND;
-    use mrr_control::sim::experiments::estimator_error_survey;
     let cases = estimator_error_survey();
     let (mut worst, mut at_4ms) = (0.0f64, 0.0f64);
     for c in &cases {

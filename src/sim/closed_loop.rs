@@ -549,7 +549,7 @@ pub struct BoundCase {
 /// `ρ_τt` (N·m) under which Theorem 1 is checked for feedback variant C
 /// (the ch. 3 estimate): the estimator's worst-case error in the smooth
 /// (0.1 ms and 50 µs) ch. 3–4 loops, 2.9 N·m as measured by
-/// [`estimator_error_survey`](super::experiments::estimator_error_survey),
+/// [`estimator_error_survey`],
 /// with a third of margin for the random cases of the property test (the
 /// test `estimator_error_is_within_the_variant_c_bound` keeps the two
 /// consistent; each property-test run checks its own error against it).
@@ -1585,6 +1585,78 @@ pub fn collision_scenario(cfg: &ModeScenarioConfig) -> ModeScenarioResult {
         }
     };
     mode_scenario(cfg, 5.0, &desired, &wall, Some(WALL))
+}
+
+/// The ch. 3 estimator's error `τ̂_t − τ_t` (N·m) in one closed-loop
+/// scenario.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EstimatorErrorCase {
+    /// The scenario.
+    pub scenario: &'static str,
+    /// Its statistics over every sample.
+    pub error: ErrorStats,
+}
+
+/// The estimator's error over the ch. 3–4 closed-loop scenarios, every
+/// sample counted (transients included): the active tracking of Fig. 4.3
+/// with the estimate fed back (variant C, 4 ms, Table 4.1, 8 s), the
+/// payload drop of Fig. 3.8, the mode manager's hand-guidance and
+/// collision (stop) scenarios, and eight Theorem 1 cases with the estimate
+/// fed back (`BoundCase` with `estimated_feedback`, 0.3 s each; their
+/// error is measured over each hold interval, as eq. (4.14) bounds it).
+/// Its largest `max_abs` is the `ρ_τt` that Assumption 5 (eq. 4.14)
+/// needs for variant C; see [`crate::control::bound`].
+pub fn estimator_error_survey() -> Vec<EstimatorErrorCase> {
+    let mut out = std::vec::Vec::new();
+    let mut c = TrackingConfig::table_4_1(JointTorqueFeedback::Estimated, 4e-3);
+    c.duration = 8.0;
+    out.push(EstimatorErrorCase {
+        scenario: "active tracking, estimate fed back (Fig. 4.3 C, 4 ms)",
+        error: active_tracking(&c).feedback_error,
+    });
+    let r = payload_drop(&PayloadDropConfig::default());
+    out.push(EstimatorErrorCase {
+        scenario: "payload drop (Fig. 3.8, 0.1 ms)",
+        error: ErrorStats::of(r.trace.iter().map(|(_, t, e)| e - t)),
+    });
+    let r = interaction_scenario(&ModeScenarioConfig::interaction());
+    out.push(EstimatorErrorCase {
+        scenario: "mode manager, hand guidance (0.1 ms)",
+        error: ErrorStats::of(r.trace.iter().map(|m| m.estimate - m.joint_torque)),
+    });
+    let mut cc = ModeScenarioConfig::interaction();
+    cc.enter_passive = 1000.0;
+    cc.exit_passive = 500.0;
+    cc.collision = Some((
+        3.0,
+        1.5,
+        crate::estimation::collision::CollisionReaction::Stop,
+    ));
+    let r = collision_scenario(&cc);
+    out.push(EstimatorErrorCase {
+        scenario: "mode manager, collision stop (0.1 ms)",
+        error: ErrorStats::of(r.trace.iter().map(|m| m.estimate - m.joint_torque)),
+    });
+    for k in 0..8u64 {
+        let f = k as f64 / 7.0;
+        let mut case = BoundCase::feedback_bias(0.0);
+        case.estimated_feedback = true;
+        case.payload = 1.2 * f;
+        case.tilt = 0.3 * (1.0 - f);
+        case.amplitude = 0.05 + 0.15 * f;
+        case.period = 1.5 + 2.5 * (1.0 - f);
+        case.seed = k;
+        let r = bound_run(&case, 0.3);
+        out.push(EstimatorErrorCase {
+            scenario: "Theorem 1 case, estimate fed back (50 µs)",
+            error: ErrorStats {
+                rms: f64::NAN,
+                max: r.max_feedback_error,
+                min: -r.max_feedback_error,
+            },
+        });
+    }
+    out
 }
 
 #[cfg(test)]
