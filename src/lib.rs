@@ -116,6 +116,10 @@ pub mod prelude {
     };
 }
 
+/// Helpers shared by unit tests of several modules.
+#[cfg(test)]
+mod test_support;
+
 /// Verification properties (see `proofs/mod.rs`), compiled for the test,
 /// Kani and fuzz engines only.
 #[cfg(any(kani, test, feature = "proofs"))]

@@ -712,43 +712,7 @@ fn parameters_are_validated() {
 // output flags users act on (`singular`, `torque_saturated`,
 // `invalid_input`), each driven both ways from its documented rule.
 
-/// A backend's stored number read without the crate's unit tables:
-/// floats store SI; `I16F16` stores `bits · 2^-FRAC_NBITS` of its
-/// documented unit (mN·m for motor torque; N·m, rad and rad/s otherwise:
-/// the table of `scalar::units`).
-trait Stored: Scalar {
-    fn stored(self) -> f64;
-    /// SI per stored unit (`motor`: a motor torque).
-    fn unit(motor: bool) -> f64;
-}
-impl Stored for f64 {
-    fn stored(self) -> f64 {
-        self
-    }
-    fn unit(_: bool) -> f64 {
-        1.0
-    }
-}
-impl Stored for f32 {
-    fn stored(self) -> f64 {
-        self as f64
-    }
-    fn unit(_: bool) -> f64 {
-        1.0
-    }
-}
-impl Stored for I16F16 {
-    fn stored(self) -> f64 {
-        self.to_bits() as f64 * libm::exp2(-(I16F16::FRAC_NBITS as f64))
-    }
-    fn unit(motor: bool) -> f64 {
-        if motor {
-            1e-3
-        } else {
-            1.0
-        }
-    }
-}
+use crate::test_support::Stored;
 
 /// Both readings equal the stored values times their unit, and none is
 /// 0, 1 or −1 (so a reader replaced by a constant cannot pass).
