@@ -328,7 +328,7 @@ fn pole_radius_separates_designs_that_hold_from_those_that_fall() {
                 ..p.settings()
             })
             .unwrap();
-            let radius = sampled_pole_radius(&d, &joint);
+            let radius = sampled_pole_radius(&d, &joint).expect("a valid joint");
             let (bound, reach) = criterion(&q);
             let r = run::<f64>(&q, &PLANT, DURATION, reach);
             println!(

@@ -419,7 +419,20 @@ fn corners(d: &RobustAdaptiveDesign, joint: &SampledJoint) -> [[[f64; 6]; 6]; 16
 /// For Table 4.1 on its joint at 4 ms it is far above 1 (the law cannot
 /// hold its layers); see `table_4_1_is_unstable_when_sampled` in the
 /// tests of this module.
-pub fn sampled_pole_radius(d: &RobustAdaptiveDesign, joint: &SampledJoint) -> f64 {
+///
+/// The joint is validated as by [`design_for_period`] (a `ParamError`
+/// names the bad field), so the radius is never computed from a
+/// non-finite or non-physical joint.
+pub fn sampled_pole_radius(
+    d: &RobustAdaptiveDesign,
+    joint: &SampledJoint,
+) -> Result<f64, ParamError> {
+    check_joint(joint)?;
+    Ok(worst_pole_radius(d, joint))
+}
+
+/// [`sampled_pole_radius`] of a joint already validated.
+fn worst_pole_radius(d: &RobustAdaptiveDesign, joint: &SampledJoint) -> f64 {
     corners(d, joint)
         .iter()
         .map(pole_radius)
@@ -643,7 +656,7 @@ pub fn design_for_period(
             for is in 0..GRID {
                 let d = law(geo(lam_lo, lam_hi, il), geo(s_lo, s_hi, is), 0.0);
                 if RobustAdaptiveParams::try_new(d).is_ok() {
-                    smallest = smallest.min(sampled_pole_radius(&d, joint));
+                    smallest = smallest.min(worst_pole_radius(&d, joint));
                 }
             }
         }
@@ -670,7 +683,7 @@ pub fn design_for_period(
     Ok(PeriodDesign {
         params,
         bound: UltimateBound::new(&d),
-        pole_radius: sampled_pole_radius(&d, joint),
+        pole_radius: worst_pole_radius(&d, joint),
         robust_slope: robust_slope_at(&d, joint.max_motor_speed),
     })
 }
@@ -694,6 +707,22 @@ mod tests {
 
     /// The Schur–Cohn test against roots placed by hand: `(z − a)(z − b)…`
     /// expanded, inside a radius iff the largest `|root|` is below it.
+    #[test]
+    fn pole_radius_of_an_invalid_joint_is_an_error_naming_the_field() {
+        let d = table_4_1_known_stribeck_shape();
+        let mut j = joint();
+        j.link_inertia[1] = f64::NAN;
+        let e = sampled_pole_radius(&d, &j).unwrap_err();
+        assert_eq!(e.name(), "link_inertia[1]", "{e}");
+        j = joint();
+        j.sample_period = 0.0;
+        assert_eq!(
+            sampled_pole_radius(&d, &j).unwrap_err().name(),
+            "sample_period"
+        );
+        assert!(sampled_pole_radius(&d, &joint()).unwrap().is_finite());
+    }
+
     #[test]
     fn roots_inside_matches_placed_roots() {
         let expand = |roots: [(f64, f64); 3]| {
@@ -763,7 +792,7 @@ mod tests {
     #[test]
     fn table_4_1_is_unstable_when_sampled() {
         let d = RobustAdaptiveDesign::table_4_1();
-        let r = sampled_pole_radius(&d, &joint());
+        let r = sampled_pole_radius(&d, &joint()).unwrap();
         std::println!("Table 4.1 sampled pole radius at 4 ms: {r}");
         assert!(r > 100.0, "{r}");
     }
