@@ -1,0 +1,165 @@
+//! The inner universal joint of the wrist on the engine: the standard
+//! (Cardan) joint of thesis eq. (5.1)–(5.3), built from its parts to check
+//! [`crate::wrist::ujoint::transmit`] and the motor-2 factor of errata E6.6.
+//!
+//! # The parts
+//!
+//! * **Driving shaft** (motor 2's, angle `θ2`) — turns about the base `z`
+//!   axis; its yoke pin lies along its `x` axis. Motor 2 is a position
+//!   spring on this joint ([`EngineSettings`]).
+//! * **Cross** — turns about the driving yoke's pin (`x`) and carries the
+//!   driven yoke's pin along its `y` axis.
+//! * **Driven shaft** (angle `θ3`) — turns about `d = (sin β, 0, cos β)`,
+//!   the `z` axis bent by `β` about `y`; its yoke pin lies along `y` at
+//!   `θ3 = 0`.
+//!
+//! The cross keeps the two pins perpendicular, which for these frames is
+//! `tan θ2 = cos β tan θ3`, eq. (5.1) with both angles zero together. The
+//! base → driving shaft → cross and base → driven shaft joints are a
+//! multibody; the cross → driven shaft joint is an impulse joint that
+//! closes the loop. A load torque on the driven shaft is held by motor 2;
+//! at rest its spring gives the torque it needs.
+
+use rapier3d_f64::prelude::*;
+
+use super::world::{angle_about, motored_revolute, revolute, unwrap_near, EngineSettings, World};
+use crate::error::ParamError;
+
+/// A universal joint bent by `β` between a motor-driven shaft and a loaded
+/// one (module docs).
+pub struct UniversalJointBench {
+    world: World,
+    settings: EngineSettings,
+    bend: f64,
+    driving: RigidBodyHandle,
+    driven: RigidBodyHandle,
+    motor: MultibodyJointHandle,
+    target: f64,
+    load: f64,
+}
+
+impl UniversalJointBench {
+    /// The joint bent by `bend` (rad, finite, `0 ≤ β ≤ 60°`) at `θ2 = θ3 =
+    /// 0`.
+    pub fn try_new(bend: f64, settings: EngineSettings) -> Result<Self, ParamError> {
+        if !bend.is_finite() {
+            return Err(ParamError::NotFinite {
+                name: "bend",
+                value: bend,
+            });
+        }
+        let max = 60f64.to_radians();
+        if !(0.0..=max).contains(&bend) {
+            return Err(ParamError::OutOfRange {
+                name: "bend",
+                value: bend,
+                min: 0.0,
+                max,
+            });
+        }
+        let mut world = World::new(&settings);
+        let base = world.base();
+        let driving = world.body(Vector::zeros(), 0.05, Vector::repeat(1e-5));
+        let cross = world.body(Vector::zeros(), 0.01, Vector::repeat(1e-6));
+        let driven = world.body(Vector::zeros(), 0.05, Vector::repeat(1e-5));
+        let d = Vector::new(bend.sin(), 0.0, bend.cos());
+        let err = ParamError::NotFinite {
+            name: "multibody",
+            value: f64::NAN,
+        };
+        let mb = &mut world.multibody_joints;
+        let motor = mb
+            .insert(base, driving, motored_revolute(Vector::z(), 0.0, &settings), true)
+            .ok_or(err)?;
+        mb.insert(driving, cross, revolute(Vector::x()), true)
+            .ok_or(err)?;
+        mb.insert(base, driven, revolute(d), true).ok_or(err)?;
+        world
+            .impulse_joints
+            .insert(cross, driven, revolute(Vector::y()), true);
+        Ok(Self {
+            world,
+            settings,
+            bend,
+            driving,
+            driven,
+            motor,
+            target: 0.0,
+            load: 0.0,
+        })
+    }
+
+    /// The bend `β` (rad).
+    pub fn bend(&self) -> f64 {
+        self.bend
+    }
+
+    /// The axis `d` of the driven shaft (base frame).
+    fn driven_axis(&self) -> Vector<Real> {
+        Vector::new(self.bend.sin(), 0.0, self.bend.cos())
+    }
+
+    /// Sets motor 2's target `θ2` (rad; non-finite is ignored).
+    pub fn set_target(&mut self, theta2: f64) {
+        if !theta2.is_finite() {
+            return;
+        }
+        self.target = theta2;
+        let (k, c) = (self.settings.motor_stiffness(), self.settings.motor_damping());
+        if let Some((multibody, id)) = self.world.multibody_joints.get_mut(self.motor) {
+            if let Some(link) = multibody.link_mut(id) {
+                link.joint
+                    .data
+                    .set_motor_position(JointAxis::AngX, theta2, k, c);
+            }
+        }
+    }
+
+    /// The load torque (N·m) on the driven shaft about its axis `d`
+    /// (non-finite clears it).
+    pub fn set_load(&mut self, torque: f64) {
+        self.load = if torque.is_finite() { torque } else { 0.0 };
+    }
+
+    /// Ramps the target to `theta2` over `ramp` s, settles `settle` s;
+    /// returns the largest body angular speed at the end (rad/s).
+    pub fn move_to(&mut self, theta2: f64, ramp: f64, settle: f64) -> f64 {
+        let start = self.target;
+        let dt = self.settings.dt();
+        let n = (ramp / dt).ceil().clamp(1.0, 1e9) as u64;
+        for i in 1..=n {
+            self.set_target(start + (theta2 - start) * i as f64 / n as f64);
+            self.step();
+        }
+        let m = (settle / dt).ceil().clamp(0.0, 1e9) as u64;
+        for _ in 0..m {
+            self.step();
+        }
+        self.world.max_angular_speed()
+    }
+
+    /// One engine step.
+    pub fn step(&mut self) {
+        let torque = self.driven_axis() * self.load;
+        let b = &mut self.world.bodies[self.driven];
+        b.reset_torques(false);
+        b.add_torque(torque, true);
+        self.world.step();
+    }
+
+    /// `(θ2, θ3)` (rad) read from the shafts' poses, unwrapped to within `π`
+    /// of the motor target.
+    pub fn angles(&self) -> [f64; 2] {
+        let b = &self.world.bodies;
+        let t2 = unwrap_near(angle_about(b[self.driving].rotation(), &Vector::z()), self.target);
+        let t3 = angle_about(b[self.driven].rotation(), &self.driven_axis());
+        [t2, unwrap_near(t3, self.target)]
+    }
+
+    /// Motor 2's torque (N·m about the base `z`): `k (θ_target − θ2) − c θ̇2`.
+    pub fn motor_torque(&self) -> f64 {
+        let [t2, _] = self.angles();
+        let w = self.world.bodies[self.driving].angvel().z;
+        self.settings.motor_stiffness() * (self.target - t2) - self.settings.motor_damping() * w
+    }
+}

@@ -1,0 +1,319 @@
+//! The DAUJ wrist built from its parts on the engine (thesis §5.1, Fig.
+//! 5.3–5.4, 5.6), to check the library's kinematics and force mapping
+//! ([`crate::wrist`]) against a mechanism that does not use them.
+//!
+//! # The parts and the modelling choices
+//!
+//! All joint axes of the wrist pass through one point, the centre of the
+//! sphere (Fig. 5.5): the origin here. At the zero configuration (the
+//! thesis's initial status `θ1 = θ3 = 0`, `δ = γ = 0`, §5.2) every body's
+//! frame coincides with the base frame; `z` is the axis of the link `L1`
+//! (the motor-1 axis), and the output link `L2` points along `z` too.
+//!
+//! * **Lower semi-sphere** — driven by motor 1 about the base `z` axis
+//!   (joint `J1`, angle `θ1`; §5.1: "Motor 1 is used to drive the lower
+//!   semi-sphere").
+//! * **Upper semi-sphere** — meets the lower one in a plane inclined by `φ`
+//!   and turns on it (the internal oblique joint `J4`, angle `θ4`,
+//!   passive). Its axis is the normal of that plane, `n = (0, −sin φ,
+//!   cos φ)` in the lower semi-sphere's frame: the tilt direction of the
+//!   matrices printed in eq. (5.5) (`R_z(θ1) R_x(φ) … R_x(−φ)`, errata E5.1).
+//!   The thesis fixes the size of the tilt (`φ`, E5.3: 16°), this sets its
+//!   direction, which only names the frames.
+//! * **Output link `L2`** — turns about its own axis relative to the upper
+//!   semi-sphere (joint `J3`, angle `θ3`). Motor 2 reaches `J3` through the
+//!   extended shafts and the inner universal joint (§5.1); here `J3` carries
+//!   its own motor, i.e. the torque at `θ3` that eq. (5.28) is written for.
+//!   The transmission from the motor-2 shaft `θ2` to `θ3`, eq. (5.1)–(5.3),
+//!   is the separate bench [`super::UniversalJointBench`] (errata E6.6).
+//! * **Outer universal joint** (joints `J5`, `J6`) — a cross between the
+//!   base and `L2`: a revolute joint of the cross to the base about the base
+//!   `y` axis (pitch `δ`), and a revolute joint of `L2` to the cross about
+//!   the cross's `x` axis (yaw `γ`), the order of eq. (5.6),
+//!   `R = R_y(δ) R_x(γ)`. It keeps `L2` from rolling about its axis (§5.1).
+//!
+//! Lower semi-sphere → upper semi-sphere → `L2`, and base → cross, are
+//! reduced-coordinate multibody joints on the fixed base (exact joints); one
+//! impulse joint, cross → `L2`, closes the loop (an impulse joint from a free
+//! cross to the base, the other arrangement, is not supported by the engine
+//! when the base roots a multibody): the engine's solver, not eq. (5.8)–(5.12), finds the `θ4` that
+//! makes the chain and the universal joint agree. The motors are position
+//! springs on `J1` and `J3` ([`EngineSettings`]); `J4` and the cross are
+//! free. Gravity is off. The masses are small and only shape the
+//! transients.
+//!
+//! A wrench on the tool is a force at the tool point, `l` along the axis of
+//! `L2`, plus a couple, both in the base frame; at rest the motors' springs
+//! hold it and their deflection gives the torques the mechanism needs
+//! ([`DaujMechanism::motor_torques`]).
+
+use rapier3d_f64::na::UnitQuaternion;
+use rapier3d_f64::prelude::*;
+
+use super::world::{angle_about, motored_revolute, revolute, unwrap_near, EngineSettings, World};
+use crate::error::ParamError;
+use crate::wrist::WristParams;
+
+/// Joint angles of the mechanism (rad), read from the bodies' poses.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MechanismAngles {
+    /// `θ1`: lower semi-sphere about the base `z` axis (motor 1), unwrapped
+    /// to within `π` of its motor target.
+    pub theta1: f64,
+    /// `θ4`: upper semi-sphere about the oblique axis, in `(−π, π]`.
+    pub theta4: f64,
+    /// `θ3`: `L2` about its own axis relative to the upper semi-sphere
+    /// (the `J3` motor), unwrapped to within `π` of its motor target.
+    pub theta3: f64,
+    /// Pitch `δ` of the outer universal joint (cross about the base `y`).
+    pub delta: f64,
+    /// Yaw `γ` of the outer universal joint (`L2` about the cross's `x`).
+    pub gamma: f64,
+    /// How far the loop is from closed: the angle (rad) between `L2`'s
+    /// orientation through the chain and through the universal joint,
+    /// `R_y(δ) R_x(γ)`.
+    pub loop_error: f64,
+}
+
+/// The DAUJ wrist as a mechanism on the engine (module docs).
+pub struct DaujMechanism {
+    world: World,
+    settings: EngineSettings,
+    phi: f64,
+    tool_length: f64,
+    lower: RigidBodyHandle,
+    upper: RigidBodyHandle,
+    output: RigidBodyHandle,
+    cross: RigidBodyHandle,
+    motor1: MultibodyJointHandle,
+    motor3: MultibodyJointHandle,
+    targets: [f64; 2],
+    force: Vector<Real>,
+    couple: Vector<Real>,
+    time: f64,
+}
+
+impl DaujMechanism {
+    /// The wrist of inclination `params.phi()` with its tool point
+    /// `tool_length` (m, finite, in `(0, 1]`) along the output axis, at the
+    /// zero configuration.
+    pub fn try_new(
+        params: &WristParams,
+        tool_length: f64,
+        settings: EngineSettings,
+    ) -> Result<Self, ParamError> {
+        if !tool_length.is_finite() {
+            return Err(ParamError::NotFinite {
+                name: "tool_length",
+                value: tool_length,
+            });
+        }
+        if !(tool_length > 0.0 && tool_length <= 1.0) {
+            return Err(ParamError::OutOfRange {
+                name: "tool_length",
+                value: tool_length,
+                min: f64::MIN_POSITIVE,
+                max: 1.0,
+            });
+        }
+        let phi = params.phi();
+        let mut world = World::new(&settings);
+        let base = world.base();
+        // Semi-spheres of ~0.1 kg and radius ~3 cm; L2 a 0.2 kg link with its
+        // centre of mass 4 cm out; a light cross.
+        let lower = world.body(Vector::zeros(), 0.1, Vector::repeat(4e-5));
+        let upper = world.body(Vector::zeros(), 0.1, Vector::repeat(4e-5));
+        let output = world.body(Vector::new(0.0, 0.0, 0.04), 0.2, Vector::new(1e-4, 1e-4, 3e-5));
+        let cross = world.body(Vector::zeros(), 0.02, Vector::repeat(2e-6));
+        let z = Vector::z();
+        let oblique = Vector::new(0.0, -phi.sin(), phi.cos());
+        let mb = &mut world.multibody_joints;
+        let motor1 = mb
+            .insert(base, lower, motored_revolute(z, 0.0, &settings), true)
+            .ok_or(ParamError::NotFinite {
+                name: "multibody",
+                value: f64::NAN,
+            })?;
+        mb.insert(lower, upper, revolute(oblique), true)
+            .ok_or(ParamError::NotFinite {
+                name: "multibody",
+                value: f64::NAN,
+            })?;
+        let motor3 = mb
+            .insert(upper, output, motored_revolute(z, 0.0, &settings), true)
+            .ok_or(ParamError::NotFinite {
+                name: "multibody",
+                value: f64::NAN,
+            })?;
+        world
+            .multibody_joints
+            .insert(base, cross, revolute(Vector::y()), true)
+            .ok_or(ParamError::NotFinite {
+                name: "multibody",
+                value: f64::NAN,
+            })?;
+        world
+            .impulse_joints
+            .insert(cross, output, revolute(Vector::x()), true);
+        Ok(Self {
+            world,
+            settings,
+            phi,
+            tool_length,
+            lower,
+            upper,
+            output,
+            cross,
+            motor1,
+            motor3,
+            targets: [0.0; 2],
+            force: Vector::zeros(),
+            couple: Vector::zeros(),
+            time: 0.0,
+        })
+    }
+
+    /// The settings it runs with.
+    pub fn settings(&self) -> &EngineSettings {
+        &self.settings
+    }
+
+    /// The inclination `φ` (rad).
+    pub fn phi(&self) -> f64 {
+        self.phi
+    }
+
+    /// Simulated time (s).
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// The motor targets `(θ1, θ3)` (rad).
+    pub fn targets(&self) -> [f64; 2] {
+        self.targets
+    }
+
+    /// Sets the motor targets `θ1`, `θ3` (rad; non-finite values are
+    /// ignored). Jumps are taken as steps by the springs: use
+    /// [`Self::move_to`] for large moves.
+    pub fn set_targets(&mut self, theta1: f64, theta3: f64) {
+        if !(theta1.is_finite() && theta3.is_finite()) {
+            return;
+        }
+        self.targets = [theta1, theta3];
+        let (k, c) = (self.settings.motor_stiffness(), self.settings.motor_damping());
+        for (handle, target) in [(self.motor1, theta1), (self.motor3, theta3)] {
+            if let Some((multibody, id)) = self.world.multibody_joints.get_mut(handle) {
+                if let Some(link) = multibody.link_mut(id) {
+                    link.joint
+                        .data
+                        .set_motor_position(JointAxis::AngX, target, k, c);
+                }
+            }
+        }
+    }
+
+    /// The wrench on the tool: `force` (N) at the tool point and a `couple`
+    /// (N·m), both in the base frame; it stays until replaced (non-finite
+    /// input clears it).
+    pub fn set_tool_wrench(&mut self, force: [f64; 3], couple: [f64; 3]) {
+        let ok = force.iter().chain(couple.iter()).all(|x| x.is_finite());
+        self.force = if ok { Vector::from(force) } else { Vector::zeros() };
+        self.couple = if ok { Vector::from(couple) } else { Vector::zeros() };
+    }
+
+    /// The tool point (m, base frame).
+    pub fn tool_point(&self) -> [f64; 3] {
+        let p = self.world.bodies[self.output].position() * Point::new(0.0, 0.0, self.tool_length);
+        [p.x, p.y, p.z]
+    }
+
+    /// One engine step.
+    pub fn step(&mut self) {
+        let tool = Point::from(self.tool_point());
+        let (force, couple) = (self.force, self.couple);
+        let out = &mut self.world.bodies[self.output];
+        out.reset_forces(false);
+        out.reset_torques(false);
+        out.add_force_at_point(force, tool, true);
+        out.add_torque(couple, true);
+        self.world.step();
+        self.time += self.settings.dt();
+    }
+
+    /// Runs for `seconds` (s) of simulated time.
+    pub fn run(&mut self, seconds: f64) {
+        let n = (seconds / self.settings.dt()).ceil().clamp(0.0, 1e9) as u64;
+        for _ in 0..n {
+            self.step();
+        }
+    }
+
+    /// Moves the motor targets linearly from where they are to
+    /// `(theta1, theta3)` (rad) over `ramp` seconds, then lets the mechanism
+    /// settle for `settle` seconds; returns the largest body angular speed
+    /// at the end (rad/s).
+    pub fn move_to(&mut self, theta1: f64, theta3: f64, ramp: f64, settle: f64) -> f64 {
+        let [a1, a3] = self.targets;
+        let n = (ramp / self.settings.dt()).ceil().clamp(1.0, 1e9) as u64;
+        for i in 1..=n {
+            let s = i as f64 / n as f64;
+            self.set_targets(a1 + s * (theta1 - a1), a3 + s * (theta3 - a3));
+            self.step();
+        }
+        self.run(settle);
+        self.world.max_angular_speed()
+    }
+
+    /// Largest angular speed of any body (rad/s).
+    pub fn max_angular_speed(&self) -> f64 {
+        self.world.max_angular_speed()
+    }
+
+    /// The orientation of the output link `L2` (base frame).
+    pub fn output_rotation(&self) -> UnitQuaternion<Real> {
+        *self.world.bodies[self.output].rotation()
+    }
+
+    /// The joint angles read from the bodies' poses.
+    pub fn angles(&self) -> MechanismAngles {
+        let b = &self.world.bodies;
+        let ql = *b[self.lower].rotation();
+        let qu = *b[self.upper].rotation();
+        let qo = *b[self.output].rotation();
+        let qc = *b[self.cross].rotation();
+        let oblique = Vector::new(0.0, -self.phi.sin(), self.phi.cos());
+        let theta1 = unwrap_near(angle_about(&ql, &Vector::z()), self.targets[0]);
+        let theta4 = angle_about(&(ql.inverse() * qu), &oblique);
+        let theta3 = unwrap_near(angle_about(&(qu.inverse() * qo), &Vector::z()), self.targets[1]);
+        let delta = angle_about(&qc, &Vector::y());
+        let gamma = angle_about(&(qc.inverse() * qo), &Vector::x());
+        let through_joint = UnitQuaternion::from_axis_angle(&Vector::y_axis(), delta)
+            * UnitQuaternion::from_axis_angle(&Vector::x_axis(), gamma);
+        MechanismAngles {
+            theta1,
+            theta4,
+            theta3,
+            delta,
+            gamma,
+            loop_error: qo.angle_to(&through_joint),
+        }
+    }
+
+    /// The torques the two motors apply (N·m) on `J1` (about the base `z`)
+    /// and on `J3` (on `L2` about its axis, against the upper
+    /// semi-sphere): `k (θ_target − θ) − c θ̇` of their springs. At rest
+    /// these are the torques the mechanism needs to hold its load.
+    pub fn motor_torques(&self) -> [f64; 2] {
+        let a = self.angles();
+        let b = &self.world.bodies;
+        let (k, c) = (self.settings.motor_stiffness(), self.settings.motor_damping());
+        let w1 = b[self.lower].angvel().z;
+        let axis3 = b[self.output].rotation() * Vector::z();
+        let w3 = (b[self.output].angvel() - b[self.upper].angvel()).dot(&axis3);
+        [
+            k * (self.targets[0] - a.theta1) - c * w1,
+            k * (self.targets[1] - a.theta3) - c * w3,
+        ]
+    }
+}
