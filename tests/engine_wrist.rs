@@ -41,6 +41,14 @@ use nalgebra::{UnitQuaternion, Vector3};
 /// Tool point distance along the output axis (m).
 const TOOL: f64 = 0.06;
 
+/// A pose is read when every body turns slower than this (rad/s).
+const SPEED_TOL: f64 = 1e-6;
+
+/// Ramp time (s) for a motor move of `jump` rad: at most 3 rad/s.
+fn ramp_for(jump: f64) -> f64 {
+    (jump / 3.0).max(0.05)
+}
+
 /// Eq. (5.6), written here: pitch about the base `y`, then yaw about the
 /// new `x`.
 fn pose_rotation(delta: f64, gamma: f64) -> UnitQuaternion<f64> {
@@ -85,7 +93,8 @@ fn fk_sweep(settings: EngineSettings, n: usize) -> (FkErrors, Vec<[f64; 3]>) {
     for (t1, t3) in motor_grid(n) {
         let ramp = if first { 0.5 } else { 0.05 };
         first = false;
-        let speed = m.move_to(t1, t3, ramp, 0.1);
+        m.move_to(t1, t3, ramp);
+        let speed = m.settle(SPEED_TOL, 0.02, 1.0);
         let a = m.angles();
         let f = cfg.forward(MotorAngles {
             theta1: a.theta1,
@@ -114,15 +123,150 @@ fn forward_kinematics_matches_the_mechanism() {
 }
 
 #[test]
-fn probe() {
+fn inverse_kinematics_reference_is_reached_by_the_mechanism() {
     let p = WristParams::thesis();
     let cfg = WristConfig::<f64>::new(&p);
     let mut m = DaujMechanism::try_new(&p, TOOL, EngineSettings::default()).unwrap();
-    for (k, (t1, t3)) in motor_grid(24).into_iter().enumerate().take(60) {
-        let speed = m.move_to(t1, t3, if k == 0 { 0.5 } else { 0.05 }, 0.1);
-        let a = m.angles();
-        let f = cfg.forward(MotorAngles { theta1: a.theta1, theta3: a.theta3 });
-        println!("{k} t=({:.3},{:.3}) meas=({:.4},{:.4}) th4 {:.5} lib {:.5} dg eng ({:.4},{:.4}) lib ({:.4},{:.4}) loop {:.2e} speed {:.2e}",
-            t1, t3, a.theta1, a.theta3, a.theta4, f.theta4, a.delta, a.gamma, f.pose.delta, f.pose.gamma, a.loop_error, speed);
+    let mut ik = IkState::new(MotorAngles {
+        theta1: 0.0,
+        theta3: 0.0,
+    });
+    let n = 25;
+    let lim = 2.0 * p.phi();
+    let (mut worst, mut count, mut speed) = (0.0f64, 0, 0.0f64);
+    for i in 0..n {
+        let delta = -lim + 2.0 * lim * i as f64 / (n - 1) as f64;
+        for j in 0..n {
+            let jj = if i % 2 == 0 { j } else { n - 1 - j };
+            let gamma = -lim + 2.0 * lim * jj as f64 / (n - 1) as f64;
+            if !p.is_reachable(delta, gamma) {
+                continue;
+            }
+            let inv = cfg.update(&mut ik, PitchYaw { delta, gamma });
+            let [a1, a3] = m.targets();
+            let jump = (inv.motors.theta1 - a1)
+                .abs()
+                .max((inv.motors.theta3 - a3).abs());
+            m.move_to(inv.motors.theta1, inv.motors.theta3, ramp_for(jump));
+            speed = speed.max(m.settle(SPEED_TOL, 0.02, 1.0));
+            let err = m.output_rotation().angle_to(&pose_rotation(delta, gamma));
+            worst = worst.max(err);
+            count += 1;
+        }
     }
+    println!(
+        "(b) IK reference, {count} reachable poses of a {n} x {n} grid of [-2phi, 2phi]^2, dt = 1 ms: \
+         max orientation error {worst:.3e} rad, max residual speed {speed:.2e} rad/s"
+    );
+    assert!(count > 300);
+    assert!(worst <= 1e-4, "{worst}");
+}
+
+/// One pose of the force check: the engine's holding torques and the
+/// library's, at the engine's pose.
+#[derive(Debug, Clone, Copy)]
+struct HoldSample {
+    engine: [f64; 2],
+    exact: [f64; 2],
+    thesis: [f64; 2],
+}
+
+fn hold_sweep(settings: EngineSettings, n: usize, seed: u64) -> Vec<HoldSample> {
+    let p = WristParams::thesis();
+    let exact = ForceMapping::<f64>::new(&p, JacobianKind::Exact);
+    let thesis = ForceMapping::<f64>::new(&p, JacobianKind::Thesis);
+    let mut m = DaujMechanism::try_new(&p, TOOL, settings).unwrap();
+    let mut rng = SplitMix64::new(seed);
+    let mut out = Vec::new();
+    let mut first = true;
+    for (t1, t3) in motor_grid(n) {
+        let ramp = if first { 0.5 } else { 0.05 };
+        first = false;
+        m.set_tool_wrench([0.0; 3], [0.0; 3]);
+        m.move_to(t1, t3, ramp);
+        let mut u = || 2.0 * rng.uniform() - 1.0;
+        let force = [20.0 * u(), 20.0 * u(), 20.0 * u()];
+        let couple = [0.5 * u(), 0.5 * u(), 0.5 * u()];
+        m.set_tool_wrench(force, couple);
+        m.settle(SPEED_TOL, 0.05, 1.0);
+        let a = m.angles();
+        // Moment about the wrist centre (the origin), then its projections
+        // on the pitch axis (base y) and the yaw axis (R_y(delta) x): the
+        // generalized forces of delta and gamma by virtual work.
+        let tool = Vector3::from(m.tool_point());
+        let moment = Vector3::from(couple) + tool.cross(&Vector3::from(force));
+        let yaw_axis = Vector3::new(a.delta.cos(), 0.0, -a.delta.sin());
+        let task = [moment.y, moment.dot(&yaw_axis)];
+        let motors = MotorAngles {
+            theta1: a.theta1,
+            theta3: a.theta3,
+        };
+        let e = exact.motor_torques(motors, task).torque;
+        let t = thesis.motor_torques(motors, task).torque;
+        out.push(HoldSample {
+            engine: m.motor_torques(),
+            exact: [-e[0], -e[1]],
+            thesis: [-t[0], -t[1]],
+        });
+    }
+    out
+}
+
+#[test]
+fn holding_torques_match_the_force_mapping() {
+    let samples = hold_sweep(EngineSettings::default(), 12, 37);
+    let (mut worst, mut worst_thesis, mut largest) = (0.0f64, 0.0f64, 0.0f64);
+    for s in &samples {
+        for i in 0..2 {
+            worst = worst.max((s.engine[i] - s.exact[i]).abs());
+            worst_thesis = worst_thesis.max((s.engine[i] - s.thesis[i]).abs());
+            largest = largest.max(s.engine[i].abs());
+        }
+    }
+    println!(
+        "(c) holding torques, 12 x 12 motor poses, dt = 1 ms: max |engine - (-J^T tau)| = {worst:.3e} N m \
+         (exact J), {worst_thesis:.3e} N m (thesis chain J2 Jc); largest motor torque {largest:.3} N m"
+    );
+    assert!(largest > 0.3, "the wrenches load the motors: {largest}");
+    assert!(worst <= 1e-3, "{worst}");
+}
+
+#[test]
+fn motor_2_torque_through_the_universal_joint() {
+    let settings = EngineSettings::default();
+    let load = 0.5;
+    let (mut angle_err, mut torque_err, mut fmin, mut fmax) = (0.0f64, 0.0f64, f64::MAX, 0.0f64);
+    for bend_deg in [0.0, 8.0, 16.0, 24.0, 32.0] {
+        let bend = f64::to_radians(bend_deg);
+        let mut b = UniversalJointBench::try_new(bend, settings).unwrap();
+        for i in 1..=16 {
+            let theta2 = f64::to_radians(22.5 * i as f64);
+            b.set_load(0.0);
+            b.move_and_settle(theta2, 0.05, SPEED_TOL, 0.02, 1.0);
+            let [t2, t3] = b.angles();
+            let lib = transmit(bend, t3, 0.0, 0.0).angle;
+            angle_err = angle_err.max(wrap(t2 - lib).abs());
+            b.set_load(load);
+            b.move_and_settle(theta2, 0.0, SPEED_TOL, 0.05, 1.0);
+            let [_, t3] = b.angles();
+            let expected = -transmit(bend, t3, 0.0, load).torque;
+            torque_err = torque_err.max((b.motor_torque() - expected).abs() / load);
+            fmin = fmin.min(-expected / load);
+            fmax = fmax.max(-expected / load);
+        }
+    }
+    println!(
+        "(d) universal joint, bends 0..32 deg x 16 shaft angles, dt = 1 ms: max eq. (5.1) angle error \
+         {angle_err:.3e} rad, max eq. (5.3) torque error {torque_err:.3e} (relative to the load); \
+         factor range {fmin:.4}..{fmax:.4}"
+    );
+    assert!(angle_err <= 1e-4, "{angle_err}");
+    assert!(torque_err <= 1e-3, "{torque_err}");
+    // The bench reaches the factor's extremes at the wrist's largest bend,
+    // cos(2 phi) and 1/cos(2 phi) (E6.6).
+    let c = f64::to_radians(32.0).cos();
+    assert!(
+        (fmin - c).abs() < 1e-3 && (fmax - 1.0 / c).abs() < 1e-3,
+        "{fmin} {fmax}"
+    );
 }

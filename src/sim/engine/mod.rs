@@ -19,9 +19,9 @@
 //! Gravity is off in both: the checks are kinematic and static.
 
 pub mod universal_joint;
-pub mod wrist;
 mod world;
+pub mod wrist;
 
 pub use universal_joint::UniversalJointBench;
-pub use wrist::{DaujMechanism, MechanismAngles};
 pub use world::EngineSettings;
+pub use wrist::{DaujMechanism, MechanismAngles};

@@ -6,7 +6,8 @@
 //!
 //! * **Driving shaft** (motor 2's, angle `θ2`) — turns about the base `z`
 //!   axis; its yoke pin lies along its `x` axis. Motor 2 is a position
-//!   spring on this joint ([`EngineSettings`]).
+//!   spring on this joint, a torque applied by this module
+//!   ([`EngineSettings`]).
 //! * **Cross** — turns about the driving yoke's pin (`x`) and carries the
 //!   driven yoke's pin along its `y` axis.
 //! * **Driven shaft** (angle `θ3`) — turns about `d = (sin β, 0, cos β)`,
@@ -22,7 +23,7 @@
 
 use rapier3d_f64::prelude::*;
 
-use super::world::{angle_about, motored_revolute, revolute, unwrap_near, EngineSettings, World};
+use super::world::{angle_about, revolute, unwrap_near, EngineSettings, World};
 use crate::error::ParamError;
 
 /// A universal joint bent by `β` between a motor-driven shaft and a loaded
@@ -33,7 +34,6 @@ pub struct UniversalJointBench {
     bend: f64,
     driving: RigidBodyHandle,
     driven: RigidBodyHandle,
-    motor: MultibodyJointHandle,
     target: f64,
     load: f64,
 }
@@ -59,17 +59,18 @@ impl UniversalJointBench {
         }
         let mut world = World::new(&settings);
         let base = world.base();
-        let driving = world.body(Vector::zeros(), 0.05, Vector::repeat(1e-5));
+        // Inertias as in the wrist (they set the explicit motor spring's
+        // time scale only).
+        let driving = world.body(Vector::zeros(), 0.05, Vector::repeat(1e-3));
         let cross = world.body(Vector::zeros(), 0.01, Vector::repeat(1e-6));
-        let driven = world.body(Vector::zeros(), 0.05, Vector::repeat(1e-5));
+        let driven = world.body(Vector::zeros(), 0.05, Vector::repeat(1e-3));
         let d = Vector::new(bend.sin(), 0.0, bend.cos());
         let err = ParamError::NotFinite {
             name: "multibody",
             value: f64::NAN,
         };
         let mb = &mut world.multibody_joints;
-        let motor = mb
-            .insert(base, driving, motored_revolute(Vector::z(), 0.0, &settings), true)
+        mb.insert(base, driving, revolute(Vector::z()), true)
             .ok_or(err)?;
         mb.insert(driving, cross, revolute(Vector::x()), true)
             .ok_or(err)?;
@@ -83,7 +84,6 @@ impl UniversalJointBench {
             bend,
             driving,
             driven,
-            motor,
             target: 0.0,
             load: 0.0,
         })
@@ -105,14 +105,6 @@ impl UniversalJointBench {
             return;
         }
         self.target = theta2;
-        let (k, c) = (self.settings.motor_stiffness(), self.settings.motor_damping());
-        if let Some((multibody, id)) = self.world.multibody_joints.get_mut(self.motor) {
-            if let Some(link) = multibody.link_mut(id) {
-                link.joint
-                    .data
-                    .set_motor_position(JointAxis::AngX, theta2, k, c);
-            }
-        }
     }
 
     /// The load torque (N·m) on the driven shaft about its axis `d`
@@ -121,9 +113,18 @@ impl UniversalJointBench {
         self.load = if torque.is_finite() { torque } else { 0.0 };
     }
 
-    /// Ramps the target to `theta2` over `ramp` s, settles `settle` s;
-    /// returns the largest body angular speed at the end (rad/s).
-    pub fn move_to(&mut self, theta2: f64, ramp: f64, settle: f64) -> f64 {
+    /// Ramps the target to `theta2` over `ramp` s, then runs at least
+    /// `min_seconds` and until both shafts turn slower than `speed_tol`
+    /// (rad/s), for at most `max_seconds`; returns the largest body angular
+    /// speed at the end (rad/s).
+    pub fn move_and_settle(
+        &mut self,
+        theta2: f64,
+        ramp: f64,
+        speed_tol: f64,
+        min_seconds: f64,
+        max_seconds: f64,
+    ) -> f64 {
         let start = self.target;
         let dt = self.settings.dt();
         let n = (ramp / dt).ceil().clamp(1.0, 1e9) as u64;
@@ -131,9 +132,11 @@ impl UniversalJointBench {
             self.set_target(start + (theta2 - start) * i as f64 / n as f64);
             self.step();
         }
-        let m = (settle / dt).ceil().clamp(0.0, 1e9) as u64;
-        for _ in 0..m {
+        let (min, max) = ((min_seconds / dt).ceil(), (max_seconds / dt).ceil());
+        let mut k = 0.0;
+        while k < max.min(1e9) && (k < min || self.world.max_angular_speed() > speed_tol) {
             self.step();
+            k += 1.0;
         }
         self.world.max_angular_speed()
     }
@@ -141,9 +144,13 @@ impl UniversalJointBench {
     /// One engine step.
     pub fn step(&mut self) {
         let torque = self.driven_axis() * self.load;
+        let motor = Vector::z() * self.motor_torque();
         let b = &mut self.world.bodies[self.driven];
         b.reset_torques(false);
         b.add_torque(torque, true);
+        let d = &mut self.world.bodies[self.driving];
+        d.reset_torques(false);
+        d.add_torque(motor, true);
         self.world.step();
     }
 
@@ -151,7 +158,10 @@ impl UniversalJointBench {
     /// of the motor target.
     pub fn angles(&self) -> [f64; 2] {
         let b = &self.world.bodies;
-        let t2 = unwrap_near(angle_about(b[self.driving].rotation(), &Vector::z()), self.target);
+        let t2 = unwrap_near(
+            angle_about(b[self.driving].rotation(), &Vector::z()),
+            self.target,
+        );
         let t3 = angle_about(b[self.driven].rotation(), &self.driven_axis());
         [t2, unwrap_near(t3, self.target)]
     }

@@ -10,10 +10,15 @@ use crate::error::ParamError;
 /// Step and solver settings of the engine, and the stiffness of the motor
 /// springs that hold a mechanism (SI units).
 ///
-/// A motor is a position spring on its joint (rapier's force-based motor
-/// model): it applies `k (θ_target − θ) − c θ̇` (N·m) about the joint axis.
-/// At rest its torque is `k (θ_target − θ)`, which is how a holding torque is
-/// read ([`super::DaujMechanism::motor_torques`]).
+/// A motor is a position spring on its joint, evaluated by this module
+/// from the engine's state before every step and applied to the bodies as
+/// a torque pair: `τ = k (θ_target − θ) − c θ̇` (N·m) about the joint axis.
+/// (The engine's own joint motors are constraints whose impulses it does not
+/// report for multibody joints, so a holding torque could not be read from
+/// them.) The spring is explicit: `dt √(k/I)` must stay well below 1 for
+/// the inertias `I` it moves, which the defaults do (the check at half the
+/// step shows it). At rest the torque is `k (θ_target − θ)`, the torque the
+/// mechanism needs to hold its load ([`super::DaujMechanism::motor_torques`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EngineSettings {
     dt: f64,
@@ -33,7 +38,10 @@ impl EngineSettings {
         motor_damping: f64,
     ) -> Result<Self, ParamError> {
         if !dt.is_finite() {
-            return Err(ParamError::NotFinite { name: "dt", value: dt });
+            return Err(ParamError::NotFinite {
+                name: "dt",
+                value: dt,
+            });
         }
         if !(dt > 0.0 && dt <= 0.1) {
             return Err(ParamError::OutOfRange {
@@ -100,14 +108,15 @@ impl EngineSettings {
 }
 
 impl Default for EngineSettings {
-    /// 1 ms step, 16 solver iterations, motors of 200 N·m/rad and
-    /// 2 N·m·s/rad.
+    /// 1 ms step, 16 solver iterations, motors of 20 N·m/rad and
+    /// 0.4 N·m·s/rad (with the mechanisms' inertias of 1e-3 to 2e-3 kg·m²:
+    /// `dt √(k/I)` ≤ 0.14, near-critical damping).
     fn default() -> Self {
         Self {
             dt: 1e-3,
             solver_iterations: 16,
-            motor_stiffness: 200.0,
-            motor_damping: 2.0,
+            motor_stiffness: 20.0,
+            motor_damping: 0.4,
         }
     }
 }
@@ -153,7 +162,12 @@ impl World {
     /// A dynamic body at the origin with the given mass (kg) and principal
     /// moments of inertia (kg·m²) about its centre of mass `com` (m, body
     /// frame); it never sleeps.
-    pub(crate) fn body(&mut self, com: Vector<Real>, mass: f64, inertia: Vector<Real>) -> RigidBodyHandle {
+    pub(crate) fn body(
+        &mut self,
+        com: Vector<Real>,
+        mass: f64,
+        inertia: Vector<Real>,
+    ) -> RigidBodyHandle {
         let rb = RigidBodyBuilder::dynamic()
             .additional_mass_properties(MassProperties::new(com.into(), mass, inertia))
             .can_sleep(false)
@@ -199,14 +213,6 @@ pub(crate) fn revolute(axis: Vector<Real>) -> RevoluteJointBuilder {
     RevoluteJointBuilder::new(UnitVector::new_normalize(axis))
         .local_anchor1(Point::origin())
         .local_anchor2(Point::origin())
-}
-
-/// A revolute joint through the origin about `axis` with a position motor
-/// at `target` (rad) of the settings' stiffness and damping (force-based).
-pub(crate) fn motored_revolute(axis: Vector<Real>, target: f64, s: &EngineSettings) -> RevoluteJointBuilder {
-    revolute(axis)
-        .motor_model(MotorModel::ForceBased)
-        .motor_position(target, s.motor_stiffness, s.motor_damping)
 }
 
 /// The signed angle (rad, in `(−π, π]`) of the rotation `q` about the unit

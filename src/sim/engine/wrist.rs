@@ -38,8 +38,8 @@
 //! cross to the base, the other arrangement, is not supported by the engine
 //! when the base roots a multibody): the engine's solver, not eq. (5.8)–(5.12), finds the `θ4` that
 //! makes the chain and the universal joint agree. The motors are position
-//! springs on `J1` and `J3` ([`EngineSettings`]); `J4` and the cross are
-//! free. Gravity is off. The masses are small and only shape the
+//! springs on `J1` and `J3`, torques this module applies to the bodies
+//! ([`EngineSettings`]); `J4` and the cross are free. Gravity is off. The masses are small and only shape the
 //! transients.
 //!
 //! A wrench on the tool is a force at the tool point, `l` along the axis of
@@ -50,7 +50,7 @@
 use rapier3d_f64::na::UnitQuaternion;
 use rapier3d_f64::prelude::*;
 
-use super::world::{angle_about, motored_revolute, revolute, unwrap_near, EngineSettings, World};
+use super::world::{angle_about, revolute, unwrap_near, EngineSettings, World};
 use crate::error::ParamError;
 use crate::wrist::WristParams;
 
@@ -85,8 +85,6 @@ pub struct DaujMechanism {
     upper: RigidBodyHandle,
     output: RigidBodyHandle,
     cross: RigidBodyHandle,
-    motor1: MultibodyJointHandle,
-    motor3: MultibodyJointHandle,
     targets: [f64; 2],
     force: Vector<Real>,
     couple: Vector<Real>,
@@ -119,17 +117,18 @@ impl DaujMechanism {
         let phi = params.phi();
         let mut world = World::new(&settings);
         let base = world.base();
-        // Semi-spheres of ~0.1 kg and radius ~3 cm; L2 a 0.2 kg link with its
-        // centre of mass 4 cm out; a light cross.
-        let lower = world.body(Vector::zeros(), 0.1, Vector::repeat(4e-5));
-        let upper = world.body(Vector::zeros(), 0.1, Vector::repeat(4e-5));
-        let output = world.body(Vector::new(0.0, 0.0, 0.04), 0.2, Vector::new(1e-4, 1e-4, 3e-5));
+        // Semi-spheres of 0.1 kg, L2 a 0.2 kg link with its centre of mass
+        // 4 cm out, a light cross. The moments of inertia (1e-3 kg·m², about
+        // the reflected inertia of a small geared motor) set the time scale
+        // of the explicit motor springs; a static check does not see them.
+        let lower = world.body(Vector::zeros(), 0.1, Vector::repeat(1e-3));
+        let upper = world.body(Vector::zeros(), 0.1, Vector::repeat(1e-3));
+        let output = world.body(Vector::new(0.0, 0.0, 0.04), 0.2, Vector::repeat(1e-3));
         let cross = world.body(Vector::zeros(), 0.02, Vector::repeat(2e-6));
         let z = Vector::z();
         let oblique = Vector::new(0.0, -phi.sin(), phi.cos());
         let mb = &mut world.multibody_joints;
-        let motor1 = mb
-            .insert(base, lower, motored_revolute(z, 0.0, &settings), true)
+        mb.insert(base, lower, revolute(z), true)
             .ok_or(ParamError::NotFinite {
                 name: "multibody",
                 value: f64::NAN,
@@ -139,8 +138,7 @@ impl DaujMechanism {
                 name: "multibody",
                 value: f64::NAN,
             })?;
-        let motor3 = mb
-            .insert(upper, output, motored_revolute(z, 0.0, &settings), true)
+        mb.insert(upper, output, revolute(z), true)
             .ok_or(ParamError::NotFinite {
                 name: "multibody",
                 value: f64::NAN,
@@ -164,8 +162,6 @@ impl DaujMechanism {
             upper,
             output,
             cross,
-            motor1,
-            motor3,
             targets: [0.0; 2],
             force: Vector::zeros(),
             couple: Vector::zeros(),
@@ -201,16 +197,6 @@ impl DaujMechanism {
             return;
         }
         self.targets = [theta1, theta3];
-        let (k, c) = (self.settings.motor_stiffness(), self.settings.motor_damping());
-        for (handle, target) in [(self.motor1, theta1), (self.motor3, theta3)] {
-            if let Some((multibody, id)) = self.world.multibody_joints.get_mut(handle) {
-                if let Some(link) = multibody.link_mut(id) {
-                    link.joint
-                        .data
-                        .set_motor_position(JointAxis::AngX, target, k, c);
-                }
-            }
-        }
     }
 
     /// The wrench on the tool: `force` (N) at the tool point and a `couple`
@@ -218,8 +204,16 @@ impl DaujMechanism {
     /// input clears it).
     pub fn set_tool_wrench(&mut self, force: [f64; 3], couple: [f64; 3]) {
         let ok = force.iter().chain(couple.iter()).all(|x| x.is_finite());
-        self.force = if ok { Vector::from(force) } else { Vector::zeros() };
-        self.couple = if ok { Vector::from(couple) } else { Vector::zeros() };
+        self.force = if ok {
+            Vector::from(force)
+        } else {
+            Vector::zeros()
+        };
+        self.couple = if ok {
+            Vector::from(couple)
+        } else {
+            Vector::zeros()
+        };
     }
 
     /// The tool point (m, base frame).
@@ -232,11 +226,20 @@ impl DaujMechanism {
     pub fn step(&mut self) {
         let tool = Point::from(self.tool_point());
         let (force, couple) = (self.force, self.couple);
-        let out = &mut self.world.bodies[self.output];
+        let [tau1, tau3] = self.motor_torques();
+        let axis3 = self.world.bodies[self.output].rotation() * Vector::z();
+        let bodies = &mut self.world.bodies;
+        let out = &mut bodies[self.output];
         out.reset_forces(false);
         out.reset_torques(false);
         out.add_force_at_point(force, tool, true);
-        out.add_torque(couple, true);
+        out.add_torque(couple + axis3 * tau3, true);
+        let upper = &mut bodies[self.upper];
+        upper.reset_torques(false);
+        upper.add_torque(-axis3 * tau3, true);
+        let lower = &mut bodies[self.lower];
+        lower.reset_torques(false);
+        lower.add_torque(Vector::z() * tau1, true);
         self.world.step();
         self.time += self.settings.dt();
     }
@@ -250,10 +253,8 @@ impl DaujMechanism {
     }
 
     /// Moves the motor targets linearly from where they are to
-    /// `(theta1, theta3)` (rad) over `ramp` seconds, then lets the mechanism
-    /// settle for `settle` seconds; returns the largest body angular speed
-    /// at the end (rad/s).
-    pub fn move_to(&mut self, theta1: f64, theta3: f64, ramp: f64, settle: f64) -> f64 {
+    /// `(theta1, theta3)` (rad) over `ramp` seconds.
+    pub fn move_to(&mut self, theta1: f64, theta3: f64, ramp: f64) {
         let [a1, a3] = self.targets;
         let n = (ramp / self.settings.dt()).ceil().clamp(1.0, 1e9) as u64;
         for i in 1..=n {
@@ -261,7 +262,17 @@ impl DaujMechanism {
             self.set_targets(a1 + s * (theta1 - a1), a3 + s * (theta3 - a3));
             self.step();
         }
-        self.run(settle);
+    }
+
+    /// Runs at least `min_seconds` and then until every body turns slower
+    /// than `speed_tol` (rad/s), for at most `max_seconds` in all; returns
+    /// the largest body angular speed at the end (rad/s).
+    pub fn settle(&mut self, speed_tol: f64, min_seconds: f64, max_seconds: f64) -> f64 {
+        let start = self.time;
+        self.run(min_seconds);
+        while self.time - start < max_seconds && self.world.max_angular_speed() > speed_tol {
+            self.run(10.0 * self.settings.dt());
+        }
         self.world.max_angular_speed()
     }
 
@@ -285,7 +296,10 @@ impl DaujMechanism {
         let oblique = Vector::new(0.0, -self.phi.sin(), self.phi.cos());
         let theta1 = unwrap_near(angle_about(&ql, &Vector::z()), self.targets[0]);
         let theta4 = angle_about(&(ql.inverse() * qu), &oblique);
-        let theta3 = unwrap_near(angle_about(&(qu.inverse() * qo), &Vector::z()), self.targets[1]);
+        let theta3 = unwrap_near(
+            angle_about(&(qu.inverse() * qo), &Vector::z()),
+            self.targets[1],
+        );
         let delta = angle_about(&qc, &Vector::y());
         let gamma = angle_about(&(qc.inverse() * qo), &Vector::x());
         let through_joint = UnitQuaternion::from_axis_angle(&Vector::y_axis(), delta)
@@ -307,7 +321,10 @@ impl DaujMechanism {
     pub fn motor_torques(&self) -> [f64; 2] {
         let a = self.angles();
         let b = &self.world.bodies;
-        let (k, c) = (self.settings.motor_stiffness(), self.settings.motor_damping());
+        let (k, c) = (
+            self.settings.motor_stiffness(),
+            self.settings.motor_damping(),
+        );
         let w1 = b[self.lower].angvel().z;
         let axis3 = b[self.output].rotation() * Vector::z();
         let w3 = (b[self.output].angvel() - b[self.upper].angvel()).dot(&axis3);
