@@ -81,13 +81,18 @@ struct FkErrors {
     pitch_yaw: f64,
     loop_error: f64,
     speed: f64,
+    /// Smallest distance to the rejected root of eq. (5.10).
+    other_root: f64,
 }
 
 fn fk_sweep(settings: EngineSettings, n: usize) -> (FkErrors, Vec<[f64; 3]>) {
     let p = WristParams::thesis();
     let cfg = WristConfig::<f64>::new(&p);
     let mut m = DaujMechanism::try_new(&p, TOOL, settings).unwrap();
-    let mut e = FkErrors::default();
+    let mut e = FkErrors {
+        other_root: f64::MAX,
+        ..FkErrors::default()
+    };
     let mut first = true;
     let mut samples = Vec::new();
     for (t1, t3) in motor_grid(n) {
@@ -109,6 +114,12 @@ fn fk_sweep(settings: EngineSettings, n: usize) -> (FkErrors, Vec<[f64; 3]>) {
             .max((a.gamma - f.pose.gamma).abs());
         e.loop_error = e.loop_error.max(a.loop_error);
         e.speed = e.speed.max(speed);
+        let g = cfg.forward_plus_root(MotorAngles {
+            theta1: a.theta1,
+            theta3: a.theta3,
+        });
+        let other = pose_rotation(g.pose.delta, g.pose.gamma);
+        e.other_root = e.other_root.min(m.output_rotation().angle_to(&other));
         samples.push([a.theta4, a.delta, a.gamma]);
     }
     (e, samples)
@@ -120,6 +131,8 @@ fn forward_kinematics_matches_the_mechanism() {
     println!("(a) FK, 24 x 24 motor grid, dt = 1 ms: {e:?}");
     assert!(e.orientation <= 1e-4, "{e:?}");
     assert!(e.theta4 <= 1e-4 && e.pitch_yaw <= 1e-4, "{e:?}");
+    // The check tells the roots apart: the rejected one is far everywhere.
+    assert!(e.other_root > 0.5, "{e:?}");
 }
 
 #[test]
@@ -229,6 +242,9 @@ fn holding_torques_match_the_force_mapping() {
     );
     assert!(largest > 0.3, "the wrenches load the motors: {largest}");
     assert!(worst <= 1e-3, "{worst}");
+    // The check can tell Jacobians apart: the corrected thesis chain J2 Jc
+    // (E5.10) misses the mechanism by more than the bound.
+    assert!(worst_thesis > 1e-3, "{worst_thesis}");
 }
 
 #[test]
@@ -236,6 +252,8 @@ fn motor_2_torque_through_the_universal_joint() {
     let settings = EngineSettings::default();
     let load = 0.5;
     let (mut angle_err, mut torque_err, mut fmin, mut fmax) = (0.0f64, 0.0f64, f64::MAX, 0.0f64);
+    // Motor 2 given the θ3 torque itself, as eq. (6.1) prints it (E6.6).
+    let mut printed_err = 0.0f64;
     for bend_deg in [0.0, 8.0, 16.0, 24.0, 32.0] {
         let bend = f64::to_radians(bend_deg);
         let mut b = UniversalJointBench::try_new(bend, settings).unwrap();
@@ -251,6 +269,7 @@ fn motor_2_torque_through_the_universal_joint() {
             let [_, t3] = b.angles();
             let expected = -transmit(bend, t3, 0.0, load).torque;
             torque_err = torque_err.max((b.motor_torque() - expected).abs() / load);
+            printed_err = printed_err.max((b.motor_torque() + load).abs() / load);
             fmin = fmin.min(-expected / load);
             fmax = fmax.max(-expected / load);
         }
@@ -258,8 +277,9 @@ fn motor_2_torque_through_the_universal_joint() {
     println!(
         "(d) universal joint, bends 0..32 deg x 16 shaft angles, dt = 1 ms: max eq. (5.1) angle error \
          {angle_err:.3e} rad, max eq. (5.3) torque error {torque_err:.3e} (relative to the load); \
-         factor range {fmin:.4}..{fmax:.4}"
+         factor range {fmin:.4}..{fmax:.4}; without the factor (eq. 6.1 as printed) {printed_err:.3e}"
     );
+    assert!(printed_err > 0.1, "{printed_err}");
     assert!(angle_err <= 1e-4, "{angle_err}");
     assert!(torque_err <= 1e-3, "{torque_err}");
     // The bench reaches the factor's extremes at the wrist's largest bend,
@@ -268,5 +288,38 @@ fn motor_2_torque_through_the_universal_joint() {
     assert!(
         (fmin - c).abs() < 1e-3 && (fmax - 1.0 / c).abs() < 1e-3,
         "{fmin} {fmax}"
+    );
+}
+
+#[test]
+fn halving_the_step_moves_the_answers_less_than_the_bounds() {
+    let coarse = EngineSettings::default();
+    let fine = coarse.with_half_step();
+    let (_, a1) = fk_sweep(coarse, 8);
+    let (_, a2) = fk_sweep(fine, 8);
+    let pose_change = a1
+        .iter()
+        .zip(&a2)
+        .flat_map(|(x, y)| (0..3).map(move |i| (x[i] - y[i]).abs()))
+        .fold(0.0f64, f64::max);
+    let h1 = hold_sweep(coarse, 6, 5);
+    let h2 = hold_sweep(fine, 6, 5);
+    let torque_change = h1
+        .iter()
+        .zip(&h2)
+        .flat_map(|(x, y)| (0..2).map(move |i| (x.engine[i] - y.engine[i]).abs()))
+        .fold(0.0f64, f64::max);
+    let torque_err_fine = h2
+        .iter()
+        .flat_map(|s| (0..2).map(move |i| (s.engine[i] - s.exact[i]).abs()))
+        .fold(0.0f64, f64::max);
+    println!(
+        "convergence, dt = 1 ms vs 0.5 ms: theta4/delta/gamma change {pose_change:.3e} rad (8 x 8 motor grid), \
+         holding torque change {torque_change:.3e} N m (6 x 6 poses); at 0.5 ms max |engine - (-J^T tau)| = {torque_err_fine:.3e} N m"
+    );
+    assert!(pose_change <= 1e-4, "{pose_change}");
+    assert!(
+        torque_change <= 1e-3 && torque_err_fine <= 1e-3,
+        "{torque_change} {torque_err_fine}"
     );
 }

@@ -173,3 +173,37 @@ impl UniversalJointBench {
         self.settings.motor_stiffness() * (self.target - t2) - self.settings.motor_damping() * w
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bend_is_validated_by_name() {
+        let s = EngineSettings::default();
+        assert!(matches!(
+            UniversalJointBench::try_new(f64::NAN, s),
+            Err(ParamError::NotFinite { name: "bend", .. })
+        ));
+        assert!(matches!(
+            UniversalJointBench::try_new(1.2, s),
+            Err(ParamError::OutOfRange { name: "bend", .. })
+        ));
+    }
+
+    #[test]
+    fn straight_joint_passes_the_load_one_to_one() {
+        // At β = 0 both shafts are one: motor 2 holds exactly the load.
+        let mut b = UniversalJointBench::try_new(0.0, EngineSettings::default()).unwrap();
+        b.set_load(0.5);
+        let speed = b.move_and_settle(0.3, 0.05, 1e-6, 0.05, 2.0);
+        assert!(speed <= 1e-6);
+        assert!(
+            (b.motor_torque() + 0.5).abs() < 1e-5,
+            "{}",
+            b.motor_torque()
+        );
+        let [t2, t3] = b.angles();
+        assert!((t2 - t3).abs() < 1e-6);
+    }
+}

@@ -227,3 +227,54 @@ pub(crate) fn unwrap_near(x: f64, near: f64) -> f64 {
     let tau = core::f64::consts::TAU;
     x - tau * ((x - near) / tau).round()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn settings_reject_bad_values_by_name() {
+        assert!(matches!(
+            EngineSettings::try_new(f64::NAN, 16, 20.0, 0.4),
+            Err(ParamError::NotFinite { name: "dt", .. })
+        ));
+        assert!(matches!(
+            EngineSettings::try_new(0.0, 16, 20.0, 0.4),
+            Err(ParamError::OutOfRange { name: "dt", .. })
+        ));
+        assert!(matches!(
+            EngineSettings::try_new(1e-3, 0, 20.0, 0.4),
+            Err(ParamError::OutOfRange {
+                name: "solver_iterations",
+                ..
+            })
+        ));
+        assert!(matches!(
+            EngineSettings::try_new(1e-3, 16, -1.0, 0.4),
+            Err(ParamError::NotPositive {
+                name: "motor_stiffness",
+                ..
+            })
+        ));
+        assert!(matches!(
+            EngineSettings::try_new(1e-3, 16, 20.0, f64::INFINITY),
+            Err(ParamError::NotFinite {
+                name: "motor_damping",
+                ..
+            })
+        ));
+        let s = EngineSettings::try_new(1e-3, 16, 20.0, 0.4).unwrap();
+        assert_eq!(s, EngineSettings::default());
+        assert_eq!(s.with_half_step().dt(), 5e-4);
+    }
+
+    #[test]
+    fn angle_about_reads_a_rotation_about_the_axis() {
+        let axis = Vector::new(0.0, -0.3f64.sin(), 0.3f64.cos());
+        for a in [-3.0, -1.0, 0.0, 0.5, 2.5, 3.1] {
+            let q = UnitQuaternion::from_axis_angle(&UnitVector::new_normalize(axis), a);
+            assert!((angle_about(&q, &axis) - a).abs() < 1e-12, "{a}");
+        }
+        assert!((unwrap_near(0.1, 6.3) - (0.1 + core::f64::consts::TAU)).abs() < 1e-12);
+    }
+}

@@ -334,3 +334,44 @@ impl DaujMechanism {
         ]
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tool_length_is_validated_by_name() {
+        let p = WristParams::thesis();
+        let s = EngineSettings::default();
+        assert!(matches!(
+            DaujMechanism::try_new(&p, f64::NAN, s),
+            Err(ParamError::NotFinite {
+                name: "tool_length",
+                ..
+            })
+        ));
+        assert!(matches!(
+            DaujMechanism::try_new(&p, 0.0, s),
+            Err(ParamError::OutOfRange {
+                name: "tool_length",
+                ..
+            })
+        ));
+        assert!(DaujMechanism::try_new(&p, 0.06, s).is_ok());
+    }
+
+    #[test]
+    fn straight_at_rest_and_non_finite_input_is_ignored() {
+        let p = WristParams::thesis();
+        let mut m = DaujMechanism::try_new(&p, 0.06, EngineSettings::default()).unwrap();
+        m.run(0.05);
+        let a = m.angles();
+        assert!(a.delta.abs() < 1e-12 && a.gamma.abs() < 1e-12 && a.theta4.abs() < 1e-12);
+        // NaN input is ignored, not propagated.
+        m.set_targets(f64::NAN, 0.0);
+        assert_eq!(m.targets(), [0.0, 0.0]);
+        m.set_tool_wrench([0.0; 3], [f64::NAN, 0.0, 0.0]);
+        m.run(0.01);
+        assert!(m.angles().delta.is_finite());
+    }
+}
