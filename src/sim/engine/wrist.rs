@@ -34,13 +34,14 @@
 //!
 //! Lower semi-sphere → upper semi-sphere → `L2`, and base → cross, are
 //! reduced-coordinate multibody joints on the fixed base (exact joints); one
-//! impulse joint, cross → `L2`, closes the loop (an impulse joint from a free
-//! cross to the base, the other arrangement, is not supported by the engine
-//! when the base roots a multibody): the engine's solver, not eq. (5.8)–(5.12), finds the `θ4` that
-//! makes the chain and the universal joint agree. The motors are position
-//! springs on `J1` and `J3`, torques this module applies to the bodies
-//! ([`EngineSettings`]); `J4` and the cross are free. Gravity is off. The masses are small and only shape the
-//! transients.
+//! impulse joint, cross → `L2`, closes the loop. The engine's solver, not
+//! eq. (5.8)–(5.12), finds the `θ4` that makes the chain and the universal
+//! joint agree. (A free cross held by two impulse joints does not work in
+//! rapier 0.27: tied to the base that roots the multibody it panics, tied to
+//! a second fixed body it left the loop open by up to 3 rad.) The motors are
+//! position springs on `J1` and `J3`, torques this module applies to the
+//! bodies ([`EngineSettings`]); `J4` and the cross are free. Gravity is
+//! off; the masses and inertias only shape the transients.
 //!
 //! A wrench on the tool is a force at the tool point, `l` along the axis of
 //! `L2`, plus a couple, both in the base frame; at rest the motors' springs
