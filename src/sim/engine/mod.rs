@@ -13,15 +13,21 @@
 //! * [`wrist`] — the DAUJ wrist (thesis ch. 5): two motors, the oblique
 //!   joint between the semi-spheres, the output link and the outer
 //!   universal joint, as a closed loop.
+//! * [`ft_sensor`] — the wrist's F/T sensor as measured: the wrench the
+//!   tool puts through the sensor, read from the engine, and the strain
+//!   gauges that turn it into voltages through a sensitivity matrix off the
+//!   certificate by a stated calibration error, with offsets and noise.
 //! * [`universal_joint`] — the inner universal joint of eq. (5.1)–(5.3):
 //!   two shafts bent by `β` and the cross between them.
 //!
 //! Gravity is off in both: the checks are kinematic and static.
 
+pub mod ft_sensor;
 pub mod universal_joint;
 mod world;
 pub mod wrist;
 
+pub use ft_sensor::{GaugeErrors, SensedWrist, StrainGaugeSensor};
 pub use universal_joint::UniversalJointBench;
 pub use world::EngineSettings;
 pub use wrist::{DaujMechanism, MechanismAngles};

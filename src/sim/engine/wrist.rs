@@ -86,6 +86,9 @@ pub struct DaujMechanism {
     upper: RigidBodyHandle,
     output: RigidBodyHandle,
     cross: RigidBodyHandle,
+    /// The tool, when it is its own body on `L2` ([`Self::attach_tool`]):
+    /// the tool wrench then acts on it.
+    tool: Option<RigidBodyHandle>,
     targets: [f64; 2],
     force: Vector<Real>,
     couple: Vector<Real>,
@@ -163,6 +166,7 @@ impl DaujMechanism {
             upper,
             output,
             cross,
+            tool: None,
             targets: [0.0; 2],
             force: Vector::zeros(),
             couple: Vector::zeros(),
@@ -219,8 +223,55 @@ impl DaujMechanism {
 
     /// The tool point (m, base frame).
     pub fn tool_point(&self) -> [f64; 3] {
-        let p = self.world.bodies[self.output].position() * Point::new(0.0, 0.0, self.tool_length);
+        let loaded = self.tool.unwrap_or(self.output);
+        let p = self.world.bodies[loaded].position() * Point::new(0.0, 0.0, self.tool_length);
         [p.x, p.y, p.z]
+    }
+
+    /// Splits the tool off `L2`: a body of `mass` (kg), centre of mass `com`
+    /// and principal moments `inertia` (kg·m², along its frame's axes), both
+    /// in `L2`'s frame, held to `L2` by a fixed joint whose frames sit at
+    /// `mount` (m, on the output axis). From then on the tool wrench acts on
+    /// this body, and `L2` carries it only through the joint. Called at the
+    /// zero configuration, before the first step (every body's frame is then
+    /// the base frame); returns the tool's handle, or `None` once stepped or
+    /// attached.
+    pub(super) fn attach_tool(
+        &mut self,
+        mount: f64,
+        mass: f64,
+        com: Vector<Real>,
+        inertia: Vector<Real>,
+    ) -> Option<RigidBodyHandle> {
+        if self.time != 0.0 || self.tool.is_some() {
+            return None;
+        }
+        let tool = self.world.body(com, mass, inertia);
+        let anchor = Point::new(0.0, 0.0, mount);
+        let joint = FixedJointBuilder::new()
+            .local_anchor1(anchor)
+            .local_anchor2(anchor);
+        self.world
+            .impulse_joints
+            .insert(self.output, tool, joint, true);
+        self.tool = Some(tool);
+        Some(tool)
+    }
+
+    /// A body of the mechanism's world.
+    pub(super) fn body(&self, handle: RigidBodyHandle) -> &RigidBody {
+        &self.world.bodies[handle]
+    }
+
+    /// The output link `L2`'s handle.
+    pub(super) fn output_handle(&self) -> RigidBodyHandle {
+        self.output
+    }
+
+    /// The force (N, at the tool point) and couple (N·m) on the tool, base
+    /// frame.
+    pub(super) fn tool_wrench(&self) -> (Vector<Real>, Vector<Real>) {
+        (self.force, self.couple)
     }
 
     /// One engine step.
@@ -233,8 +284,20 @@ impl DaujMechanism {
         let out = &mut bodies[self.output];
         out.reset_forces(false);
         out.reset_torques(false);
-        out.add_force_at_point(force, tool, true);
-        out.add_torque(couple + axis3 * tau3, true);
+        match self.tool {
+            None => {
+                out.add_force_at_point(force, tool, true);
+                out.add_torque(couple + axis3 * tau3, true);
+            }
+            Some(t) => {
+                out.add_torque(axis3 * tau3, true);
+                let loaded = &mut bodies[t];
+                loaded.reset_forces(false);
+                loaded.reset_torques(false);
+                loaded.add_force_at_point(force, tool, true);
+                loaded.add_torque(couple, true);
+            }
+        }
         let upper = &mut bodies[self.upper];
         upper.reset_torques(false);
         upper.add_torque(-axis3 * tau3, true);
