@@ -192,11 +192,23 @@ impl StrainGaugeSensor {
     }
 }
 
-/// The tool of [`SensedWrist`]: a 0.1 kg body with its centre of mass
-/// halfway between the sensor origin and the tool point, moments of
-/// inertia 1e-4 kg·m².
-const TOOL_MASS: f64 = 0.1;
-const TOOL_INERTIA: f64 = 1e-4;
+/// The mass of the tool of [`SensedWrist`], kg; its centre of mass is
+/// halfway between the sensor origin and the tool point.
+pub const TOOL_MASS: f64 = 0.1;
+/// The tool's moment of inertia about every axis through its centre of
+/// mass, kg·m² (isotropic, so its gyroscopic moment `ω × I ω` is zero).
+pub const TOOL_INERTIA: f64 = 1e-4;
+
+/// A body's motion, base frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodyMotion {
+    /// Centre of mass, m.
+    pub com: [f64; 3],
+    /// Velocity of the centre of mass, m/s.
+    pub linvel: [f64; 3],
+    /// Angular velocity, rad/s.
+    pub angvel: [f64; 3],
+}
 
 /// The DAUJ wrist with the tool on its own body behind the F/T sensor
 /// (module docs), and the wrench the engine puts through the sensor.
@@ -267,8 +279,20 @@ impl SensedWrist {
     pub fn sensor_frame(&self) -> (Point<Real>, UnitQuaternion<Real>) {
         let out = self.mechanism.body(self.mechanism.output_handle());
         let origin = out.position() * Point::new(0.0, 0.0, self.sensor_offset);
-        let mount = UnitQuaternion::from_axis_angle(&Vector::z_axis(), core::f64::consts::FRAC_PI_2);
+        let mount =
+            UnitQuaternion::from_axis_angle(&Vector::z_axis(), core::f64::consts::FRAC_PI_2);
         (origin, out.rotation() * mount)
+    }
+
+    /// The motion of the output link `L2` (the sensor's mounting side).
+    pub fn output_motion(&self) -> BodyMotion {
+        let b = self.mechanism.body(self.mechanism.output_handle());
+        let c = b.center_of_mass();
+        BodyMotion {
+            com: [c.x, c.y, c.z],
+            linvel: (*b.linvel()).into(),
+            angvel: (*b.angvel()).into(),
+        }
     }
 
     /// The wrench the tool put through the sensor over the last step
@@ -286,7 +310,12 @@ impl SensedWrist {
         let (origin, frame) = self.sensor_frame();
         let (v0, w0, c, rot) = {
             let t = self.mechanism.body(self.tool);
-            (*t.linvel(), *t.angvel(), t.center_of_mass().coords, *t.rotation())
+            (
+                *t.linvel(),
+                *t.angvel(),
+                t.center_of_mass().coords,
+                *t.rotation(),
+            )
         };
         self.mechanism.step();
         let (v1, w1) = {
