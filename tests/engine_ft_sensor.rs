@@ -55,6 +55,8 @@
 //! Run with `cargo test --features engine --test engine_ft_sensor --
 //! --nocapture` to print the measured maxima.
 #![cfg(feature = "engine")]
+// Six-element wrenches compared index by index across several arrays.
+#![allow(clippy::needless_range_loop)]
 
 use std::f64::consts::PI;
 use std::sync::OnceLock;
