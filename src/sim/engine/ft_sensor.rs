@@ -176,7 +176,9 @@ impl StrainGaugeSensor {
     }
 
     /// The six amplifier outputs `V_out,j` (V) for the wrench `w` on the
-    /// sensor (N, N·m, sensor frame), one noise draw per channel.
+    /// sensor (N, N·m, sensor frame), one noise draw per channel. The
+    /// amplifiers do not saturate; a non-finite wrench gives non-finite
+    /// outputs, which the library's chain flags as invalid input.
     pub fn read(&mut self, w: &Wrench) -> [f64; 6] {
         let mut out = [0.0; 6];
         for (j, o) in out.iter_mut().enumerate() {

@@ -20,7 +20,8 @@
 //! * [`universal_joint`] — the inner universal joint of eq. (5.1)–(5.3):
 //!   two shafts bent by `β` and the cross between them.
 //!
-//! Gravity is off in both: the checks are kinematic and static.
+//! Gravity is off in all of them: the checks are kinematic, static, or (the
+//! sensor in motion) about the inertia of the moving parts alone.
 
 pub mod ft_sensor;
 pub mod universal_joint;
