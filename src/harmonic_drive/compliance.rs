@@ -18,6 +18,7 @@
 //! `S = f64`, so each formula exists once.
 
 use crate::error::{combination, finite, gear_ratio, in_range, increasing, positive, ParamError};
+use crate::scalar::target::own_function_on_armv6m;
 use crate::scalar::{units::Units, Coef, Scalar};
 
 /// The catalogue's piecewise-linear torsion curve, eq. (2.11), odd in the
@@ -432,19 +433,17 @@ impl<S: Scalar> FlexsplineConfig<S> {
         }
     }
 
-    /// Eq. (3.10) without the branch test, for a caller that has already
-    /// bounded the torsion (see [`torsion_within`](Self::torsion_within)):
-    /// the argument of `tan` is then at most `atan(c_f·max_torque) ≤
-    /// atan 7.5` (the estimator's validated limit), inside the domain of
-    /// [`Scalar::tan_bounded`] (`atan 8`), which it takes.
-    // Armv6-M: its own function (inlined into the estimator's finish step
-    // it adds spills there). Elsewhere inlined.
-    #[cfg_attr(all(target_arch = "arm", not(target_has_atomic = "32")), inline(never))]
-    #[cfg_attr(not(all(target_arch = "arm", not(target_has_atomic = "32"))), inline)]
-    pub(crate) fn torque_in_branch(&self, torsion: S) -> S {
-        self.angle_of(torsion)
-            .tan_bounded()
-            .mul_coef(&self.torque_per_tan)
+    own_function_on_armv6m! {
+        /// Eq. (3.10) without the branch test, for a caller that has already
+        /// bounded the torsion (see [`torsion_within`](Self::torsion_within)):
+        /// the argument of `tan` is then at most `atan(c_f·max_torque) ≤
+        /// atan 7.5` (the estimator's validated limit), inside the domain of
+        /// [`Scalar::tan_bounded`] (`atan 8`), which it takes.
+        pub(crate) fn torque_in_branch(&self, torsion: S) -> S {
+            self.angle_of(torsion)
+                .tan_bounded()
+                .mul_coef(&self.torque_per_tan)
+        }
     }
 
     /// The argument `Δθ_f c_f K_f0` of `tan` in eq. (3.10), stored units.

@@ -39,7 +39,7 @@ pub(crate) const fn sat_i64(v: i64) -> i32 {
 /// which then is [`mul_bits_long_split`] alone; the value is the same.
 #[inline]
 pub(crate) fn mul_bits(a: i32, b: i32) -> i32 {
-    if cfg!(all(target_arch = "arm", not(target_has_atomic = "32"))) {
+    if cfg!(armv6m) {
         mul_bits_long(a, b)
     } else if b as i16 as i32 == b {
         mul_bits_short(a, b)
@@ -54,11 +54,11 @@ pub(crate) fn mul_bits(a: i32, b: i32) -> i32 {
 /// elsewhere [`signed_wide_mul`], then [`round_shift_sat`] by 16.
 #[inline(always)]
 fn mul_bits_long(a: i32, b: i32) -> i32 {
-    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    #[cfg(armv6m)]
     {
         mul_bits_long_split(a, b)
     }
-    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(not(armv6m))]
     {
         let (hi, lo) = signed_wide_mul(a, b);
         round_shift_sat(hi, lo, 1 << 15, 15)
@@ -84,10 +84,7 @@ fn mul_bits_long(a: i32, b: i32) -> i32 {
 /// sign of `t`. All in 32-bit words: four multiplies, no 64-bit addition
 /// or shift.
 #[inline(always)]
-#[cfg_attr(
-    not(any(test, all(target_arch = "arm", not(target_has_atomic = "32")))),
-    allow(dead_code)
-)]
+#[cfg_attr(not(any(test, armv6m)), allow(dead_code))]
 pub(crate) fn mul_bits_long_split(a: i32, b: i32) -> i32 {
     let (ah, al) = (a >> 16, a & 0xFFFF);
     let (bh, bl) = (b >> 16, b & 0xFFFF);
@@ -110,16 +107,13 @@ pub(crate) fn mul_bits_long_split(a: i32, b: i32) -> i32 {
 /// with its high word corrected by `−b` for `a < 0` and by `−a` for `b < 0`.
 /// `|V| ≤ 2⁶²`, so `|high| ≤ 2³⁰`.
 #[inline(always)]
-#[cfg_attr(
-    all(target_arch = "arm", not(target_has_atomic = "32")),
-    allow(dead_code)
-)]
+#[cfg_attr(armv6m, allow(dead_code))]
 pub(crate) fn signed_wide_mul(a: i32, b: i32) -> (i32, u32) {
-    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    #[cfg(armv6m)]
     {
         signed_wide_mul_split(a, b)
     }
-    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(not(armv6m))]
     {
         let p = a as i64 * b as i64;
         ((p >> 32) as i32, p as u32)
@@ -135,10 +129,7 @@ pub(crate) fn signed_wide_mul(a: i32, b: i32) -> (i32, u32) {
 /// carry) and the high word shifted down arithmetically. No sign fix-up
 /// (the Armv6-M path; built on every target so the host tests check it).
 #[inline(always)]
-#[cfg_attr(
-    not(any(test, all(target_arch = "arm", not(target_has_atomic = "32")))),
-    allow(dead_code)
-)]
+#[cfg_attr(not(any(test, armv6m)), allow(dead_code))]
 pub(crate) fn signed_wide_mul_split(a: i32, b: i32) -> (i32, u32) {
     let (ah, al) = (a >> 16, a & 0xFFFF);
     let (bh, bl) = (b >> 16, b & 0xFFFF);
@@ -160,10 +151,7 @@ pub(crate) fn signed_wide_mul_split(a: i32, b: i32) -> (i32, u32) {
 /// `hi << (32 − sh)` are written with `rs` so that `sh = 32` needs no
 /// special case.
 #[inline(always)]
-#[cfg_attr(
-    all(target_arch = "arm", not(target_has_atomic = "32")),
-    allow(dead_code)
-)]
+#[cfg_attr(armv6m, allow(dead_code))]
 pub(crate) fn round_shift_sat(hi: i32, lo: u32, round: u32, rs: u32) -> i32 {
     let (lo, carry) = lo.overflowing_add(round);
     let hi = hi + carry as i32;
@@ -192,7 +180,7 @@ pub(crate) fn round_shift_sat(hi: i32, lo: u32, round: u32, rs: u32) -> i32 {
 /// carry): on Armv6-M two `ADDS`/`ADCS` pairs. Requires `|m| < 2³¹` and
 /// `r < 2³²` (then `|V + r| < 2⁶³`).
 #[inline(always)]
-#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+#[cfg(any(test, armv6m))]
 pub(crate) fn signed_wide_mul_add_split(x: i32, mh: i32, ml: i32, r: u32) -> (i32, u32) {
     let xl = x as i16 as i32;
     // (x − x_l)/2¹⁶ = ⌊(x + 2¹⁵)/2¹⁶⌋, without the overflow of either sum.
@@ -209,7 +197,7 @@ pub(crate) fn signed_wide_mul_add_split(x: i32, mh: i32, ml: i32, r: u32) -> (i3
 /// is already added: `sat(⌊W / 2^(rs+1)⌋)` for `W = hi·2³² + lo`,
 /// `|hi| ≤ 2³⁰ + 1`, `rs ≤ 31`.
 #[inline(always)]
-#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+#[cfg(any(test, armv6m))]
 pub(crate) fn shift_sat(hi: i32, lo: u32, round: u32, rs: u32) -> i32 {
     if ((hi as u32).wrapping_add(round) >> 1) >= round {
         return if hi < 0 { i32::MIN } else { i32::MAX };
@@ -278,11 +266,11 @@ pub(crate) const fn mul_bits_reference(a: i32, b: i32) -> i32 {
 /// widening multiply. Both are exact.
 #[inline(always)]
 pub(crate) fn wide_mul(a: u32, b: u32) -> (u32, u32) {
-    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+    #[cfg(armv6m)]
     {
         wide_mul_split(a, b)
     }
-    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(not(armv6m))]
     {
         let p = a as u64 * b as u64;
         ((p >> 32) as u32, p as u32)
@@ -292,10 +280,7 @@ pub(crate) fn wide_mul(a: u32, b: u32) -> (u32, u32) {
 /// [`wide_mul`] from four 16×16 partial products (the Armv6-M path; built
 /// on every target so the host tests check it).
 #[inline(always)]
-#[cfg_attr(
-    not(any(test, all(target_arch = "arm", not(target_has_atomic = "32")))),
-    allow(dead_code)
-)]
+#[cfg_attr(not(any(test, armv6m)), allow(dead_code))]
 pub(crate) fn wide_mul_split(a: u32, b: u32) -> (u32, u32) {
     let (ah, al) = (a >> 16, a & 0xFFFF);
     let (bh, bl) = (b >> 16, b & 0xFFFF);
@@ -514,6 +499,12 @@ impl Scalar for I16F16 {
     const PI: Self = I16F16::PI;
     const FRAC_PI_2: Self = I16F16::FRAC_PI_2;
     const UNITS: super::units::Units = super::units::FIXED;
+
+    /// No NaN or infinity in fixed point.
+    #[inline(always)]
+    fn all_finite<const N: usize>(_: &[Self; N]) -> bool {
+        true
+    }
 
     #[inline]
     fn from_f64(x: f64) -> Self {

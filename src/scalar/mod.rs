@@ -31,6 +31,7 @@ pub mod fixed;
 pub mod float;
 pub mod kernels;
 pub mod q15;
+pub(crate) mod target;
 pub mod units;
 
 pub use ::fixed::types::I16F16;
@@ -195,6 +196,21 @@ pub trait Scalar:
     fn neg(self) -> Self;
     /// `|self|` (fixed: `|MIN|` saturates to `MAX`; float: NaN stays NaN).
     fn abs(self) -> Self;
+    /// `true` when every value is finite: neither NaN nor infinite (always
+    /// for fixed point). Floats test `Σ (v − v) = 0`: each term is exactly
+    /// 0 for a finite value and NaN for NaN and ±∞, and a NaN survives the
+    /// sum, so `N` values cost one comparison.
+    #[inline]
+    fn all_finite<const N: usize>(values: &[Self; N]) -> bool {
+        let Some((&first, rest)) = values.split_first() else {
+            return true;
+        };
+        let mut sum = first.sub(first);
+        for &v in rest {
+            sum = sum.add(v.sub(v));
+        }
+        sum == Self::ZERO
+    }
     /// `true` when the value is NaN (always `false` for fixed point).
     #[inline]
     fn is_nan(self) -> bool {
@@ -513,7 +529,7 @@ impl CountToTurn {
     /// within 1.5 units of `c·2³²/L` (see the type docs).
     #[inline]
     pub fn turn(&self, c: u32) -> u32 {
-        if cfg!(all(target_arch = "arm", not(target_has_atomic = "32"))) && self.lo == 0 {
+        if cfg!(armv6m) && self.lo == 0 {
             // L a power of two (or 1): exact with one multiply (Armv6-M,
             // where the wide product is four).
             return c.wrapping_mul(self.hi);
@@ -644,7 +660,7 @@ pub struct Coef {
     units: [i32; 2],
     /// The mantissa and exponent of [`scale_wide`](Self::scale_wide) on
     /// Armv6-M.
-    #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(any(test, armv6m))]
     wide: WideCoef,
 }
 
@@ -653,7 +669,7 @@ pub struct Coef {
 /// `mult` itself, or, for `|mult| = 2³¹`, `mult/2` with `shift − 1` (the
 /// same value), as its halves `m_hi = (m + 2¹⁵) >> 16` (arithmetic) and
 /// `m_lo = m as i16` for [`fixed::signed_wide_mul_add_split`].
-#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+#[cfg(any(test, armv6m))]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct WideCoef {
     m_hi: i32,
@@ -661,7 +677,7 @@ pub(crate) struct WideCoef {
     shift: i32,
 }
 
-#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+#[cfg(any(test, armv6m))]
 impl WideCoef {
     /// From the coefficient's mantissa (`|mult| ≤ 2³¹`) and exponent.
     pub(crate) const fn new(mult: i64, shift: i32) -> Self {
@@ -733,13 +749,13 @@ struct SignedCoef {
     /// `(m + 2¹⁵) >> 16` (arithmetic) and `m as i16`: the halves of the
     /// 16×16 partial products on Armv6-M
     /// ([`fixed::signed_wide_mul_add_split`]).
-    #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(any(test, armv6m))]
     m_hi: i32,
-    #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(any(test, armv6m))]
     m_lo: i32,
     /// The rounding constant added to the low word: `round` (`sh ≤ 32`)
     /// or 0 (`sh ≥ 33`).
-    #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(any(test, armv6m))]
     round_lo: u32,
     /// `sh ≥ 33`: the rounding and shift apply to the high word alone.
     high_only: bool,
@@ -764,11 +780,11 @@ impl SignedCoef {
         if shift >= 63 || mult == 0 {
             return Some(SignedCoef {
                 m: 0,
-                #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+                #[cfg(any(test, armv6m))]
                 m_hi: 0,
-                #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+                #[cfg(any(test, armv6m))]
                 m_lo: 0,
-                #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+                #[cfg(any(test, armv6m))]
                 round_lo: 0,
                 high_only: true,
                 round: 0,
@@ -791,11 +807,11 @@ impl SignedCoef {
         };
         Some(SignedCoef {
             m: mult as i32,
-            #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+            #[cfg(any(test, armv6m))]
             m_hi: ((mult + (1 << 15)) >> 16) as i32,
-            #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+            #[cfg(any(test, armv6m))]
             m_lo: mult as i32 as i16 as i32,
-            #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+            #[cfg(any(test, armv6m))]
             round_lo: if high_only { 0 } else { round },
             high_only,
             round,
@@ -936,7 +952,7 @@ impl Coef {
                 negative: false,
                 signed: SignedCoef::new(0, 0),
                 units: [0; 2],
-                #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+                #[cfg(any(test, armv6m))]
                 wide: WideCoef::new(0, 0),
             };
         }
@@ -988,7 +1004,7 @@ impl Coef {
             negative,
             signed: SignedCoef::new(signed_mult, shift),
             units: [unit(1), unit(-1)],
-            #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+            #[cfg(any(test, armv6m))]
             wide: WideCoef::new(signed_mult, shift),
         }
     }
@@ -1080,11 +1096,11 @@ impl Coef {
                 _ => i32::MAX,
             };
         };
-        #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+        #[cfg(armv6m)]
         {
             Self::scale_i32_split(&c, x)
         }
-        #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+        #[cfg(not(armv6m))]
         {
             let (hi, lo) = fixed::signed_wide_mul(x, c.m);
             if c.high_only {
@@ -1103,7 +1119,7 @@ impl Coef {
     /// ([`fixed::shift_sat`]; for `sh ≥ 33` the rounding of the high word
     /// alone, as in [`scale_i32`](Self::scale_i32)).
     #[inline(always)]
-    #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(any(test, armv6m))]
     fn scale_i32_split(c: &SignedCoef, x: i32) -> i32 {
         let (hi, lo) = fixed::signed_wide_mul_add_split(x, c.m_hi, c.m_lo, c.round_lo);
         if c.high_only {
@@ -1130,11 +1146,11 @@ impl Coef {
     /// every coefficient, argument and `extra` (tests below).
     #[inline(always)]
     pub(crate) fn scale_wide(&self, x: i32, extra: i32) -> i64 {
-        #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+        #[cfg(armv6m)]
         {
             self.scale_wide_split(x, extra)
         }
-        #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+        #[cfg(not(armv6m))]
         {
             self.scale_wide_magnitude(x, extra)
         }
@@ -1143,10 +1159,7 @@ impl Coef {
     /// [`scale_wide`](Self::scale_wide) from the unsigned product of the
     /// magnitudes (the form of targets with a widening multiply).
     #[inline]
-    #[cfg_attr(
-        all(target_arch = "arm", not(target_has_atomic = "32")),
-        allow(dead_code)
-    )]
+    #[cfg_attr(armv6m, allow(dead_code))]
     fn scale_wide_magnitude(&self, x: i32, extra: i32) -> i64 {
         let (hi, lo) = fixed::wide_mul(x.unsigned_abs(), self.mag);
         let neg = (x < 0) != self.negative;
@@ -1200,7 +1213,7 @@ impl Coef {
     /// negation. Then the same saturating shift or rounding shift on the
     /// two words.
     #[inline(never)]
-    #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(any(test, armv6m))]
     fn scale_wide_split(&self, x: i32, extra: i32) -> i64 {
         let w = &self.wide;
         let sh = w.shift - extra;
