@@ -28,6 +28,7 @@ pub mod bound;
 pub mod design;
 pub mod mode;
 pub mod passive;
+mod si;
 
 pub use adaptive::{
     ActiveOutput, RobustAdaptiveConfig, RobustAdaptiveDesign, RobustAdaptiveParams,
