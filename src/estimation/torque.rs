@@ -31,7 +31,7 @@
 //! `a_0 + R_l·cos_turn(θ_fo − φ_l) + R_1·cos_turn(θ_wi − φ_1) +
 //! R_2·cos_turn(2θ_wi − φ_2)`: three [`Scalar::cos_turn`], three
 //! [`Scalar::mul`], three additions (fixed point). Float backends take both
-//! motor harmonics from one [`Scalar::sin_cos_turn_coarse`] of `u = θ_wi − φ_1`
+//! motor harmonics from one `sin_cos_turn_coarse` ([`kernels::f32::sin_cos_turn_coarse`](crate::scalar::kernels::f32::sin_cos_turn_coarse) on `f32`) of `u = θ_wi − φ_1`
 //! by the double angle: with `δ = 2φ_1 − φ_2` (exact in binary angles, so
 //! `2u + δ` is exactly `2θ_wi − φ_2`) and `c² + s² = 1`,
 //! `R_1 cos u + R_2 cos(2u + δ) = c (R_1 + A c + B s) − R_2 cos δ`,
@@ -52,7 +52,7 @@
 //!   `3.5 q + q·ΣR_j`, below `6.5 q` when every amplitude is below 1
 //!   stored unit (1 mrad);
 //! * `f32` (relative rounding `u = 2⁻²⁴`): the cosines are
-//!   [`Scalar::cos_turn_coarse`] and [`Scalar::sin_cos_turn_coarse`], a
+//!   `cos_turn_coarse` ([`kernels::f32::cos_turn_coarse`](crate::scalar::kernels::f32::cos_turn_coarse) on `f32`) and `sin_cos_turn_coarse` ([`kernels::f32::sin_cos_turn_coarse`](crate::scalar::kernels::f32::sin_cos_turn_coarse) on `f32`), a
 //!   table interpolation within `ε_c = 4.8e-6` absolute (proven; the
 //!   harmonics are arcseconds, so `R_j ε_c` is far below an encoder count,
 //!   and it saves about 40 instructions per step on a Cortex-M4F over the
@@ -294,7 +294,7 @@ const LMN_NAME: &str = "link_counts_per_rev·motor_counts_per_rev·drive.ratio";
 /// at `max_torque` the model's
 /// stiffness `K_f0(1 + (c_f τ)²)` is then at most 57.25 `K_f0`, and the
 /// argument of `tan` in eq. (3.10) at most `atan 7.5 = 1.4382` rad, inside
-/// the domain of [`Scalar::tan_bounded`] (`atan 8`) with a margin far
+/// the domain of `tan_bounded` ([`kernels::i16f16::tan_bounded`](crate::scalar::kernels::i16f16::tan_bounded) on fixed point) (`atan 8`) with a margin far
 /// above any rounding, so the estimator evaluates the inverse without the
 /// quotient near the pole. The SHD-17-100 of §2.4 at the 60 N·m of the
 /// examples is at 2.70 (identified `c_f = 0.04494` 1/(N·m)); every drive

@@ -286,7 +286,7 @@ pub struct FlexsplineParams {
 /// (`c`, `1/c`, in stored units) at full 31-bit precision.
 pub const STIFFENING_RANGE: (f64, f64) = (1e-6, 1e6);
 
-/// The largest argument of [`Scalar::tan_bounded`] the torque estimator
+/// The largest argument of `tan_bounded` ([`kernels::i16f16::tan_bounded`](crate::scalar::kernels::i16f16::tan_bounded) on fixed point) the torque estimator
 /// evaluates eq. (3.10) at, rad: `atan 8` (its torsion limit keeps the
 /// argument within it; see
 /// [`TorqueEstimatorParams::try_new`](crate::estimation::torque::TorqueEstimatorParams::try_new)).
@@ -438,7 +438,7 @@ impl<S: Scalar> FlexsplineConfig<S> {
         /// bounded the torsion (see [`torsion_within`](Self::torsion_within)):
         /// the argument of `tan` is then at most `atan(c_f·max_torque) ≤
         /// atan 7.5` (the estimator's validated limit), inside the domain of
-        /// [`Scalar::tan_bounded`] (`atan 8`), which it takes.
+        /// `tan_bounded` ([`kernels::i16f16::tan_bounded`](crate::scalar::kernels::i16f16::tan_bounded) on fixed point) (`atan 8`), which it takes.
         pub(crate) fn torque_in_branch(&self, torsion: S) -> S {
             self.angle_of(torsion)
                 .tan_bounded()
@@ -459,7 +459,7 @@ impl<S: Scalar> FlexsplineConfig<S> {
 
     /// The largest stored torsion `a ≥ 0` such that, at `a` and at `−a`,
     /// the argument of `tan` is within `atan 8` (the domain of
-    /// [`Scalar::tan_bounded`], inside the branch) and
+    /// `tan_bounded` ([`kernels::i16f16::tan_bounded`](crate::scalar::kernels::i16f16::tan_bounded) on fixed point), inside the branch) and
     /// [`torque_in_branch`](Self::torque_in_branch) has a magnitude of at
     /// most `limit` (stored torque), while at the next representable
     /// torsion above `a` one of the two fails. Found once, at configuration

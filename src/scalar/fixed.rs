@@ -536,16 +536,6 @@ impl Scalar for I16F16 {
         I16F16::from_bits(scale.bits().scale_i32(counts))
     }
     #[inline(always)]
-    fn from_counts_prepared(counts: i64, scale: &super::CountCoef) -> Self {
-        // `from_counts` clamps the count to [−2³¹, 2³¹]: below 2³¹ the
-        // clamped count fits `i32`; above, the clamp's value is prepared.
-        if counts > i32::MAX as i64 {
-            I16F16::from_bits(scale.top())
-        } else {
-            Self::from_counts_i32(counts.max(i32::MIN as i64) as i32, scale)
-        }
-    }
-    #[inline(always)]
     fn mul_coef(self, c: &super::Coef) -> Self {
         I16F16::from_bits(c.scale_i32(self.to_bits()))
     }
@@ -640,10 +630,6 @@ impl Scalar for I16F16 {
         I16F16::from_bits(div_bits(self.to_bits(), rhs.to_bits()))
     }
     #[inline]
-    fn div_unit_range(self, rhs: Self) -> Self {
-        I16F16::from_bits(div_bits_unit(self.to_bits(), rhs.to_bits()))
-    }
-    #[inline]
     fn neg(self) -> Self {
         self.saturating_neg()
     }
@@ -654,10 +640,6 @@ impl Scalar for I16F16 {
     #[inline]
     fn atan(self) -> Self {
         kernels::i16f16::atan(self)
-    }
-    #[inline]
-    fn tan_bounded(self) -> Self {
-        kernels::i16f16::tan_bounded(self)
     }
     #[inline]
     fn tan(self) -> Self {
@@ -722,6 +704,27 @@ impl Scalar for I16F16 {
     #[inline]
     fn rsqrt_quarter(self) -> Self {
         kernels::i16f16::rsqrt_quarter(self)
+    }
+}
+
+impl super::sealed::Sealed for I16F16 {
+    #[inline(always)]
+    fn from_counts_prepared(counts: i64, scale: &super::CountCoef) -> Self {
+        // `from_counts` clamps the count to [−2³¹, 2³¹]: below 2³¹ the
+        // clamped count fits `i32`; above, the clamp's value is prepared.
+        if counts > i32::MAX as i64 {
+            I16F16::from_bits(scale.top())
+        } else {
+            Self::from_counts_i32(counts.max(i32::MIN as i64) as i32, scale)
+        }
+    }
+    #[inline]
+    fn div_unit_range(self, rhs: Self) -> Self {
+        I16F16::from_bits(div_bits_unit(self.to_bits(), rhs.to_bits()))
+    }
+    #[inline]
+    fn tan_bounded(self) -> Self {
+        kernels::i16f16::tan_bounded(self)
     }
 }
 

@@ -254,18 +254,6 @@ macro_rules! float_scalar {
                 kernels::$k::sin_cos_turn(turn)
             }
             #[inline]
-            fn tan_bounded(self) -> Self {
-                $tan_bounded(self)
-            }
-            #[inline]
-            fn cos_turn_coarse(turn: u32) -> Self {
-                $coarse(turn)
-            }
-            #[inline]
-            fn sin_cos_turn_coarse(turn: u32) -> (Self, Self) {
-                $sin_cos_coarse(turn)
-            }
-            #[inline]
             fn atan2(self, x: Self) -> Self {
                 kernels::$k::atan2(self, x)
             }
@@ -276,6 +264,21 @@ macro_rules! float_scalar {
             #[inline]
             fn sqrt(self) -> Self {
                 kernels::$k::sqrt(self)
+            }
+        }
+
+        impl super::sealed::Sealed for $t {
+            #[inline]
+            fn tan_bounded(self) -> Self {
+                $tan_bounded(self)
+            }
+            #[inline]
+            fn cos_turn_coarse(turn: u32) -> Self {
+                $coarse(turn)
+            }
+            #[inline]
+            fn sin_cos_turn_coarse(turn: u32) -> (Self, Self) {
+                $sin_cos_coarse(turn)
             }
         }
     };

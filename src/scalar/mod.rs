@@ -86,16 +86,6 @@ pub trait Scalar:
     fn from_counts_i32(counts: i32, scale: &CountCoef) -> Self {
         Self::from_counts(counts as i64, &scale.coef)
     }
-    /// [`from_counts`](Self::from_counts) by a factor prepared as a
-    /// [`CountCoef`]: the same value, bit for bit. `I16F16` takes the
-    /// product of [`from_counts_i32`](Self::from_counts_i32) for every count
-    /// below `2³¹` (`from_counts` clamps the ones below `−2³¹` to `−2³¹`)
-    /// and the prepared value of `2³¹` counts, where `from_counts` clamps
-    /// the larger ones, above.
-    #[inline]
-    fn from_counts_prepared(counts: i64, scale: &CountCoef) -> Self {
-        Self::from_counts(counts, &scale.coef)
-    }
     /// `self · c` for a prepared constant `c`; in fixed point with the
     /// coefficient's full 31-bit precision, rounded to nearest, saturating.
     fn mul_coef(self, c: &Coef) -> Self;
@@ -182,16 +172,6 @@ pub trait Scalar:
     /// `self / rhs`; division by zero gives `±MAX` with the sign of `self`,
     /// and `0 / 0 = 0` (fixed: saturating).
     fn div(self, rhs: Self) -> Self;
-    /// `self / rhs` for a ratio `|self| ≤ |rhs|` (a normalized component,
-    /// a ratio of magnitudes): the value of [`div`](Self::div), bit for
-    /// bit, for every such pair. Fixed point returns it within `[−1, 1]`
-    /// and with the sign of the quotient (0 for `self = 0`) by
-    /// construction, and clamps to `±1` outside the precondition; floats
-    /// divide (IEEE rounding keeps `|self/rhs| ≤ 1`).
-    #[inline]
-    fn div_unit_range(self, rhs: Self) -> Self {
-        self.div(rhs)
-    }
     /// `-self` (fixed: `-MIN` saturates to `MAX`).
     fn neg(self) -> Self;
     /// `|self|` (fixed: `|MIN|` saturates to `MAX`; float: NaN stays NaN).
@@ -256,18 +236,6 @@ pub trait Scalar:
     /// returns `±` the backend's largest in-domain tangent (sign of the input),
     /// so `tan` is non-decreasing over every input.
     fn tan(self) -> Self;
-    /// [`tan`](Scalar::tan) for an argument known to lie in
-    /// `|x| ≤ atan 8 = 1.446441` rad (the torque estimator's, by the
-    /// validated `c_f·max_torque ≤ 7.5`). `I16F16`: one table polynomial
-    /// without the quotient near the pole ([`kernels::i16f16::tan_bounded`],
-    /// within 1 LSB, odd, non-decreasing; beyond the bound the argument is
-    /// clamped to it); `f32`: `tan` itself with a cheaper limiting of the
-    /// argument ([`kernels::f32::tan_bounded`], bit for bit `tan` on the
-    /// domain); the default is `tan`.
-    #[inline]
-    fn tan_bounded(self) -> Self {
-        self.tan()
-    }
     /// `e^self`; saturates at `MAX` and flushes to 0 below the backend's range.
     fn exp(self) -> Self;
     /// `e^{−|self|}`, the decaying exponential of the wave-generator
@@ -313,22 +281,6 @@ pub trait Scalar:
             Self::cos_turn(turn.wrapping_sub(1 << 30)),
             Self::cos_turn(turn),
         )
-    }
-    /// [`cos_turn`](Scalar::cos_turn) at the accuracy a small model term
-    /// needs (the harmonics of the kinematic error, eq. (3.7), whose
-    /// amplitudes are arcseconds). `f32`: linear interpolation in a
-    /// 1025-knot table, ≤ 4.8e-6 absolute
-    /// ([`kernels::f32::cos_turn_coarse`]); the default is `cos_turn`.
-    #[inline]
-    fn cos_turn_coarse(turn: u32) -> Self {
-        Self::cos_turn(turn)
-    }
-    /// `(sin, cos)` by [`cos_turn_coarse`](Scalar::cos_turn_coarse):
-    /// exactly `(cos_turn_coarse(turn − 2³⁰), cos_turn_coarse(turn))`; the
-    /// default is [`sin_cos_turn`](Scalar::sin_cos_turn).
-    #[inline]
-    fn sin_cos_turn_coarse(turn: u32) -> (Self, Self) {
-        Self::sin_cos_turn(turn)
     }
     /// This angle (radians) as a binary angle (units of `2⁻³²` turn,
     /// wrapped), for [`cos_turn`](Scalar::cos_turn) and
@@ -1296,11 +1248,82 @@ pub(crate) fn xorshift64(state: &mut u64) -> u64 {
     *state
 }
 
-mod sealed {
-    pub trait Sealed {}
-    impl Sealed for f32 {}
-    impl Sealed for f64 {}
-    impl Sealed for super::I16F16 {}
+/// The crate-private part of every backend: kernel variants and prepared
+/// forms made for one call site each (a cheaper kernel where the caller
+/// bounds the argument, a product by a factor prepared for counts). Its
+/// methods are callable wherever `S: Scalar` is, inside the crate; a user
+/// neither sees nor implements them (the trait also seals [`Scalar`]: the
+/// proofs in `proofs/` cover exactly the implementations in this crate).
+pub(crate) mod sealed {
+    #[allow(unused_imports)]
+    use super::{CountCoef, Scalar};
+
+    /// See the module.
+    pub trait Sealed: Sized {
+        /// [`from_counts`](Scalar::from_counts) by a factor prepared as a
+        /// [`CountCoef`]: the same value, bit for bit. `I16F16` takes the
+        /// product of [`from_counts_i32`](Scalar::from_counts_i32) for every count
+        /// below `2³¹` (`from_counts` clamps the ones below `−2³¹` to `−2³¹`)
+        /// and the prepared value of `2³¹` counts, where `from_counts` clamps
+        /// the larger ones, above.
+        #[inline]
+        fn from_counts_prepared(counts: i64, scale: &CountCoef) -> Self
+        where
+            Self: Scalar,
+        {
+            Self::from_counts(counts, &scale.coef)
+        }
+        /// `self / rhs` for a ratio `|self| ≤ |rhs|` (a normalized component,
+        /// a ratio of magnitudes): the value of [`div`](Scalar::div), bit for
+        /// bit, for every such pair. Fixed point returns it within `[−1, 1]`
+        /// and with the sign of the quotient (0 for `self = 0`) by
+        /// construction, and clamps to `±1` outside the precondition; floats
+        /// divide (IEEE rounding keeps `|self/rhs| ≤ 1`).
+        #[inline]
+        fn div_unit_range(self, rhs: Self) -> Self
+        where
+            Self: Scalar,
+        {
+            self.div(rhs)
+        }
+        /// [`tan`](Scalar::tan) for an argument known to lie in
+        /// `|x| ≤ atan 8 = 1.446441` rad (the torque estimator's, by the
+        /// validated `c_f·max_torque ≤ 7.5`). `I16F16`: one table polynomial
+        /// without the quotient near the pole ([`kernels::i16f16::tan_bounded`](super::kernels::i16f16::tan_bounded),
+        /// within 1 LSB, odd, non-decreasing; beyond the bound the argument is
+        /// clamped to it); `f32`: `tan` itself with a cheaper limiting of the
+        /// argument ([`kernels::f32::tan_bounded`](super::kernels::f32::tan_bounded), bit for bit `tan` on the
+        /// domain); the default is `tan`.
+        #[inline]
+        fn tan_bounded(self) -> Self
+        where
+            Self: Scalar,
+        {
+            self.tan()
+        }
+        /// [`cos_turn`](Scalar::cos_turn) at the accuracy a small model term
+        /// needs (the harmonics of the kinematic error, eq. (3.7), whose
+        /// amplitudes are arcseconds). `f32`: linear interpolation in a
+        /// 1025-knot table, ≤ 4.8e-6 absolute
+        /// ([`kernels::f32::cos_turn_coarse`](super::kernels::f32::cos_turn_coarse)); the default is `cos_turn`.
+        #[inline]
+        fn cos_turn_coarse(turn: u32) -> Self
+        where
+            Self: Scalar,
+        {
+            Self::cos_turn(turn)
+        }
+        /// `(sin, cos)` by [`cos_turn_coarse`](Self::cos_turn_coarse):
+        /// exactly `(cos_turn_coarse(turn − 2³⁰), cos_turn_coarse(turn))`; the
+        /// default is [`sin_cos_turn`](Scalar::sin_cos_turn).
+        #[inline]
+        fn sin_cos_turn_coarse(turn: u32) -> (Self, Self)
+        where
+            Self: Scalar,
+        {
+            Self::sin_cos_turn(turn)
+        }
+    }
 }
 
 #[cfg(any(kani, test))]

@@ -1,3 +1,4 @@
+use super::sealed::Sealed;
 use super::*;
 
 /// Coefficients beyond 2^40 saturate every non-zero product instead of
