@@ -528,14 +528,6 @@ impl Scalar for I16F16 {
         I16F16::from_bits(scale.scale_int(counts, 16))
     }
     #[inline(always)]
-    fn from_counts_i32(counts: i32, scale: &super::CountCoef) -> Self {
-        // `scale_i32(x)` equals `scale_int(x, 0)` for every coefficient
-        // and `i32`, and the factor moved up 16 bits with the same
-        // mantissa makes that `scale_int(x, 16)` of the factor: the value
-        // of `from_counts`.
-        I16F16::from_bits(scale.bits().scale_i32(counts))
-    }
-    #[inline(always)]
     fn mul_coef(self, c: &super::Coef) -> Self {
         I16F16::from_bits(c.scale_i32(self.to_bits()))
     }
@@ -686,28 +678,36 @@ impl Scalar for I16F16 {
         kernels::i16f16::sqrt(self)
     }
     #[inline]
-    fn sqrt_small(self) -> Self {
-        kernels::i16f16::sqrt_small(self)
+    fn unit_vector(self, b: Self) -> Option<(Self, Self)> {
+        kernels::i16f16::unit_vector(self, b)
+    }
+}
+
+impl super::sealed::Sealed for I16F16 {
+    #[inline(always)]
+    fn from_counts_i32(counts: i32, scale: &super::CountCoef) -> Self {
+        // `scale_i32(x)` equals `scale_int(x, 0)` for every coefficient
+        // and `i32`, and the factor moved up 16 bits with the same
+        // mantissa makes that `scale_int(x, 16)` of the factor: the value
+        // of `from_counts`.
+        I16F16::from_bits(scale.bits().scale_i32(counts))
     }
     #[inline]
     fn hypot_unit(self, b: Self) -> Self {
         kernels::i16f16::hypot_unit(self, b)
     }
     #[inline]
+    fn rsqrt_quarter(self) -> Self {
+        kernels::i16f16::rsqrt_quarter(self)
+    }
+    #[inline]
     fn atan_small(self) -> Self {
         kernels::i16f16::atan_small(self)
     }
     #[inline]
-    fn unit_vector(self, b: Self) -> Option<(Self, Self)> {
-        kernels::i16f16::unit_vector(self, b)
+    fn sqrt_small(self) -> Self {
+        kernels::i16f16::sqrt_small(self)
     }
-    #[inline]
-    fn rsqrt_quarter(self) -> Self {
-        kernels::i16f16::rsqrt_quarter(self)
-    }
-}
-
-impl super::sealed::Sealed for I16F16 {
     #[inline(always)]
     fn from_counts_prepared(counts: i64, scale: &super::CountCoef) -> Self {
         // `from_counts` clamps the count to [−2³¹, 2³¹]: below 2³¹ the

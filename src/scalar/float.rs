@@ -151,13 +151,6 @@ macro_rules! float_scalar {
                 $conv(counts) * scale.$countfn()
             }
             #[inline]
-            fn from_counts_i32(counts: i32, scale: &super::CountCoef) -> Self {
-                // `as` rounds an `i32` to nearest (even), as the `i64`
-                // conversion of `from_counts` does: the same value, with
-                // one hardware conversion.
-                counts as $t * scale.coef().$countfn()
-            }
-            #[inline]
             fn mul_coef(self, c: &super::Coef) -> Self {
                 self * c.$countfn()
             }
@@ -268,6 +261,13 @@ macro_rules! float_scalar {
         }
 
         impl super::sealed::Sealed for $t {
+            #[inline]
+            fn from_counts_i32(counts: i32, scale: &super::CountCoef) -> Self {
+                // `as` rounds an `i32` to nearest (even), as the `i64`
+                // conversion of `from_counts` does: the same value, with
+                // one hardware conversion.
+                counts as $t * scale.coef().$countfn()
+            }
             #[inline]
             fn tan_bounded(self) -> Self {
                 $tan_bounded(self)

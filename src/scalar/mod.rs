@@ -41,6 +41,31 @@ pub use ::fixed::types::I16F16;
 /// Only operations that every backend implements exactly (with its stated,
 /// proven error bound) belong here. The trait is sealed: the proofs in
 /// `proofs/` cover exactly the implementations in this crate.
+///
+/// The methods, by group:
+/// * **constants and conversions**: `NAME`, `ZERO`, `ONE`, `MIN`, `MAX`,
+///   `RESOLUTION`, `PI`, `FRAC_PI_2`, `UNITS`; [`from_f64`](Self::from_f64),
+///   [`to_f64`](Self::to_f64), [`from_i32`](Self::from_i32),
+///   [`from_counts`](Self::from_counts), [`to_turn`](Self::to_turn);
+/// * **arithmetic**: [`add`](Self::add), [`sub`](Self::sub),
+///   [`mul`](Self::mul), [`mul_unit_range`](Self::mul_unit_range),
+///   [`div`](Self::div), [`neg`](Self::neg), [`abs`](Self::abs); by prepared
+///   constants: [`mul_coef`](Self::mul_coef), [`dot_coef`](Self::dot_coef),
+///   [`mul_int`](Self::mul_int), [`integrate`](Self::integrate);
+/// * **comparisons and tests**: [`min`](Self::min), [`max`](Self::max),
+///   [`clamp`](Self::clamp), [`is_nan`](Self::is_nan),
+///   [`all_finite`](Self::all_finite), [`sgn`](Self::sgn),
+///   [`copysign`](Self::copysign), [`sat`](Self::sat);
+/// * **proven kernels**: [`sin`](Self::sin), [`cos`](Self::cos),
+///   [`sin_cos`](Self::sin_cos), [`cos_turn`](Self::cos_turn),
+///   [`sin_cos_turn`](Self::sin_cos_turn), [`tan`](Self::tan),
+///   [`atan`](Self::atan), [`atan2`](Self::atan2), [`acos`](Self::acos),
+///   [`sqrt`](Self::sqrt), [`exp`](Self::exp),
+///   [`exp_neg_abs`](Self::exp_neg_abs), [`unit_vector`](Self::unit_vector).
+///
+/// Kernel variants made for one call site of the crate (a cheaper kernel
+/// where the caller bounds the argument, a product by a factor prepared for
+/// counts) are crate-private.
 pub trait Scalar:
     Copy + PartialEq + PartialOrd + Debug + Default + Send + Sync + sealed::Sealed + 'static
 {
@@ -77,15 +102,6 @@ pub trait Scalar:
     /// reading keeps its full resolution even when one count is far below
     /// one LSB of the scaled unit. Rounded to nearest; saturates.
     fn from_counts(counts: i64, scale: &Coef) -> Self;
-    /// [`from_counts`](Self::from_counts) for a count that fits `i32` (a
-    /// difference of two wrapping counter readings) and a factor prepared
-    /// as a [`CountCoef`]: the same value, bit for bit. `I16F16` takes the
-    /// 32-bit product of [`mul_coef`](Self::mul_coef) by the factor moved
-    /// up 16 bits instead of the general 64-bit count product.
-    #[inline]
-    fn from_counts_i32(counts: i32, scale: &CountCoef) -> Self {
-        Self::from_counts(counts as i64, &scale.coef)
-    }
     /// `self · c` for a prepared constant `c`; in fixed point with the
     /// coefficient's full 31-bit precision, rounded to nearest, saturating.
     fn mul_coef(self, c: &Coef) -> Self;
@@ -297,18 +313,6 @@ pub trait Scalar:
     /// Four-quadrant arctangent of `self / x` (`self` is `y`), in `[-π, π]`;
     /// `atan2(0, 0) = 0`.
     fn atan2(self, x: Self) -> Self;
-    /// `√(self² + b²)` for components of magnitude at most 1 (the sine
-    /// of a bend from its two components). `I16F16` scales both by a
-    /// power of two instead of dividing by the larger and takes the root
-    /// as the product of the scaled sum of squares and its table
-    /// reciprocal root ([`kernels::i16f16::hypot_unit`]: within 1 LSB,
-    /// inputs clamped to `±(1 − 2⁻¹⁶)`); the default is
-    /// `m·√(1 + (n/m)²)` with `m ≥ n` the magnitudes, free of overflow and
-    /// of the loss of squaring tiny values.
-    #[inline]
-    fn hypot_unit(self, b: Self) -> Self {
-        hypot(self, b)
-    }
     /// The unit vector `(self, b)/|(self, b)|` of two components of
     /// magnitude at most 1 (e.g. the azimuth of a wrist's output axis),
     /// `None` for the zero vector. `I16F16` scales both by a power of two
@@ -324,46 +328,10 @@ pub trait Scalar:
             None
         }
     }
-    /// `1/√self` for `self ∈ [¼, 1]` (inputs clamped to it): the
-    /// reciprocal of a cosine known to be at least ½. `I16F16` takes a
-    /// 24-piece cubic table ([`kernels::i16f16::rsqrt_quarter`]: within
-    /// 1 LSB, no root or division); the default is `1/√x`.
-    #[inline]
-    fn rsqrt_quarter(self) -> Self {
-        let quarter = Self::from_f64(0.25);
-        // A NaN fails both tests and stays NaN.
-        let x = if self > Self::ONE {
-            Self::ONE
-        } else if self < quarter {
-            quarter
-        } else {
-            self
-        };
-        Self::ONE.div(x.sqrt())
-    }
-    /// [`atan`](Self::atan) of a value below 2 in magnitude (the tangent
-    /// of an angle within ±63°, e.g. formed from a bounded ratio without
-    /// a division). `I16F16` evaluates it without the division `atan`
-    /// needs above 1 ([`kernels::i16f16::atan_small`]: bit for bit `atan`
-    /// below 1, within the same 1 LSB bound up to 2, inputs of 2 and above
-    /// clamped to `2 − 2⁻¹⁶`); floats take `atan`.
-    #[inline]
-    fn atan_small(self) -> Self {
-        self.atan()
-    }
     /// Arccosine in `[0, π]`; inputs outside `[-1, 1]` are clamped to it.
     fn acos(self) -> Self;
     /// Square root; negative inputs return 0.
     fn sqrt(self) -> Self;
-    /// [`sqrt`](Self::sqrt) of a value below 4 (a sum of squares of
-    /// values bounded by 1, `1 + r²` with `|r| ≤ 1`): the value of `sqrt`,
-    /// bit for bit, for every input below 4. `I16F16` takes a shorter root
-    /// (seven trial steps fewer: [`kernels::i16f16::sqrt_small`]) and
-    /// clamps inputs of 4 and above to `4 − 2⁻¹⁶`; floats take `sqrt`.
-    #[inline]
-    fn sqrt_small(self) -> Self {
-        self.sqrt()
-    }
 
     /// Sign function of thesis eq. (2.17): `1` for `x > 0`, `0` for `x = 0`
     /// (including `-0.0` and NaN), `-1` for `x < 0`. Exact on every backend.
@@ -653,7 +621,7 @@ impl WideCoef {
     }
 }
 
-/// A count-to-value factor for [`Scalar::from_counts_i32`]: the
+/// A count-to-value factor for the crate's count conversions (`from_counts_i32`): the
 /// [`Coef`] of [`Scalar::from_counts`] and, for fixed point, the same
 /// mantissa 16 bits up (so a count read as `I16F16` bits times it is the
 /// count product).
@@ -1256,10 +1224,82 @@ pub(crate) fn xorshift64(state: &mut u64) -> u64 {
 /// proofs in `proofs/` cover exactly the implementations in this crate).
 pub(crate) mod sealed {
     #[allow(unused_imports)]
-    use super::{CountCoef, Scalar};
+    use super::{hypot, CountCoef, Scalar};
 
     /// See the module.
     pub trait Sealed: Sized {
+        /// [`from_counts`](Self::from_counts) for a count that fits `i32` (a
+        /// difference of two wrapping counter readings) and a factor prepared
+        /// as a [`CountCoef`]: the same value, bit for bit. `I16F16` takes the
+        /// 32-bit product of [`mul_coef`](Self::mul_coef) by the factor moved
+        /// up 16 bits instead of the general 64-bit count product.
+        #[inline]
+        fn from_counts_i32(counts: i32, scale: &CountCoef) -> Self
+        where
+            Self: Scalar,
+        {
+            Self::from_counts(counts as i64, &scale.coef)
+        }
+        /// `√(self² + b²)` for components of magnitude at most 1 (the sine
+        /// of a bend from its two components). `I16F16` scales both by a
+        /// power of two instead of dividing by the larger and takes the root
+        /// as the product of the scaled sum of squares and its table
+        /// reciprocal root ([`kernels::i16f16::hypot_unit`]: within 1 LSB,
+        /// inputs clamped to `±(1 − 2⁻¹⁶)`); the default is
+        /// `m·√(1 + (n/m)²)` with `m ≥ n` the magnitudes, free of overflow and
+        /// of the loss of squaring tiny values.
+        #[inline]
+        fn hypot_unit(self, b: Self) -> Self
+        where
+            Self: Scalar,
+        {
+            hypot(self, b)
+        }
+        /// `1/√self` for `self ∈ [¼, 1]` (inputs clamped to it): the
+        /// reciprocal of a cosine known to be at least ½. `I16F16` takes a
+        /// 24-piece cubic table ([`kernels::i16f16::rsqrt_quarter`]: within
+        /// 1 LSB, no root or division); the default is `1/√x`.
+        #[inline]
+        fn rsqrt_quarter(self) -> Self
+        where
+            Self: Scalar,
+        {
+            let quarter = Self::from_f64(0.25);
+            // A NaN fails both tests and stays NaN.
+            let x = if self > Self::ONE {
+                Self::ONE
+            } else if self < quarter {
+                quarter
+            } else {
+                self
+            };
+            Self::ONE.div(x.sqrt())
+        }
+        /// [`atan`](Self::atan) of a value below 2 in magnitude (the tangent
+        /// of an angle within ±63°, e.g. formed from a bounded ratio without
+        /// a division). `I16F16` evaluates it without the division `atan`
+        /// needs above 1 ([`kernels::i16f16::atan_small`]: bit for bit `atan`
+        /// below 1, within the same 1 LSB bound up to 2, inputs of 2 and above
+        /// clamped to `2 − 2⁻¹⁶`); floats take `atan`.
+        #[inline]
+        fn atan_small(self) -> Self
+        where
+            Self: Scalar,
+        {
+            self.atan()
+        }
+        /// [`sqrt`](Self::sqrt) of a value below 4 (a sum of squares of
+        /// values bounded by 1, `1 + r²` with `|r| ≤ 1`): the value of `sqrt`,
+        /// bit for bit, for every input below 4. `I16F16` takes a shorter root
+        /// (seven trial steps fewer: [`kernels::i16f16::sqrt_small`]) and
+        /// clamps inputs of 4 and above to `4 − 2⁻¹⁶`; floats take `sqrt`.
+        #[inline]
+        fn sqrt_small(self) -> Self
+        where
+            Self: Scalar,
+        {
+            self.sqrt()
+        }
         /// [`from_counts`](Scalar::from_counts) by a factor prepared as a
         /// [`CountCoef`]: the same value, bit for bit. `I16F16` takes the
         /// product of [`from_counts_i32`](Scalar::from_counts_i32) for every count
