@@ -851,7 +851,7 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
             // symmetric: `(sign(r)|Y_j|)·ρ_j` is `±(Y_j ρ_j)` bit for bit,
             // without a test per term (`sign(r)|Y_j|` is exact).
             // Fixed point rounds ties up, not symmetrically: its own test.
-            if S::RESOLUTION.to_f64() < 1e-6 {
+            if S::FLOAT {
                 return y.abs().mul(r_sign).mul_coef(&self.rho_param[j]);
             }
             let t = y.mul_coef(&self.rho_param[j]);

@@ -154,7 +154,7 @@ pub(crate) fn clamp_or_keep<S: Scalar>(new: S, old: S, lo: S, hi: S) -> S {
 /// `clamp` maps NaN to its lower bound.
 #[inline]
 pub(crate) fn clamp_or_keep_symmetric<S: Scalar>(new: S, old: S, limit: S) -> S {
-    if S::RESOLUTION.to_f64() >= 1e-6 {
+    if !S::FLOAT {
         // Fixed point (folded at compile time): no NaN, so no select; the
         // form whose Armv6-M code is the shortest.
         return if new.abs() <= limit {

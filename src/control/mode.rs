@@ -661,7 +661,7 @@ impl<S: Scalar> ModeConfig<S> {
         if v.abs() > l {
             // `v` is a nonzero number here: on floats `±l` from its sign
             // bit (no second comparison).
-            let c = if S::RESOLUTION.to_f64() < 1e-6 {
+            let c = if S::FLOAT {
                 l.copysign(v)
             } else if v > S::ZERO {
                 l
@@ -762,7 +762,7 @@ impl<S: Scalar> ModeConfig<S> {
     /// `ω > 0`) on floats, `None` on fixed point.
     #[inline]
     fn drop_overflowing_offset(&self, st: &mut ModeState<S>) -> Option<S> {
-        if S::RESOLUTION.to_f64() >= 1e-6 {
+        if !S::FLOAT {
             return None;
         }
         let acc = self.offset_sum(st);

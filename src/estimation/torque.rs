@@ -133,7 +133,7 @@ use core::num::NonZeroU32;
 /// step is exact). Fixed point takes `from_counts` itself.
 #[inline(always)]
 fn torsion_of_counts<S: Scalar>(d: i64, c: &Coef) -> S {
-    if S::RESOLUTION.to_f64() < 1e-6 {
+    if S::FLOAT {
         let hi = S::from_i32((d >> 24) as i32);
         let lo = S::from_i32((d & 0xFF_FFFF) as i32);
         hi.mul(S::from_f64(16_777_216.0)).add(lo).mul_coef(c)
@@ -845,7 +845,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
                     let link = self.link_turn.turn(c_l);
                     let motor = self.motor_turn.turn(p);
                     let (r, phi) = (&k.amplitudes, &k.phases);
-                    if S::RESOLUTION.to_f64() < 1e-6 {
+                    if S::FLOAT {
                         // Floats (folded at compile time): one sine and cosine
                         // of the motor angle for both motor harmonics.
                         let [o, a, b] = self.double_angle;
@@ -1030,7 +1030,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             // Floats: the clamp takes the sign of the count (the torsion is
             // finite). Fixed point keeps the comparisons (folded at compile
             // time).
-            let negative = if S::RESOLUTION.to_f64() < 1e-6 {
+            let negative = if S::FLOAT {
                 Some(d < 0)
             } else {
                 None

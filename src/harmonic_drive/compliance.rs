@@ -613,7 +613,7 @@ impl<S: Scalar> WaveGeneratorConfig<S> {
         // `τ_w·c_w` have the same magnitude and `exp_neg_abs` (even) takes
         // it; fixed point rounds ties up and keeps the magnitude first
         // (folded at compile time).
-        let t = if S::RESOLUTION.to_f64() < 1e-6 {
+        let t = if S::FLOAT {
             motor_torque
         } else {
             motor_torque.abs()
@@ -625,7 +625,7 @@ impl<S: Scalar> WaveGeneratorConfig<S> {
         // on `τ_w < 0`: `copysign` of the non-negative `1 − e` without its
         // `abs` (folded at compile time).
         let v = S::ONE.sub(e);
-        let v = if S::RESOLUTION.to_f64() < 1e-6 {
+        let v = if S::FLOAT {
             v.copysign(motor_torque)
         } else if motor_torque < S::ZERO {
             v.neg()

@@ -684,6 +684,8 @@ impl Scalar for I16F16 {
 }
 
 impl super::sealed::Sealed for I16F16 {
+    const FLOAT: bool = false;
+
     #[inline(always)]
     fn from_counts_i32(counts: i32, scale: &super::CountCoef) -> Self {
         // `scale_i32(x)` equals `scale_int(x, 0)` for every coefficient

@@ -1228,6 +1228,11 @@ pub(crate) mod sealed {
 
     /// See the module.
     pub trait Sealed: Sized {
+        /// A binary floating-point backend (`f32`, `f64`): NaN and ±∞
+        /// exist and rounding is relative to the magnitude; `false` for
+        /// fixed point. For code whose best form differs between the two
+        /// (a constant, folded at compile time).
+        const FLOAT: bool = true;
         /// [`from_counts`](Self::from_counts) for a count that fits `i32` (a
         /// difference of two wrapping counter readings) and a factor prepared
         /// as a [`CountCoef`]: the same value, bit for bit. `I16F16` takes the
