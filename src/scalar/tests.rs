@@ -857,3 +857,27 @@ fn turn_from_radians_rounds_and_wraps() {
     // Just below a full turn rounds up to 2³² and wraps to 0.
     assert_eq!(turn_from_radians(TAU - 1e-12), 0);
 }
+
+/// `all_finite` is false exactly when one of the values is NaN or ±∞, at
+/// every position and whatever the other values (huge finite values whose
+/// sum would overflow included); fixed point is always finite.
+#[test]
+fn all_finite_finds_every_non_finite_value() {
+    fn check<S: Scalar>(huge: S, bad: &[S]) {
+        let good = [S::ONE, huge, huge.neg(), S::ZERO, huge];
+        assert!(S::all_finite(&good));
+        assert!(S::all_finite::<0>(&[]));
+        for &b in bad {
+            for i in 0..good.len() {
+                let mut v = good;
+                v[i] = b;
+                assert!(!S::all_finite(&v), "{} {:?} at {i}", S::NAME, b);
+            }
+            assert!(!S::all_finite(&[b]));
+        }
+    }
+    check(f32::MAX, &[f32::NAN, f32::INFINITY, f32::NEG_INFINITY]);
+    check(f64::MAX, &[f64::NAN, f64::INFINITY, f64::NEG_INFINITY]);
+    check(I16F16::MAX, &[]);
+    assert!(I16F16::all_finite(&[I16F16::MIN, I16F16::MAX]));
+}
