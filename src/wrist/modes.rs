@@ -369,7 +369,7 @@ impl<S: Scalar> WristModeConfig<S> {
             // or a NaN (`v − v` is 0 exactly when `v` is finite).
             // Fixed point saturates instead (folded at compile
             // time).
-            let float = S::RESOLUTION.to_f64() < 1e-6;
+            let float = S::FLOAT;
             let (o, od) = if !float || od.sub(od).add(o.sub(o)) == S::ZERO {
                 (o, od)
             } else {
