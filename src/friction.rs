@@ -474,7 +474,7 @@ impl<S: Scalar> FrictionConfig<S> {
     pub fn sat(&self, qd: S) -> S {
         // Fixed point only (folded at compile time): a float product by the
         // coefficient is already one multiply.
-        let fixed = !S::FLOAT;
+        let fixed = S::RESOLUTION.to_f64() >= 1e-6;
         // Both slopes are prepared so that the layer's value stays in
         // [−1, 1] (`new`): no clamp.
         match self.inv_eps_value {
@@ -487,7 +487,7 @@ impl<S: Scalar> FrictionConfig<S> {
     /// every such `qd`, without the NaN test.
     #[inline(always)]
     fn sat_number(&self, qd: S) -> S {
-        let fixed = !S::FLOAT;
+        let fixed = S::RESOLUTION.to_f64() >= 1e-6;
         match self.inv_eps_value {
             Some(inv) if fixed => sat_in_layer_number(qd, self.eps, |x| x.mul(inv)),
             _ => sat_in_layer_number(qd, self.eps, |x| x.mul_coef(&self.inv_eps)),
@@ -513,7 +513,7 @@ impl<S: Scalar> FrictionConfig<S> {
     pub(crate) fn evaluate_number(&self, theta: &[S; 4], qd: S) -> FrictionEval<S> {
         // Floats only (folded at compile time): fixed point has no NaN and
         // keeps `evaluate` (the smaller Armv6-M code).
-        if !S::FLOAT {
+        if S::RESOLUTION.to_f64() >= 1e-6 {
             self.evaluate(theta, qd)
         } else {
             self.evaluate_with_sat(theta, qd, self.sat_number(qd))
