@@ -649,7 +649,6 @@ fn fig2_20(r: &mut Report) -> Result<Figure, Error> {
             0.0,
             f64::MAX,
         )
-        .abs()
     };
     figure(
         &dir,
@@ -669,8 +668,10 @@ fn fig2_20(r: &mut Report) -> Result<Figure, Error> {
          them (hysteresis)"
             .into(),
         format!(
-            "motor swings over {:.2} rad; gap between the loading and unloading branches at zero \
-             torque: piecewise {:.2e} rad, proposed {:.2e} rad",
+            "motor swings over {:.2} rad; signed gap between the error's unloading and loading \
+             branches at zero torque (a model without hysteresis leaves the plant's loop, one \
+             whose hysteresis is too wide flips its sign): piecewise {:+.2e} rad, proposed \
+             {:+.2e} rad",
             hi - lo,
             gap(|s| s.piecewise),
             gap(|s| s.proposed)
