@@ -1537,7 +1537,8 @@ fn fig6_15(r: &mut Report) -> Result<Figure, Error> {
         "more than 10 N·m of pitch torque without the wrist moving".into(),
         format!(
             "{peaks} (the finger's spring fully stretched) with the wrist moving {:.2}°; each \
-             motor axis breaks away at {:.1} N·m on its side of Jᵀ",
+             motor axis breaks away at {:.1} N·m on its side of Jᵀ (the bench's assumption: the \
+             thesis's 10 N·m plus 20 %; Table 6.1 gives no friction)",
             run.travel[0].max(run.travel[1]).to_degrees(),
             {
                 let a = bench_axis(0.0);
