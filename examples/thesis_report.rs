@@ -33,13 +33,13 @@ use mrr_control::sim::experiments::{
     TorqueEstimationConfig, TorqueEstimationResult, ESTIMATORS,
 };
 use mrr_control::sim::wrist_bench::{
-    bench_axis, wrist_finger_push, wrist_tracking, FingerCase, WristBenchRun, WristBenchSample,
-    FINGER_START, FINGER_STIFFNESS, FINGER_TRAVEL,
+    bench_axis, tracking_trajectory, wrist_finger_push, wrist_tracking, FingerCase, WristBenchRun,
+    WristBenchSample, BENCH_PERIOD, FINGER_START, FINGER_STIFFNESS, FINGER_TRAVEL,
 };
 use mrr_control::wrist::figures::{
     alpha_beta_comparison, workspace_mapping, MappingRule, WorkspaceSample,
 };
-use mrr_control::wrist::WristParams;
+use mrr_control::wrist::{IkState, PitchYaw, WristConfig, WristParams};
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -86,10 +86,23 @@ pub const CHAPTERS: &[(&str, &[FigureFn])] = &[
     (
         "Chapter 6: wrist control and door opening",
         &[
-            fig6_10, fig6_11, fig6_14, fig6_15, fig6_16, fig6_17, fig6_19, fig6_20,
+            fig6_7, fig6_8, fig6_9, fig6_10, fig6_11, fig6_14, fig6_15, fig6_16, fig6_17, fig6_19,
+            fig6_20,
         ],
     ),
 ];
+
+/// The thesis's figures of measured data that are not drawn, each with
+/// the reason. (Photographs, drawings and block diagrams — Fig. 2.1–2.10,
+/// 2.13–2.16, 3.4–3.5, 4.1, 5.1–5.6, 5.9, 6.1–6.6, 6.12, 6.18 — show no
+/// data and are not listed.)
+pub const NOT_DRAWN: &[(&str, &str)] = &[(
+    "Fig. 4.4–4.10: joint 1 tracking while joint 2 moves joint 3 as a payload (§4.4.1)",
+    "not drawn: the thesis gives joint 2's motion and joint 1's desired trajectory only as \
+     plots and states no number for these figures, so there is nothing to compare; the \
+     coupling they show is the arm's, which `sim::mrr` integrates from the same eq. \
+     (4.1)–(4.6) the joint model uses, so a rerun there would not be independent evidence",
+)];
 
 /// Run options.
 #[derive(Debug, Clone)]
@@ -1379,6 +1392,183 @@ fn series(run: &WristBenchRun, f: impl Fn(&WristBenchSample) -> f64) -> Vec<(f64
     run.samples.iter().map(|s| (s.time, f(s))).collect()
 }
 
+/// The task trajectory of §6.4.2 and its joint-space image through the
+/// continuous inverse kinematics (eq. 5.14–5.15), sampled every 4 ms:
+/// `(t, [δ_d, γ_d], [θ1, θ3], [θ̇1, θ̇3], |FK(θ) − x_d|)`, rates by central
+/// differences over one period, angles in rad.
+#[allow(clippy::type_complexity)]
+fn wrist_joint_trajectory(quick: bool) -> Vec<(f64, [f64; 2], [f64; 2], [f64; 2], f64)> {
+    let kin = WristConfig::<f64>::new(&WristParams::thesis());
+    let at = |x: [f64; 2]| PitchYaw {
+        delta: x[0],
+        gamma: x[1],
+    };
+    let duration = if quick { 6.0 } else { 12.0 };
+    let n = (duration / BENCH_PERIOD).round() as usize;
+    let mut ik = IkState::new(kin.inverse(at(tracking_trajectory(0.0))).motors);
+    let motors: Vec<[f64; 2]> = (0..=n + 1)
+        .map(|k| {
+            let m = kin
+                .update(&mut ik, at(tracking_trajectory(k as f64 * BENCH_PERIOD)))
+                .motors;
+            [m.theta1, m.theta3]
+        })
+        .collect();
+    (1..=n)
+        .map(|k| {
+            let t = k as f64 * BENCH_PERIOD;
+            let x = tracking_trajectory(t);
+            let q = motors[k];
+            let rate = [0, 1].map(|i| (motors[k + 1][i] - motors[k - 1][i]) / (2.0 * BENCH_PERIOD));
+            let back = kin
+                .forward(mrr_control::wrist::MotorAngles {
+                    theta1: q[0],
+                    theta3: q[1],
+                })
+                .pose;
+            let miss = (back.delta - x[0]).hypot(back.gamma - x[1]);
+            (t, x, q, rate, miss)
+        })
+        .collect()
+}
+
+fn fig6_7(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let tr = wrist_joint_trajectory(r.opts.quick);
+    let peak = |i: usize| {
+        tr.iter()
+            .map(|p| p.1[i].abs())
+            .fold(0.0, f64::max)
+            .to_degrees()
+    };
+    figure(
+        &dir,
+        "fig6_7_wrist_task_trajectory.svg",
+        "Fig. 6.7: desired task-space trajectory, active mode",
+        Chart {
+            title: "Fig. 6.7  desired pitch δ_d and yaw γ_d (sim::wrist_bench)",
+            x: "time (s)",
+            y: "angle (deg)",
+            series: vec![
+                line(
+                    "δ_d",
+                    BLUE_,
+                    tr.iter().map(|p| (p.0, p.1[0].to_degrees())).collect(),
+                ),
+                line(
+                    "γ_d",
+                    ORANGE,
+                    tr.iter().map(|p| (p.0, p.1[1].to_degrees())).collect(),
+                ),
+            ],
+            markers: vec![],
+        },
+        "a pitch-and-yaw trajectory for the active mode (shown as a plot only, no number \
+         given)"
+            .into(),
+        format!(
+            "the thesis's trajectory is not given in numbers; this one (tracking_trajectory) \
+             bends the output 12–24° and swings it from pitch through yaw: peak |δ_d| {:.1}°, \
+             |γ_d| {:.1}°",
+            peak(0),
+            peak(1)
+        ),
+    )
+}
+
+fn fig6_8(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let tr = wrist_joint_trajectory(r.opts.quick);
+    let range = |i: usize| {
+        let (lo, hi) = tr.iter().fold((f64::MAX, f64::MIN), |(l, h), p| {
+            (l.min(p.2[i]), h.max(p.2[i]))
+        });
+        (lo.to_degrees(), hi.to_degrees())
+    };
+    let miss = tr.iter().map(|p| p.4).fold(0.0, f64::max);
+    let jump = tr
+        .windows(2)
+        .map(|w| {
+            (w[1].2[0] - w[0].2[0])
+                .abs()
+                .max((w[1].2[1] - w[0].2[1]).abs())
+        })
+        .fold(0.0, f64::max);
+    let (a, b) = (range(0), range(1));
+    figure(
+        &dir,
+        "fig6_8_wrist_joint_trajectory.svg",
+        "Fig. 6.8: joint-space trajectory from the inverse kinematics",
+        Chart {
+            title: "Fig. 6.8  motor angles θ1, θ3 of Fig. 6.7, eq. (5.14)–(5.15)",
+            x: "time (s)",
+            y: "angle (deg)",
+            series: vec![
+                line(
+                    "θ1",
+                    BLUE_,
+                    tr.iter().map(|p| (p.0, p.2[0].to_degrees())).collect(),
+                ),
+                line(
+                    "θ3",
+                    ORANGE,
+                    tr.iter().map(|p| (p.0, p.2[1].to_degrees())).collect(),
+                ),
+            ],
+            markers: vec![],
+        },
+        "the joint trajectory the inverse kinematics derives from Fig. 6.7 (no number given)"
+            .into(),
+        format!(
+            "θ1 over {:.1}…{:.1}°, θ3 over {:.1}…{:.1}°; largest change between 4 ms \
+             samples {:.2}° (no branch jump); the forward kinematics of each sample returns \
+             the task point within {:.1e} rad",
+            a.0,
+            a.1,
+            b.0,
+            b.1,
+            jump.to_degrees(),
+            miss
+        ),
+    )
+}
+
+fn fig6_9(r: &mut Report) -> Result<Figure, Error> {
+    let dir = r.opts.out.clone();
+    let tr = wrist_joint_trajectory(r.opts.quick);
+    let peak = |i: usize| {
+        tr.iter()
+            .map(|p| p.3[i].abs())
+            .fold(0.0, f64::max)
+            .to_degrees()
+    };
+    figure(
+        &dir,
+        "fig6_9_wrist_joint_velocity.svg",
+        "Fig. 6.9: joint-space velocities",
+        Chart {
+            title: "Fig. 6.9  motor rates θ̇1, θ̇3 (central differences over 4 ms)",
+            x: "time (s)",
+            y: "rate (deg/s)",
+            series: vec![
+                line(
+                    "θ̇1",
+                    BLUE_,
+                    tr.iter().map(|p| (p.0, p.3[0].to_degrees())).collect(),
+                ),
+                line(
+                    "θ̇3",
+                    ORANGE,
+                    tr.iter().map(|p| (p.0, p.3[1].to_degrees())).collect(),
+                ),
+            ],
+            markers: vec![],
+        },
+        "the joint velocities from the differential kinematics (no number given)".into(),
+        format!("peak |θ̇1| {:.1}°/s, |θ̇3| {:.1}°/s", peak(0), peak(1)),
+    )
+}
+
 fn fig6_10(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
     let run = r.wrist_tracking().clone();
@@ -1729,7 +1919,11 @@ fn index_html(chapters: &[(&str, Vec<Figure>)], quick: bool) -> String {
             );
         }
     }
-    h.push_str("</body>\n</html>\n");
+    h.push_str("<h2>Not drawn</h2>\n<ul>\n");
+    for (title, why) in NOT_DRAWN {
+        let _ = writeln!(h, "<li><b>{}</b>: {}</li>", escape(title), escape(why));
+    }
+    h.push_str("</ul>\n</body>\n</html>\n");
     h
 }
 
@@ -1754,6 +1948,9 @@ fn summary_md(chapters: &[(&str, Vec<Figure>)], quick: bool) -> String {
                 md_cell(&f.ours)
             );
         }
+    }
+    for (title, why) in NOT_DRAWN {
+        let _ = writeln!(m, "| {} | — | {} |", md_cell(title), md_cell(why));
     }
     m
 }
