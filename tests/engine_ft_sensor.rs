@@ -58,6 +58,9 @@
 // Six-element wrenches compared index by index across several arrays.
 #![allow(clippy::needless_range_loop)]
 
+mod common;
+
+use common::motor_grid;
 use std::f64::consts::PI;
 use std::sync::OnceLock;
 
@@ -85,19 +88,6 @@ struct Pose {
     gamma: f64,
     motors: MotorAngles<f64>,
     holding: [f64; 2],
-}
-
-fn motor_grid(n: usize) -> Vec<(f64, f64)> {
-    let step = 2.0 * PI / n as f64;
-    let mut v = Vec::new();
-    for i in 0..n {
-        let t1 = -PI + (i as f64 + 0.5) * step;
-        for j in 0..n {
-            let jj = if i % 2 == 0 { j } else { n - 1 - j };
-            v.push((t1, -PI + (jj as f64 + 0.5) * step));
-        }
-    }
-    v
 }
 
 fn poses() -> &'static [Pose] {

@@ -28,6 +28,9 @@
 //! Run with `cargo test --features engine --test engine_wrist -- --nocapture`
 //! to print the measured maxima.
 
+mod common;
+
+use common::motor_grid;
 use std::f64::consts::PI;
 
 use mrr_control::sim::engine::{DaujMechanism, EngineSettings, UniversalJointBench};
@@ -58,20 +61,6 @@ fn pose_rotation(delta: f64, gamma: f64) -> UnitQuaternion<f64> {
 
 fn wrap(x: f64) -> f64 {
     x - 2.0 * PI * (x / (2.0 * PI)).round()
-}
-
-/// The `n × n` motor grid in serpentine order (neighbours one step apart).
-fn motor_grid(n: usize) -> Vec<(f64, f64)> {
-    let step = 2.0 * PI / n as f64;
-    let mut v = Vec::new();
-    for i in 0..n {
-        let t1 = -PI + (i as f64 + 0.5) * step;
-        for j in 0..n {
-            let jj = if i % 2 == 0 { j } else { n - 1 - j };
-            v.push((t1, -PI + (jj as f64 + 0.5) * step));
-        }
-    }
-    v
 }
 
 #[derive(Debug, Default, Clone, Copy)]
