@@ -905,7 +905,7 @@ mod tests {
     use super::*;
 
     fn settings() -> EngineSettings {
-        EngineSettings::try_new(1e-4, 4, 20.0, 0.4).unwrap()
+        EngineSettings::try_new(1e-4, 1, 20.0, 0.4).unwrap()
     }
 
     fn free_rotor_module() -> ModuleParams {
