@@ -53,9 +53,7 @@
 //! to print the measured maxima.
 #![cfg(feature = "engine")]
 
-use mrr_control::sim::engine::{
-    DriveState, EngineArm, EngineSettings, PlantDrives, RotorBody,
-};
+use mrr_control::sim::engine::{DriveState, EngineArm, EngineSettings, PlantDrives, RotorBody};
 use mrr_control::sim::mrr::misaligned;
 use mrr_control::sim::{FrictionParams, ModuleParams, Mrr};
 
@@ -116,7 +114,13 @@ fn three(v: &[f64]) -> [f64; 3] {
     [v[0], v[1], v[2]]
 }
 
-fn run_mrr(modules: &[ModuleParams], q0: [f64; 3], profile: Profile, t: f64, steps: usize) -> Trace {
+fn run_mrr(
+    modules: &[ModuleParams],
+    q0: [f64; 3],
+    profile: Profile,
+    t: f64,
+    steps: usize,
+) -> Trace {
     let mut r = Mrr::try_new(modules.to_vec(), GRAVITY, SAMPLE, steps, 1).unwrap();
     let n: Vec<f64> = modules.iter().map(|m| m.drive.ratio).collect();
     let qm: Vec<f64> = (0..3).map(|i| n[i] * q0[i]).collect();
@@ -266,7 +270,8 @@ fn cases() -> Vec<Case> {
 #[test]
 fn engine_arm_agrees_with_eq_4_1_to_4_6() {
     // One substep per step (module docs: revised criteria).
-    let coarse = EngineSettings::try_new(1e-4, 1, 20.0, 0.4).unwrap();
+    let coarse = EngineArm::<PlantDrives>::default_settings();
+    assert_eq!((coarse.dt(), coarse.solver_iterations()), (1e-4, 1));
     let fine = coarse.with_half_step();
     let mut failures = Vec::new();
     for c in cases() {
@@ -300,7 +305,10 @@ fn engine_arm_agrees_with_eq_4_1_to_4_6() {
         };
         let b = c.bound;
         check(link <= b, format!("link difference {link:.3e} > {b:.0e}"));
-        check(motor <= b, format!("motor difference {motor:.3e} > {b:.0e}"));
+        check(
+            motor <= b,
+            format!("motor difference {motor:.3e} > {b:.0e}"),
+        );
         check(
             link_extrapolated <= 1e-5,
             format!("extrapolated link difference {link_extrapolated:.3e} > 1e-5"),
@@ -332,7 +340,10 @@ fn engine_arm_agrees_with_eq_4_1_to_4_6() {
                 def / scale
             );
             check(dm <= 1e-6 * scale, format!("Mrr energy drift {dm:.3e} J"));
-            check(de <= 2e-2 * scale, format!("engine energy drift {de:.3e} J"));
+            check(
+                de <= 2e-2 * scale,
+                format!("engine energy drift {de:.3e} J"),
+            );
             check(def < de, format!("engine energy drift at dt/2 {def:.3e} J"));
         }
     }

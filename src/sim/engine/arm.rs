@@ -56,19 +56,28 @@
 //! # Time stepping
 //!
 //! The hook and the applied torques are evaluated once per engine step
-//! `dt` ([`EngineSettings::dt`]) and held over it; within the step the
+//! `dt` ([`EngineSettings::dt`]) and held over it. Within a step the
 //! engine integrates the multibody in `solver_iterations` substeps of
 //! `dt / solver_iterations` (semi-implicit Euler on the joint coordinates,
-//! gravity, Coriolis and gyroscopic terms re-evaluated every substep). The
-//! drive is an explicit spring: `dt ω` must stay well below 1 for the
-//! drive's frequency `ω = √(K (1/J_l + 1/(N² I_m)))` (≈ 640 rad/s for the
-//! SHD-17-100 carrying the thesis's link), so the arm runs at `dt = 1e-4 s`
-//! ([`EngineArm::DEFAULT_DT`]); the check at half the step is in
-//! `tests/engine_arm.rs`. The engine's default joint damping (0.1 N·m·s/rad
-//! per revolute joint in rapier 0.27) is set to zero: the only dissipation
-//! is the one the drive hook puts in. The motor-spring fields of
-//! [`EngineSettings`] are not used by the arm: its motors are torque
-//! sources.
+//! gravity, Coriolis and gyroscopic terms re-evaluated every substep, the
+//! applied torques not). Run the arm with **one** substep
+//! ([`EngineArm::default_settings`]): a step is then semi-implicit
+//! (symplectic) Euler for the drive spring too, and the error is first
+//! order in `dt` (halving the step halves every difference to
+//! [`crate::sim::Mrr`], measured in `tests/engine_arm.rs`). With several
+//! substeps the drive torque is held while the bodies move, which
+//! integrates the spring by a scheme whose energy grows: at `dt = 1e-4 s`
+//! and 4 substeps a 1 s torque-driven run was 3 rad off, and halving the
+//! step cut the error tenfold instead of twofold.
+//!
+//! The drive is an explicit spring, so `dt ω` must stay well below 1 for
+//! the drive's frequency `ω = √(K (1/J_l + 1/(N² I_m)))` (≈ 640 rad/s for the
+//! SHD-17-100 carrying the thesis's link: `dt ω ≈ 0.06` at
+//! [`EngineArm::DEFAULT_DT`] = 1e-4 s). The engine's default joint damping
+//! (0.1 N·m·s/rad per revolute joint in rapier 0.27) is set to zero: the
+//! only dissipation is the one the drive hook puts in. The motor-spring
+//! fields of [`EngineSettings`] are not used by the arm: its motors are
+//! torque sources.
 //!
 //! Angles are read from the bodies' poses (unwrapped step to step), speeds
 //! from the engine's joint velocities.
@@ -414,6 +423,14 @@ impl<D: DriveModel> EngineArm<D> {
     /// The engine step the arm is run at, s (module docs).
     pub const DEFAULT_DT: f64 = 1e-4;
 
+    /// [`Self::DEFAULT_DT`] with one solver substep per step (module docs;
+    /// the motor-spring fields, unused here, at their defaults).
+    pub fn default_settings() -> EngineSettings {
+        let d = EngineSettings::default();
+        EngineSettings::try_new(Self::DEFAULT_DT, 1, d.motor_stiffness(), d.motor_damping())
+            .unwrap_or(d)
+    }
+
     /// The arm of `modules` (module 0 on the base) under `gravity` (m/s²,
     /// base frame, e.g. `[0, 0, −9.81]`), rotors as `rotor`, drives `drive`,
     /// stepped with `settings` (its `dt` and `solver_iterations`), at rest
@@ -487,7 +504,8 @@ impl<D: DriveModel> EngineArm<D> {
             rotor_inertial.push(Inertial {
                 mass: rotor.mass,
                 com: Vector::zeros(),
-                inertia: Matrix3::identity() * it + axis * axis.transpose() * (m.rotor_inertia - it),
+                inertia: Matrix3::identity() * it
+                    + axis * axis.transpose() * (m.rotor_inertia - it),
             });
         }
         // Take rotor i (mass and transverse inertia) out of link i − 1.
@@ -513,7 +531,7 @@ impl<D: DriveModel> EngineArm<D> {
             let rest_inertia = rest_about_origin - shift(rest_mass, &rest_com);
             let rest_inertia = (rest_inertia + rest_inertia.transpose()) * 0.5;
             let smallest = rest_inertia.symmetric_eigenvalues().min();
-            if !(smallest > 0.0) {
+            if smallest.is_nan() || smallest <= 0.0 {
                 return Err(ParamError::NotPositive {
                     name: "link_inertia",
                     value: smallest,
@@ -704,13 +722,11 @@ impl<D: DriveModel> EngineArm<D> {
     /// as 0. The drive model is not touched (relax it separately if it has
     /// memory, e.g. [`PlantDrives::relax`]).
     pub fn set_state(&mut self, q_l: &[f64], q_m: &[f64], v_l: &[f64], v_m: &[f64]) {
-        let get = |v: &[f64], i: usize| {
-            v.get(i)
-                .copied()
-                .filter(|x| x.is_finite())
-                .unwrap_or(0.0)
-        };
-        let Some((mb, _)) = self.world.multibody_joints.get_mut(self.link_joints[0].handle)
+        let get = |v: &[f64], i: usize| v.get(i).copied().filter(|x| x.is_finite()).unwrap_or(0.0);
+        let Some((mb, _)) = self
+            .world
+            .multibody_joints
+            .get_mut(self.link_joints[0].handle)
         else {
             return;
         };
@@ -725,7 +741,12 @@ impl<D: DriveModel> EngineArm<D> {
         let mut velocities = vec![0.0; mb.ndofs()];
         for i in 0..self.links.len() {
             let targets = [
-                (self.links[i], get(q_l, i), get(v_l, i), self.state[i].link_angle),
+                (
+                    self.links[i],
+                    get(q_l, i),
+                    get(v_l, i),
+                    self.state[i].link_angle,
+                ),
                 (
                     self.rotors[i],
                     get(q_m, i),
@@ -734,11 +755,18 @@ impl<D: DriveModel> EngineArm<D> {
                 ),
             ];
             for (body, q, v, now) in targets {
-                let Some(id) = self.world.multibody_joints.rigid_body_link(body).map(|l| l.id)
+                let Some(id) = self
+                    .world
+                    .multibody_joints
+                    .rigid_body_link(body)
+                    .map(|l| l.id)
                 else {
                     continue;
                 };
-                let Some((mb, _)) = self.world.multibody_joints.get_mut(self.link_joints[0].handle)
+                let Some((mb, _)) = self
+                    .world
+                    .multibody_joints
+                    .get_mut(self.link_joints[0].handle)
                 else {
                     return;
                 };
@@ -756,7 +784,11 @@ impl<D: DriveModel> EngineArm<D> {
                 motor_speed: get(v_m, i),
             };
         }
-        if let Some((mb, _)) = self.world.multibody_joints.get_mut(self.link_joints[0].handle) {
+        if let Some((mb, _)) = self
+            .world
+            .multibody_joints
+            .get_mut(self.link_joints[0].handle)
+        {
             mb.generalized_velocity_mut().copy_from_slice(&velocities);
             mb.forward_kinematics(&self.world.bodies, false);
             mb.update_rigid_bodies(&mut self.world.bodies, true);
@@ -901,132 +933,4 @@ impl<D: DriveModel> EngineArm<D> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn settings() -> EngineSettings {
-        EngineSettings::try_new(1e-4, 1, 20.0, 0.4).unwrap()
-    }
-
-    fn free_rotor_module() -> ModuleParams {
-        let mut m = ModuleParams::thesis_joint();
-        m.drive = m.drive.elastic();
-        m
-    }
-
-    #[test]
-    fn bad_input_is_named() {
-        let good = vec![free_rotor_module()];
-        let drive = LinearDrives::try_new(&[(100.0, 1e4, 0.0)]).unwrap();
-        let arm = |m: &[ModuleParams], g: [f64; 3]| {
-            EngineArm::try_new(m, g, RotorBody::default(), drive.clone(), settings()).err()
-        };
-        assert!(matches!(
-            arm(&[], [0.0; 3]),
-            Some(ParamError::NotPositive {
-                name: "modules",
-                ..
-            })
-        ));
-        assert!(matches!(
-            arm(&good, [0.0, f64::NAN, 0.0]),
-            Some(ParamError::NotFinite {
-                name: "gravity",
-                ..
-            })
-        ));
-        let mut bad = good.clone();
-        bad[0].axis = [0.0, 0.0, 2.0];
-        assert!(matches!(
-            arm(&bad, [0.0; 3]),
-            Some(ParamError::OutOfRange { name: "axis", .. })
-        ));
-        let mut bad = good.clone();
-        bad[0].link_locked = true;
-        assert!(matches!(
-            arm(&bad, [0.0; 3]),
-            Some(ParamError::OutOfRange {
-                name: "link_locked",
-                ..
-            })
-        ));
-        // A carrying link lighter than the rotor it carries.
-        let mut bad = vec![free_rotor_module(), free_rotor_module()];
-        bad[0].link_mass = 0.05;
-        assert!(matches!(
-            arm(&bad, [0.0; 3]),
-            Some(ParamError::OutOfRange {
-                name: "link_mass",
-                ..
-            })
-        ));
-        assert!(matches!(
-            RotorBody::try_new(0.1, -1.0),
-            Err(ParamError::NotPositive {
-                name: "rotor_transverse_inertia",
-                ..
-            })
-        ));
-        assert!(matches!(
-            LinearDrives::try_new(&[(100.0, 1e4, -1.0)]),
-            Err(ParamError::Negative {
-                name: "damping",
-                ..
-            })
-        ));
-    }
-
-    /// One module, no gravity, a constant motor torque: the drive's
-    /// torques cancel in `J_l q̇_l + N I_m q̇_m` (eq. 4.1 plus N × eq. 4.2),
-    /// which grows as `N τ_m t`, whatever the drive does. `J_l` is the
-    /// link's moment about the joint axis by hand: the rod's
-    /// `m l²/12 + m (l/2)²`.
-    #[test]
-    fn motor_torque_feeds_the_momentum_of_link_and_rotor() {
-        let m = free_rotor_module();
-        let (mass, l, im, n) = (0.64, 0.45, 1.14e-5, 100.0);
-        let j_l = mass * l * l / 12.0 + mass * (l / 2.0) * (l / 2.0);
-        let drive = LinearDrives::try_new(&[(n, 1e4, 0.0)]).unwrap();
-        let mut arm =
-            EngineArm::try_new(&[m], [0.0; 3], RotorBody::default(), drive, settings()).unwrap();
-        let tau = 0.05;
-        arm.set_motor_torque(&[tau]);
-        arm.run(0.2);
-        let s = arm.drive_states()[0];
-        let momentum = j_l * s.link_speed + n * im * s.motor_speed;
-        let want = n * tau * arm.time();
-        assert!(
-            (momentum - want).abs() < 1e-9 * want,
-            "{momentum} vs {want}"
-        );
-        // The drive did twist and oscillate: the check is not trivial.
-        assert!(s.link_speed.abs() > 0.1 && arm.energy() > 0.0);
-    }
-
-    /// Set state is read back as set (angles from the poses, speeds from
-    /// the engine's joint velocities), with two modules on different axes.
-    #[test]
-    fn state_reads_back() {
-        let mut b = free_rotor_module();
-        b.axis = [0.0, 1.0, 0.0];
-        b.origin = [0.45, 0.0, 0.0];
-        let modules = [free_rotor_module(), b];
-        let drive = LinearDrives::try_new(&[(100.0, 1e4, 0.0), (100.0, 1e4, 0.0)]).unwrap();
-        let mut arm =
-            EngineArm::try_new(&modules, [0.0; 3], RotorBody::default(), drive, settings())
-                .unwrap();
-        arm.set_state(&[0.3, -1.2], &[30.0, -120.0], &[0.5, -0.25], &[50.0, -25.0]);
-        arm.read_state();
-        let s = arm.drive_states();
-        for (got, want) in [
-            (s[0].link_angle, 0.3),
-            (s[1].link_angle, -1.2),
-            (s[0].motor_angle, 30.0),
-            (s[1].motor_angle, -120.0),
-            (s[0].link_speed, 0.5),
-            (s[1].motor_speed, -25.0),
-        ] {
-            assert!((got - want).abs() < 1e-12, "{got} vs {want}");
-        }
-    }
-}
+mod tests;
