@@ -349,3 +349,192 @@ fn engine_arm_agrees_with_eq_4_1_to_4_6() {
     }
     assert!(failures.is_empty(), "{failures:#?}");
 }
+
+// ---------------------------------------------------------------------------
+// Active tracking at 4 ms through the library's joints (§4.4.1).
+//
+// The §4.4.1 experiment with the firmware in the loop, on both plants: a
+// two-module arm on vertical axes (no gravity torque on either joint, so
+// the 2 N·m interaction threshold of the preset's mode manager is not
+// reached by the load alone): module 1 carries its 0.64 kg, 0.45 m link
+// and module 2 (1.2 kg, Table 4.1) at the link's end; module 2 carries a
+// 0.64 kg, 0.45 m link. Full drive plants (SHD-17-100 backbone, Maxwell
+// slip, Table 3.2 kinematic error) and the thesis joint's link and motor
+// friction, the same on both plants. Each joint runs
+// `JointConfig::<S>::update` of `JointParams::table_4_1_at(0.004)` every
+// 4 ms on counts quantized from the true angles (2^17 link counts, 2000
+// motor counts, no noise), its torque held for 4 ms; joint 1 tracks
+// `0.2 (1 − cos(π (t − 0.2)))/2` rad after 0.2 s at rest, joint 2 holds 0.
+// `Mrr` steps RK4 at 0.1 ms, the engine at its 0.1 ms step.
+//
+// Criteria, fixed before the first run, for S = f32 and I16F16:
+// * (d) both plants spend the same number of ticks in each mode per joint
+//   (±1 % of the ticks);
+// * (e) the largest link tracking error of each joint after 0.2 s agrees
+//   between the plants within 20 % of the larger, or 2e-4 rad;
+// * (f) the link angles of the two plants differ by at most
+//   max(1e-3 rad, 20 % of the largest tracking error) over the run.
+// ---------------------------------------------------------------------------
+
+use mrr_control::joint::{JointConfig, JointParams, JointReadings, JointTarget};
+use mrr_control::prelude::JointMode;
+use mrr_control::{Scalar, I16F16};
+use std::f64::consts::TAU;
+
+const TICK: f64 = 4e-3;
+const PLANT_STEPS: usize = 40;
+
+/// The two-module arm of the tracking run.
+fn tracking_arm() -> Vec<ModuleParams> {
+    let mut turret = ModuleParams::thesis_joint().with_payload(1.2, [0.45, 0.0, 0.0]);
+    turret.axis = [0.0, 0.0, 1.0];
+    let mut second = ModuleParams::thesis_joint();
+    second.origin = [0.45, 0.0, 0.0];
+    second.axis = [0.0, 0.0, 1.0];
+    vec![turret, second]
+}
+
+fn reference(t: f64) -> (f64, f64, f64) {
+    let (a, w) = (0.2, std::f64::consts::PI);
+    let s = (t - 0.2).max(0.0);
+    let on = if t >= 0.2 { 1.0 } else { 0.0 };
+    (
+        a * (1.0 - (w * s).cos()) / 2.0,
+        a * w * (w * s).sin() / 2.0,
+        a * w * w * (w * s).cos() / 2.0 * on,
+    )
+}
+
+/// A plant the loop can drive: true angles, held torques, one tick.
+trait Plant {
+    fn angles(&self) -> (Vec<f64>, Vec<f64>);
+    fn hold(&mut self, torque: &[f64]);
+    fn tick(&mut self);
+}
+
+impl Plant for Mrr {
+    fn angles(&self) -> (Vec<f64>, Vec<f64>) {
+        (self.link_angles().to_vec(), self.motor_angles().to_vec())
+    }
+    fn hold(&mut self, torque: &[f64]) {
+        self.set_motor_torque(torque);
+    }
+    fn tick(&mut self) {
+        for _ in 0..PLANT_STEPS {
+            self.step();
+        }
+    }
+}
+
+impl Plant for EngineArm<PlantDrives> {
+    fn angles(&self) -> (Vec<f64>, Vec<f64>) {
+        (self.link_angles(), self.motor_angles())
+    }
+    fn hold(&mut self, torque: &[f64]) {
+        self.set_motor_torque(torque);
+    }
+    fn tick(&mut self) {
+        for _ in 0..PLANT_STEPS {
+            self.step();
+        }
+    }
+}
+
+#[derive(Debug)]
+struct Tracking {
+    /// Ticks per mode (Active, Hold, Passive) per joint.
+    modes: [[usize; 3]; 2],
+    /// Largest |q_l − q_d| after 0.2 s per joint, rad.
+    max_error: [f64; 2],
+    /// Link angles every tick.
+    link: Vec<[f64; 2]>,
+}
+
+fn track<S: Scalar>(plant: &mut dyn Plant, duration: f64) -> Tracking {
+    let p = JointParams::table_4_1_at(TICK).unwrap();
+    let cfg = JointConfig::<S>::new(&p);
+    let lc = p.settings().estimator.link_counts_per_rev() as f64;
+    let mc = p.settings().estimator.motor_counts_per_rev() as f64;
+    let link_count = |q: f64| (q / TAU * lc).floor().rem_euclid(lc) as u32;
+    let motor_counter = |q: f64| ((q / TAU * mc).floor() as i64) as u32;
+    let (ql, qm) = plant.angles();
+    let mut states: Vec<_> = (0..2)
+        .map(|i| cfg.state(link_count(ql[i]), motor_counter(qm[i])))
+        .collect();
+    let mut out = Tracking {
+        modes: [[0; 3]; 2],
+        max_error: [0.0; 2],
+        link: Vec::new(),
+    };
+    let ticks = (duration / TICK).round() as usize;
+    for k in 0..ticks {
+        let t = k as f64 * TICK;
+        let (ql, qm) = plant.angles();
+        out.link.push([ql[0], ql[1]]);
+        let targets = [reference(t), (0.0, 0.0, 0.0)];
+        let mut torque = [0.0; 2];
+        for i in 0..2 {
+            let (q, v, a) = targets[i];
+            let r = JointReadings::counts(link_count(ql[i]), motor_counter(qm[i]));
+            let o = cfg.update(&mut states[i], &r, &JointTarget::from_si(q, v, a));
+            let m = match o.mode {
+                JointMode::Active => 0,
+                JointMode::Hold => 1,
+                JointMode::Passive => 2,
+            };
+            out.modes[i][m] += 1;
+            if t >= 0.2 {
+                out.max_error[i] = out.max_error[i].max((ql[i] - q).abs());
+            }
+            torque[i] = o.motor_torque_si();
+        }
+        plant.hold(&torque);
+        plant.tick();
+    }
+    out
+}
+
+fn tracking_on_both<S: Scalar>(name: &str) {
+    let modules = tracking_arm();
+    let duration = 3.0;
+    let mut model = Mrr::try_new(modules.clone(), GRAVITY, TICK, PLANT_STEPS, 1).unwrap();
+    let on_model = track::<S>(&mut model, duration);
+    let drive = PlantDrives::of(&modules, true, &[DriveState::default(); 2]);
+    let settings = EngineArm::<PlantDrives>::default_settings();
+    let mut engine =
+        EngineArm::try_new(&modules, GRAVITY, RotorBody::default(), drive, settings).unwrap();
+    let on_engine = track::<S>(&mut engine, duration);
+    let ticks = on_model.link.len();
+    let apart = on_model
+        .link
+        .iter()
+        .zip(&on_engine.link)
+        .flat_map(|(a, b)| [(a[0] - b[0]).abs(), (a[1] - b[1]).abs()])
+        .fold(0.0, f64::max);
+    println!("{name}: Mrr {:?} {:?}", on_model.modes, on_model.max_error);
+    println!("{name}: engine {:?} {:?}", on_engine.modes, on_engine.max_error);
+    println!("{name}: link angles apart by at most {apart:.3e} rad");
+    for i in 0..2 {
+        for m in 0..3 {
+            let d = on_model.modes[i][m].abs_diff(on_engine.modes[i][m]);
+            assert!(d * 100 <= ticks, "{name}: joint {i} mode {m}: {d} ticks");
+        }
+        let (a, b) = (on_model.max_error[i], on_engine.max_error[i]);
+        assert!(
+            (a - b).abs() <= (0.2 * a.max(b)).max(2e-4),
+            "{name}: joint {i} tracking error {a:.3e} vs {b:.3e}"
+        );
+    }
+    let largest = on_model.max_error.iter().fold(0.0f64, |m, e| m.max(*e));
+    assert!(apart <= (0.2 * largest).max(1e-3), "{name}: {apart:.3e}");
+}
+
+#[test]
+fn active_tracking_at_4ms_on_f32_agrees_between_plants() {
+    tracking_on_both::<f32>("f32");
+}
+
+#[test]
+fn active_tracking_at_4ms_on_i16f16_agrees_between_plants() {
+    tracking_on_both::<I16F16>("I16F16");
+}
