@@ -512,7 +512,10 @@ fn tracking_on_both<S: Scalar>(name: &str) {
         .flat_map(|(a, b)| [(a[0] - b[0]).abs(), (a[1] - b[1]).abs()])
         .fold(0.0, f64::max);
     println!("{name}: Mrr {:?} {:?}", on_model.modes, on_model.max_error);
-    println!("{name}: engine {:?} {:?}", on_engine.modes, on_engine.max_error);
+    println!(
+        "{name}: engine {:?} {:?}",
+        on_engine.modes, on_engine.max_error
+    );
     println!("{name}: link angles apart by at most {apart:.3e} rad");
     for i in 0..2 {
         for m in 0..3 {

@@ -837,7 +837,8 @@ impl<D: DriveModel> EngineArm<D> {
     }
 
     /// One engine step: the drive torques at the current state, the motor
-    /// and external torques and gravity, held over `dt`.
+    /// and external torques and gravity, held over `dt`. Non-finite
+    /// torques from the drive hook are applied as zero.
     pub fn step(&mut self) {
         let n = self.links.len();
         for h in self.links.iter().chain(&self.rotors) {
@@ -855,6 +856,14 @@ impl<D: DriveModel> EngineArm<D> {
         }
         for i in 0..n {
             let d = self.drive.torques(i, &self.state[i]);
+            // A hook that returns a non-finite torque acts with zero
+            // instead, so the engine state stays finite.
+            let finite_or_zero = |x: f64| if x.is_finite() { x } else { 0.0 };
+            let d = DriveTorques {
+                transmission: finite_or_zero(d.transmission),
+                on_link: finite_or_zero(d.on_link),
+                on_motor: finite_or_zero(d.on_motor),
+            };
             self.last_drive[i] = d;
             let parent = self.parent_of(i);
             let z = self.rotation(parent) * self.link_joints[i].axis;

@@ -124,3 +124,31 @@ fn state_reads_back() {
         assert!((got - want).abs() < 1e-12, "{got} vs {want}");
     }
 }
+
+/// A drive hook that returns NaN leaves the state finite (its torques are
+/// applied as zero: the link then falls freely under gravity).
+#[test]
+fn non_finite_drive_torque_is_not_propagated() {
+    let mut m = free_rotor_module();
+    m.axis = [0.0, 1.0, 0.0];
+    let hook = |_: usize, _: &DriveState| DriveTorques {
+        transmission: f64::NAN,
+        on_link: f64::INFINITY,
+        on_motor: f64::NAN,
+    };
+    let mut arm = EngineArm::try_new(
+        &[m],
+        [0.0, 0.0, -9.81],
+        RotorBody::default(),
+        hook,
+        settings(),
+    )
+    .unwrap();
+    arm.set_motor_torque(&[f64::NAN]);
+    arm.run(0.05);
+    let s = arm.drive_states()[0];
+    assert!(s.link_angle.is_finite() && s.motor_speed.is_finite());
+    assert!(arm.drive_torques()[0].transmission == 0.0);
+    // It moved: gravity acts on the horizontal link.
+    assert!(s.link_angle.abs() > 1e-3, "{}", s.link_angle);
+}
