@@ -374,6 +374,9 @@ fn engine_arm_agrees_with_eq_4_1_to_4_6() {
 //   between the plants within 20 % of the larger, or 2e-4 rad;
 // * (f) the link angles of the two plants differ by at most
 //   max(1e-3 rad, 20 % of the largest tracking error) over the run.
+// Added after the first run, before running it: (g) the engine at half its
+// step (0.05 ms, 80 steps a tick) meets (d)–(f) against the engine at its
+// step.
 // ---------------------------------------------------------------------------
 
 use mrr_control::joint::{JointConfig, JointParams, JointReadings, JointTarget};
@@ -434,7 +437,8 @@ impl Plant for EngineArm<PlantDrives> {
         self.set_motor_torque(torque);
     }
     fn tick(&mut self) {
-        for _ in 0..PLANT_STEPS {
+        let steps = (TICK / self.settings().dt()).round() as usize;
+        for _ in 0..steps {
             self.step();
         }
     }
@@ -494,42 +498,62 @@ fn track<S: Scalar>(plant: &mut dyn Plant, duration: f64) -> Tracking {
     out
 }
 
+/// Criteria (d)–(f) between two runs.
+fn agree(name: &str, a: &Tracking, b: &Tracking) {
+    let ticks = a.link.len();
+    let apart = a
+        .link
+        .iter()
+        .zip(&b.link)
+        .flat_map(|(x, y)| [(x[0] - y[0]).abs(), (x[1] - y[1]).abs()])
+        .fold(0.0, f64::max);
+    println!("{name}: link angles apart by at most {apart:.6e} rad");
+    for i in 0..2 {
+        for m in 0..3 {
+            let d = a.modes[i][m].abs_diff(b.modes[i][m]);
+            assert!(d * 100 <= ticks, "{name}: joint {i} mode {m}: {d} ticks");
+        }
+        let (x, y) = (a.max_error[i], b.max_error[i]);
+        assert!(
+            (x - y).abs() <= (0.2 * x.max(y)).max(2e-4),
+            "{name}: joint {i} tracking error {x:.3e} vs {y:.3e}"
+        );
+    }
+    let largest = a.max_error.iter().fold(0.0f64, |m, e| m.max(*e));
+    assert!(apart <= (0.2 * largest).max(1e-3), "{name}: {apart:.3e}");
+}
+
 fn tracking_on_both<S: Scalar>(name: &str) {
     let modules = tracking_arm();
     let duration = 3.0;
     let mut model = Mrr::try_new(modules.clone(), GRAVITY, TICK, PLANT_STEPS, 1).unwrap();
     let on_model = track::<S>(&mut model, duration);
-    let drive = PlantDrives::of(&modules, true, &[DriveState::default(); 2]);
+    let engine_run = |settings: EngineSettings| {
+        let drive = PlantDrives::of(&modules, true, &[DriveState::default(); 2]);
+        let mut engine =
+            EngineArm::try_new(&modules, GRAVITY, RotorBody::default(), drive, settings).unwrap();
+        track::<S>(&mut engine, duration)
+    };
     let settings = EngineArm::<PlantDrives>::default_settings();
-    let mut engine =
-        EngineArm::try_new(&modules, GRAVITY, RotorBody::default(), drive, settings).unwrap();
-    let on_engine = track::<S>(&mut engine, duration);
-    let ticks = on_model.link.len();
-    let apart = on_model
-        .link
-        .iter()
-        .zip(&on_engine.link)
-        .flat_map(|(a, b)| [(a[0] - b[0]).abs(), (a[1] - b[1]).abs()])
-        .fold(0.0, f64::max);
-    println!("{name}: Mrr {:?} {:?}", on_model.modes, on_model.max_error);
-    println!(
-        "{name}: engine {:?} {:?}",
-        on_engine.modes, on_engine.max_error
-    );
-    println!("{name}: link angles apart by at most {apart:.3e} rad");
-    for i in 0..2 {
-        for m in 0..3 {
-            let d = on_model.modes[i][m].abs_diff(on_engine.modes[i][m]);
-            assert!(d * 100 <= ticks, "{name}: joint {i} mode {m}: {d} ticks");
-        }
-        let (a, b) = (on_model.max_error[i], on_engine.max_error[i]);
-        assert!(
-            (a - b).abs() <= (0.2 * a.max(b)).max(2e-4),
-            "{name}: joint {i} tracking error {a:.3e} vs {b:.3e}"
+    let on_engine = engine_run(settings);
+    let on_engine_fine = engine_run(settings.with_half_step());
+    for (plant, r) in [
+        ("Mrr", &on_model),
+        ("engine", &on_engine),
+        ("engine dt/2", &on_engine_fine),
+    ] {
+        println!(
+            "{name} {plant:<12} ticks per mode (Active, Hold, Passive) {:?}, \
+             largest tracking error {:.3e}, {:.3e} rad",
+            r.modes, r.max_error[0], r.max_error[1]
         );
     }
-    let largest = on_model.max_error.iter().fold(0.0f64, |m, e| m.max(*e));
-    assert!(apart <= (0.2 * largest).max(1e-3), "{name}: {apart:.3e}");
+    agree(&format!("{name} Mrr vs engine"), &on_model, &on_engine);
+    agree(
+        &format!("{name} engine dt vs dt/2"),
+        &on_engine,
+        &on_engine_fine,
+    );
 }
 
 #[test]
