@@ -71,9 +71,10 @@
 //! step cut the error tenfold instead of twofold.
 //!
 //! The drive is an explicit spring, so `dt ω` must stay well below 1 for
-//! the drive's frequency `ω = √(K (1/J_l + 1/(N² I_m)))` (≈ 640 rad/s for the
-//! SHD-17-100 carrying the thesis's link: `dt ω ≈ 0.06` at
-//! [`EngineArm::DEFAULT_DT`] = 1e-4 s). The engine's default joint damping
+//! the drive's frequency `ω = √(K (1/J_l + 1/(N² I_m)))`: ≈ 650 rad/s for
+//! the SHD-17-100's stiffest segment (`K3 = 1.3e4 N·m/rad`) between the
+//! thesis's rotor (`N² I_m = 0.114 kg·m²`) and link (`J_l = 0.043 kg·m²`
+//! about the joint), `dt ω ≈ 0.065` at [`EngineArm::DEFAULT_DT`] = 1e-4 s. The engine's default joint damping
 //! (0.1 N·m·s/rad per revolute joint in rapier 0.27) is set to zero: the
 //! only dissipation is the one the drive hook puts in. The motor-spring
 //! fields of [`EngineSettings`] are not used by the arm: its motors are
@@ -440,10 +441,11 @@ impl<D: DriveModel> EngineArm<D> {
     /// (`modules`); gravity finite; per module a unit `axis` (within 1e-9),
     /// finite `origin`, `link_com` and `link_inertia`, positive
     /// `rotor_inertia`, a gear `ratio ≥ 1`, a positive `max_motor_torque`,
-    /// no `link_locked` (not modelled here), and a carrying link that
-    /// keeps a positive mass (`link_mass` above the rotor's mass) and a
-    /// positive-definite inertia once the rotor it carries is taken out
-    /// (`link_inertia`, reported by its smallest eigenvalue).
+    /// no `link_locked` (not modelled here), a carrying link that keeps a
+    /// positive mass once the rotor it carries is taken out (`link_mass`
+    /// above the rotor's mass), and every `link_inertia` symmetric (to
+    /// 1e-9 relative) and positive semi-definite once the carried rotor is
+    /// taken out (a negative one is reported by its smallest eigenvalue).
     pub fn try_new(
         modules: &[ModuleParams],
         gravity: [f64; 3],
@@ -529,19 +531,31 @@ impl<D: DriveModel> EngineArm<D> {
             let rest_about_origin = about_origin - rotor_transverse - shift(rotor.mass, &p);
             let rest_com = (link.com * link.mass - p * rotor.mass) / rest_mass;
             let rest_inertia = rest_about_origin - shift(rest_mass, &rest_com);
-            let rest_inertia = (rest_inertia + rest_inertia.transpose()) * 0.5;
-            let smallest = rest_inertia.symmetric_eigenvalues().min();
-            if smallest.is_nan() || smallest <= 0.0 {
-                return Err(ParamError::NotPositive {
+            link_inertial[i - 1] = Inertial {
+                mass: rest_mass,
+                com: rest_com,
+                inertia: (rest_inertia + rest_inertia.transpose()) * 0.5,
+            };
+        }
+        // Every link, rotors taken out, a physical inertia tensor.
+        for link in &link_inertial {
+            let sym = (link.inertia + link.inertia.transpose()) * 0.5;
+            let smallest = sym.symmetric_eigenvalues().min();
+            let asymmetry = (link.inertia - link.inertia.transpose()).abs().max();
+            if smallest.is_nan() || smallest < 0.0 {
+                return Err(ParamError::Negative {
                     name: "link_inertia",
                     value: smallest,
                 });
             }
-            link_inertial[i - 1] = Inertial {
-                mass: rest_mass,
-                com: rest_com,
-                inertia: rest_inertia,
-            };
+            if asymmetry > 1e-9 * sym.abs().max() {
+                return Err(ParamError::OutOfRange {
+                    name: "link_inertia",
+                    value: asymmetry,
+                    min: 0.0,
+                    max: 1e-9 * sym.abs().max(),
+                });
+            }
         }
 
         let mut world = World::new(&settings);

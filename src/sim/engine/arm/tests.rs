@@ -56,6 +56,26 @@ fn bad_input_is_named() {
             ..
         })
     ));
+    // A link whose inertia turns negative once the rotor is taken out.
+    let mut bad = vec![free_rotor_module(), free_rotor_module()];
+    bad[0].link_inertia = [[1e-6, 0.0, 0.0], [0.0, 1e-6, 0.0], [0.0, 0.0, 1e-6]];
+    bad[0].link_com = [0.45, 0.0, 0.0];
+    assert!(matches!(
+        arm(&bad, [0.0; 3]),
+        Some(ParamError::Negative {
+            name: "link_inertia",
+            ..
+        })
+    ));
+    let mut bad = good.clone();
+    bad[0].link_inertia[0][1] = 1e-3;
+    assert!(matches!(
+        arm(&bad, [0.0; 3]),
+        Some(ParamError::OutOfRange {
+            name: "link_inertia",
+            ..
+        })
+    ));
     assert!(matches!(
         RotorBody::try_new(0.1, -1.0),
         Err(ParamError::NotPositive {
