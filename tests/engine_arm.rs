@@ -73,6 +73,7 @@
 //! to print the measured maxima.
 #![cfg(feature = "engine")]
 
+use mrr_control::sim::closed_loop::payload_joint;
 use mrr_control::sim::engine::{DriveState, EngineArm, EngineSettings, PlantDrives, RotorBody};
 use mrr_control::sim::mrr::misaligned;
 use mrr_control::sim::{FrictionParams, ModuleParams, Mrr};
@@ -391,18 +392,18 @@ fn engine_arm_agrees_with_eq_4_1_to_4_6() {
 // Active tracking at 4 ms through the library's joints (§4.4.1).
 //
 // The §4.4.1 experiment with the firmware in the loop, on both plants: a
-// two-module arm on vertical axes (no gravity torque on either joint, so
-// the 2 N·m interaction threshold of the preset's mode manager is not
-// reached by the load alone): module 1 carries its 0.64 kg, 0.45 m link
-// and module 2 (1.2 kg, Table 4.1) at the link's end; module 2 carries a
-// 0.64 kg, 0.45 m link. Full drive plants (SHD-17-100 backbone, Maxwell
-// slip, Table 3.2 kinematic error) and the thesis joint's link and motor
-// friction, the same on both plants. Each joint runs
-// `JointConfig::<S>::update` of `JointParams::table_4_1_at(0.004)` every
-// 4 ms on counts quantized from the true angles (2^17 link counts, 2000
-// motor counts, no noise), its torque held for 4 ms; joint 1 tracks
+// two-module arm on vertical axes (no gravity torque on either joint):
+// module 1 carries its 0.64 kg, 0.45 m link and module 2 (1.2 kg, Table
+// 4.1) at the link's end; module 2 carries a 0.64 kg, 0.45 m link. Full
+// drive plants (SHD-17-100 backbone, Maxwell slip, Table 3.2 kinematic
+// error) and the thesis joint's link and motor friction, the same on both
+// plants. Each joint runs `JointConfig::<S>::update` of
+// `JointParams::table_4_1_at(0.004)` (mode manager changed by name, below)
+// every 4 ms on counts quantized from the true angles (2^17 link counts,
+// 2000 motor counts, no noise), its torque held for 4 ms; joint 1 tracks
 // `0.2 (1 − cos(π (t − 0.2)))/2` rad after 0.2 s at rest, joint 2 holds 0.
-// `Mrr` steps RK4 at 0.1 ms, the engine at its 0.1 ms step.
+// `Mrr` steps RK4 at 0.1 ms, the engine at its 0.1 ms step. Then the
+// §4.4.1 joint itself on both plants (`tilted_payload_joint_…`).
 //
 // Criteria, fixed before the first run, for S = f32 and I16F16:
 // * (d) both plants spend the same number of ticks in each mode per joint
@@ -414,9 +415,21 @@ fn engine_arm_agrees_with_eq_4_1_to_4_6() {
 // Added after the first run, before running it: (g) the engine at half its
 // step (0.05 ms, 80 steps a tick) meets (d)–(f) against the engine at its
 // step.
+//
+// Changed after later runs, and why. The first runs started with the
+// motor at 0, the drive carrying the kinematic error's torque; all passed.
+// Started as `active_tracking` starts (drives relaxed, carrying only
+// gravity), the preset's mode manager — passive above 2 N·m of
+// interaction, this crate's example setting; the thesis switches modes by
+// hand — met the run's own load: peak |τ̂_t| 2.2–2.4 N·m on joint 1, and
+// the switch to Passive became a knife edge (`Mrr` f32 never switched,
+// the engine at tick 585 at both steps, `Mrr` I16F16 at tick 325), which
+// is a test of the threshold, not of the plants. §4.4.1 runs in active
+// mode throughout, so the joints here enter Passive only above 20 N·m.
 // ---------------------------------------------------------------------------
 
-use mrr_control::joint::{JointConfig, JointParams, JointReadings, JointTarget};
+use mrr_control::control::{ModeParams, ModeSettings};
+use mrr_control::joint::{JointConfig, JointParams, JointReadings, JointSettings, JointTarget};
 use mrr_control::prelude::JointMode;
 use mrr_control::{Scalar, I16F16};
 use std::f64::consts::TAU;
@@ -484,38 +497,65 @@ impl Plant for EngineArm<PlantDrives> {
 #[derive(Debug)]
 struct Tracking {
     /// Ticks per mode (Active, Hold, Passive) per joint.
-    modes: [[usize; 3]; 2],
+    modes: Vec<[usize; 3]>,
     /// Largest |q_l − q_d| after 0.2 s per joint, rad.
-    max_error: [f64; 2],
+    max_error: Vec<f64>,
     /// Link angles every tick.
-    link: Vec<[f64; 2]>,
+    link: Vec<Vec<f64>>,
+    /// First tick out of Active, per joint.
+    left_active: Vec<Option<usize>>,
+    /// Largest |τ̂_t| the joint estimated, per joint, N·m.
+    max_torque: Vec<f64>,
+}
+
+/// Joint 1 tracks [`reference`], the others hold 0.
+/// `JointParams::table_4_1_at(4 ms)` with the mode manager's passive entry
+/// at 20 N·m and exit at 10 N·m (by name, through the public settings):
+/// §4.4.1 runs in active mode throughout, and the preset's example
+/// threshold of 2 N·m lies inside these runs' loads.
+fn active_joint() -> JointParams {
+    let p = JointParams::table_4_1_at(TICK).unwrap();
+    let settings = p.settings();
+    let mode = ModeParams::try_new(ModeSettings {
+        enter_passive: 20.0,
+        exit_passive: 10.0,
+        ..settings.mode.settings()
+    })
+    .unwrap();
+    JointParams::try_new(JointSettings { mode, ..settings }).unwrap()
 }
 
 fn track<S: Scalar>(plant: &mut dyn Plant, duration: f64) -> Tracking {
-    let p = JointParams::table_4_1_at(TICK).unwrap();
+    let p = active_joint();
     let cfg = JointConfig::<S>::new(&p);
     let lc = p.settings().estimator.link_counts_per_rev() as f64;
     let mc = p.settings().estimator.motor_counts_per_rev() as f64;
     let link_count = |q: f64| (q / TAU * lc).floor().rem_euclid(lc) as u32;
     let motor_counter = |q: f64| ((q / TAU * mc).floor() as i64) as u32;
     let (ql, qm) = plant.angles();
-    let mut states: Vec<_> = (0..2)
+    let n = ql.len();
+    let mut states: Vec<_> = (0..n)
         .map(|i| cfg.state(link_count(ql[i]), motor_counter(qm[i])))
         .collect();
     let mut out = Tracking {
-        modes: [[0; 3]; 2],
-        max_error: [0.0; 2],
+        modes: vec![[0; 3]; n],
+        max_error: vec![0.0; n],
         link: Vec::new(),
+        left_active: vec![None; n],
+        max_torque: vec![0.0; n],
     };
     let ticks = (duration / TICK).round() as usize;
     for k in 0..ticks {
         let t = k as f64 * TICK;
         let (ql, qm) = plant.angles();
-        out.link.push([ql[0], ql[1]]);
-        let targets = [reference(t), (0.0, 0.0, 0.0)];
-        let mut torque = [0.0; 2];
-        for i in 0..2 {
-            let (q, v, a) = targets[i];
+        out.link.push(ql.clone());
+        let mut torque = vec![0.0; n];
+        for i in 0..n {
+            let (q, v, a) = if i == 0 {
+                reference(t)
+            } else {
+                (0.0, 0.0, 0.0)
+            };
             let r = JointReadings::counts(link_count(ql[i]), motor_counter(qm[i]));
             let o = cfg.update(&mut states[i], &r, &JointTarget::from_si(q, v, a));
             let m = match o.mode {
@@ -524,6 +564,10 @@ fn track<S: Scalar>(plant: &mut dyn Plant, duration: f64) -> Tracking {
                 JointMode::Passive => 2,
             };
             out.modes[i][m] += 1;
+            if m != 0 && out.left_active[i].is_none() {
+                out.left_active[i] = Some(k);
+            }
+            out.max_torque[i] = out.max_torque[i].max(o.joint_torque_si().abs());
             if t >= 0.2 {
                 out.max_error[i] = out.max_error[i].max((ql[i] - q).abs());
             }
@@ -542,10 +586,10 @@ fn agree(name: &str, a: &Tracking, b: &Tracking) {
         .link
         .iter()
         .zip(&b.link)
-        .flat_map(|(x, y)| [(x[0] - y[0]).abs(), (x[1] - y[1]).abs()])
+        .flat_map(|(x, y)| x.iter().zip(y).map(|(p, q)| (p - q).abs()))
         .fold(0.0, f64::max);
-    println!("{name}: link angles apart by at most {apart:.6e} rad");
-    for i in 0..2 {
+    println!("{name}: link angles apart by at most {apart:.3e} rad");
+    for i in 0..a.modes.len() {
         for m in 0..3 {
             let d = a.modes[i][m].abs_diff(b.modes[i][m]);
             assert!(d * 100 <= ticks, "{name}: joint {i} mode {m}: {d} ticks");
@@ -560,15 +604,31 @@ fn agree(name: &str, a: &Tracking, b: &Tracking) {
     assert!(apart <= (0.2 * largest).max(1e-3), "{name}: {apart:.3e}");
 }
 
-fn tracking_on_both<S: Scalar>(name: &str) {
-    let modules = tracking_arm();
+/// The loop on `Mrr` and on the engine (at its step and half of it), the
+/// arm `modules` starting at rest at `q_l = 0` with every drive carrying
+/// the gravity torque there (motor angles from `Mrr`'s inversion of the
+/// drive plant, the same start for both).
+fn tracking_on_both<S: Scalar>(name: &str, modules: &[ModuleParams]) {
+    let n = modules.len();
     let duration = 3.0;
-    let mut model = Mrr::try_new(modules.clone(), GRAVITY, TICK, PLANT_STEPS, 1).unwrap();
+    let mut model = Mrr::try_new(modules.to_vec(), GRAVITY, TICK, PLANT_STEPS, 1).unwrap();
+    let zero = vec![0.0; n];
+    let g0 = model.gravity_torques();
+    let qm0 = model.motor_angles_for_torque(&zero, &g0);
+    model.set_state(&zero, &qm0, &zero, &zero);
     let on_model = track::<S>(&mut model, duration);
+    let start: Vec<DriveState> = qm0
+        .iter()
+        .map(|&q| DriveState {
+            motor_angle: q,
+            ..Default::default()
+        })
+        .collect();
     let engine_run = |settings: EngineSettings| {
-        let drive = PlantDrives::of(&modules, true, &[DriveState::default(); 2]);
+        let drive = PlantDrives::of(modules, true, &start);
         let mut engine =
-            EngineArm::try_new(&modules, GRAVITY, RotorBody::default(), drive, settings).unwrap();
+            EngineArm::try_new(modules, GRAVITY, RotorBody::default(), drive, settings).unwrap();
+        engine.set_state(&zero, &qm0, &zero, &zero);
         track::<S>(&mut engine, duration)
     };
     let settings = EngineArm::<PlantDrives>::default_settings();
@@ -581,8 +641,17 @@ fn tracking_on_both<S: Scalar>(name: &str) {
     ] {
         println!(
             "{name} {plant:<12} ticks per mode (Active, Hold, Passive) {:?}, \
-             largest tracking error {:.3e}, {:.3e} rad",
-            r.modes, r.max_error[0], r.max_error[1]
+             largest tracking error {:?} rad, left Active at tick {:?}, largest |τ̂_t| {:?} N·m",
+            r.modes,
+            r.max_error
+                .iter()
+                .map(|e| format!("{e:.3e}"))
+                .collect::<Vec<_>>(),
+            r.left_active,
+            r.max_torque
+                .iter()
+                .map(|e| format!("{e:.3}"))
+                .collect::<Vec<_>>()
         );
     }
     agree(&format!("{name} Mrr vs engine"), &on_model, &on_engine);
@@ -595,12 +664,24 @@ fn tracking_on_both<S: Scalar>(name: &str) {
 
 #[test]
 fn active_tracking_at_4ms_on_f32_agrees_between_plants() {
-    tracking_on_both::<f32>("f32");
+    tracking_on_both::<f32>("f32", &tracking_arm());
 }
 
 #[test]
 fn active_tracking_at_4ms_on_i16f16_agrees_between_plants() {
-    tracking_on_both::<I16F16>("I16F16");
+    tracking_on_both::<I16F16>("I16F16", &tracking_arm());
+}
+
+/// The §4.4.1 joint itself: one module carrying its link and joints 2 and
+/// 3 (2.4 kg at the link's end), its axis tilted 20° from the vertical
+/// (`closed_loop::payload_joint`, the load of `active_tracking`), so the
+/// drive holds up to `(0.64·0.225 + 2.4·0.45)·9.81·sin 20° = 4.1 N·m` of
+/// gravity. Same criteria (d)–(g).
+#[test]
+fn tilted_payload_joint_at_4ms_agrees_between_plants() {
+    let joint = vec![payload_joint(20f64.to_radians())];
+    tracking_on_both::<f32>("payload f32", &joint);
+    tracking_on_both::<I16F16>("payload I16F16", &joint);
 }
 
 /// The full drive plant on the reconfigured arm under the torque profile
