@@ -82,7 +82,9 @@
 #![cfg(feature = "engine")]
 
 use mrr_control::sim::closed_loop::payload_joint;
-use mrr_control::sim::engine::{DriveState, EngineArm, EngineSettings, PlantDrives, RotorBody};
+use mrr_control::sim::engine::{
+    arm_settings, DriveState, EngineArm, EngineSettings, PlantDrives, RotorBody,
+};
 use mrr_control::sim::mrr::misaligned;
 use mrr_control::sim::{FrictionParams, ModuleParams, Mrr};
 
@@ -316,7 +318,7 @@ fn cases() -> Vec<Case> {
 #[test]
 fn engine_arm_agrees_with_eq_4_1_to_4_6() {
     // One substep per step (module docs: revised criteria).
-    let coarse = EngineArm::<PlantDrives>::default_settings();
+    let coarse = arm_settings();
     assert_eq!((coarse.dt(), coarse.solver_iterations()), (1e-4, 1));
     let fine = coarse.with_half_step();
     let mut failures = Vec::new();
@@ -639,7 +641,7 @@ fn tracking_on_both<S: Scalar>(name: &str, modules: &[ModuleParams]) {
         engine.set_state(&zero, &qm0, &zero, &zero);
         track::<S>(&mut engine, duration)
     };
-    let settings = EngineArm::<PlantDrives>::default_settings();
+    let settings = arm_settings();
     let on_engine = engine_run(settings);
     let on_engine_fine = engine_run(settings.with_half_step());
     for (plant, r) in [
@@ -700,7 +702,7 @@ fn full_drive_plant_converges_to_mrr() {
     let (q0, t) = ([0.3, -0.5, 0.7], 1.0);
     let model = run_mrr(&modules, q0, sines, t, MRR_STEPS);
     let model_fine = run_mrr(&modules, q0, sines, t, 2 * MRR_STEPS);
-    let s1 = EngineArm::<PlantDrives>::default_settings();
+    let s1 = arm_settings();
     let s2 = s1.with_half_step();
     let s3 = s2.with_half_step();
     let runs: Vec<Trace> = [s1, s2, s3]

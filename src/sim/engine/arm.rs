@@ -61,7 +61,7 @@
 //! `dt / solver_iterations` (semi-implicit Euler on the joint coordinates,
 //! gravity, Coriolis and gyroscopic terms re-evaluated every substep, the
 //! applied torques not). Run the arm with **one** substep
-//! ([`EngineArm::default_settings`]): a step is then semi-implicit
+//! ([`arm_settings`]): a step is then semi-implicit
 //! (symplectic) Euler for the drive spring too, and the error is first
 //! order in `dt` (halving the step halves every difference to
 //! [`crate::sim::Mrr`], measured in `tests/engine_arm.rs`). With several
@@ -74,7 +74,7 @@
 //! the drive's frequency `ω = √(K (1/J_l + 1/(N² I_m)))`: ≈ 650 rad/s for
 //! the SHD-17-100's stiffest segment (`K3 = 1.3e4 N·m/rad`) between the
 //! thesis's rotor (`N² I_m = 0.114 kg·m²`) and link (`J_l = 0.043 kg·m²`
-//! about the joint), `dt ω ≈ 0.065` at [`EngineArm::DEFAULT_DT`] = 1e-4 s. The engine's default joint damping
+//! about the joint), `dt ω ≈ 0.065` at [`ARM_DT`] = 1e-4 s. The engine's default joint damping
 //! (0.1 N·m·s/rad per revolute joint in rapier 0.27) is set to zero: the
 //! only dissipation is the one the drive hook puts in. The motor-spring
 //! fields of [`EngineSettings`] are not used by the arm: its motors are
@@ -420,18 +420,18 @@ fn not_finite(name: &'static str, v: f64) -> Result<(), ParamError> {
     }
 }
 
+/// The engine step the arm is run at, s (module docs).
+pub const ARM_DT: f64 = 1e-4;
+
+/// The arm's engine settings: [`ARM_DT`] with one solver substep per step
+/// (module docs; the motor-spring fields, unused by the arm, at their
+/// defaults).
+pub fn arm_settings() -> EngineSettings {
+    let d = EngineSettings::default();
+    EngineSettings::try_new(ARM_DT, 1, d.motor_stiffness(), d.motor_damping()).unwrap_or(d)
+}
+
 impl<D: DriveModel> EngineArm<D> {
-    /// The engine step the arm is run at, s (module docs).
-    pub const DEFAULT_DT: f64 = 1e-4;
-
-    /// [`Self::DEFAULT_DT`] with one solver substep per step (module docs;
-    /// the motor-spring fields, unused here, at their defaults).
-    pub fn default_settings() -> EngineSettings {
-        let d = EngineSettings::default();
-        EngineSettings::try_new(Self::DEFAULT_DT, 1, d.motor_stiffness(), d.motor_damping())
-            .unwrap_or(d)
-    }
-
     /// The arm of `modules` (module 0 on the base) under `gravity` (m/s²,
     /// base frame, e.g. `[0, 0, −9.81]`), rotors as `rotor`, drives `drive`,
     /// stepped with `settings` (its `dt` and `solver_iterations`), at rest

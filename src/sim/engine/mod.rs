@@ -34,7 +34,8 @@ mod world;
 pub mod wrist;
 
 pub use arm::{
-    DriveModel, DriveState, DriveTorques, EngineArm, LinearDrives, PlantDrives, RotorBody,
+    arm_settings, DriveModel, DriveState, DriveTorques, EngineArm, LinearDrives, PlantDrives,
+    RotorBody, ARM_DT,
 };
 pub use ft_sensor::{GaugeErrors, SensedWrist, StrainGaugeSensor};
 pub use universal_joint::UniversalJointBench;

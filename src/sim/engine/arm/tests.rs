@@ -1,7 +1,7 @@
 use super::*;
 
 fn settings() -> EngineSettings {
-    EngineArm::<LinearDrives>::default_settings()
+    arm_settings()
 }
 
 fn free_rotor_module() -> ModuleParams {
