@@ -17,17 +17,26 @@
 //!   tool puts through the sensor, read from the engine, and the strain
 //!   gauges that turn it into voltages through a sensitivity matrix off the
 //!   certificate by a stated calibration error, with offsets and noise.
+//! * [`arm`] — the modular arm of ch. 4: links and rotors as bodies on
+//!   multibody revolute joints, coupled by the library's drive models; the
+//!   independent check of eq. (4.1)–(4.6) of [`crate::sim::Mrr`].
 //! * [`universal_joint`] — the inner universal joint of eq. (5.1)–(5.3):
 //!   two shafts bent by `β` and the cross between them.
 //!
-//! Gravity is off in all of them: the checks are kinematic, static, or (the
-//! sensor in motion) about the inertia of the moving parts alone.
+//! Gravity is off in the wrist mechanisms: their checks are kinematic,
+//! static, or (the sensor in motion) about the inertia of the moving parts
+//! alone. The arm carries its gravity as a force on every body.
 
+pub mod arm;
 pub mod ft_sensor;
 pub mod universal_joint;
 mod world;
 pub mod wrist;
 
+pub use arm::{
+    arm_settings, DriveModel, DriveState, DriveTorques, EngineArm, LinearDrives, PlantDrives,
+    RotorBody, ARM_DT,
+};
 pub use ft_sensor::{GaugeErrors, SensedWrist, StrainGaugeSensor};
 pub use universal_joint::UniversalJointBench;
 pub use world::EngineSettings;
