@@ -1,0 +1,659 @@
+//! The other chapter-4 experiments with the library's joint in the loop,
+//! on the arm built from bodies on the rapier3d engine
+//! (`sim::engine::EngineArm`) and, for comparison, on the thesis's own
+//! model (`sim::Mrr`): passive back-driving (§4.3, eq. 4.32/4.33, §4.4.2,
+//! Fig. 4.11–4.12), the mode manager switching Active → Passive → Active
+//! on the interaction torque, and a collision with an obstacle detected on
+//! the estimated joint torque (the use of the estimate the thesis names in
+//! §1 and ch. 7; the manager and detector are this crate's extension, the
+//! thesis switches modes by hand).
+//!
+//! # Set-up (all three experiments)
+//! The thesis joint ([`ModuleParams::thesis_joint`]: vertical axis, so no
+//! gravity torque; its 0.64 kg, 0.45 m link only; rotor 1.14e-5 kg·m²,
+//! `N = 100`, Table 4.1), with the full drive plant (SHD-17-100 backbone,
+//! Maxwell slip, Table 3.2 kinematic error) and the plant's link friction
+//! (`f_c = 0.6`, `f_s = 0.2 N·m`) and motor friction (`f_c = 0.010`,
+//! `f_s = 0.002 N·m`), the same on both plants. The joint runs
+//! `JointConfig::<S>::update` of `JointParams::table_4_1_at(0.004)` every
+//! 4 ms (mode manager settings changed by name per experiment, below) on
+//! counts quantized from the true angles (2^17 link counts, 2000 motor
+//! counts, no noise), for `S = f32` and `I16F16`; its torque is held for
+//! the tick. The hand or the obstacle is an external torque on the link
+//! (`EngineArm::set_external_torque`, `Mrr::external_torque`: a
+//! generalized force on `q_l`, N·m, positive in the joint's positive
+//! sense), evaluated at every plant step (0.1 ms: the engine's step
+//! `ARM_DT`, `Mrr`'s RK4 step). Each run is repeated on the engine at half
+//! its step (0.05 ms); the engine is first order in its step, so the
+//! difference between the two is about half the engine's own error.
+//!
+//! # Criteria, written before the first run
+//! Agreement, every experiment: `Mrr` and the engine at its step agree
+//! within three times the engine's step-halving difference plus a floor
+//! (0.02 N·m on torques, 2 ticks on switch times, 2e-3 rad on angles: the
+//! count quantization and `Mrr`'s own step).
+//!
+//! (a) Back-driving. A hand (impedance 200 N·m/rad, 5 N·m·s/rad following
+//! `q_h = 0.5 sin(2π t/4 s)` rad, as `closed_loop::back_drive`) leads the
+//! joint for 6 s; the hand torque is measured over the last 4 s (one
+//! period). (A) uncompensated: motor torque 0 (the joint step runs, its
+//! output is not applied). (B) the joint's passive law: the manager enters
+//! Passive above 1 N·m (exit 0.5 N·m) and releases only after 1 s with
+//! the motor at rest (`|q̇_m| ≤ 10 rad/s`), which a hand that keeps
+//! moving never gives; so it must be Passive on every tick of the
+//! measured window. The preset's passive law has `Î_m K_p = 1`: the two
+//! `τ̂_t` terms of eq. (4.32) cancel and the motor supplies only the
+//! friction compensation `f̂(q̇_m)` with the adapted estimates (`f̂_c =
+//! 0.006 N·m` initially). Reflected through the gear that is `N f̂_c =
+//! 0.6 N·m` of the reflected motor friction `N f_c = 1.0 N·m` the hand
+//! otherwise overcomes (the link friction, 0.6–0.8 N·m, is on the link
+//! side: no motor torque removes it). Expected: the RMS hand torque falls
+//! by at least half of `N f̂_c` (read from the joint's adapted estimate at
+//! the switch; the other half for the reversals, where the speed reads
+//! zero below one count per tick and the compensation is off), and by no
+//! more than the RMS of the motor torque reflected, `N τ_m`, plus
+//! 0.1 N·m (the reduction is the motor's work, nothing else).
+//!
+//! (b) Mode switching (`closed_loop::interaction_scenario`'s hand at the
+//! 4 ms tick): the joint holds `q_l = 0` Active; from 0.5 s the hand
+//! (200 N·m/rad, 5 N·m·s/rad) leads it to 0.4 rad along a raised cosine
+//! over 2 s, holds it there until 3 s and lets go; 6 s in all. Manager:
+//! enter 4 N·m, exit 2 N·m, release `|q̇_m| ≤ 10 rad/s` for 1 s (the
+//! settings of `ModeScenarioConfig::interaction`, the release in ticks).
+//! Expected: exactly two switches, Active → Passive then Passive →
+//! Active, both bumpless (`|Δτ_m| ≤ switch_jump_bound`). The first when
+//! the interaction torque exceeds 4 N·m: with the link held at 0 the true
+//! torque is the hand's, `200·0.2 (1 − cos(π (t − 0.5)/2))`, which reaches
+//! 4 N·m at 0.787 s; the estimate reads a torque change at about half its
+//! size (errata E2.9, as in `payload_drop_estimate_follows_the_step`), so
+//! it may need 8 N·m, reached at 0.910 s; plus the 3-tick debounce: the
+//! switch in [0.787, 0.930] s. The return: the hand stops leading at
+//! 2.5 s and lets go at 3 s; the release needs 1 s at rest, so the return
+//! is in [3.0, 4.0] s, after which the joint rejoins its hold: at 6 s
+//! `|q_l| ≤ 0.0558 rad` (Theorem 1's bound `r_S/λ` of the 4 ms design at
+//! the link, `table_4_1_at` docs).
+//!
+//! (c) Collision (`closed_loop::collision_scenario` at the 4 ms tick):
+//! the joint tracks `0.2 (1 − cos(π t/4))` rad towards 0.4 rad; an
+//! obstacle at 0.15 rad pushes back as a spring of 300 N·m/rad with
+//! 2 N·m·s/rad damping (never pulling); 5 s. Manager: passive entry out of
+//! reach (1000 N·m, exit 500 N·m), detector threshold 3 N·m, release
+//! 1.5 N·m, debounce 3 ticks, reaction `Stop` or `Passive`. Expected:
+//! contact when the link, lagging the reference by at most its measured
+//! largest tracking error `e` before contact, passes 0.15 rad: between the
+//! times the reference passes `0.15 − e` and `0.15 + e` (nominally
+//! `t_c = (4/π) acos(0.25) = 1.6785 s`, at `q̇ = 0.152 rad/s`, so the
+//! spring torque rises at 45.6 N·m/s plus 0.3 N·m of damping). Detection
+//! after contact: at least the time the true torque needs to reach 3 N·m,
+//! `(3 − 0.3)/45.6 = 59 ms`, and at most the time to 7.5 N·m (the
+//! estimate reading at 0.4 of the change), `(7.5 − 0.3)/45.6 = 158 ms`,
+//! plus the debounce and one tick (12 ms): [59, 170] ms. One switch,
+//! bumpless; `Stop` goes to Hold, moves less than 0.01 rad after
+//! detection and keeps pressing (contact torque below −1 N·m at the end);
+//! `Passive` goes to Passive and yields: out of contact at the end.
+//!
+//! # Run time
+//! The default tests run every experiment on f32 and I16F16, on `Mrr` and
+//! on the engine at its step and half of it: see the report of
+//! `cargo test --all-features --test engine_arm_modes -- --nocapture`,
+//! which prints the measured values.
+#![cfg(feature = "engine")]
+
+use mrr_control::control::{ModeParams, ModeSettings, ReleaseRule};
+use mrr_control::estimation::collision::{CollisionParams, CollisionReaction, CollisionSettings};
+use mrr_control::joint::{JointConfig, JointParams, JointReadings, JointSettings, JointTarget};
+use mrr_control::prelude::JointMode;
+use mrr_control::sim::engine::{
+    arm_settings, DriveState, EngineArm, EngineSettings, PlantDrives, RotorBody,
+};
+use mrr_control::sim::{ModuleParams, Mrr};
+use mrr_control::{Scalar, I16F16};
+use std::f64::consts::{PI, TAU};
+
+const GRAVITY: [f64; 3] = [0.0, 0.0, -9.81];
+const TICK: f64 = 4e-3;
+/// `Mrr`'s RK4 steps per tick (0.1 ms).
+const MRR_STEPS: usize = 40;
+
+/// The hand's or obstacle's torque on the link (N·m) at `(t, q_l, q̇_l)`.
+type Env<'a> = &'a dyn Fn(f64, f64, f64) -> f64;
+/// Desired link angle, speed, acceleration at `t`.
+type Desired<'a> = &'a dyn Fn(f64) -> (f64, f64, f64);
+
+/// A plant the joint step drives.
+trait Plant {
+    /// Link and motor angle (rad), link speed (rad/s).
+    fn read(&self) -> (f64, f64, f64);
+    fn set_motor(&mut self, torque: f64);
+    fn set_external(&mut self, torque: f64);
+    /// One plant step; returns its length, s.
+    fn step(&mut self) -> f64;
+    fn steps_per_tick(&self) -> usize;
+}
+
+impl Plant for Mrr {
+    fn read(&self) -> (f64, f64, f64) {
+        (
+            self.link_angles()[0],
+            self.motor_angles()[0],
+            self.link_speeds()[0],
+        )
+    }
+    fn set_motor(&mut self, torque: f64) {
+        self.set_motor_torque(&[torque]);
+    }
+    fn set_external(&mut self, torque: f64) {
+        self.external_torque[0] = torque;
+    }
+    fn step(&mut self) -> f64 {
+        Mrr::step(self);
+        self.step_size()
+    }
+    fn steps_per_tick(&self) -> usize {
+        MRR_STEPS
+    }
+}
+
+impl Plant for EngineArm<PlantDrives> {
+    fn read(&self) -> (f64, f64, f64) {
+        let s = self.drive_states()[0];
+        (s.link_angle, s.motor_angle, s.link_speed)
+    }
+    fn set_motor(&mut self, torque: f64) {
+        self.set_motor_torque(&[torque]);
+    }
+    fn set_external(&mut self, torque: f64) {
+        self.set_external_torque(&[torque]);
+    }
+    fn step(&mut self) -> f64 {
+        EngineArm::step(self);
+        self.settings().dt()
+    }
+    fn steps_per_tick(&self) -> usize {
+        (TICK / self.settings().dt()).round() as usize
+    }
+}
+
+/// The thesis joint at rest at 0, drives relaxed, on `Mrr`.
+fn mrr() -> Mrr {
+    let m = ModuleParams::thesis_joint();
+    let mut r = Mrr::try_new(vec![m], GRAVITY, TICK, MRR_STEPS, 1).unwrap();
+    r.set_state(&[0.0], &[0.0], &[0.0], &[0.0]);
+    r
+}
+
+/// The same on the engine with `settings`.
+fn engine(settings: EngineSettings) -> EngineArm<PlantDrives> {
+    let m = [ModuleParams::thesis_joint()];
+    let drive = PlantDrives::of(&m, true, &[DriveState::default()]);
+    let mut a = EngineArm::try_new(&m, GRAVITY, RotorBody::default(), drive, settings).unwrap();
+    a.set_state(&[0.0], &[0.0], &[0.0], &[0.0]);
+    a
+}
+
+/// The three plants of every experiment: `Mrr`, the engine at its step,
+/// the engine at half of it.
+const PLANTS: [&str; 3] = ["Mrr", "engine", "engine dt/2"];
+
+/// A fresh plant `PLANTS[i]`.
+fn plant(i: usize) -> Box<dyn Plant> {
+    let s = arm_settings();
+    match i {
+        0 => Box::new(mrr()),
+        1 => Box::new(engine(s)),
+        _ => Box::new(engine(s.with_half_step())),
+    }
+}
+
+/// `JointParams::table_4_1_at(4 ms)` with the mode manager's thresholds,
+/// release rule and collision detector changed by name.
+fn joint(
+    enter: f64,
+    exit: f64,
+    release: ReleaseRule,
+    collision: Option<CollisionParams>,
+) -> JointParams {
+    let p = JointParams::table_4_1_at(TICK).unwrap();
+    let s = p.settings();
+    let mode = ModeParams::try_new(ModeSettings {
+        enter_passive: enter,
+        exit_passive: exit,
+        collision,
+        ..s.mode.settings()
+    })
+    .unwrap()
+    .with_release(release)
+    .unwrap();
+    JointParams::try_new(JointSettings { mode, ..s }).unwrap()
+}
+
+/// `|q̇_m| ≤ 10 rad/s` for 1 s (250 ticks).
+const REST_1S: ReleaseRule = ReleaseRule {
+    speed: 10.0,
+    samples: 250,
+};
+
+#[derive(Debug, Clone, Copy)]
+struct Switch {
+    time: f64,
+    from: JointMode,
+    to: JointMode,
+    jump: f64,
+}
+
+#[derive(Debug, Default)]
+struct Run {
+    switches: Vec<Switch>,
+    /// Link angle at every tick, rad.
+    link: Vec<f64>,
+    /// Mode at every tick.
+    modes: Vec<Option<JointMode>>,
+    /// RMS external torque over the plant steps after `settle`, N·m.
+    env_rms: f64,
+    /// RMS of `N τ_m` applied over the ticks after `settle`, N·m.
+    reflected_motor_rms: f64,
+    /// Adapted Coulomb estimate `f̂_c` at the first switch (N·m).
+    coulomb_at_switch: Option<f64>,
+    /// First tick the detector flagged, s.
+    detection: Option<f64>,
+    /// First plant step with `q_l` above the obstacle, s.
+    contact: Option<f64>,
+    /// Largest `|q_l − q_d|` before contact, rad.
+    error_before_contact: f64,
+    jump_bound: f64,
+}
+
+/// The joint step `params` on `plant` for `duration` s (module docs).
+/// `powered = false` runs the step but applies no motor torque.
+#[allow(clippy::too_many_arguments)]
+fn run<S: Scalar>(
+    plant: &mut dyn Plant,
+    params: &JointParams,
+    duration: f64,
+    desired: Desired,
+    env: Env,
+    powered: bool,
+    settle: f64,
+    obstacle: Option<f64>,
+) -> Run {
+    let cfg = JointConfig::<S>::new(params);
+    let ratio = params.ratio();
+    let lc = params.settings().estimator.link_counts_per_rev() as f64;
+    let mc = params.settings().estimator.motor_counts_per_rev() as f64;
+    let link_count = |q: f64| (q / TAU * lc).floor().rem_euclid(lc) as u32;
+    let motor_counter = |q: f64| ((q / TAU * mc).floor() as i64) as u32;
+    let (ql, qm, _) = plant.read();
+    let mut st = cfg.state(link_count(ql), motor_counter(qm));
+    let mut out = Run {
+        jump_bound: cfg.mode().switch_jump_bound().to_f64() / S::UNITS.motor_torque,
+        ..Default::default()
+    };
+    let (mut env_sq, mut env_n, mut mot_sq, mut mot_n) = (0.0, 0usize, 0.0, 0usize);
+    let mut time = 0.0;
+    let ticks = (duration / TICK).round() as usize;
+    for k in 0..ticks {
+        let t = k as f64 * TICK;
+        let (ql, qm, _) = plant.read();
+        let (qd, vd, ad) = desired(t);
+        if out.contact.is_none() {
+            out.error_before_contact = out.error_before_contact.max((ql - qd).abs());
+        }
+        let from = st.mode();
+        let before = st.last_command_si();
+        let r = JointReadings::counts(link_count(ql), motor_counter(qm));
+        let o = cfg.update(&mut st, &r, &JointTarget::from_si(qd, vd, ad));
+        if o.control.switched {
+            if out.switches.is_empty() {
+                out.coulomb_at_switch = Some(st.mode_state().active_state().friction_si().coulomb);
+            }
+            out.switches.push(Switch {
+                time: t,
+                from,
+                to: o.mode,
+                jump: (o.motor_torque_si() - before).abs(),
+            });
+        }
+        if o.control.collision && out.detection.is_none() {
+            out.detection = Some(t);
+        }
+        out.link.push(ql);
+        out.modes.push(Some(o.mode));
+        let torque = if powered { o.motor_torque_si() } else { 0.0 };
+        if t >= settle {
+            mot_sq += (ratio * torque).powi(2);
+            mot_n += 1;
+        }
+        plant.set_motor(torque);
+        for _ in 0..plant.steps_per_tick() {
+            let (ql, _, vl) = plant.read();
+            let h = env(time, ql, vl);
+            if let Some(wall) = obstacle {
+                if ql > wall && out.contact.is_none() {
+                    out.contact = Some(time);
+                }
+            }
+            if time >= settle {
+                env_sq += h * h;
+                env_n += 1;
+            }
+            plant.set_external(h);
+            time += plant.step();
+        }
+    }
+    out.env_rms = (env_sq / env_n.max(1) as f64).sqrt();
+    out.reflected_motor_rms = (mot_sq / mot_n.max(1) as f64).sqrt();
+    out
+}
+
+/// `x` (from `Mrr`) and `y` (engine) agree within three times the
+/// engine's halving difference `|y − y2|` plus `floor`.
+fn within(what: &str, x: f64, y: f64, y2: f64, floor: f64) {
+    let tol = 3.0 * (y - y2).abs() + floor;
+    println!(
+        "  {what}: Mrr {x:.4}, engine {y:.4}, engine dt/2 {y2:.4}; |Mrr − engine| {:.2e} ≤ {tol:.2e}",
+        (x - y).abs()
+    );
+    assert!(
+        (x - y).abs() <= tol,
+        "{what}: Mrr {x} vs engine {y} (dt/2 {y2})"
+    );
+}
+
+/// Largest difference of two link traces, rad.
+fn apart(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
+
+/// Link traces: `Mrr` vs engine within three times engine dt vs dt/2 plus
+/// 2e-3 rad.
+fn traces_agree(name: &str, runs: &[Run]) {
+    let d = apart(&runs[0].link, &runs[1].link);
+    let h = apart(&runs[1].link, &runs[2].link);
+    println!("  {name}: link traces Mrr vs engine {d:.3e} rad, engine dt vs dt/2 {h:.3e} rad");
+    assert!(d <= 3.0 * h + 2e-3, "{name}: {d:.3e} vs halving {h:.3e}");
+}
+
+// ---------------------------------------------------------------------------
+// (a) Back-driving.
+
+fn hand(t: f64, ql: f64, vl: f64) -> f64 {
+    let w = TAU / 4.0;
+    200.0 * (0.5 * (w * t).sin() - ql) + 5.0 * (0.5 * w * (w * t).cos() - vl)
+}
+
+fn back_driving<S: Scalar>(name: &str) {
+    let params = joint(1.0, 0.5, REST_1S, None);
+    let hold = |_| (0.0, 0.0, 0.0);
+    let mut a_runs = Vec::new();
+    let mut b_runs = Vec::new();
+    for (i, pname) in PLANTS.iter().enumerate() {
+        let a = run::<S>(
+            plant(i).as_mut(),
+            &params,
+            6.0,
+            &hold,
+            &hand,
+            false,
+            2.0,
+            None,
+        );
+        let b = run::<S>(
+            plant(i).as_mut(),
+            &params,
+            6.0,
+            &hold,
+            &hand,
+            true,
+            2.0,
+            None,
+        );
+        let fc = b.coulomb_at_switch.unwrap_or(f64::NAN);
+        let passive_ticks = b.modes[500..]
+            .iter()
+            .filter(|m| **m == Some(JointMode::Passive))
+            .count();
+        println!(
+            "{name} {pname:<12} hand RMS (A) {:.4} N·m, (B) {:.4} N·m, reduction {:.4}; \
+             N f̂_c {:.3}, RMS N τ_m {:.4}; switches {:?}; Passive {passive_ticks}/{} ticks after 2 s",
+            a.env_rms,
+            b.env_rms,
+            a.env_rms - b.env_rms,
+            100.0 * fc,
+            b.reflected_motor_rms,
+            b.switches,
+            b.modes.len() - 500
+        );
+        assert_eq!(passive_ticks, b.modes.len() - 500, "{name} {pname}");
+        let reduction = a.env_rms - b.env_rms;
+        assert!(reduction >= 0.5 * 100.0 * fc, "{name} {pname}: {reduction}");
+        assert!(
+            reduction <= b.reflected_motor_rms + 0.1,
+            "{name} {pname}: {reduction} vs {}",
+            b.reflected_motor_rms
+        );
+        a_runs.push(a);
+        b_runs.push(b);
+    }
+    within(
+        "(A) hand RMS",
+        a_runs[0].env_rms,
+        a_runs[1].env_rms,
+        a_runs[2].env_rms,
+        0.02,
+    );
+    within(
+        "(B) hand RMS",
+        b_runs[0].env_rms,
+        b_runs[1].env_rms,
+        b_runs[2].env_rms,
+        0.02,
+    );
+    traces_agree("(A)", &a_runs);
+    traces_agree("(B)", &b_runs);
+}
+
+#[test]
+fn passive_law_reduces_the_back_driving_torque_f32() {
+    back_driving::<f32>("f32");
+}
+
+#[test]
+fn passive_law_reduces_the_back_driving_torque_i16f16() {
+    back_driving::<I16F16>("I16F16");
+}
+
+// ---------------------------------------------------------------------------
+// (b) Mode switching.
+
+fn leading_hand(t: f64, ql: f64, vl: f64) -> f64 {
+    if !(0.5..3.0).contains(&t) {
+        return 0.0;
+    }
+    let u = ((t - 0.5) / 2.0).min(1.0);
+    let (qh, vh) = if u < 1.0 {
+        (
+            0.2 * (1.0 - (PI * u).cos()),
+            0.2 * PI * (PI * u).sin() / 2.0,
+        )
+    } else {
+        (0.4, 0.0)
+    };
+    200.0 * (qh - ql) + 5.0 * (vh - vl)
+}
+
+fn mode_switching<S: Scalar>(name: &str) {
+    let params = joint(4.0, 2.0, REST_1S, None);
+    let hold = |_| (0.0, 0.0, 0.0);
+    let mut runs = Vec::new();
+    for (i, pname) in PLANTS.iter().enumerate() {
+        let r = run::<S>(
+            plant(i).as_mut(),
+            &params,
+            6.0,
+            &hold,
+            &leading_hand,
+            true,
+            6.0,
+            None,
+        );
+        let end = *r.link.last().unwrap();
+        println!(
+            "{name} {pname:<12} switches {:?}; link at 6 s {end:.4} rad; jump bound {:.2e}",
+            r.switches
+                .iter()
+                .map(|s| (s.time, s.from, s.to, s.jump))
+                .collect::<Vec<_>>(),
+            r.jump_bound
+        );
+        assert_eq!(r.switches.len(), 2, "{name} {pname}: {:?}", r.switches);
+        let (on, off) = (r.switches[0], r.switches[1]);
+        assert_eq!((on.from, on.to), (JointMode::Active, JointMode::Passive));
+        assert_eq!((off.from, off.to), (JointMode::Passive, JointMode::Active));
+        assert!((0.787..=0.930).contains(&on.time), "{name} {pname}: {on:?}");
+        assert!((3.0..=4.0).contains(&off.time), "{name} {pname}: {off:?}");
+        for s in &r.switches {
+            assert!(s.jump <= r.jump_bound, "{name} {pname}: {s:?}");
+        }
+        assert!(end.abs() <= 0.0558, "{name} {pname}: {end}");
+        runs.push(r);
+    }
+    for i in 0..2 {
+        let t: Vec<f64> = runs.iter().map(|r| r.switches[i].time).collect();
+        within(
+            &format!("switch {} time (s)", i + 1),
+            t[0],
+            t[1],
+            t[2],
+            2.0 * TICK,
+        );
+    }
+    traces_agree("mode switching", &runs);
+}
+
+#[test]
+fn manager_switches_to_passive_and_back_f32() {
+    mode_switching::<f32>("f32");
+}
+
+#[test]
+fn manager_switches_to_passive_and_back_i16f16() {
+    mode_switching::<I16F16>("I16F16");
+}
+
+// ---------------------------------------------------------------------------
+// (c) Collision.
+
+const WALL: f64 = 0.15;
+
+fn wall(_t: f64, ql: f64, vl: f64) -> f64 {
+    if ql > WALL {
+        -(300.0 * (ql - WALL) + 2.0 * vl.max(0.0))
+    } else {
+        0.0
+    }
+}
+
+fn towards_wall(t: f64) -> (f64, f64, f64) {
+    let w = PI / 4.0;
+    if t >= 4.0 {
+        (0.4, 0.0, 0.0)
+    } else {
+        (
+            0.2 * (1.0 - (w * t).cos()),
+            0.2 * w * (w * t).sin(),
+            0.2 * w * w * (w * t).cos(),
+        )
+    }
+}
+
+/// The time the reference `0.2 (1 − cos(π t/4))` passes `q`, s.
+fn reference_passes(q: f64) -> f64 {
+    4.0 / PI * (1.0 - q / 0.2).clamp(-1.0, 1.0).acos()
+}
+
+fn collision<S: Scalar>(name: &str, reaction: CollisionReaction) {
+    let detector = CollisionParams::try_new(CollisionSettings {
+        threshold: 3.0,
+        release_threshold: 1.5,
+        debounce: 3,
+        release: 50,
+        reaction,
+    })
+    .unwrap();
+    let params = joint(1000.0, 500.0, REST_1S, Some(detector));
+    let mut runs = Vec::new();
+    for (i, pname) in PLANTS.iter().enumerate() {
+        let r = run::<S>(
+            plant(i).as_mut(),
+            &params,
+            5.0,
+            &towards_wall,
+            &wall,
+            true,
+            5.0,
+            Some(WALL),
+        );
+        let contact = r.contact.unwrap_or(f64::NAN);
+        let detection = r.detection.unwrap_or(f64::NAN);
+        let e = r.error_before_contact;
+        let (early, late) = (reference_passes(WALL - e), reference_passes(WALL + e));
+        let end = *r.link.last().unwrap();
+        let at_detection = r.link[(detection / TICK).round() as usize];
+        let end_torque = wall(5.0, end, 0.0);
+        println!(
+            "{name} {reaction:?} {pname:<12} contact {contact:.4} s (window [{early:.4}, {late:.4}], \
+             tracking error before {e:.2e} rad), detection {detection:.3} s (latency {:.1} ms), \
+             switches {:?}, link at detection {at_detection:.4}, at end {end:.4} rad, contact \
+             torque at end {end_torque:.3} N·m",
+            1e3 * (detection - contact),
+            r.switches
+                .iter()
+                .map(|s| (s.time, s.to, s.jump))
+                .collect::<Vec<_>>()
+        );
+        assert!(
+            (early..=late).contains(&contact),
+            "{name} {pname}: contact {contact}"
+        );
+        let latency = detection - contact;
+        assert!(
+            (0.059..=0.170).contains(&latency),
+            "{name} {pname}: latency {latency}"
+        );
+        assert_eq!(r.switches.len(), 1, "{name} {pname}: {:?}", r.switches);
+        assert!(r.switches[0].jump <= r.jump_bound);
+        match reaction {
+            CollisionReaction::Stop => {
+                assert_eq!(r.switches[0].to, JointMode::Hold);
+                assert!((end - at_detection).abs() < 0.01, "{name} {pname}");
+                assert!(end_torque < -1.0, "{name} {pname}: {end_torque}");
+            }
+            CollisionReaction::Passive => {
+                assert_eq!(r.switches[0].to, JointMode::Passive);
+                assert_eq!(end_torque, 0.0, "{name} {pname}: {end}");
+            }
+        }
+        runs.push(r);
+    }
+    let t = |f: &dyn Fn(&Run) -> f64| -> Vec<f64> { runs.iter().map(f).collect() };
+    let c = t(&|r| r.contact.unwrap_or(f64::NAN));
+    within("contact time (s)", c[0], c[1], c[2], 2.0 * TICK);
+    let d = t(&|r| r.detection.unwrap_or(f64::NAN));
+    within("detection time (s)", d[0], d[1], d[2], 2.0 * TICK);
+    traces_agree("collision", &runs);
+}
+
+#[test]
+fn collision_is_detected_and_stops_or_yields_f32() {
+    collision::<f32>("f32", CollisionReaction::Stop);
+    collision::<f32>("f32", CollisionReaction::Passive);
+}
+
+#[test]
+fn collision_is_detected_and_stops_or_yields_i16f16() {
+    collision::<I16F16>("I16F16", CollisionReaction::Stop);
+    collision::<I16F16>("I16F16", CollisionReaction::Passive);
+}
