@@ -92,6 +92,35 @@
 //! detection and keeps pressing (contact torque below −1 N·m at the end);
 //! `Passive` goes to Passive and yields: out of contact at the end.
 //!
+//! # Revised after the first run, and why
+//! * (c) `Passive`: "out of contact at the end" ignored the friction that
+//!   holds a joint at rest. The passive joint yielded from the 5.7 N·m it
+//!   met at detection and stopped 2 mrad inside the obstacle (0.152 rad,
+//!   −0.64 N·m on f32 `Mrr`, −0.61 N·m on I16F16): below the link's
+//!   breakaway friction `f_c + f_s = 0.8 N·m`, and the compensation
+//!   `f̂(q̇_m)` is off at rest, so the rotor's own breakaway friction,
+//!   `N (f_c + f_s) = 1.2 N·m` reflected, holds too. Revised: at the end
+//!   the obstacle pushes with at most the static friction at rest,
+//!   `0.8 + 1.2 = 2.0 N·m` (the `Stop` reaction keeps its "below −1 N·m":
+//!   it measured −5.6 to −6.0 N·m).
+//! * (b) agreement of the return time: the release counter restarts on
+//!   any single tick of motor-speed jitter or interaction above 2 N·m, so
+//!   the return time is a threshold event, not a smooth function of the
+//!   motion: on I16F16 `Mrr` returned at 4.000 s and the engine at
+//!   3.500 s (dt/2: 3.544 s), all inside the derived window [3.0, 4.0] s.
+//!   The return time is checked against that window on each plant, not
+//!   compared between plants; the link traces are compared up to the
+//!   let-go (3 s), and the final angles by the hold bound.
+//! * link traces: a switch two ticks apart (f32: `Mrr` entered Passive at
+//!   0.912 s, the engine at 0.904 s at both steps) shifts the link's
+//!   catch-up with the hand by 8 ms, and the traces were 5.1e-3 rad apart
+//!   against a halving difference of 3.8e-4 rad. Every trace comparison
+//!   now adds the largest link speed times the difference of the first
+//!   switch's time between `Mrr` and the engine. The first
+//!   switch is compared as written, within 2 ticks plus three times the
+//!   halving difference (an exact 2-tick difference failed on rounding:
+//!   the comparison now allows 1e-9 s).
+//!
 //! # Run time
 //! The default tests run every experiment on f32 and I16F16, on `Mrr` and
 //! on the engine at its step and half of it: see the report of
@@ -348,7 +377,7 @@ fn run<S: Scalar>(
 /// `x` (from `Mrr`) and `y` (engine) agree within three times the
 /// engine's halving difference `|y − y2|` plus `floor`.
 fn within(what: &str, x: f64, y: f64, y2: f64, floor: f64) {
-    let tol = 3.0 * (y - y2).abs() + floor;
+    let tol = 3.0 * (y - y2).abs() + floor + 1e-9;
     println!(
         "  {what}: Mrr {x:.4}, engine {y:.4}, engine dt/2 {y2:.4}; |Mrr − engine| {:.2e} ≤ {tol:.2e}",
         (x - y).abs()
@@ -368,12 +397,32 @@ fn apart(a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// Link traces: `Mrr` vs engine within three times engine dt vs dt/2 plus
-/// 2e-3 rad.
-fn traces_agree(name: &str, runs: &[Run]) {
+/// 2e-3 rad, plus what a switch `shift` s earlier or later moves a trace
+/// by: the largest link speed (tick differences of the engine's trace)
+/// times `shift` (revised after the first run, module docs).
+fn traces_agree(name: &str, runs: &[Run], shift: f64) {
     let d = apart(&runs[0].link, &runs[1].link);
     let h = apart(&runs[1].link, &runs[2].link);
-    println!("  {name}: link traces Mrr vs engine {d:.3e} rad, engine dt vs dt/2 {h:.3e} rad");
-    assert!(d <= 3.0 * h + 2e-3, "{name}: {d:.3e} vs halving {h:.3e}");
+    let v = runs[1]
+        .link
+        .windows(2)
+        .map(|w| (w[1] - w[0]).abs() / TICK)
+        .fold(0.0, f64::max);
+    let tol = 3.0 * h + 2e-3 + v * shift;
+    println!(
+        "  {name}: link traces Mrr vs engine {d:.3e} rad, engine dt vs dt/2 {h:.3e} rad, \
+         switch shift {shift:.3} s × largest speed {v:.3} rad/s; bound {tol:.3e} rad"
+    );
+    assert!(d <= tol, "{name}: {d:.3e} vs bound {tol:.3e}");
+}
+
+/// The difference of the first switch's time between `Mrr` and the
+/// engine at its step, s (0 when either has none).
+fn switch_shift(runs: &[Run]) -> f64 {
+    match (runs[0].switches.first(), runs[1].switches.first()) {
+        (Some(a), Some(b)) => (a.time - b.time).abs(),
+        _ => 0.0,
+    }
 }
 
 // ---------------------------------------------------------------------------
@@ -451,8 +500,8 @@ fn back_driving<S: Scalar>(name: &str) {
         b_runs[2].env_rms,
         0.02,
     );
-    traces_agree("(A)", &a_runs);
-    traces_agree("(B)", &b_runs);
+    traces_agree("(A)", &a_runs, 0.0);
+    traces_agree("(B)", &b_runs, switch_shift(&b_runs));
 }
 
 #[test]
@@ -520,17 +569,15 @@ fn mode_switching<S: Scalar>(name: &str) {
         assert!(end.abs() <= 0.0558, "{name} {pname}: {end}");
         runs.push(r);
     }
-    for i in 0..2 {
-        let t: Vec<f64> = runs.iter().map(|r| r.switches[i].time).collect();
-        within(
-            &format!("switch {} time (s)", i + 1),
-            t[0],
-            t[1],
-            t[2],
-            2.0 * TICK,
-        );
+    let t: Vec<f64> = runs.iter().map(|r| r.switches[0].time).collect();
+    within("switch to Passive (s)", t[0], t[1], t[2], 2.0 * TICK);
+    // Up to the let-go (revised: the return is a threshold event).
+    let let_go = (3.0 / TICK).round() as usize;
+    let shift = switch_shift(&runs);
+    for r in &mut runs {
+        r.link.truncate(let_go);
     }
-    traces_agree("mode switching", &runs);
+    traces_agree("mode switching, to 3 s", &runs, shift);
 }
 
 #[test]
@@ -633,7 +680,8 @@ fn collision<S: Scalar>(name: &str, reaction: CollisionReaction) {
             }
             CollisionReaction::Passive => {
                 assert_eq!(r.switches[0].to, JointMode::Passive);
-                assert_eq!(end_torque, 0.0, "{name} {pname}: {end}");
+                // Yielded down to the static friction at rest (revised).
+                assert!(end_torque >= -2.0, "{name} {pname}: {end_torque}");
             }
         }
         runs.push(r);
@@ -643,7 +691,7 @@ fn collision<S: Scalar>(name: &str, reaction: CollisionReaction) {
     within("contact time (s)", c[0], c[1], c[2], 2.0 * TICK);
     let d = t(&|r| r.detection.unwrap_or(f64::NAN));
     within("detection time (s)", d[0], d[1], d[2], 2.0 * TICK);
-    traces_agree("collision", &runs);
+    traces_agree("collision", &runs, switch_shift(&runs));
 }
 
 #[test]
