@@ -205,6 +205,7 @@ pub(crate) mod kani_entries {
 
     fn any_target() -> JointTarget<I16F16> {
         JointTarget {
+            turns: kani::any(),
             position: I16F16::from_bits(kani::any()),
             velocity: I16F16::from_bits(kani::any()),
             acceleration: I16F16::from_bits(kani::any()),
@@ -306,6 +307,7 @@ mod tests {
                 motor_torque: tau.map(|v| S::from_f64(v * u.motor_torque)),
             };
             let target = JointTarget {
+                turns: 0,
                 position: S::from_f64(t[0] * u.angle),
                 velocity: S::from_f64(t[1] * u.speed),
                 acceleration: S::from_f64(t[2] * u.speed),

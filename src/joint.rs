@@ -138,6 +138,24 @@ use core::f64::consts::TAU;
 
 /// Longest speed window, ticks.
 pub const MAX_SPEED_WINDOW: u8 = 64;
+
+/// The plausibility limit of the presets' motor speed, rad/s
+/// ([`JointSettings::max_motor_speed`] of [`JointParams::table_4_1`] and
+/// [`JointParams::table_4_1_at`]): 1000 rad/s (about 9,550 rpm).
+///
+/// Source: the thesis gives no speed rating for its motor (a Maxon
+/// 218014 brushed DC motor, ch. 2.5 and 3.4; only its weight, torque
+/// limit and torque constant are printed). The fastest motion it reports
+/// on this joint is 1.56 rad/s at the link (Table 3.3), 156 rad/s at the
+/// motor through `N = 100`, and the 4 ms design assumes motor speeds up
+/// to 100 rad/s ([`JointParams::table_4_1_at`]). The limit is a
+/// plausibility bound about 6.4 times the fastest reported speed, not a
+/// rating: set [`JointSettings::max_motor_speed`] from your motor's data
+/// sheet (its maximum permissible speed). At 4 ms and 2000 counts per
+/// revolution it admits up to 1274 counts per tick; one motor revolution
+/// (2000 counts) or a whole output revolution (200 000) in one tick is
+/// rejected.
+pub const TABLE_4_1_MAX_MOTOR_SPEED: f64 = 1000.0;
 const _: () = assert!(MAX_SPEED_WINDOW.is_power_of_two());
 
 /// The settings of a joint by name, for [`JointParams::try_new`].
@@ -153,6 +171,11 @@ pub struct JointSettings {
     /// Window of the motor speed's count difference, ticks, in
     /// `[1, MAX_SPEED_WINDOW]`.
     pub speed_window: u8,
+    /// The fastest the motor can turn, rad/s (> 0; from the motor's data
+    /// sheet, e.g. its maximum permissible speed): a reading whose counter
+    /// moved farther in one tick is a counter fault, flagged and not used
+    /// ([plausibility of readings](self#plausibility-of-readings)).
+    pub max_motor_speed: f64,
 }
 
 /// Parameters of one joint, SI; built only by [`try_new`](Self::try_new).
@@ -167,9 +190,16 @@ impl JointParams {
     /// with the drive's ratio as both bounds); `speed_window` in
     /// `[1, MAX_SPEED_WINDOW]`; the motor speed resolution
     /// `2π/(M·w·T)` at most 32 768 rad/s (named
-    /// `2π/(estimator.motor_counts_per_rev·speed_window·mode.active.sample_period)`). The
-    /// estimator and mode parameters were validated by their own
-    /// `try_new`.
+    /// `2π/(estimator.motor_counts_per_rev·speed_window·mode.active.sample_period)`);
+    /// `max_motor_speed` finite and > 0, and the counts it moves in one
+    /// tick, `max_motor_speed·T·M/(2π)`, at most 2³⁰ (named
+    /// `max_motor_speed·mode.active.sample_period·estimator.motor_counts_per_rev/2π`;
+    /// the wrapping 32-bit counter difference must resolve them); and the
+    /// motor counts per output revolution `M·N` at most 2³² (named
+    /// `estimator.motor_counts_per_rev·estimator.drive.ratio`; whole output
+    /// turns of a target, [`JointTarget::turns`], are then exact 64-bit
+    /// counts). The estimator and mode parameters were validated by their
+    /// own `try_new`.
     pub fn try_new(settings: JointSettings) -> Result<Self, ParamError> {
         let n = settings.estimator.drive().ratio();
         let mode_ratio = settings.mode.settings().active.design().ratio;
@@ -189,12 +219,25 @@ impl JointParams {
                 max: MAX_SPEED_WINDOW as f64,
             });
         }
+        crate::error::positive("max_motor_speed", settings.max_motor_speed)?;
         let p = JointParams { settings };
         crate::error::combination(
             "2π/(estimator.motor_counts_per_rev·speed_window·mode.active.sample_period)",
             p.speed_resolution(),
             0.0,
             32_768.0,
+        )?;
+        crate::error::combination(
+            "max_motor_speed·mode.active.sample_period·estimator.motor_counts_per_rev/2π",
+            settings.max_motor_speed * p.sample_period() / p.motor_rad_per_count(),
+            0.0,
+            (1u64 << 30) as f64,
+        )?;
+        crate::error::combination(
+            "estimator.motor_counts_per_rev·estimator.drive.ratio",
+            settings.estimator.motor_counts_per_rev() as f64 * p.ratio(),
+            1.0,
+            (1u64 << 32) as f64,
         )?;
         Ok(p)
     }
@@ -206,7 +249,8 @@ impl JointParams {
     /// (`T = 4 ms`) and passive law with the default gain
     /// ([`PassiveParams::table_4_1_default`]) under the manager settings of
     /// [`ModeSettings::table_4_1`] (no collision detector); speed over one
-    /// tick (resolution `2π/(2000·4 ms) = 0.785` rad/s).
+    /// tick (resolution `2π/(2000·4 ms) = 0.785` rad/s); readings implying
+    /// a motor faster than [`TABLE_4_1_MAX_MOTOR_SPEED`] rejected.
     ///
     /// # Does not hold at its own 4 ms
     /// These are the thesis's numbers, kept for reproducing ch. 4, and the
@@ -244,6 +288,7 @@ impl JointParams {
             estimator,
             mode,
             speed_window: 1,
+            max_motor_speed: TABLE_4_1_MAX_MOTOR_SPEED,
         })
     }
 
@@ -361,6 +406,12 @@ pub struct JointConfig<S> {
     link_counts: u32,
     /// `M·N`, motor counts per output revolution.
     motor_counts_per_output_rev: i64,
+    /// The most counts the counter may move in one tick:
+    /// `⌊max_motor_speed·T·M/(2π)⌋ + 1` (one count of quantization).
+    max_counts_per_tick: u32,
+    /// The largest `|q_m − 2πN·turns|` in counts that the backend's angle
+    /// carries ([`JointConfig::frame_limit_counts`]).
+    frame_limit: u64,
 }
 
 /// The joint's state: the estimator's, the mode manager's, and the motor
@@ -373,9 +424,14 @@ pub struct JointState<S: Scalar> {
     motor_count: i64,
     /// Last raw counter (chapter-4 sign).
     last_counter: u32,
-    /// The last `w` raw counters, oldest at `head`.
+    /// The low 32 bits of the motor position of the last `w` ticks
+    /// (a counter without its rejected jumps), oldest at `head`.
     history: [u32; MAX_SPEED_WINDOW as usize],
     head: u8,
+    /// The whole output turns of the frame the mode manager's stored
+    /// positions (its hold point) are in: the last usable target's
+    /// [`JointTarget::turns`].
+    frame_turns: i32,
 }
 
 impl<S: Scalar> JointState<S> {
@@ -392,10 +448,14 @@ impl<S: Scalar> JointState<S> {
         &self.estimator
     }
     /// The motor position in counts since the state was made, offset by the
-    /// start position, chapter-4 sign (`q_m = counts · 2π/M`).
+    /// start position, chapter-4 sign (`q_m = counts · 2π/M`); a rejected
+    /// counter jump is not in it. The absolute position on every backend,
+    /// whatever the range of its stored angle: `q_m` in rad is
+    /// `counts · 2π/M` (in `f64`, exact below 2⁵³ counts).
     pub fn motor_position_counts(&self) -> i64 {
         self.motor_count
     }
+
     /// The active law's adapted state (friction estimate and integral;
     /// SI readers [`RobustAdaptiveState::friction_si`] and
     /// [`RobustAdaptiveState::integral_si`]).
@@ -449,9 +509,20 @@ impl<S> JointReadings<S> {
 }
 
 /// What the joint should do on this tick, link side.
+///
+/// The desired link angle is `2π·turns + position`: whole output
+/// revolutions as an integer and the rest as a number, so that a joint
+/// turning in one direction keeps its resolution and its range on every
+/// backend ([multi-turn](self#multi-turn-positions-and-targets));
+/// [`from_si`](Self::from_si) splits an SI angle so.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct JointTarget<S> {
-    /// Desired link angle `q_d`, stored angle units (rad).
+    /// Whole output (link) revolutions of the desired link angle, positive
+    /// forward: the desired link angle is `2π·turns + position`.
+    pub turns: i32,
+    /// Desired link angle `q_d` beyond the whole [`turns`](Self::turns),
+    /// stored angle units (rad); any value the backend holds, best within
+    /// `±π` ([`from_si`](Self::from_si) puts it in `[−π, π]`).
     pub position: S,
     /// Desired link speed `q̇_d`, stored speed units (rad/s).
     pub velocity: S,
@@ -469,18 +540,38 @@ pub struct JointTarget<S> {
 
 impl<S: Scalar> JointTarget<S> {
     /// A trajectory point from SI values (rad, rad/s, rad/s²), no desired
-    /// or expected joint torque. A NaN or infinity stays one on floats (the
-    /// step then flags it); fixed point saturates it (see
-    /// [`quantize_keep_non_finite`]).
+    /// or expected joint torque. The link angle is split into whole
+    /// revolutions and the rest, `position = 2π·turns + r` with `turns`
+    /// the nearest integer to `position/2π` and `r ∈ [−π, π]` (an angle
+    /// beyond `±2³¹` revolutions keeps `turns = 0`). A NaN or infinity
+    /// stays one on floats (the step then flags it); fixed point saturates
+    /// it (see [`quantize_keep_non_finite`]).
     pub fn from_si(position: f64, velocity: f64, acceleration: f64) -> Self {
         let u = S::UNITS;
+        let (turns, position) = split_turns(position);
         JointTarget {
+            turns,
             position: quantize_keep_non_finite(position, u.angle),
             velocity: quantize_keep_non_finite(velocity, u.speed),
             acceleration: quantize_keep_non_finite(acceleration, u.speed),
             joint_torque: S::ZERO,
             expected_joint_torque: S::ZERO,
         }
+    }
+}
+
+/// `angle = 2π·turns + rest` with `turns` the nearest integer to
+/// `angle/2π` (halves away from zero) and `rest ∈ [−π, π]`; an angle that
+/// is not a number or beyond `±2³¹` revolutions gives `(0, angle)`.
+fn split_turns(angle: f64) -> (i32, f64) {
+    let t = angle / TAU;
+    // `as` saturates and takes NaN to 0; the range test keeps the split
+    // exact in `i32`.
+    if t.abs() < 2_147_483_647.0 {
+        let k = (t + if t < 0.0 { -0.5 } else { 0.5 }) as i32;
+        (k, angle - k as f64 * TAU)
+    } else {
+        (0, angle)
     }
 }
 
@@ -491,7 +582,10 @@ pub struct JointMeasurement<S> {
     /// The estimated joint torque `τ̂_t` (eq. 4.1 sign: the torque the drive
     /// applies to the link), stored link-torque units; `−estimate.torque`.
     pub joint_torque: S,
-    /// The measured motor position `q_m`, stored angle units.
+    /// The measured motor position `q_m` (from the state's 64-bit count,
+    /// [`JointState::motor_position_counts`]), stored angle units: it
+    /// saturates on `I16F16` beyond ±32 768 rad and rounds on floats
+    /// (on `f32` to coarser than half a count beyond 2²² counts).
     pub motor_position: S,
     /// The measured motor speed `q̇_m` (count difference over the window),
     /// stored speed units.
@@ -499,6 +593,11 @@ pub struct JointMeasurement<S> {
     /// The estimator's output, in the estimator's sign (errata E2.10); its
     /// `invalid_input` and `link_count_invalid` flag impossible readings.
     pub estimate: TorqueEstimate<S>,
+    /// The motor counter moved farther than
+    /// [`JointSettings::max_motor_speed`] allows in one tick: the reading
+    /// was rejected (the position, the speed meter and the estimator's
+    /// motor position hold; [plausibility](self#plausibility-of-readings)).
+    pub counter_jump: bool,
 }
 
 impl<S: Scalar> JointMeasurement<S> {
@@ -592,6 +691,28 @@ impl<S: Scalar> JointConfig<S> {
             speed_window: s.speed_window,
             link_counts: s.estimator.link_counts_per_rev(),
             motor_counts_per_output_rev: m as i64 * p.ratio() as i64,
+            // Validated: at most 2³⁰ + 1.
+            max_counts_per_tick: (s.max_motor_speed * p.sample_period() / p.motor_rad_per_count())
+                as u32
+                + 1,
+            frame_limit: Self::frame_limit_counts(p.motor_rad_per_count()),
+        }
+    }
+
+    /// The largest motor-side distance from the target's whole turns,
+    /// `|q_m − 2πN·turns|` in counts, that the step accepts on backend `S`
+    /// for a motor of `rad_per_count` (`2π/M`) rad per count: on fixed
+    /// point the counts whose angle is within half the backend's range
+    /// (`I16F16`: 16 384 rad, so that the error to a target within `±π`
+    /// at the link cannot saturate); on floats the counts whose angle the
+    /// backend still resolves to half a count, `1/(2ε)` (`f32`: 2²²
+    /// counts, 13 176 rad at `M = 2000`; `f64`: 2⁵¹).
+    pub fn frame_limit_counts(rad_per_count: f64) -> u64 {
+        let res = S::RESOLUTION.to_f64();
+        if res < 1e-6 {
+            (0.5 / res) as u64
+        } else {
+            (S::MAX.to_f64() / S::UNITS.angle / 2.0 / rad_per_count) as u64
         }
     }
 
@@ -621,16 +742,23 @@ impl<S: Scalar> JointConfig<S> {
 
     /// A state for a motor at `motor_position` counts (chapter-4 sign,
     /// `q_m = counts · 2π/M`) while its counter reads `motor_counter`.
+    ///
+    /// The estimator and the speed meter are given the joint's own count
+    /// (the counter without its rejected jumps), so the estimator state's
+    /// [`last_counter`](TorqueEstimatorState::last_counter) is the low 32
+    /// bits of the negated motor position, not the raw counter.
     pub fn state_at(&self, motor_position: i64, motor_counter: u32) -> JointState<S> {
+        let own = motor_position as u32;
         JointState {
             estimator: self
                 .estimator
-                .state(motor_position.wrapping_neg(), motor_counter.wrapping_neg()),
+                .state(motor_position.wrapping_neg(), own.wrapping_neg()),
             mode: self.mode.initial_state(),
             motor_count: motor_position,
             last_counter: motor_counter,
-            history: [motor_counter; MAX_SPEED_WINDOW as usize],
+            history: [own; MAX_SPEED_WINDOW as usize],
             head: 0,
+            frame_turns: 0,
         }
     }
 
@@ -649,13 +777,51 @@ impl<S: Scalar> JointConfig<S> {
     // Inlined into its caller: the joint step is then one function,
     // without call and argument-struct overhead, also in a firmware that
     // builds several joint configurations.
+    ///
+    /// A counter that moved farther than
+    /// [`JointSettings::max_motor_speed`] allows is rejected
+    /// ([`JointMeasurement::counter_jump`]; module docs).
     #[inline(always)]
     pub fn measure(
         &self,
         st: &mut JointState<S>,
         readings: &JointReadings<S>,
     ) -> JointMeasurement<S> {
+        let (estimate, motor_count, moved, counter_jump) = self.measure_counts(st, readings);
+        JointMeasurement {
+            joint_torque: estimate.torque.neg(),
+            motor_position: S::from_counts_prepared(motor_count, &self.angle_per_count),
+            motor_velocity: S::from_counts_i32(moved, &self.speed_per_count),
+            estimate,
+            counter_jump,
+        }
+    }
+
+    /// The counting half of [`measure`](Self::measure): the plausibility
+    /// test of the counter, the motor position (64-bit count), the
+    /// estimate and the speed meter's count difference over the window.
+    /// Returns `(estimate, motor count, counts moved over the window,
+    /// counter jump)`.
+    #[inline(always)]
+    fn measure_counts(
+        &self,
+        st: &mut JointState<S>,
+        readings: &JointReadings<S>,
+    ) -> (TorqueEstimate<S>, i64, i32, bool) {
         let counter = readings.motor_counter;
+        // Position: wrapping 32-bit difference, exact 64-bit sum; a move
+        // faster than the motor can turn is a counter fault, not motion:
+        // it is left out, and the next tick is measured from this reading.
+        let raw = counter.wrapping_sub(st.last_counter) as i32;
+        st.last_counter = counter;
+        let counter_jump = raw.unsigned_abs() > self.max_counts_per_tick;
+        let delta = if counter_jump { 0 } else { raw };
+        let motor_count = st.motor_count.wrapping_add(delta as i64);
+        st.motor_count = motor_count;
+        // The joint's own counter: the position's low 32 bits, which the
+        // estimator and the speed meter follow (a rejected jump is in
+        // neither).
+        let own = motor_count as u32;
         // The previous command is finite (the mode manager limits it): the
         // estimator then does not test it.
         let (motor_torque, torque_finite) = match readings.motor_torque {
@@ -665,31 +831,21 @@ impl<S: Scalar> JointConfig<S> {
         let estimate = self.estimator.update_with(
             &mut st.estimator,
             readings.link_count,
-            counter.wrapping_neg(),
+            own.wrapping_neg(),
             motor_torque,
             torque_finite,
         );
-        // Position: wrapping 32-bit difference, exact 64-bit sum.
-        let delta = counter.wrapping_sub(st.last_counter) as i32;
-        st.last_counter = counter;
-        let motor_count = st.motor_count.wrapping_add(delta as i64);
-        st.motor_count = motor_count;
-        // Speed: difference to the counter `w` ticks ago (`w` is validated
+        // Speed: difference to the count `w` ticks ago (`w` is validated
         // in [1, MAX_SPEED_WINDOW]; the ring index is taken modulo its
         // power-of-two length anyway, one mask and no bounds test, so no
         // reading can index past it).
         let w = self.speed_window;
         let head = if st.head < w { st.head } else { 0 };
         let slot = &mut st.history[head as usize % MAX_SPEED_WINDOW as usize];
-        let old = core::mem::replace(slot, counter);
+        let old = core::mem::replace(slot, own);
         st.head = if head + 1 >= w { 0 } else { head + 1 };
-        let moved = counter.wrapping_sub(old) as i32;
-        JointMeasurement {
-            joint_torque: estimate.torque.neg(),
-            motor_position: S::from_counts_prepared(motor_count, &self.angle_per_count),
-            motor_velocity: S::from_counts_i32(moved, &self.speed_per_count),
-            estimate,
-        }
+        let moved = own.wrapping_sub(old) as i32;
+        (estimate, motor_count, moved, counter_jump)
     }
 
     /// One tick: [`measure`](Self::measure) (estimate the joint torque from
@@ -727,12 +883,28 @@ impl<S: Scalar> JointConfig<S> {
         readings: &JointReadings<S>,
         target: &JointTarget<S>,
     ) -> JointOutput<S> {
-        let JointMeasurement {
-            joint_torque,
-            motor_position,
-            motor_velocity,
-            estimate,
-        } = self.measure(st, readings);
+        let (estimate, motor_count, moved, counter_jump) = self.measure_counts(st, readings);
+        // The motor position in the target's turn frame, formed in counts:
+        // `q_m − 2πN·turns` (exact in 64 bits: |turns| ≤ 2³¹ and
+        // M·N ≤ 2³² are validated).
+        let turns = target.turns;
+        let in_frame =
+            motor_count.wrapping_sub((turns as i64).wrapping_mul(self.motor_counts_per_output_rev));
+        let frame_ok = in_frame.unsigned_abs() <= self.frame_limit;
+        if frame_ok && turns != st.frame_turns {
+            // The mode manager's stored hold point moves to the new frame.
+            let by = (turns as i64)
+                .wrapping_sub(st.frame_turns as i64)
+                .wrapping_mul(self.motor_counts_per_output_rev);
+            self.mode.shift_frame(
+                &mut st.mode,
+                S::from_counts_prepared(by, &self.angle_per_count),
+            );
+            st.frame_turns = turns;
+        }
+        let joint_torque = estimate.torque.neg();
+        let motor_position = S::from_counts_prepared(in_frame, &self.angle_per_count);
+        let motor_velocity = S::from_counts_i32(moved, &self.speed_per_count);
         let x = ControlInput {
             desired_position: target.position.mul_int(&self.ratio),
             desired_velocity: target.velocity.mul_int(&self.ratio),
@@ -743,6 +915,22 @@ impl<S: Scalar> JointConfig<S> {
             desired_joint_torque: target.joint_torque,
             expected_joint_torque: target.expected_joint_torque,
         };
+        // An unusable sample (a rejected counter jump, a target too far
+        // from the motor for the backend, an impossible torsion or link
+        // count): the command is the fallback and the state holds.
+        if counter_jump || !frame_ok || estimate.invalid_input || estimate.link_count_invalid {
+            let control = self.mode.reject(&mut st.mode, &x);
+            return JointOutput {
+                motor_torque: control.torque,
+                mode: control.mode,
+                joint_torque,
+                motor_position,
+                motor_velocity,
+                invalid_input: true,
+                estimate,
+                control,
+            };
+        }
         // The measured fields are finite (count products, the estimate):
         // floats test only the other five. (Armv6-M keeps the plain call:
         // its fixed-point step tests nothing, and the second arm would

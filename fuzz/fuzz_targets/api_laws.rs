@@ -580,6 +580,7 @@ fuzz_target!(|data: (
             estimator,
             mode: m,
             speed_window: window,
+            max_motor_speed: mrr_control::joint::TABLE_4_1_MAX_MOTOR_SPEED,
         }) {
             Ok(j) => {
                 let readings: Vec<(u32, u32, u64, u8)> = samples

@@ -1014,6 +1014,28 @@ impl<S: Scalar> ModeConfig<S> {
     }
 }
 
+/// The joint step's hooks into the manager (`crate::joint`): an unusable
+/// sample and the turn frame of the joint's positions.
+impl<S: Scalar> ModeConfig<S> {
+    /// The invalid-sample path of [`update`](Self::update) for a sample the
+    /// joint found unusable (a counter jump, a target too far from the
+    /// motor): command 0 with `invalid_input` and `saturated` set, the
+    /// state not advanced (only the last command, now 0, is recorded).
+    #[inline(always)]
+    pub(crate) fn reject(&self, st: &mut ModeState<S>, x: &ControlInput<S>) -> ModeOutput<S> {
+        self.update_checked(st, x, false)
+    }
+
+    /// Move the stored hold point into a frame whose origin lies `by`
+    /// (stored angle units) ahead of the old one: `hold − by`. The other
+    /// stored positions are differences (the rejoin offset) and need no
+    /// shift.
+    #[inline(always)]
+    pub(crate) fn shift_frame(&self, st: &mut ModeState<S>, by: S) {
+        st.hold = st.hold.sub(by);
+    }
+}
+
 #[cfg(any(kani, test))]
 mod words {
     use super::ModeConfig;

@@ -32,6 +32,8 @@ impl JointConfig<I16F16> {
             speed_window: r.u8(),
             link_counts: r.u32(),
             motor_counts_per_output_rev: r.i64(),
+            max_counts_per_tick: r.u32(),
+            frame_limit: r.u64(),
         }
     }
 
@@ -45,6 +47,8 @@ impl JointConfig<I16F16> {
         s.u32(self.speed_window.into());
         s.u32(self.link_counts);
         s.i64(self.motor_counts_per_output_rev);
+        s.u32(self.max_counts_per_tick);
+        s.u64(self.frame_limit);
     }
 }
 
@@ -160,9 +164,9 @@ pub(crate) const TABLE_4_1_I16F16_WORDS: [u32; WORDS] = [
     0x00000000, 0x00000001, 0x6487ed51, 0x00000000, 0x40000000, 0x0000001e, 0x00000000, 0xffffffff,
     0x54442d18, 0x40e921fb, 0x47490fdb, 0x6487ed51, 0x00000000, 0x0000000f, 0x6487ed51, 0x00000000,
     0x00000001, 0x6487ed51, 0x00000000, 0x00004000, 0x0000000e, 0x0000c90f, 0xffff36f0, 0x7fffffff,
-    0x00000001, 0x00020000, 0x00030d40, 0x00000000,
+    0x00000001, 0x00020000, 0x00030d40, 0x00000000, 0x000004fa, 0x004f93d5, 0x00000000,
 ];
-const WORDS: usize = 788;
+const WORDS: usize = 791;
 
 #[cfg(test)]
 mod tests {
