@@ -156,3 +156,100 @@ fn f32_tracks_after_ten_thousand_output_revolutions() {
 fn f64_tracks_after_ten_thousand_output_revolutions() {
     check::<f64>(1e4);
 }
+
+/// The case on `I16F16`: a motor 34 000 rad out (link at 340 rad,
+/// 54 output revolutions). Given in SI the target carries its whole
+/// turns, and the measured position is the motor's in the target's frame,
+/// exact to the count; a target without turns leaves the range the
+/// backend's angle carries and is flagged, never read as 0 error.
+#[test]
+fn i16f16_beyond_its_angle_range_is_carried_or_flagged() {
+    let p = params();
+    let cfg = JointConfig::<I16F16>::new(&p);
+    let m = p.settings().estimator.motor_counts_per_rev() as f64;
+    let n = p.ratio();
+    let link = 340.0;
+    let counts = (link * n / TAU * m).round() as i64;
+    let link_count = ((link / TAU).fract() * 131072.0).floor() as u32;
+    let mut st = cfg.state_at(counts, counts as u32);
+    let out = cfg.update(
+        &mut st,
+        &JointReadings::counts(link_count, counts as u32),
+        &JointTarget::from_si(link, 0.0, 0.0),
+    );
+    assert!(!out.invalid_input, "{out:?}");
+    // The motor relative to 54 whole output turns, computed here in f64.
+    let turns = (link / TAU).round();
+    let want = (counts as f64 - turns * m * n) * TAU / m;
+    assert!((out.motor_position_si() - want).abs() < 1e-4, "{out:?} vs {want}");
+    // The same target without its turns: 34 000 rad is past the 16 384 rad
+    // the frame allows on I16F16.
+    let mut st = cfg.state_at(counts, counts as u32);
+    let flat = JointTarget::<I16F16> {
+        turns: 0,
+        ..JointTarget::from_si(link, 0.0, 0.0)
+    };
+    let flat = JointTarget {
+        position: I16F16::from_num(link),
+        ..flat
+    };
+    let out = cfg.update(&mut st, &JointReadings::counts(link_count, counts as u32), &flat);
+    assert!(out.invalid_input && out.motor_torque == I16F16::ZERO, "{out:?}");
+    assert!(out.control.invalid_input);
+}
+
+/// On `f32` the frame ends where the angle no longer resolves half a count:
+/// 2²² counts from the target's whole turns (13 176 rad at M = 2000). A
+/// target without turns is flagged past it; the same angle with its turns
+/// is not.
+#[test]
+fn f32_frame_ends_at_half_count_resolution_and_is_flagged() {
+    let p = params();
+    let cfg = JointConfig::<f32>::new(&p);
+    let m = p.settings().estimator.motor_counts_per_rev() as f64;
+    let n = p.ratio();
+    assert_eq!(JointConfig::<f32>::frame_limit_counts(TAU / m), 1 << 22);
+    // f32's spacing at 2²² counts' angle is at most half a count: checked
+    // here from the float itself.
+    let at = ((1u64 << 22) as f64 * TAU / m) as f32;
+    assert!(((at.next_up() - at) as f64) <= 0.5 * TAU / m);
+    for (counts, flagged) in [((1i64 << 22) - 1000, false), ((1 << 22) + 1000, true)] {
+        let link = counts as f64 * TAU / m / n;
+        let mut st = cfg.state_at(counts, 0);
+        let flat = JointTarget {
+            turns: 0,
+            position: link as f32,
+            ..JointTarget::default()
+        };
+        let link_count = ((link / TAU).rem_euclid(1.0) * 131072.0).floor() as u32;
+        let out = cfg.update(&mut st, &JointReadings::counts(link_count, 0), &flat);
+        assert_eq!(out.invalid_input, flagged, "{counts}: {out:?}");
+        let mut st = cfg.state_at(counts, 0);
+        let split = JointTarget::<f32>::from_si(link, 0.0, 0.0);
+        let out = cfg.update(&mut st, &JointReadings::counts(link_count, 0), &split);
+        assert!(!out.invalid_input, "{counts}: {out:?}");
+    }
+}
+
+/// `from_si` splits an SI angle into whole output turns and the rest in
+/// `[−π, π]`, on the nearest integer.
+#[test]
+fn from_si_splits_whole_turns() {
+    for (angle, turns) in [
+        (0.0, 0),
+        (3.0, 0),
+        (3.2, 1),
+        (-3.2, -1),
+        (62_832.0, 10_000),
+        (-62_832.0, -10_000),
+        (1e4 * TAU + 0.25, 10_000),
+    ] {
+        let t = JointTarget::<f64>::from_si(angle, 0.0, 0.0);
+        assert_eq!(t.turns, turns, "{angle}");
+        assert!(t.position.abs() <= core::f64::consts::PI, "{angle}: {t:?}");
+        assert!((t.turns as f64 * TAU + t.position - angle).abs() < 1e-9, "{angle}");
+    }
+    // NaN stays a NaN on floats (flagged by the step), turns 0.
+    let t = JointTarget::<f32>::from_si(f64::NAN, 0.0, 0.0);
+    assert!(t.turns == 0 && t.position.is_nan());
+}
