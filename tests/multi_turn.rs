@@ -181,7 +181,10 @@ fn i16f16_beyond_its_angle_range_is_carried_or_flagged() {
     // The motor relative to 54 whole output turns, computed here in f64.
     let turns = (link / TAU).round();
     let want = (counts as f64 - turns * m * n) * TAU / m;
-    assert!((out.motor_position_si() - want).abs() < 1e-4, "{out:?} vs {want}");
+    assert!(
+        (out.motor_position_si() - want).abs() < 1e-4,
+        "{out:?} vs {want}"
+    );
     // The same target without its turns: 34 000 rad is past the 16 384 rad
     // the frame allows on I16F16.
     let mut st = cfg.state_at(counts, counts as u32);
@@ -193,8 +196,15 @@ fn i16f16_beyond_its_angle_range_is_carried_or_flagged() {
         position: I16F16::from_num(link),
         ..flat
     };
-    let out = cfg.update(&mut st, &JointReadings::counts(link_count, counts as u32), &flat);
-    assert!(out.invalid_input && out.motor_torque == I16F16::ZERO, "{out:?}");
+    let out = cfg.update(
+        &mut st,
+        &JointReadings::counts(link_count, counts as u32),
+        &flat,
+    );
+    assert!(
+        out.invalid_input && out.motor_torque == I16F16::ZERO,
+        "{out:?}"
+    );
     assert!(out.control.invalid_input);
 }
 
@@ -247,7 +257,10 @@ fn from_si_splits_whole_turns() {
         let t = JointTarget::<f64>::from_si(angle, 0.0, 0.0);
         assert_eq!(t.turns, turns, "{angle}");
         assert!(t.position.abs() <= core::f64::consts::PI, "{angle}: {t:?}");
-        assert!((t.turns as f64 * TAU + t.position - angle).abs() < 1e-9, "{angle}");
+        assert!(
+            (t.turns as f64 * TAU + t.position - angle).abs() < 1e-9,
+            "{angle}"
+        );
     }
     // NaN stays a NaN on floats (flagged by the step), turns 0.
     let t = JointTarget::<f32>::from_si(f64::NAN, 0.0, 0.0);
