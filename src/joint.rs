@@ -41,6 +41,68 @@
 //! [`JointConfig::state`] starts the motor at `N` times the link angle
 //! (zero torsion), the link angle taken in `[−π, π)`.
 //!
+//! # Multi-turn positions and targets
+//! No absolute angle is stored in the backend's number, so a joint turning
+//! in one direction keeps its control for any number of turns on every
+//! backend (`tests/multi_turn.rs`: 10⁴ output revolutions in closed loop
+//! on `I16F16`, `f32` and `f64`, tracking as at the first). A target is
+//! whole output revolutions plus the rest, link angle
+//! `2π·`[`turns`](JointTarget::turns)` + `[`position`](JointTarget::position)
+//! ([`JointTarget::from_si`] splits an SI angle so, the rest in
+//! `[−π, π]`), and the step forms the motor position in that target's
+//! frame from the 64-bit count, in counts, before it becomes the
+//! backend's number:
+//!
+//! `q_m − 2πN·turns = (c − turns·M·N)·2π/M`, compared with `N·position`
+//! (eq. 4.15).
+//!
+//! The law's error `e = q_m − N q_d` (eq. 4.19) is then a difference of two
+//! numbers of the size of one output revolution at the motor (`2πN` rad),
+//! exact to the count on every backend. So
+//! [`JointOutput::motor_position`] (and the mode manager's
+//! `reference_position`) are **in the target's frame**:
+//! `q_m − 2πN·turns`, rad at the motor; the absolute position is
+//! [`JointState::motor_position_counts`] (64-bit counts,
+//! `q_m = counts·2π/M`). When the target's `turns` change, the mode
+//! manager's stored hold point moves with the frame (the rejoin offset is a
+//! difference and needs no move).
+//!
+//! The frame has a range: `|q_m − 2πN·turns|` at most
+//! [`JointConfig::frame_limit_counts`] counts — half the stored angle
+//! range on fixed point (`I16F16`: 16 384 rad at the motor, 26 output
+//! revolutions at `N = 100`), and on floats the counts whose angle still
+//! resolves half a count (`f32`: 2²² counts, 13 176 rad at `M = 2000`,
+//! 21 output revolutions; `f64`: 2⁵¹ counts). A target whose whole turns
+//! leave the motor farther than that (a target given without its turns,
+//! as `turns: 0` and a large `position`) is **flagged** `invalid_input`
+//! and not used (below), never read as a saturated or rounded error.
+//! `JointTarget::position` itself is a stored angle: keep it within a
+//! revolution (on `I16F16`, `N·position` saturates beyond `±32 768/N` rad).
+//!
+//! # Plausibility of readings
+//! A motor cannot turn faster than [`JointSettings::max_motor_speed`]
+//! (from its data sheet; [`TABLE_4_1_MAX_MOTOR_SPEED`] in the presets). A
+//! counter that moved more than `⌊max_motor_speed·T·M/(2π)⌋ + 1` counts in
+//! one tick (one count of quantization above the speed) is a counter fault
+//! — a glitch, a lost or doubled reading, a jump of whole revolutions that
+//! the torsion cannot see because it is a multiple of `M·N` counts. Then:
+//!
+//! * the sample is flagged `invalid_input` (and
+//!   [`JointMeasurement::counter_jump`] from [`JointConfig::measure`]);
+//! * the joint **holds its last valid state**: the move is left out of the
+//!   motor position, the speed meter and the estimator see no motion for
+//!   this tick, and the mode manager is not advanced (command 0 N·m, the
+//!   last command recorded as 0, as for any invalid sample);
+//! * **recovery**: the next tick is measured from the jumped counter, so a
+//!   counter that jumped and stays (an offset) costs one flagged tick and
+//!   the offset never enters the position; a one-tick spike costs two (out
+//!   and back). The position then continues from where it was held
+//!   (`tests/plausibility.rs`).
+//!
+//! The same holding path takes every sample the step cannot use: an
+//! impossible torsion or a link count not below `L` (the estimator's
+//! flags), and a target outside the frame (above).
+//!
 //! # Units
 //! [`JointTarget`] is link-side: rad, rad/s, rad/s² and N·m — the stored
 //! units of every backend (`S::UNITS` scales angles, speeds and link
@@ -58,7 +120,11 @@
 //!
 //! * **`invalid_input`** — this sample could not be used: an input was NaN
 //!   or infinite or an impossible reading (a link count not below `L`, a
-//!   counter jump), or, on floats, finite inputs so large that the law
+//!   torsion no torque can produce, a counter faster than the motor's
+//!   maximum speed — [plausibility](self#plausibility-of-readings)), on
+//!   the joint a target outside the frame of its whole turns
+//!   ([multi-turn](self#multi-turn-positions-and-targets)), or, on floats,
+//!   finite inputs so large that the law
 //!   overflowed to NaN. The command is the documented fallback (0 N·m from
 //!   a law; in the mode manager 0 for a non-finite input, the decaying
 //!   bump-transfer bias for an overflow) and the adapted state is not
@@ -628,18 +694,24 @@ pub struct JointOutput<S> {
     /// The estimated joint torque `τ̂_t` (eq. 4.1 sign: the torque the drive
     /// applies to the link), stored link-torque units; `−estimate.torque`.
     pub joint_torque: S,
-    /// The measured motor position `q_m` (chapter-4 sign), stored angle
-    /// units.
+    /// The measured motor position in the target's frame,
+    /// `q_m − 2πN·turns` (chapter-4 sign; `turns` the target's
+    /// [`JointTarget::turns`]), stored angle units
+    /// ([multi-turn](self#multi-turn-positions-and-targets); the absolute
+    /// position is [`JointState::motor_position_counts`]).
     pub motor_position: S,
     /// The measured motor speed `q̇_m` (count difference over the window),
     /// stored speed units.
     pub motor_velocity: S,
     /// An input was impossible, at either stage (the meaning is shared with
     /// the wrist: [status flags](self#status-flags)): a link count not below
-    /// `L`, a counter jump or torsion no torque can produce, a NaN or
-    /// infinite motor torque (estimator), a NaN or infinite target, or a
-    /// law that overflowed (mode manager). The values that replace it are
-    /// documented on [`TorqueEstimate`] and [`ModeOutput`].
+    /// `L`, a torsion no torque can produce, a NaN or infinite motor torque
+    /// (estimator), a counter faster than the motor's maximum speed
+    /// ([plausibility](self#plausibility-of-readings)), a target outside
+    /// its turns' frame ([multi-turn](self#multi-turn-positions-and-targets)),
+    /// a NaN or infinite target, or a law that overflowed (mode manager).
+    /// The command is then 0 N·m from the mode manager's invalid-sample
+    /// path (an overflow: the decaying bias) and the state holds.
     pub invalid_input: bool,
     /// The estimator's output, in the estimator's sign (errata E2.10).
     pub estimate: TorqueEstimate<S>,
@@ -666,7 +738,8 @@ impl<S: Scalar> JointOutput<S> {
     pub fn joint_torque_si(&self) -> f64 {
         dequantize(self.joint_torque, S::UNITS.link_torque)
     }
-    /// [`motor_position`](Self::motor_position) in rad.
+    /// [`motor_position`](Self::motor_position) in rad, in the target's
+    /// frame (`q_m − 2πN·turns`).
     pub fn motor_position_si(&self) -> f64 {
         dequantize(self.motor_position, S::UNITS.angle)
     }
