@@ -19,13 +19,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 
 # Cycles still to remove (sorted member files), with the reason they exist.
-KNOWN = {
-    # The SI conversions of the control types (`ControlInput::from_si`, …)
-    # live in the numeric core (`scalar/units.rs`) beside the backends'
-    # scale factors, so `scalar` imports `control`, which closes a loop
-    # through every layer between them.
-    ("src/control", "src/estimation", "src/friction", "src/harmonic_drive", "src/scalar"),
-}
+KNOWN = set()
 
 
 def rust_modules():

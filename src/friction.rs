@@ -470,10 +470,7 @@ impl<S: Scalar> FrictionConfig<S> {
     /// Odd on floats; on fixed point the product rounds ties up, so where
     /// `q̇/ε_q̇` falls exactly halfway between two steps `sat(−q̇)` is
     /// `−sat(q̇)` plus one LSB (never more).
-    // Its own function on Armv6-M: the callers' code (the active law
-    // around it) is smaller than with the product inlined.
-    #[cfg_attr(not(all(target_arch = "arm", not(target_has_atomic = "32"))), inline)]
-    #[cfg_attr(all(target_arch = "arm", not(target_has_atomic = "32")), inline(never))]
+    #[inline]
     pub fn sat(&self, qd: S) -> S {
         // Fixed point only (folded at compile time): a float product by the
         // coefficient is already one multiply.

@@ -925,27 +925,14 @@ impl<S: Scalar> JointConfig<S> {
     /// the readings, eq. 3.8–3.10, motor counter negated; measure the motor
     /// position and speed), then run the mode manager on
     /// `τ̂_t = −estimate` and the target times `N` (module docs).
-    // Inlined into its caller except on Armv6-M: the joint step is then
-    // one function, without call and argument-struct overhead.
-    #[cfg_attr(
-        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
-        inline(always)
-    )]
+    #[inline]
     pub fn update(
         &self,
         st: &mut JointState<S>,
         readings: &JointReadings<S>,
         target: &JointTarget<S>,
     ) -> JointOutput<S> {
-        // The configuration's address made opaque (no code, the same
-        // reference): the step then reads every field at its offset from
-        // the configuration itself. A configuration at a known address
-        // (a static, an element of a static array of configurations) was
-        // otherwise addressed from a base shared with other statics, and
-        // a field kilobytes past that base costs one to three more
-        // instructions per read.
-        let this = core::hint::black_box(self);
-        this.step(st, readings, target)
+        self.step(st, readings, target)
     }
 
     /// [`update`](Self::update)'s body.
@@ -1005,17 +992,8 @@ impl<S: Scalar> JointConfig<S> {
             };
         }
         // The measured fields are finite (count products, the estimate):
-        // floats test only the other five. (Armv6-M keeps the plain call:
-        // its fixed-point step tests nothing, and the second arm would
-        // change its inlining.)
-        #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
-        let control = if S::RESOLUTION.to_f64() < 1e-6 {
-            self.mode.update_measured(&mut st.mode, &x)
-        } else {
-            self.mode.update(&mut st.mode, &x)
-        };
-        #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
-        let control = self.mode.update(&mut st.mode, &x);
+        // only the other five are tested.
+        let control = self.mode.update_measured(&mut st.mode, &x);
         JointOutput {
             motor_torque: control.torque,
             mode: control.mode,

@@ -28,6 +28,7 @@ pub mod bound;
 pub mod design;
 pub mod mode;
 pub mod passive;
+mod si;
 
 pub use adaptive::{
     ActiveOutput, RobustAdaptiveConfig, RobustAdaptiveDesign, RobustAdaptiveParams,
@@ -77,51 +78,31 @@ impl<S: Scalar> ControlInput<S> {
     /// `true` when every field is a finite number (always for fixed point).
     #[inline]
     pub fn is_finite(&self) -> bool {
-        if S::RESOLUTION.to_f64() >= 1e-6 {
-            // Fixed point has no NaN or infinity (folded at compile time).
-            return true;
-        }
-        // `v − v` is 0 for a finite float and NaN for NaN and ±∞, and a NaN
-        // survives every sum: one comparison instead of eight. (A plain sum
-        // of the fields would be shorter on the common path but needs this
-        // form as a fallback when finite fields overflow it, and the
-        // static bound of the step pays both.)
-        let d = |v: S| v.sub(v);
-        let sum = self
-            .unmeasured_probe()
-            .add(d(self.motor_position))
-            .add(d(self.motor_velocity))
-            .add(d(self.joint_torque));
-        sum == S::ZERO
+        S::all_finite(&[
+            self.desired_position,
+            self.desired_velocity,
+            self.desired_acceleration,
+            self.desired_joint_torque,
+            self.expected_joint_torque,
+            self.motor_position,
+            self.motor_velocity,
+            self.joint_torque,
+        ])
     }
 
     /// [`is_finite`](Self::is_finite) for a sample whose motor position,
     /// motor speed and joint torque are known to be finite (the joint
     /// step measures them from counts and a finite estimate): the same
     /// test on the other five fields.
-    #[cfg_attr(
-        all(target_arch = "arm", not(target_has_atomic = "32")),
-        allow(dead_code)
-    )]
     #[inline]
     pub(crate) fn is_finite_but_measured(&self) -> bool {
-        if S::RESOLUTION.to_f64() >= 1e-6 {
-            return true;
-        }
-        self.unmeasured_probe() == S::ZERO
-    }
-
-    /// `Σ (v − v)` over the five fields the joint step does not measure:
-    /// 0 when they are all finite, NaN otherwise (each term is exactly 0
-    /// for a finite float and NaN for NaN and ±∞, in any order).
-    #[inline(always)]
-    fn unmeasured_probe(&self) -> S {
-        let d = |v: S| v.sub(v);
-        d(self.desired_position)
-            .add(d(self.desired_velocity))
-            .add(d(self.desired_acceleration))
-            .add(d(self.desired_joint_torque))
-            .add(d(self.expected_joint_torque))
+        S::all_finite(&[
+            self.desired_position,
+            self.desired_velocity,
+            self.desired_acceleration,
+            self.desired_joint_torque,
+            self.expected_joint_torque,
+        ])
     }
 }
 
@@ -173,7 +154,7 @@ pub(crate) fn clamp_or_keep<S: Scalar>(new: S, old: S, lo: S, hi: S) -> S {
 /// `clamp` maps NaN to its lower bound.
 #[inline]
 pub(crate) fn clamp_or_keep_symmetric<S: Scalar>(new: S, old: S, limit: S) -> S {
-    if S::RESOLUTION.to_f64() >= 1e-6 {
+    if !S::FLOAT {
         // Fixed point (folded at compile time): no NaN, so no select; the
         // form whose Armv6-M code is the shortest.
         return if new.abs() <= limit {

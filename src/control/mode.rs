@@ -138,6 +138,8 @@ use crate::error::{positive, ParamError};
 use crate::estimation::collision::{
     CollisionConfig, CollisionParams, CollisionReaction, CollisionState,
 };
+use crate::scalar::target::inlined_except_on_armv6m;
+use crate::scalar::target::own_function_on_armv6m;
 use crate::scalar::{Coef, CoefRow, Scalar};
 
 /// The operating mode of a joint.
@@ -408,14 +410,12 @@ fn passive_limit(p: &PassiveParams) -> f64 {
 
 /// The manager quantized for backend `S`.
 ///
-/// `repr(C)`, the values the step reads most first (its own thresholds and
-/// the rejoin filter's gains, then the active law): on the Cortex-M4F a
-/// single-precision load reaches 1020 bytes past its base register, so
-/// the step reads them without forming their addresses (the joint's
-/// configuration is about 3 kB). The rejoin integration's and the bias
-/// decay's coefficients and the collision detector come before the law
-/// there too; on Armv6-M, whose loads reach 124 bytes, they follow it (the
-/// smaller code measured).
+/// `repr(C)`, the values the step reads most first: its own thresholds,
+/// the rejoin filter's gains and integration coefficients, the bias decay
+/// and the collision detector, then the two laws (a load instruction
+/// reaches a bounded distance past its base register: 1020 bytes for a
+/// single-precision load on the Cortex-M4F, so these are read without
+/// forming their addresses).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[repr(C)]
 pub struct ModeConfig<S> {
@@ -428,29 +428,14 @@ pub struct ModeConfig<S> {
     /// `[2ω, ω²]`: the offset's `2ω ȯ + ω² o` from `(ȯ, o)` (speed →
     /// speed/s, angle → speed/s), one exactly summed row on `I16F16`.
     offset_row: CoefRow<2>,
-    /// `T`, speed/s → speed.
-    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
-    step_rate: Coef,
-    /// `T`, speed → angle.
-    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
-    step_position: Coef,
-    /// `1 − T/T_b`.
-    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
-    bias_decay: Coef,
-    #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
-    collision: Option<CollisionConfig<S>>,
     active: RobustAdaptiveConfig<S>,
     /// `T`, speed/s → speed.
-    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
     step_rate: Coef,
     /// `T`, speed → angle.
-    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
     step_position: Coef,
     /// `1 − T/T_b`.
-    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
     bias_decay: Coef,
     passive: PassiveConfig<S>,
-    #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
     collision: Option<CollisionConfig<S>>,
     release_samples: u16,
     debounce: u16,
@@ -676,7 +661,7 @@ impl<S: Scalar> ModeConfig<S> {
         if v.abs() > l {
             // `v` is a nonzero number here: on floats `±l` from its sign
             // bit (no second comparison).
-            let c = if S::RESOLUTION.to_f64() < 1e-6 {
+            let c = if S::FLOAT {
                 l.copysign(v)
             } else if v > S::ZERO {
                 l
@@ -777,7 +762,7 @@ impl<S: Scalar> ModeConfig<S> {
     /// `ω > 0`) on floats, `None` on fixed point.
     #[inline]
     fn drop_overflowing_offset(&self, st: &mut ModeState<S>) -> Option<S> {
-        if S::RESOLUTION.to_f64() >= 1e-6 {
+        if !S::FLOAT {
             return None;
         }
         let acc = self.offset_sum(st);
@@ -853,26 +838,18 @@ impl<S: Scalar> ModeConfig<S> {
         }
     }
 
-    /// One sample: collision detection, mode decision (with seeding at a
-    /// switch), the mode's law, and the state updates.
-    // Inlined into its caller except on Armv6-M: the joint step is then
-    // one function, without call and argument-struct overhead.
-    #[cfg_attr(
-        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
-        inline(always)
-    )]
-    pub fn update(&self, st: &mut ModeState<S>, x: &ControlInput<S>) -> ModeOutput<S> {
-        self.update_checked(st, x, x.is_finite())
+    inlined_except_on_armv6m! {
+        /// One sample: collision detection, mode decision (with seeding at a
+        /// switch), the mode's law, and the state updates.
+        pub fn update(&self, st: &mut ModeState<S>, x: &ControlInput<S>) -> ModeOutput<S> {
+            self.update_checked(st, x, x.is_finite())
+        }
     }
 
     /// [`update`](Self::update) for a sample whose measured motor position
     /// and speed and joint torque are finite by construction (the joint
     /// step's: count products and the estimate), so that only the other
     /// five fields are tested ([`ControlInput::is_finite_but_measured`]).
-    #[cfg_attr(
-        all(target_arch = "arm", not(target_has_atomic = "32")),
-        allow(dead_code)
-    )]
     #[inline(always)]
     pub(crate) fn update_measured(
         &self,
@@ -882,134 +859,130 @@ impl<S: Scalar> ModeConfig<S> {
         self.update_checked(st, x, x.is_finite_but_measured())
     }
 
-    /// [`update`](Self::update) given whether the sample is finite.
-    // Armv6-M: the manager's own function, as `update` was.
-    #[cfg_attr(
-        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
-        inline(always)
-    )]
-    #[cfg_attr(all(target_arch = "arm", not(target_has_atomic = "32")), inline(never))]
-    fn update_checked(
-        &self,
-        st: &mut ModeState<S>,
-        x: &ControlInput<S>,
-        finite: bool,
-    ) -> ModeOutput<S> {
-        let interaction = x.joint_torque.sub(x.expected_joint_torque);
-        if !finite {
-            st.last_torque = S::ZERO;
-            return ModeOutput {
-                torque: S::ZERO,
-                mode: st.mode,
-                switched: false,
-                saturated: true,
-                invalid_input: true,
-                interaction: S::ZERO,
-                collision: st.latched,
-                // Never NaN out of a step: the measured position when it is
-                // a number (`v − v` is 0 only for a finite float), else 0.
-                reference_position: if x.motor_position.sub(x.motor_position) == S::ZERO {
-                    x.motor_position
-                } else {
-                    S::ZERO
-                },
-            };
-        }
-        let mut reaction = None;
-        if let Some(c) = &self.collision {
-            if c.update(&mut st.collision, x.joint_torque, x.expected_joint_torque)
-                .onset
-            {
-                st.latched = true;
-                reaction = Some(c.reaction());
-            }
-        }
-        st.in_mode = st.in_mode.saturating_add(1);
-        let mut switched = false;
-        let mut seeded = None;
-        if let Some(reaction) = reaction {
-            // A collision onset: from Active or Hold at once to the
-            // reaction's mode; a Passive joint stays Passive, its release
-            // blocked by the latch from this sample on. Never into Active
-            // (a separate arm: the seeding of Active is not on its path).
-            st.run = 0;
-            if st.mode != JointMode::Passive {
-                switched = self.seed_reaction(st, reaction, x);
-            }
-        } else {
-            let target = self.wanted(st, interaction, x.motor_velocity);
-            if target != st.mode {
-                st.run = st.run.saturating_add(1);
-                // Passive → Active waits for the release rule's hold.
-                let needed = if st.mode == JointMode::Passive {
-                    self.release_samples
-                } else {
-                    self.debounce
+    own_function_on_armv6m! {
+        /// [`update`](Self::update) given whether the sample is finite.
+        fn update_checked(
+            &self,
+            st: &mut ModeState<S>,
+            x: &ControlInput<S>,
+            finite: bool,
+        ) -> ModeOutput<S> {
+            let interaction = x.joint_torque.sub(x.expected_joint_torque);
+            if !finite {
+                st.last_torque = S::ZERO;
+                return ModeOutput {
+                    torque: S::ZERO,
+                    mode: st.mode,
+                    switched: false,
+                    saturated: true,
+                    invalid_input: true,
+                    interaction: S::ZERO,
+                    collision: st.latched,
+                    // Never NaN out of a step: the measured position when it is
+                    // a number (`v − v` is 0 only for a finite float), else 0.
+                    reference_position: if x.motor_position.sub(x.motor_position) == S::ZERO {
+                        x.motor_position
+                    } else {
+                        S::ZERO
+                    },
                 };
-                if st.run >= needed && st.in_mode > self.dwell {
-                    seeded = self.seed(st, target, x);
-                    switched = true;
+            }
+            let mut reaction = None;
+            if let Some(c) = &self.collision {
+                if c.update(&mut st.collision, x.joint_torque, x.expected_joint_torque)
+                    .onset
+                {
+                    st.latched = true;
+                    reaction = Some(c.reaction());
+                }
+            }
+            st.in_mode = st.in_mode.saturating_add(1);
+            let mut switched = false;
+            let mut seeded = None;
+            if let Some(reaction) = reaction {
+                // A collision onset: from Active or Hold at once to the
+                // reaction's mode; a Passive joint stays Passive, its release
+                // blocked by the latch from this sample on. Never into Active
+                // (a separate arm: the seeding of Active is not on its path).
+                st.run = 0;
+                if st.mode != JointMode::Passive {
+                    switched = self.seed_reaction(st, reaction, x);
                 }
             } else {
-                st.run = 0;
-            }
-        }
-        // τ_before: the previous command.
-        let before = st.last_torque;
-        // The current mode's law, then its state updates.
-        let (law, overflow, reference_position) = match st.mode {
-            JointMode::Passive => {
-                let law = self.passive.law(x, &st.active.friction);
-                let overflow = law.is_nan();
-                let law = if overflow { S::ZERO } else { law };
-                (law, overflow, x.motor_position)
-            }
-            mode => {
-                let (xr, acc) = self.reference(st, x, seeded);
-                // `x` was checked above; `xr` only shifts its reference.
-                let mut t: ActiveTerms<S> = self.active.law_of_checked_input(&st.active, &xr);
-                // `valid` is false exactly when the law is NaN (a NaN `r`
-                // makes the law NaN): that is the overflow the command
-                // replaces by 0.
-                let overflow = !t.valid;
-                if t.valid {
-                    if switched {
-                        // Re-seed the integral so the law starts near
-                        // τ_before (the law is affine in z with slope −1).
-                        let zl = self.active.integral_limit();
-                        let z = t.law.sub(before).clamp(zl.neg(), zl);
-                        st.active.integral = z;
-                        t.law = t.law.sub(z);
+                let target = self.wanted(st, interaction, x.motor_velocity);
+                if target != st.mode {
+                    st.run = st.run.saturating_add(1);
+                    // Passive → Active waits for the release rule's hold.
+                    let needed = if st.mode == JointMode::Passive {
+                        self.release_samples
+                    } else {
+                        self.debounce
+                    };
+                    if st.run >= needed && st.in_mode > self.dwell {
+                        seeded = self.seed(st, target, x);
+                        switched = true;
                     }
-                    self.active.commit_valid(&mut st.active, &t);
+                } else {
+                    st.run = 0;
                 }
-                if mode == JointMode::Active {
-                    // Semi-implicit Euler of ö = −2ω ȯ − ω² o.
-                    let rate = st.offset_rate.add(acc.mul_coef(&self.step_rate));
-                    st.offset_rate = rate;
-                    st.offset = st.offset.add(rate.mul_coef(&self.step_position));
-                    let _ = self.drop_overflowing_offset(st);
-                }
-                (
-                    if overflow { S::ZERO } else { t.law },
-                    overflow,
-                    xr.desired_position,
-                )
             }
-        };
-        let (torque, saturated, overflow) =
-            self.command_of_number(law, overflow, before, switched, &mut st.bias);
-        st.bias = st.bias.mul_coef(&self.bias_decay);
-        st.last_torque = torque;
-        ModeOutput {
-            torque,
-            mode: st.mode,
-            switched,
-            saturated,
-            invalid_input: overflow,
-            interaction,
-            collision: st.latched,
-            reference_position,
+            // τ_before: the previous command.
+            let before = st.last_torque;
+            // The current mode's law, then its state updates.
+            let (law, overflow, reference_position) = match st.mode {
+                JointMode::Passive => {
+                    let law = self.passive.law(x, &st.active.friction);
+                    let overflow = law.is_nan();
+                    let law = if overflow { S::ZERO } else { law };
+                    (law, overflow, x.motor_position)
+                }
+                mode => {
+                    let (xr, acc) = self.reference(st, x, seeded);
+                    // `x` was checked above; `xr` only shifts its reference.
+                    let mut t: ActiveTerms<S> = self.active.law_of_checked_input(&st.active, &xr);
+                    // `valid` is false exactly when the law is NaN (a NaN `r`
+                    // makes the law NaN): that is the overflow the command
+                    // replaces by 0.
+                    let overflow = !t.valid;
+                    if t.valid {
+                        if switched {
+                            // Re-seed the integral so the law starts near
+                            // τ_before (the law is affine in z with slope −1).
+                            let zl = self.active.integral_limit();
+                            let z = t.law.sub(before).clamp(zl.neg(), zl);
+                            st.active.integral = z;
+                            t.law = t.law.sub(z);
+                        }
+                        self.active.commit_valid(&mut st.active, &t);
+                    }
+                    if mode == JointMode::Active {
+                        // Semi-implicit Euler of ö = −2ω ȯ − ω² o.
+                        let rate = st.offset_rate.add(acc.mul_coef(&self.step_rate));
+                        st.offset_rate = rate;
+                        st.offset = st.offset.add(rate.mul_coef(&self.step_position));
+                        let _ = self.drop_overflowing_offset(st);
+                    }
+                    (
+                        if overflow { S::ZERO } else { t.law },
+                        overflow,
+                        xr.desired_position,
+                    )
+                }
+            };
+            let (torque, saturated, overflow) =
+                self.command_of_number(law, overflow, before, switched, &mut st.bias);
+            st.bias = st.bias.mul_coef(&self.bias_decay);
+            st.last_torque = torque;
+            ModeOutput {
+                torque,
+                mode: st.mode,
+                switched,
+                saturated,
+                invalid_input: overflow,
+                interaction,
+                collision: st.latched,
+                reference_position,
+            }
         }
     }
 }

@@ -107,9 +107,7 @@ impl<S: Scalar> WaveGeneratorTorqueConfig<S> {
     /// unchanged and returns it, so a bad sample never poisons the state.
     #[inline]
     pub fn update(&self, state: &mut WaveGeneratorTorqueState<S>, flexspline_torque: S) -> S {
-        // `v − v` is 0 exactly for a finite float; fixed point has no
-        // non-finite values (folded at compile time).
-        if S::RESOLUTION.to_f64() < 1e-6 && flexspline_torque.sub(flexspline_torque) != S::ZERO {
+        if !S::all_finite(&[flexspline_torque]) {
             return state.torque;
         }
         let x = flexspline_torque.mul_coef(&self.motor_per_link).neg();

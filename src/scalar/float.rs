@@ -151,13 +151,6 @@ macro_rules! float_scalar {
                 $conv(counts) * scale.$countfn()
             }
             #[inline]
-            fn from_counts_i32(counts: i32, scale: &super::CountCoef) -> Self {
-                // `as` rounds an `i32` to nearest (even), as the `i64`
-                // conversion of `from_counts` does: the same value, with
-                // one hardware conversion.
-                counts as $t * scale.coef().$countfn()
-            }
-            #[inline]
             fn mul_coef(self, c: &super::Coef) -> Self {
                 self * c.$countfn()
             }
@@ -254,18 +247,6 @@ macro_rules! float_scalar {
                 kernels::$k::sin_cos_turn(turn)
             }
             #[inline]
-            fn tan_bounded(self) -> Self {
-                $tan_bounded(self)
-            }
-            #[inline]
-            fn cos_turn_coarse(turn: u32) -> Self {
-                $coarse(turn)
-            }
-            #[inline]
-            fn sin_cos_turn_coarse(turn: u32) -> (Self, Self) {
-                $sin_cos_coarse(turn)
-            }
-            #[inline]
             fn atan2(self, x: Self) -> Self {
                 kernels::$k::atan2(self, x)
             }
@@ -276,6 +257,28 @@ macro_rules! float_scalar {
             #[inline]
             fn sqrt(self) -> Self {
                 kernels::$k::sqrt(self)
+            }
+        }
+
+        impl super::sealed::Sealed for $t {
+            #[inline]
+            fn from_counts_i32(counts: i32, scale: &super::CountCoef) -> Self {
+                // `as` rounds an `i32` to nearest (even), as the `i64`
+                // conversion of `from_counts` does: the same value, with
+                // one hardware conversion.
+                counts as $t * scale.coef().$countfn()
+            }
+            #[inline]
+            fn tan_bounded(self) -> Self {
+                $tan_bounded(self)
+            }
+            #[inline]
+            fn cos_turn_coarse(turn: u32) -> Self {
+                $coarse(turn)
+            }
+            #[inline]
+            fn sin_cos_turn_coarse(turn: u32) -> (Self, Self) {
+                $sin_cos_coarse(turn)
             }
         }
     };

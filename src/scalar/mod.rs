@@ -31,6 +31,7 @@ pub mod fixed;
 pub mod float;
 pub mod kernels;
 pub mod q15;
+pub(crate) mod target;
 pub mod units;
 
 pub use ::fixed::types::I16F16;
@@ -40,6 +41,31 @@ pub use ::fixed::types::I16F16;
 /// Only operations that every backend implements exactly (with its stated,
 /// proven error bound) belong here. The trait is sealed: the proofs in
 /// `proofs/` cover exactly the implementations in this crate.
+///
+/// The methods, by group:
+/// * **constants and conversions**: `NAME`, `ZERO`, `ONE`, `MIN`, `MAX`,
+///   `RESOLUTION`, `PI`, `FRAC_PI_2`, `UNITS`; [`from_f64`](Self::from_f64),
+///   [`to_f64`](Self::to_f64), [`from_i32`](Self::from_i32),
+///   [`from_counts`](Self::from_counts), [`to_turn`](Self::to_turn);
+/// * **arithmetic**: [`add`](Self::add), [`sub`](Self::sub),
+///   [`mul`](Self::mul), [`mul_unit_range`](Self::mul_unit_range),
+///   [`div`](Self::div), [`neg`](Self::neg), [`abs`](Self::abs); by prepared
+///   constants: [`mul_coef`](Self::mul_coef), [`dot_coef`](Self::dot_coef),
+///   [`mul_int`](Self::mul_int), [`integrate`](Self::integrate);
+/// * **comparisons and tests**: [`min`](Self::min), [`max`](Self::max),
+///   [`clamp`](Self::clamp), [`is_nan`](Self::is_nan),
+///   [`all_finite`](Self::all_finite), [`sgn`](Self::sgn),
+///   [`copysign`](Self::copysign), [`sat`](Self::sat);
+/// * **proven kernels**: [`sin`](Self::sin), [`cos`](Self::cos),
+///   [`sin_cos`](Self::sin_cos), [`cos_turn`](Self::cos_turn),
+///   [`sin_cos_turn`](Self::sin_cos_turn), [`tan`](Self::tan),
+///   [`atan`](Self::atan), [`atan2`](Self::atan2), [`acos`](Self::acos),
+///   [`sqrt`](Self::sqrt), [`exp`](Self::exp),
+///   [`exp_neg_abs`](Self::exp_neg_abs), [`unit_vector`](Self::unit_vector).
+///
+/// Kernel variants made for one call site of the crate (a cheaper kernel
+/// where the caller bounds the argument, a product by a factor prepared for
+/// counts) are crate-private.
 pub trait Scalar:
     Copy + PartialEq + PartialOrd + Debug + Default + Send + Sync + sealed::Sealed + 'static
 {
@@ -76,25 +102,6 @@ pub trait Scalar:
     /// reading keeps its full resolution even when one count is far below
     /// one LSB of the scaled unit. Rounded to nearest; saturates.
     fn from_counts(counts: i64, scale: &Coef) -> Self;
-    /// [`from_counts`](Self::from_counts) for a count that fits `i32` (a
-    /// difference of two wrapping counter readings) and a factor prepared
-    /// as a [`CountCoef`]: the same value, bit for bit. `I16F16` takes the
-    /// 32-bit product of [`mul_coef`](Self::mul_coef) by the factor moved
-    /// up 16 bits instead of the general 64-bit count product.
-    #[inline]
-    fn from_counts_i32(counts: i32, scale: &CountCoef) -> Self {
-        Self::from_counts(counts as i64, &scale.coef)
-    }
-    /// [`from_counts`](Self::from_counts) by a factor prepared as a
-    /// [`CountCoef`]: the same value, bit for bit. `I16F16` takes the
-    /// product of [`from_counts_i32`](Self::from_counts_i32) for every count
-    /// below `2³¹` (`from_counts` clamps the ones below `−2³¹` to `−2³¹`)
-    /// and the prepared value of `2³¹` counts, where `from_counts` clamps
-    /// the larger ones, above.
-    #[inline]
-    fn from_counts_prepared(counts: i64, scale: &CountCoef) -> Self {
-        Self::from_counts(counts, &scale.coef)
-    }
     /// `self · c` for a prepared constant `c`; in fixed point with the
     /// coefficient's full 31-bit precision, rounded to nearest, saturating.
     fn mul_coef(self, c: &Coef) -> Self;
@@ -181,20 +188,25 @@ pub trait Scalar:
     /// `self / rhs`; division by zero gives `±MAX` with the sign of `self`,
     /// and `0 / 0 = 0` (fixed: saturating).
     fn div(self, rhs: Self) -> Self;
-    /// `self / rhs` for a ratio `|self| ≤ |rhs|` (a normalized component,
-    /// a ratio of magnitudes): the value of [`div`](Self::div), bit for
-    /// bit, for every such pair. Fixed point returns it within `[−1, 1]`
-    /// and with the sign of the quotient (0 for `self = 0`) by
-    /// construction, and clamps to `±1` outside the precondition; floats
-    /// divide (IEEE rounding keeps `|self/rhs| ≤ 1`).
-    #[inline]
-    fn div_unit_range(self, rhs: Self) -> Self {
-        self.div(rhs)
-    }
     /// `-self` (fixed: `-MIN` saturates to `MAX`).
     fn neg(self) -> Self;
     /// `|self|` (fixed: `|MIN|` saturates to `MAX`; float: NaN stays NaN).
     fn abs(self) -> Self;
+    /// `true` when every value is finite: neither NaN nor infinite (always
+    /// for fixed point). Floats test `Σ (v − v) = 0`: each term is exactly
+    /// 0 for a finite value and NaN for NaN and ±∞, and a NaN survives the
+    /// sum, so `N` values cost one comparison.
+    #[inline]
+    fn all_finite<const N: usize>(values: &[Self; N]) -> bool {
+        let Some((&first, rest)) = values.split_first() else {
+            return true;
+        };
+        let mut sum = first.sub(first);
+        for &v in rest {
+            sum = sum.add(v.sub(v));
+        }
+        sum == Self::ZERO
+    }
     /// `true` when the value is NaN (always `false` for fixed point).
     #[inline]
     fn is_nan(self) -> bool {
@@ -240,18 +252,6 @@ pub trait Scalar:
     /// returns `±` the backend's largest in-domain tangent (sign of the input),
     /// so `tan` is non-decreasing over every input.
     fn tan(self) -> Self;
-    /// [`tan`](Scalar::tan) for an argument known to lie in
-    /// `|x| ≤ atan 8 = 1.446441` rad (the torque estimator's, by the
-    /// validated `c_f·max_torque ≤ 7.5`). `I16F16`: one table polynomial
-    /// without the quotient near the pole ([`kernels::i16f16::tan_bounded`],
-    /// within 1 LSB, odd, non-decreasing; beyond the bound the argument is
-    /// clamped to it); `f32`: `tan` itself with a cheaper limiting of the
-    /// argument ([`kernels::f32::tan_bounded`], bit for bit `tan` on the
-    /// domain); the default is `tan`.
-    #[inline]
-    fn tan_bounded(self) -> Self {
-        self.tan()
-    }
     /// `e^self`; saturates at `MAX` and flushes to 0 below the backend's range.
     fn exp(self) -> Self;
     /// `e^{−|self|}`, the decaying exponential of the wave-generator
@@ -298,22 +298,6 @@ pub trait Scalar:
             Self::cos_turn(turn),
         )
     }
-    /// [`cos_turn`](Scalar::cos_turn) at the accuracy a small model term
-    /// needs (the harmonics of the kinematic error, eq. (3.7), whose
-    /// amplitudes are arcseconds). `f32`: linear interpolation in a
-    /// 1025-knot table, ≤ 4.8e-6 absolute
-    /// ([`kernels::f32::cos_turn_coarse`]); the default is `cos_turn`.
-    #[inline]
-    fn cos_turn_coarse(turn: u32) -> Self {
-        Self::cos_turn(turn)
-    }
-    /// `(sin, cos)` by [`cos_turn_coarse`](Scalar::cos_turn_coarse):
-    /// exactly `(cos_turn_coarse(turn − 2³⁰), cos_turn_coarse(turn))`; the
-    /// default is [`sin_cos_turn`](Scalar::sin_cos_turn).
-    #[inline]
-    fn sin_cos_turn_coarse(turn: u32) -> (Self, Self) {
-        Self::sin_cos_turn(turn)
-    }
     /// This angle (radians) as a binary angle (units of `2⁻³²` turn,
     /// wrapped), for [`cos_turn`](Scalar::cos_turn) and
     /// [`sin_cos_turn`](Scalar::sin_cos_turn). `I16F16`: from the raw bits
@@ -329,18 +313,6 @@ pub trait Scalar:
     /// Four-quadrant arctangent of `self / x` (`self` is `y`), in `[-π, π]`;
     /// `atan2(0, 0) = 0`.
     fn atan2(self, x: Self) -> Self;
-    /// `√(self² + b²)` for components of magnitude at most 1 (the sine
-    /// of a bend from its two components). `I16F16` scales both by a
-    /// power of two instead of dividing by the larger and takes the root
-    /// as the product of the scaled sum of squares and its table
-    /// reciprocal root ([`kernels::i16f16::hypot_unit`]: within 1 LSB,
-    /// inputs clamped to `±(1 − 2⁻¹⁶)`); the default is
-    /// `m·√(1 + (n/m)²)` with `m ≥ n` the magnitudes, free of overflow and
-    /// of the loss of squaring tiny values.
-    #[inline]
-    fn hypot_unit(self, b: Self) -> Self {
-        hypot(self, b)
-    }
     /// The unit vector `(self, b)/|(self, b)|` of two components of
     /// magnitude at most 1 (e.g. the azimuth of a wrist's output axis),
     /// `None` for the zero vector. `I16F16` scales both by a power of two
@@ -356,46 +328,10 @@ pub trait Scalar:
             None
         }
     }
-    /// `1/√self` for `self ∈ [¼, 1]` (inputs clamped to it): the
-    /// reciprocal of a cosine known to be at least ½. `I16F16` takes a
-    /// 24-piece cubic table ([`kernels::i16f16::rsqrt_quarter`]: within
-    /// 1 LSB, no root or division); the default is `1/√x`.
-    #[inline]
-    fn rsqrt_quarter(self) -> Self {
-        let quarter = Self::from_f64(0.25);
-        // A NaN fails both tests and stays NaN.
-        let x = if self > Self::ONE {
-            Self::ONE
-        } else if self < quarter {
-            quarter
-        } else {
-            self
-        };
-        Self::ONE.div(x.sqrt())
-    }
-    /// [`atan`](Self::atan) of a value below 2 in magnitude (the tangent
-    /// of an angle within ±63°, e.g. formed from a bounded ratio without
-    /// a division). `I16F16` evaluates it without the division `atan`
-    /// needs above 1 ([`kernels::i16f16::atan_small`]: bit for bit `atan`
-    /// below 1, within the same 1 LSB bound up to 2, inputs of 2 and above
-    /// clamped to `2 − 2⁻¹⁶`); floats take `atan`.
-    #[inline]
-    fn atan_small(self) -> Self {
-        self.atan()
-    }
     /// Arccosine in `[0, π]`; inputs outside `[-1, 1]` are clamped to it.
     fn acos(self) -> Self;
     /// Square root; negative inputs return 0.
     fn sqrt(self) -> Self;
-    /// [`sqrt`](Self::sqrt) of a value below 4 (a sum of squares of
-    /// values bounded by 1, `1 + r²` with `|r| ≤ 1`): the value of `sqrt`,
-    /// bit for bit, for every input below 4. `I16F16` takes a shorter root
-    /// (seven trial steps fewer: [`kernels::i16f16::sqrt_small`]) and
-    /// clamps inputs of 4 and above to `4 − 2⁻¹⁶`; floats take `sqrt`.
-    #[inline]
-    fn sqrt_small(self) -> Self {
-        self.sqrt()
-    }
 
     /// Sign function of thesis eq. (2.17): `1` for `x > 0`, `0` for `x = 0`
     /// (including `-0.0` and NaN), `-1` for `x < 0`. Exact on every backend.
@@ -513,7 +449,7 @@ impl CountToTurn {
     /// within 1.5 units of `c·2³²/L` (see the type docs).
     #[inline]
     pub fn turn(&self, c: u32) -> u32 {
-        if cfg!(all(target_arch = "arm", not(target_has_atomic = "32"))) && self.lo == 0 {
+        if cfg!(armv6m) && self.lo == 0 {
             // L a power of two (or 1): exact with one multiply (Armv6-M,
             // where the wide product is four).
             return c.wrapping_mul(self.hi);
@@ -644,7 +580,7 @@ pub struct Coef {
     units: [i32; 2],
     /// The mantissa and exponent of [`scale_wide`](Self::scale_wide) on
     /// Armv6-M.
-    #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(any(test, armv6m))]
     wide: WideCoef,
 }
 
@@ -653,7 +589,7 @@ pub struct Coef {
 /// `mult` itself, or, for `|mult| = 2³¹`, `mult/2` with `shift − 1` (the
 /// same value), as its halves `m_hi = (m + 2¹⁵) >> 16` (arithmetic) and
 /// `m_lo = m as i16` for [`fixed::signed_wide_mul_add_split`].
-#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+#[cfg(any(test, armv6m))]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct WideCoef {
     m_hi: i32,
@@ -661,7 +597,7 @@ pub(crate) struct WideCoef {
     shift: i32,
 }
 
-#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+#[cfg(any(test, armv6m))]
 impl WideCoef {
     /// From the coefficient's mantissa (`|mult| ≤ 2³¹`) and exponent.
     pub(crate) const fn new(mult: i64, shift: i32) -> Self {
@@ -685,7 +621,7 @@ impl WideCoef {
     }
 }
 
-/// A count-to-value factor for [`Scalar::from_counts_i32`]: the
+/// A count-to-value factor for the crate's count conversions (`from_counts_i32`): the
 /// [`Coef`] of [`Scalar::from_counts`] and, for fixed point, the same
 /// mantissa 16 bits up (so a count read as `I16F16` bits times it is the
 /// count product).
@@ -733,13 +669,13 @@ struct SignedCoef {
     /// `(m + 2¹⁵) >> 16` (arithmetic) and `m as i16`: the halves of the
     /// 16×16 partial products on Armv6-M
     /// ([`fixed::signed_wide_mul_add_split`]).
-    #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(any(test, armv6m))]
     m_hi: i32,
-    #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(any(test, armv6m))]
     m_lo: i32,
     /// The rounding constant added to the low word: `round` (`sh ≤ 32`)
     /// or 0 (`sh ≥ 33`).
-    #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(any(test, armv6m))]
     round_lo: u32,
     /// `sh ≥ 33`: the rounding and shift apply to the high word alone.
     high_only: bool,
@@ -764,11 +700,11 @@ impl SignedCoef {
         if shift >= 63 || mult == 0 {
             return Some(SignedCoef {
                 m: 0,
-                #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+                #[cfg(any(test, armv6m))]
                 m_hi: 0,
-                #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+                #[cfg(any(test, armv6m))]
                 m_lo: 0,
-                #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+                #[cfg(any(test, armv6m))]
                 round_lo: 0,
                 high_only: true,
                 round: 0,
@@ -791,11 +727,11 @@ impl SignedCoef {
         };
         Some(SignedCoef {
             m: mult as i32,
-            #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+            #[cfg(any(test, armv6m))]
             m_hi: ((mult + (1 << 15)) >> 16) as i32,
-            #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+            #[cfg(any(test, armv6m))]
             m_lo: mult as i32 as i16 as i32,
-            #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+            #[cfg(any(test, armv6m))]
             round_lo: if high_only { 0 } else { round },
             high_only,
             round,
@@ -936,7 +872,7 @@ impl Coef {
                 negative: false,
                 signed: SignedCoef::new(0, 0),
                 units: [0; 2],
-                #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+                #[cfg(any(test, armv6m))]
                 wide: WideCoef::new(0, 0),
             };
         }
@@ -988,7 +924,7 @@ impl Coef {
             negative,
             signed: SignedCoef::new(signed_mult, shift),
             units: [unit(1), unit(-1)],
-            #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+            #[cfg(any(test, armv6m))]
             wide: WideCoef::new(signed_mult, shift),
         }
     }
@@ -1080,11 +1016,11 @@ impl Coef {
                 _ => i32::MAX,
             };
         };
-        #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+        #[cfg(armv6m)]
         {
             Self::scale_i32_split(&c, x)
         }
-        #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+        #[cfg(not(armv6m))]
         {
             let (hi, lo) = fixed::signed_wide_mul(x, c.m);
             if c.high_only {
@@ -1103,7 +1039,7 @@ impl Coef {
     /// ([`fixed::shift_sat`]; for `sh ≥ 33` the rounding of the high word
     /// alone, as in [`scale_i32`](Self::scale_i32)).
     #[inline(always)]
-    #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(any(test, armv6m))]
     fn scale_i32_split(c: &SignedCoef, x: i32) -> i32 {
         let (hi, lo) = fixed::signed_wide_mul_add_split(x, c.m_hi, c.m_lo, c.round_lo);
         if c.high_only {
@@ -1130,11 +1066,11 @@ impl Coef {
     /// every coefficient, argument and `extra` (tests below).
     #[inline(always)]
     pub(crate) fn scale_wide(&self, x: i32, extra: i32) -> i64 {
-        #[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+        #[cfg(armv6m)]
         {
             self.scale_wide_split(x, extra)
         }
-        #[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+        #[cfg(not(armv6m))]
         {
             self.scale_wide_magnitude(x, extra)
         }
@@ -1143,10 +1079,7 @@ impl Coef {
     /// [`scale_wide`](Self::scale_wide) from the unsigned product of the
     /// magnitudes (the form of targets with a widening multiply).
     #[inline]
-    #[cfg_attr(
-        all(target_arch = "arm", not(target_has_atomic = "32")),
-        allow(dead_code)
-    )]
+    #[cfg_attr(armv6m, allow(dead_code))]
     fn scale_wide_magnitude(&self, x: i32, extra: i32) -> i64 {
         let (hi, lo) = fixed::wide_mul(x.unsigned_abs(), self.mag);
         let neg = (x < 0) != self.negative;
@@ -1200,7 +1133,7 @@ impl Coef {
     /// negation. Then the same saturating shift or rounding shift on the
     /// two words.
     #[inline(never)]
-    #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+    #[cfg(any(test, armv6m))]
     fn scale_wide_split(&self, x: i32, extra: i32) -> i64 {
         let w = &self.wide;
         let sh = w.shift - extra;
@@ -1283,874 +1216,163 @@ pub(crate) fn xorshift64(state: &mut u64) -> u64 {
     *state
 }
 
-mod sealed {
-    pub trait Sealed {}
-    impl Sealed for f32 {}
-    impl Sealed for f64 {}
-    impl Sealed for super::I16F16 {}
+/// The crate-private part of every backend: kernel variants and prepared
+/// forms made for one call site each (a cheaper kernel where the caller
+/// bounds the argument, a product by a factor prepared for counts). Its
+/// methods are callable wherever `S: Scalar` is, inside the crate; a user
+/// neither sees nor implements them (the trait also seals [`Scalar`]: the
+/// proofs in `proofs/` cover exactly the implementations in this crate).
+pub(crate) mod sealed {
+    #[allow(unused_imports)]
+    use super::{hypot, CountCoef, Scalar};
+
+    /// See the module.
+    pub trait Sealed: Sized {
+        /// A binary floating-point backend (`f32`, `f64`): NaN and ±∞
+        /// exist and rounding is relative to the magnitude; `false` for
+        /// fixed point. For code whose best form differs between the two
+        /// (a constant, folded at compile time).
+        const FLOAT: bool = true;
+        /// [`from_counts`](Self::from_counts) for a count that fits `i32` (a
+        /// difference of two wrapping counter readings) and a factor prepared
+        /// as a [`CountCoef`]: the same value, bit for bit. `I16F16` takes the
+        /// 32-bit product of [`mul_coef`](Self::mul_coef) by the factor moved
+        /// up 16 bits instead of the general 64-bit count product.
+        #[inline]
+        fn from_counts_i32(counts: i32, scale: &CountCoef) -> Self
+        where
+            Self: Scalar,
+        {
+            Self::from_counts(counts as i64, &scale.coef)
+        }
+        /// `√(self² + b²)` for components of magnitude at most 1 (the sine
+        /// of a bend from its two components). `I16F16` scales both by a
+        /// power of two instead of dividing by the larger and takes the root
+        /// as the product of the scaled sum of squares and its table
+        /// reciprocal root ([`kernels::i16f16::hypot_unit`]: within 1 LSB,
+        /// inputs clamped to `±(1 − 2⁻¹⁶)`); the default is
+        /// `m·√(1 + (n/m)²)` with `m ≥ n` the magnitudes, free of overflow and
+        /// of the loss of squaring tiny values.
+        #[inline]
+        fn hypot_unit(self, b: Self) -> Self
+        where
+            Self: Scalar,
+        {
+            hypot(self, b)
+        }
+        /// `1/√self` for `self ∈ [¼, 1]` (inputs clamped to it): the
+        /// reciprocal of a cosine known to be at least ½. `I16F16` takes a
+        /// 24-piece cubic table ([`kernels::i16f16::rsqrt_quarter`]: within
+        /// 1 LSB, no root or division); the default is `1/√x`.
+        #[inline]
+        fn rsqrt_quarter(self) -> Self
+        where
+            Self: Scalar,
+        {
+            let quarter = Self::from_f64(0.25);
+            // A NaN fails both tests and stays NaN.
+            let x = if self > Self::ONE {
+                Self::ONE
+            } else if self < quarter {
+                quarter
+            } else {
+                self
+            };
+            Self::ONE.div(x.sqrt())
+        }
+        /// [`atan`](Self::atan) of a value below 2 in magnitude (the tangent
+        /// of an angle within ±63°, e.g. formed from a bounded ratio without
+        /// a division). `I16F16` evaluates it without the division `atan`
+        /// needs above 1 ([`kernels::i16f16::atan_small`]: bit for bit `atan`
+        /// below 1, within the same 1 LSB bound up to 2, inputs of 2 and above
+        /// clamped to `2 − 2⁻¹⁶`); floats take `atan`.
+        #[inline]
+        fn atan_small(self) -> Self
+        where
+            Self: Scalar,
+        {
+            self.atan()
+        }
+        /// [`sqrt`](Self::sqrt) of a value below 4 (a sum of squares of
+        /// values bounded by 1, `1 + r²` with `|r| ≤ 1`): the value of `sqrt`,
+        /// bit for bit, for every input below 4. `I16F16` takes a shorter root
+        /// (seven trial steps fewer: [`kernels::i16f16::sqrt_small`]) and
+        /// clamps inputs of 4 and above to `4 − 2⁻¹⁶`; floats take `sqrt`.
+        #[inline]
+        fn sqrt_small(self) -> Self
+        where
+            Self: Scalar,
+        {
+            self.sqrt()
+        }
+        /// [`from_counts`](Scalar::from_counts) by a factor prepared as a
+        /// [`CountCoef`]: the same value, bit for bit. `I16F16` takes the
+        /// product of [`from_counts_i32`](Scalar::from_counts_i32) for every count
+        /// below `2³¹` (`from_counts` clamps the ones below `−2³¹` to `−2³¹`)
+        /// and the prepared value of `2³¹` counts, where `from_counts` clamps
+        /// the larger ones, above.
+        #[inline]
+        fn from_counts_prepared(counts: i64, scale: &CountCoef) -> Self
+        where
+            Self: Scalar,
+        {
+            Self::from_counts(counts, &scale.coef)
+        }
+        /// `self / rhs` for a ratio `|self| ≤ |rhs|` (a normalized component,
+        /// a ratio of magnitudes): the value of [`div`](Scalar::div), bit for
+        /// bit, for every such pair. Fixed point returns it within `[−1, 1]`
+        /// and with the sign of the quotient (0 for `self = 0`) by
+        /// construction, and clamps to `±1` outside the precondition; floats
+        /// divide (IEEE rounding keeps `|self/rhs| ≤ 1`).
+        #[inline]
+        fn div_unit_range(self, rhs: Self) -> Self
+        where
+            Self: Scalar,
+        {
+            self.div(rhs)
+        }
+        /// [`tan`](Scalar::tan) for an argument known to lie in
+        /// `|x| ≤ atan 8 = 1.446441` rad (the torque estimator's, by the
+        /// validated `c_f·max_torque ≤ 7.5`). `I16F16`: one table polynomial
+        /// without the quotient near the pole ([`kernels::i16f16::tan_bounded`](super::kernels::i16f16::tan_bounded),
+        /// within 1 LSB, odd, non-decreasing; beyond the bound the argument is
+        /// clamped to it); `f32`: `tan` itself with a cheaper limiting of the
+        /// argument ([`kernels::f32::tan_bounded`](super::kernels::f32::tan_bounded), bit for bit `tan` on the
+        /// domain); the default is `tan`.
+        #[inline]
+        fn tan_bounded(self) -> Self
+        where
+            Self: Scalar,
+        {
+            self.tan()
+        }
+        /// [`cos_turn`](Scalar::cos_turn) at the accuracy a small model term
+        /// needs (the harmonics of the kinematic error, eq. (3.7), whose
+        /// amplitudes are arcseconds). `f32`: linear interpolation in a
+        /// 1025-knot table, ≤ 4.8e-6 absolute
+        /// ([`kernels::f32::cos_turn_coarse`](super::kernels::f32::cos_turn_coarse)); the default is `cos_turn`.
+        #[inline]
+        fn cos_turn_coarse(turn: u32) -> Self
+        where
+            Self: Scalar,
+        {
+            Self::cos_turn(turn)
+        }
+        /// `(sin, cos)` by [`cos_turn_coarse`](Self::cos_turn_coarse):
+        /// exactly `(cos_turn_coarse(turn − 2³⁰), cos_turn_coarse(turn))`; the
+        /// default is [`sin_cos_turn`](Scalar::sin_cos_turn).
+        #[inline]
+        fn sin_cos_turn_coarse(turn: u32) -> (Self, Self)
+        where
+            Self: Scalar,
+        {
+            Self::sin_cos_turn(turn)
+        }
+    }
 }
 
 #[cfg(any(kani, test))]
 pub(crate) mod words;
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Coefficients beyond 2^40 saturate every non-zero product instead of
-    /// overflowing the 64-bit intermediate (found by fuzzing the control
-    /// configurations), and their `f32` value stays finite.
-    #[test]
-    fn gain_with_an_exact_value_equals_the_coefficient_product() {
-        let mut xs: Vec<i32> = vec![
-            0,
-            1,
-            -1,
-            i32::MAX,
-            i32::MIN,
-            1 << 15,
-            -(1 << 15),
-            32767,
-            -32769,
-        ];
-        let mut state = 0x9E37_79B9_7F4A_7C15u64;
-        for _ in 0..20_000 {
-            let v = xorshift64(&mut state) as u32;
-            xs.push((v as i32) >> (v % 24));
-        }
-        for value in [
-            120.0,
-            10.0,
-            100.0,
-            20.0,
-            0.01f64,
-            0.5,
-            -3.25,
-            1.0 / 65536.0,
-            32767.0,
-            1e-3,
-            0.1,
-        ] {
-            let g = Gain::<I16F16>::new(value);
-            let c = Coef::new(value);
-            let q = c.quantized();
-            let exact = q != 0.0 && I16F16::from_f64(q).to_f64() == q;
-            assert_eq!(g.exact.is_some(), exact, "{value}");
-            for &x in &xs {
-                let x = I16F16::from_bits(x);
-                assert_eq!(g.apply(x), x.mul_coef(&c), "{value} {x}");
-            }
-            let gf = Gain::<f32>::new(value);
-            assert!(gf.exact.is_none());
-            assert_eq!(gf.apply(1.5f32), 1.5f32.mul_coef(&c));
-        }
-    }
-
-    /// `Scalar::exp_neg_abs` on every backend: even, in `[0, 1]`, equal to
-    /// `exp(−|x|)` of the same backend (bit for bit for `f64`; within
-    /// 1 LSB for `I16F16`), and against the `f64` exponential for the value
-    /// (`f32`: within its 2 ulp up to the flush threshold, 0 above).
-    #[test]
-    fn exp_neg_abs_is_the_exponential_of_minus_the_magnitude() {
-        let mut state = 0x2545_F491_4F6C_DD1Du64;
-        let mut xs: Vec<f64> = vec![0.0, 1e-9, 0.25, 1.0, 5.0, 11.7, 11.8, 30.0, 87.0, 88.0, 1e3];
-        for _ in 0..5_000 {
-            let u = (xorshift64(&mut state) >> 11) as f64 / (1u64 << 53) as f64;
-            xs.push(u * u * 100.0);
-        }
-        for &m in &xs {
-            for x in [m, -m] {
-                let want = (-m).exp();
-                // f64: the libm exponential of −|x|, within 1e-15 relative.
-                let d = Scalar::exp_neg_abs(x);
-                assert_eq!(d.to_bits(), Scalar::exp(-m).to_bits(), "f64 {x}");
-                assert!((d - want).abs() <= 1e-15 * want, "f64 {x}");
-                // f32: within 2 ulp of e^{−|x|} up to the threshold, 0 above.
-                let xf = x as f32;
-                let mf = xf.abs();
-                let f = Scalar::exp_neg_abs(xf);
-                assert_eq!(f.to_bits(), Scalar::exp_neg_abs(-xf).to_bits(), "f32 {x}");
-                if mf <= kernels::f32::EXP_NEG_ABS_MAX_ARG {
-                    let r = (-(mf as f64)).exp();
-                    assert!(
-                        ((f as f64) - r).abs()
-                            <= 2.0 * r * f32::EPSILON as f64 + 2.0 * f64::from(f32::from_bits(1)),
-                        "f32 {x}"
-                    );
-                } else {
-                    assert_eq!(f.to_bits(), 0, "f32 {x}");
-                }
-                // I16F16: its own kernel, even, within 1 LSB of e^{−|x|}
-                // (the argument quantized first) and of `exp(−|x|)`.
-                if m < 32767.0 {
-                    let q = I16F16::from_f64(x);
-                    let e = Scalar::exp_neg_abs(q);
-                    // Both within 1 LSB of e^{−|x|}, `exp_neg_abs` within
-                    // 0.531 (exhaustive maxima): they differ by less than
-                    // 2 LSB, so by at most 1 in whole words.
-                    let via_exp = Scalar::exp(q.abs().neg());
-                    assert!((e.to_bits() - via_exp.to_bits()).abs() <= 1, "I16F16 {x}");
-                    assert_eq!(e, Scalar::exp_neg_abs(q.neg()), "I16F16 {x}");
-                    let r = (-q.to_f64().abs()).exp();
-                    assert!((e.to_f64() - r).abs() <= 1.0 / 65536.0, "I16F16 {x}");
-                    assert!(e >= I16F16::ZERO && e <= I16F16::ONE, "I16F16 {x}");
-                }
-            }
-        }
-        // NaN → 1 on floats; the extremes of I16F16 (|MIN| saturates).
-        assert_eq!(Scalar::exp_neg_abs(f32::NAN), 1.0);
-        assert_eq!(Scalar::exp_neg_abs(f64::NAN), 1.0);
-        assert_eq!(Scalar::exp_neg_abs(f64::INFINITY), 0.0);
-        assert_eq!(Scalar::exp_neg_abs(I16F16::MIN), I16F16::ZERO);
-        assert_eq!(Scalar::exp_neg_abs(I16F16::MAX), I16F16::ZERO);
-        assert_eq!(Scalar::exp_neg_abs(I16F16::ZERO), I16F16::ONE);
-    }
-
-    #[test]
-    fn huge_coefficients_saturate() {
-        for v in [2f64.powi(41), 1e15, 1e300, f64::MAX] {
-            for sign in [1.0, -1.0] {
-                let c = Coef::new(sign * v);
-                for x in [1i64, -1, 1 << 31, -(1 << 31), 12345] {
-                    let want = if (x > 0) == (sign > 0.0) {
-                        i32::MAX
-                    } else {
-                        i32::MIN
-                    };
-                    assert_eq!(c.scale_int(x, 16), want, "{v} {x}");
-                    assert_eq!(c.scale_int(x, 0), want, "{v} {x}");
-                }
-                assert_eq!(c.scale_int(0, 16), 0);
-                assert!(c.f32_value().is_finite());
-                let y = I16F16::from_bits(3).mul_coef(&c);
-                assert_eq!(y, if sign > 0.0 { I16F16::MAX } else { I16F16::MIN });
-            }
-        }
-    }
-
-    proptest::proptest! {
-        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(20_000))]
-        /// The 32-bit `scale_int` equals the 64-bit formula for coefficients
-        /// over the whole prepared range (2^-60 … beyond 2^40), both signs,
-        /// both `extra` values, any count up to and beyond ±2^31.
-        #[test]
-        fn scale_int_equals_the_64_bit_formula(
-            mant in 1.0f64..2.0, exp in -62i32..45, neg: bool,
-            x in proptest::prelude::any::<i64>(), narrow in 0u32..3, extra16: bool,
-        ) {
-            let c = Coef::new(if neg { -mant } else { mant } * 2f64.powi(exp));
-            let x = match narrow { 0 => x >> 33, 1 => x >> 50, _ => x };
-            let extra = if extra16 { 16 } else { 0 };
-            proptest::prop_assert_eq!(c.scale_int(x, extra), c.scale_int_reference(x, extra));
-            let x32 = x as i32;
-            proptest::prop_assert_eq!(c.scale_i32(x32), c.scale_int_reference(x32 as i64, 0));
-            if let Some(s) = &c.signed {
-                proptest::prop_assert_eq!(Coef::scale_i32_split(s, x32), c.scale_int_reference(x32 as i64, 0));
-            }
-        }
-    }
-
-    #[test]
-    fn scale_int_equals_the_64_bit_formula_on_edges() {
-        let mut xs = vec![
-            0i64,
-            1,
-            -1,
-            1 << 31,
-            -(1 << 31),
-            (1 << 31) - 1,
-            i64::MAX,
-            i64::MIN,
-        ];
-        for k in 0..31 {
-            xs.extend([1i64 << k, -(1i64 << k), (1i64 << k) + 1, -(1i64 << k) - 1]);
-        }
-        for e in -62..=45 {
-            for m in [1.0, 1.5, 2.0 - 1e-12] {
-                for sign in [1.0, -1.0] {
-                    let c = Coef::new(sign * m * 2f64.powi(e));
-                    for &x in &xs {
-                        for extra in [0, 16] {
-                            assert_eq!(
-                                c.scale_int(x, extra),
-                                c.scale_int_reference(x, extra),
-                                "{e} {m} {x} {extra}"
-                            );
-                        }
-                        let x32 = x as i32;
-                        assert_eq!(
-                            c.scale_i32(x32),
-                            c.scale_int_reference(x32 as i64, 0),
-                            "{e} {m} {x32}"
-                        );
-                    }
-                }
-            }
-        }
-    }
-
-    /// `mul_int` is `mul_coef` by the same integer, bit for bit, on every
-    /// backend, at edge words and both ends of the fitting range.
-    #[test]
-    fn mul_int_equals_mul_coef_by_the_integer() {
-        let mut xs = vec![0i32, 1, -1, i32::MAX, i32::MIN, i32::MIN + 1];
-        for k in 0..31 {
-            xs.extend([1i32 << k, -(1i32 << k), (1i32 << k) - 1, -(1i32 << k) + 1]);
-        }
-        for n in [
-            1.0,
-            2.0,
-            3.0,
-            50.0,
-            100.0,
-            101.0,
-            160.0,
-            32768.0,
-            65535.0,
-            1e6,
-            2147483647.0,
-        ] {
-            let f = IntFactor::new(n);
-            let mut all = xs.clone();
-            all.extend([
-                f.high,
-                f.high.saturating_add(1),
-                f.low,
-                f.low.saturating_sub(1),
-            ]);
-            for &x in &all {
-                let v = I16F16::from_bits(x);
-                assert_eq!(v.mul_int(&f), v.mul_coef(&f.coef), "{n} {x}");
-                let y = x as f32 * 1e-3;
-                assert_eq!(y.mul_int(&f), y.mul_coef(&f.coef), "{n} {y}");
-            }
-        }
-    }
-
-    /// The coefficient classes `scale_i32` prepares apart (zero, below
-    /// 2⁻³², a mantissa rounded up to 2³¹, 2³⁰ and beyond) against the
-    /// 64-bit formula, and `scale_wide` against the exact product, at
-    /// every edge argument.
-    #[test]
-    fn scale_i32_and_scale_wide_on_every_coefficient_class() {
-        let mut xs = vec![0i32, 1, -1, 2, -2, 3, i32::MAX, i32::MIN, i32::MIN + 1];
-        for k in 0..31 {
-            xs.extend([
-                1i32 << k,
-                -(1i32 << k),
-                (1i32 << k).wrapping_add(1),
-                -(1i32 << k) - 1,
-            ]);
-        }
-        let mut values = vec![0.0, f64::NAN, f64::INFINITY, 1e-300, -1e-300];
-        for e in -100..=60 {
-            for m in [1.0, 1.5, 2.0 - 1e-12, 2.0 - 1e-9] {
-                values.extend([m * 2f64.powi(e), -m * 2f64.powi(e)]);
-            }
-        }
-        let mut halved = 0;
-        for &v in &values {
-            let c = Coef::new(v);
-            if c.mag == 1 << 31 && c.signed.is_some() {
-                halved += 1;
-            }
-            for &x in &xs {
-                assert_eq!(
-                    c.scale_i32(x),
-                    c.scale_int_reference(x as i64, 0),
-                    "{v} {x}"
-                );
-                if let Some(s) = &c.signed {
-                    assert_eq!(
-                        Coef::scale_i32_split(s, x),
-                        c.scale_int_reference(x as i64, 0),
-                        "split {v} {x}"
-                    );
-                }
-                for extra in [0, 16, 32] {
-                    assert_eq!(
-                        c.scale_wide(x, extra),
-                        scale_wide_reference(&c, x, extra),
-                        "{v} {x} {extra}"
-                    );
-                    assert_eq!(
-                        c.scale_wide_split(x, extra),
-                        scale_wide_reference(&c, x, extra),
-                        "split {v} {x} {extra}"
-                    );
-                    assert_eq!(
-                        c.scale_wide_magnitude(x, extra),
-                        scale_wide_reference(&c, x, extra),
-                        "magnitude {v} {x} {extra}"
-                    );
-                }
-            }
-        }
-        // The halved-mantissa form was exercised.
-        assert!(halved > 10, "{halved}");
-    }
-
-    fn sat_examples<S: Scalar>() {
-        let f = S::from_f64;
-        let eps = f(0.5);
-        assert_eq!(f(2.0).sat(eps), S::ONE);
-        assert_eq!(f(-2.0).sat(eps), S::ONE.neg());
-        assert_eq!(f(0.25).sat(eps), f(0.5));
-        assert_eq!(f(-0.25).sat(eps), f(-0.5));
-        assert_eq!(S::ZERO.sat(S::ZERO), S::ZERO);
-        // y <= 0: thesis condition |x| > y holds for every x != 0.
-        assert_eq!(f(0.001).sat(f(-1.0)), S::ONE);
-        assert_eq!(f(-0.001).sat(S::ZERO), S::ONE.neg());
-    }
-
-    #[test]
-    fn sat_matches_hand_values_on_every_backend() {
-        sat_examples::<f32>();
-        sat_examples::<f64>();
-        sat_examples::<I16F16>();
-    }
-
-    proptest::proptest! {
-        /// `from_counts` on I16F16 is the correctly rounded product within
-        /// the 31-bit precision of the prepared factor: |error| ≤ ½ LSB plus
-        /// |counts·factor|·2⁻³⁰ (relative error of the multiplier).
-        #[test]
-        fn from_counts_is_rounded_product(
-            counts in -(1i64 << 31)..(1i64 << 31),
-            mant in 1.0f64..2.0, exp in -40i32..10,
-        ) {
-            let factor = mant * 2f64.powi(exp);
-            let sc = Coef::new(factor);
-            let exact = counts as f64 * factor;
-            proptest::prop_assume!(exact.abs() < 32767.0);
-            let got = I16F16::from_counts(counts, &sc).to_f64();
-            let bound = 0.5 / 65536.0 + exact.abs() * 2f64.powi(-30);
-            proptest::prop_assert!((got - exact).abs() <= bound, "{got} vs {exact}");
-        }
-    }
-
-    /// `from_counts_i32` against the 64-bit count formula
-    /// (`scale_int_reference` with 16 extra bits) of the unshifted factor,
-    /// and against `from_counts`, on every backend.
-    fn check_from_counts_i32(counts: i32, factor: f64) {
-        let cc = CountCoef::new(factor);
-        let want = cc.coef().scale_int_reference(counts as i64, 16);
-        let got = I16F16::from_counts_i32(counts, &cc);
-        assert_eq!(got.to_bits(), want, "{counts} × {factor}");
-        assert_eq!(got, I16F16::from_counts(counts as i64, cc.coef()));
-        assert_eq!(
-            f32::from_counts_i32(counts, &cc).to_bits(),
-            f32::from_counts(counts as i64, cc.coef()).to_bits()
-        );
-        assert_eq!(
-            f64::from_counts_i32(counts, &cc).to_bits(),
-            f64::from_counts(counts as i64, cc.coef()).to_bits()
-        );
-    }
-
-    #[test]
-    fn from_counts_i32_equals_the_count_product_at_the_edges() {
-        // Small counts, the 16-bit edge, the `i32` ends and counts whose
-        // `f32` conversion rounds (halfway cases of the 24-bit mantissa).
-        let counts = [
-            0,
-            1,
-            -1,
-            2,
-            -2,
-            3,
-            1 << 15,
-            -(1 << 15),
-            i32::MAX,
-            i32::MIN,
-            i32::MIN + 1,
-            (1 << 24) + 1,
-            (1 << 25) + 2,
-            (1 << 25) + 6,
-            -(1 << 25) - 2,
-            (1 << 30) + (1 << 6) + 1,
-        ];
-        // Zero, a mantissa rounded up to 2³¹ (just below a power of two),
-        // the range ends of `Coef::new`, factors whose `2¹⁶` multiple
-        // reaches `2³⁰` (the unit products) and ordinary ones.
-        let factors = [
-            0.0,
-            1.0,
-            -1.0,
-            2.0 - 1e-12,
-            -(2.0 - 1e-12),
-            1e-18,
-            1e-13,
-            3e-5,
-            0.5 / 65536.0,
-            1.0 / 65536.0,
-            2f64.powi(14),
-            2f64.powi(14) * (1.0 - 1e-12),
-            -(2f64.powi(14)),
-            2f64.powi(40),
-            1e13,
-            0.001_234_567,
-            -7.25,
-        ];
-        for c in counts {
-            for f in factors {
-                check_from_counts_i32(c, f);
-            }
-        }
-    }
-
-    /// `from_counts_prepared` against `from_counts` (itself tested against
-    /// the 64-bit count formula) on every backend.
-    fn check_from_counts_prepared(counts: i64, factor: f64) {
-        let cc = CountCoef::new(factor);
-        assert_eq!(
-            I16F16::from_counts_prepared(counts, &cc),
-            I16F16::from_counts(counts, cc.coef()),
-            "{counts} × {factor}"
-        );
-        assert_eq!(
-            I16F16::from_counts_prepared(counts, &cc).to_bits(),
-            cc.coef().scale_int_reference(counts, 16)
-        );
-        assert_eq!(
-            f32::from_counts_prepared(counts, &cc).to_bits(),
-            f32::from_counts(counts, cc.coef()).to_bits()
-        );
-        assert_eq!(
-            f64::from_counts_prepared(counts, &cc).to_bits(),
-            f64::from_counts(counts, cc.coef()).to_bits()
-        );
-    }
-
-    #[test]
-    fn from_counts_prepared_equals_the_count_product_at_the_edges() {
-        let t = 1i64 << 31;
-        let counts = [
-            0,
-            1,
-            -1,
-            t - 1,
-            t,
-            t + 1,
-            -t,
-            -t - 1,
-            -t + 1,
-            1 << 32,
-            -(1 << 32),
-            1 << 47,
-            i64::MAX,
-            i64::MIN,
-        ];
-        let factors = [
-            0.0,
-            1.0,
-            -1.0,
-            2.0 - 1e-12,
-            1e-18,
-            1e-13,
-            0.5 / 65536.0,
-            3e-6,
-            2f64.powi(14),
-            2f64.powi(40),
-            -7.25,
-        ];
-        for c in counts {
-            for f in factors {
-                check_from_counts_prepared(c, f);
-            }
-        }
-    }
-
-    proptest::proptest! {
-        #[test]
-        fn from_counts_prepared_equals_the_count_product(
-            bits in proptest::prelude::any::<i64>(), sh in 0u32..40,
-            mant in 1.0f64..2.0, exp in -60i32..42, neg: bool,
-        ) {
-            check_from_counts_prepared(bits >> sh, if neg { -mant } else { mant } * 2f64.powi(exp));
-        }
-    }
-
-    proptest::proptest! {
-        #[test]
-        fn from_counts_i32_equals_the_count_product(
-            counts in proptest::prelude::any::<i32>(),
-            mant in 1.0f64..2.0, exp in -60i32..42, neg: bool,
-        ) {
-            check_from_counts_i32(counts, if neg { -mant } else { mant } * 2f64.powi(exp));
-        }
-    }
-
-    proptest::proptest! {
-        /// `mul_coef` on I16F16: |error| ≤ ½ LSB + |x·c|·2⁻³⁰.
-        #[test]
-        fn mul_coef_is_rounded_product(
-            bits in proptest::prelude::any::<i32>(), mant in 1.0f64..2.0, exp in -40i32..20, neg: bool,
-        ) {
-            let c = if neg { -mant } else { mant } * 2f64.powi(exp);
-            let x = I16F16::from_bits(bits);
-            let exact = x.to_f64() * c;
-            proptest::prop_assume!(exact.abs() < 32767.0);
-            let got = x.mul_coef(&Coef::new(c)).to_f64();
-            let bound = 0.5 / 65536.0 + exact.abs() * 2f64.powi(-30);
-            proptest::prop_assert!((got - exact).abs() <= bound, "{got} vs {exact}");
-        }
-    }
-
-    proptest::proptest! {
-        /// `dot_coef` on `I16F16` is the exact sum of the products with the
-        /// row's mantissas, rounded once (ties up) and saturated, and
-        /// within its stated bound of the exact sum with the given
-        /// constants; on floats it is the sum of `mul_coef` products.
-        #[test]
-        fn dot_coef_is_the_once_rounded_sum(
-            mant in proptest::collection::vec(-2.0f64..2.0, 6),
-            exps in proptest::collection::vec(-40i32..30, 6),
-            bits in proptest::collection::vec(proptest::prelude::any::<i32>(), 6),
-            narrow in 0u32..28,
-        ) {
-            let c: [f64; 6] = core::array::from_fn(|j| mant[j] * 2f64.powi(exps[j]));
-            let x: [I16F16; 6] = core::array::from_fn(|j| I16F16::from_bits(bits[j] >> narrow));
-            let row = CoefRow::new(c);
-            let (m, s) = row.fixed();
-            proptest::prop_assert!(m.iter().all(|m| m.unsigned_abs() <= 1 << 28));
-            let sum: i128 = (0..6).map(|j| x[j].to_bits() as i128 * m[j] as i128).sum();
-            let want = if s > 0 { (sum + (1i128 << (s - 1))) >> s } else { sum << -s };
-            let want = want.clamp(i32::MIN as i128, i32::MAX as i128) as i32;
-            let got = I16F16::dot_coef(&x, &row);
-            proptest::prop_assert_eq!(got.to_bits(), want);
-            // Against the exact sum with the given constants (bits).
-            let exact: f64 = (0..6).map(|j| x[j].to_bits() as f64 * c[j]).sum();
-            let max = c.iter().fold(0.0f64, |a, c| a.max(c.abs()));
-            let sx: f64 = x.iter().map(|x| (x.to_bits() as f64).abs()).sum();
-            if exact.abs() < 2e9 {
-                let bound = 0.5 + 2f64.powi(-28) * max * sx + 1e-9 * exact.abs();
-                proptest::prop_assert!((got.to_bits() as f64 - exact).abs() <= bound, "{} vs {}", got.to_bits(), exact);
-            }
-            // Floats: the default, term by term.
-            let xf: [f64; 6] = core::array::from_fn(|j| x[j].to_f64());
-            let mut acc = 0.0f64;
-            for j in 0..6 {
-                acc += xf[j].mul_coef(&Coef::new(c[j]));
-            }
-            proptest::prop_assert_eq!(f64::dot_coef(&xf, &row), acc);
-        }
-    }
-
-    /// Rows of zeros, of non-finite values (read as 0), of one huge and of
-    /// tiny constants keep the `I16F16` sum exact or saturated.
-    #[test]
-    fn dot_coef_edge_rows() {
-        let one = I16F16::ONE;
-        let x = [
-            one,
-            one.neg(),
-            I16F16::MAX,
-            I16F16::MIN,
-            I16F16::ZERO,
-            I16F16::DELTA,
-        ];
-        assert_eq!(I16F16::dot_coef(&x, &CoefRow::new([0.0; 6])), I16F16::ZERO);
-        let nan = CoefRow::new([f64::NAN, f64::INFINITY, 0.0, 0.0, 0.0, 1.0]);
-        assert_eq!(I16F16::dot_coef(&x, &nan), I16F16::DELTA);
-        // 1·3 − 1·3 + 0·1e12 = 0 (beside 1e12 the 3s quantize to 0; the
-        // rounding bound, 2⁻²⁸·1e12 per unit of x, allows it).
-        let big = CoefRow::new([3.0, 3.0, 0.0, 0.0, 1e12, 0.0]);
-        assert_eq!(I16F16::dot_coef(&x, &big), I16F16::ZERO);
-        let sat = CoefRow::new([1e12, 0.0, 0.0, 0.0, 0.0, 0.0]);
-        assert_eq!(I16F16::dot_coef(&x, &sat), I16F16::MAX);
-        assert_eq!(I16F16::dot_coef(&[one.neg(); 6], &sat), I16F16::MIN);
-        // MAX·2 + MIN·2 = −2 LSB·… exactly: (2³¹ − 1)·2 − 2³¹·2 = −2 bits.
-        let two = CoefRow::new([0.0, 0.0, 2.0, 2.0, 0.0, 0.0]);
-        assert_eq!(I16F16::dot_coef(&x, &two).to_bits(), -2);
-        // A constant far below the resolution: ½·2⁻¹⁶ rounds up (ties up).
-        let half = CoefRow::new([0.0, 0.0, 0.0, 0.0, 0.0, 0.5]);
-        assert_eq!(I16F16::dot_coef(&x, &half).to_bits(), 1);
-        let tiny = CoefRow::new([1e-25; 6]);
-        assert_eq!(I16F16::dot_coef(&x, &tiny), I16F16::ZERO);
-    }
-
-    /// `round(x·c·2^extra)` in exact (`i128`) arithmetic, saturated.
-    fn scale_wide_reference(c: &Coef, x: i32, extra: i32) -> i64 {
-        let p = x as i128 * c.mult as i128;
-        let sh = c.shift - extra;
-        let r = if sh > 0 {
-            if sh >= 126 {
-                0
-            } else {
-                (p + (1i128 << (sh - 1))) >> sh
-            }
-        } else if -sh >= 64 {
-            if p > 0 {
-                i128::MAX
-            } else if p < 0 {
-                i128::MIN
-            } else {
-                0
-            }
-        } else {
-            p << -sh
-        };
-        r.clamp(i64::MIN as i128, i64::MAX as i128) as i64
-    }
-
-    /// [`Scalar::integrate`] on `I16F16` in exact arithmetic: the Q16.48
-    /// sum (saturated), rounded to nearest with ties up, clamped (residual
-    /// 0 when the Q16.48 value leaves the box).
-    fn integrate_reference(
-        v: I16F16,
-        res: i32,
-        x: I16F16,
-        c: &Coef,
-        lo: I16F16,
-        hi: I16F16,
-    ) -> (I16F16, i32) {
-        let total = ((v.to_bits() as i128) << 32)
-            + res as i128
-            + scale_wide_reference(c, x.to_bits(), 32) as i128;
-        let total = total.clamp(i64::MIN as i128, i64::MAX as i128);
-        let (l, h) = ((lo.to_bits() as i128) << 32, (hi.to_bits() as i128) << 32);
-        if total > h {
-            return (hi, 0);
-        }
-        if total < l {
-            return (lo, 0);
-        }
-        let q = (total + (1i128 << 31)) >> 32;
-        (I16F16::from_bits(q as i32), (total - (q << 32)) as i32)
-    }
-
-    proptest::proptest! {
-        #[test]
-        fn scale_wide_is_the_exact_rounded_product(
-            x in proptest::prelude::any::<i32>(),
-            mant in 1.0f64..2.0,
-            exp in -60i32..40,
-            neg: bool,
-            extra in 0i32..48,
-        ) {
-            let v = mant * 2f64.powi(exp) * if neg { -1.0 } else { 1.0 };
-            let c = Coef::new(v);
-            proptest::prop_assert_eq!(c.scale_wide(x, extra), scale_wide_reference(&c, x, extra));
-            proptest::prop_assert_eq!(c.scale_wide_split(x, extra), scale_wide_reference(&c, x, extra));
-            proptest::prop_assert_eq!(c.scale_wide_magnitude(x, extra), scale_wide_reference(&c, x, extra));
-        }
-
-        #[test]
-        fn fixed_integrate_is_the_exact_rounded_q16_48_sum(
-            v in -2_000_000i32..2_000_000,
-            res in proptest::prelude::any::<i32>(),
-            x in proptest::prelude::any::<i32>(),
-            mant in 1.0f64..2.0,
-            exp in -50i32..4,
-            neg: bool,
-            lo in -3_000_000i32..0,
-            width in 0i32..6_000_000,
-        ) {
-            let c = Coef::new(mant * 2f64.powi(exp) * if neg { -1.0 } else { 1.0 });
-            let (lo, hi) = (I16F16::from_bits(lo), I16F16::from_bits(lo.saturating_add(width)));
-            let v = Scalar::clamp(I16F16::from_bits(v), lo, hi);
-            let x = I16F16::from_bits(x);
-            let got = v.integrate(res, x, &c, lo, hi);
-            let want = integrate_reference(v, res, x, &c, lo, hi);
-            proptest::prop_assert_eq!(got, want);
-        }
-    }
-
-    /// The exact Q16.48 sum at the ends of the range: extreme values and
-    /// residuals, steps that saturate, boxes at the range's ends.
-    #[test]
-    fn fixed_integrate_is_exact_at_the_range_ends() {
-        let words = [
-            i32::MIN,
-            i32::MIN + 1,
-            -65536,
-            -1,
-            0,
-            1,
-            65536,
-            i32::MAX - 1,
-            i32::MAX,
-        ];
-        let boxes = [
-            (i32::MIN, i32::MAX),
-            (i32::MIN, 0),
-            (0, i32::MAX),
-            (-65536, 65536),
-        ];
-        for c in [1e-12, -3e-7, 0.4, -0.4, 1.0, 1e6, -1e6, 1e11] {
-            let c = Coef::new(c);
-            for (lo, hi) in boxes {
-                let (lo, hi) = (I16F16::from_bits(lo), I16F16::from_bits(hi));
-                for v in words {
-                    let v = Scalar::clamp(I16F16::from_bits(v), lo, hi);
-                    for res in words {
-                        for x in words {
-                            let x = I16F16::from_bits(x);
-                            assert_eq!(
-                                v.integrate(res, x, &c, lo, hi),
-                                integrate_reference(v, res, x, &c, lo, hi),
-                                "{v} {res} {x} {c:?}"
-                            );
-                        }
-                    }
-                }
-            }
-        }
-    }
-
-    /// A step of a tenth of an LSB moves the Q16.48 value at every sample
-    /// and the `I16F16` value after five; the saturated ends hold.
-    #[test]
-    fn fixed_integrate_accumulates_sub_lsb_steps() {
-        let c = Coef::new(0.1);
-        let (lo, hi) = (I16F16::MIN, I16F16::MAX);
-        let (mut v, mut res) = (I16F16::ZERO, 0i32);
-        let one = I16F16::from_bits(1);
-        let mut moved_at = None;
-        for k in 1..=20 {
-            (v, res) = v.integrate(res, one, &c, lo, hi);
-            if moved_at.is_none() && v != I16F16::ZERO {
-                moved_at = Some(k);
-            }
-        }
-        assert_eq!(moved_at, Some(5));
-        assert_eq!(v.to_bits(), 2);
-        assert_eq!(
-            I16F16::MAX.integrate(0, I16F16::MAX, &Coef::new(1.0), lo, hi),
-            (I16F16::MAX, 0)
-        );
-        assert_eq!(
-            I16F16::MIN.integrate(0, I16F16::MIN, &Coef::new(1.0), lo, hi),
-            (I16F16::MIN, 0)
-        );
-    }
-
-    #[test]
-    fn mul_coef_saturates() {
-        let big = Coef::new(1e6);
-        assert_eq!(I16F16::from_num(2).mul_coef(&big), I16F16::MAX);
-        assert_eq!(I16F16::from_num(-2).mul_coef(&big), I16F16::MIN);
-        assert_eq!(3.0f32.mul_coef(&Coef::new(0.5)), 1.5);
-    }
-
-    #[test]
-    fn from_counts_saturates_and_handles_zero_factor() {
-        let sc = Coef::new(1.0);
-        assert_eq!(I16F16::from_counts(1 << 40, &sc), I16F16::MAX);
-        assert_eq!(I16F16::from_counts(-(1 << 40), &sc), I16F16::MIN);
-        let z = Coef::new(0.0);
-        assert_eq!(I16F16::from_counts(12345, &z), I16F16::ZERO);
-        assert_eq!(f32::from_counts(12345, &Coef::new(f64::NAN)), 0.0);
-        let neg = Coef::new(-0.25);
-        assert_eq!(I16F16::from_counts(6, &neg).to_f64(), -1.5);
-    }
-
-    #[test]
-    fn sgn_is_exact_including_negative_zero_and_nan() {
-        assert_eq!((-0.0f64).sgn(), 0.0);
-        assert_eq!(f64::NAN.sgn(), 0.0);
-        assert_eq!(f32::NAN.sat(1.0), 0.0);
-        assert_eq!(1.0f32.sat(f32::NAN), 1.0);
-        assert_eq!(I16F16::MIN.sgn(), I16F16::from_num(-1));
-        assert_eq!(I16F16::ZERO.sgn(), I16F16::ZERO);
-    }
-
-    /// `slope_within` returns the first candidate that fits, stepping down
-    /// from the value: with a `fits` that accepts only values at most
-    /// `v·(1 − k·2⁻²³)` it returns exactly that candidate, and past the fine
-    /// steps it takes the coarse ones.
-    #[test]
-    fn slope_within_steps_down_to_the_first_fit() {
-        let v = 3.0f64;
-        assert_eq!(slope_within(v, |x| x, |_| true), v);
-        for k in [1u32, 2, 17, 63] {
-            let lim = v * (1.0 - k as f64 / 8_388_608.0);
-            assert_eq!(slope_within(v, |x| x, |&x| x <= lim), lim);
-        }
-        // Below every fine step (the last is 1 − 63·2⁻²³): the first coarse
-        // candidate under the limit 1 − 2⁻¹⁷ = 1 − 64·2⁻²³ is 1 − 2⁻¹⁶.
-        let lim = v * (1.0 - 64.0 / 8_388_608.0);
-        let got = slope_within(v, |x| x, |&x| x < lim);
-        assert_eq!(got, v * (1.0 - 1.0 / 65_536.0));
-        // Nothing fits: half the value.
-        assert_eq!(slope_within(v, |x| x, |_| false), v * 0.5);
-    }
-
-    /// `copysign` against `f32::copysign`/`f64::copysign` (std) on floats,
-    /// and against the defining cases on `I16F16`.
-    #[test]
-    fn copysign_matches_its_definition() {
-        let vals = [
-            0.0f64,
-            -0.0,
-            1.5,
-            -2.25,
-            f64::MIN_POSITIVE,
-            f64::MAX,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-        ];
-        for &a in &vals {
-            for &b in &vals {
-                assert_eq!(Scalar::copysign(a, b).to_bits(), a.copysign(b).to_bits());
-                let (a32, b32) = (a as f32, b as f32);
-                assert_eq!(
-                    Scalar::copysign(a32, b32).to_bits(),
-                    a32.copysign(b32).to_bits()
-                );
-            }
-        }
-        assert!(Scalar::copysign(f32::NAN, -1.0).is_nan());
-        assert_eq!(Scalar::copysign(2.0f32, -f32::NAN), -2.0);
-        let q = |v: f64| I16F16::from_num(v);
-        assert_eq!(Scalar::copysign(q(1.5), q(-0.25)), q(-1.5));
-        assert_eq!(Scalar::copysign(q(-1.5), q(0.25)), q(1.5));
-        assert_eq!(Scalar::copysign(q(-1.5), I16F16::ZERO), q(1.5));
-        assert_eq!(Scalar::copysign(I16F16::MIN, q(1.0)), I16F16::MAX);
-        assert_eq!(Scalar::copysign(I16F16::MIN, q(-1.0)), -I16F16::MAX);
-    }
-
-    /// `c·2³²/L` exactly, as a rational: (numerator in 2⁻³² turn units
-    /// times `L`), reduced modulo one turn.
-    fn exact_turn_times_l(c: u32, l: u32) -> i128 {
-        ((c as i128) << 32).rem_euclid((l as i128) << 32)
-    }
-
-    proptest::proptest! {
-        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(20_000))]
-        /// `CountToTurn` is within `1 + c·2⁻³³` units of the exact
-        /// `c·2³²/L` (the documented bound), for any `L` and `c < L`.
-        #[test]
-        fn count_to_turn_within_its_bound(l in 1u32..=u32::MAX, c in proptest::prelude::any::<u32>(), pow2 in 0u32..32, use_pow2: bool) {
-            let l = if use_pow2 { 1 << pow2 } else { l };
-            let c = c % l;
-            let got = CountToTurn::new(l).turn(c) as i128;
-            let exact = exact_turn_times_l(c, l); // units·L
-            // Signed distance modulo 2³², in units·L.
-            let m = (1i128 << 32) * l as i128;
-            let mut d = (got * l as i128 - exact).rem_euclid(m);
-            if d > m / 2 {
-                d -= m;
-            }
-            let bound = l as f64 * (1.0 + c as f64 / 8_589_934_592.0);
-            proptest::prop_assert!((d.abs() as f64) < bound, "L = {l}, c = {c}: {d}/{l}");
-            if use_pow2 {
-                proptest::prop_assert_eq!(d, 0);
-            }
-        }
-    }
-
-    #[test]
-    fn turn_from_radians_rounds_and_wraps() {
-        use core::f64::consts::{PI, TAU};
-        assert_eq!(turn_from_radians(0.0), 0);
-        assert_eq!(turn_from_radians(PI), 1 << 31);
-        assert_eq!(turn_from_radians(-PI / 2.0), 3 << 30);
-        assert_eq!(turn_from_radians(TAU), 0);
-        assert_eq!(turn_from_radians(5.0 * TAU + PI / 2.0), 1 << 30);
-        assert_eq!(turn_from_radians(f64::NAN), 0);
-        // Just below a full turn rounds up to 2³² and wraps to 0.
-        assert_eq!(turn_from_radians(TAU - 1e-12), 0);
-    }
-}
+mod tests;

@@ -178,7 +178,7 @@ impl Sink {
     }
 }
 
-#[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+#[cfg(any(test, armv6m))]
 use super::WideCoef;
 use super::{Coef, CoefRow, CountCoef, CountToTurn, Gain, IntFactor, SignedCoef, I16F16};
 
@@ -191,11 +191,11 @@ impl SignedCoef {
         let round = r.u32();
         SignedCoef {
             m,
-            #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+            #[cfg(any(test, armv6m))]
             m_hi: ((m as i64 + (1 << 15)) >> 16) as i32,
-            #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+            #[cfg(any(test, armv6m))]
             m_lo: m as i16 as i32,
-            #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+            #[cfg(any(test, armv6m))]
             round_lo: if high_only { 0 } else { round },
             high_only,
             round,
@@ -233,7 +233,7 @@ impl Coef {
                 None
             },
             units: [r.i32(), r.i32()],
-            #[cfg(any(test, all(target_arch = "arm", not(target_has_atomic = "32"))))]
+            #[cfg(any(test, armv6m))]
             wide: WideCoef::new(mult, shift),
         }
     }

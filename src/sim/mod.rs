@@ -22,6 +22,8 @@
 //! * [`wrist_bench`] — the wrist alone: active tracking and a finger
 //!   pushing it with the motors off or in admittance-passive mode
 //!   (§6.4.2–6.4.3).
+//! * `engine` (feature `engine`) — mechanisms on the rapier3d engine that
+//!   check the wrist's kinematics and force mapping.
 //! * [`experiments`] — the locked-output (Fig. 2.17–2.20), back-driven
 //!   (Fig. 2.21–2.22) and torque-estimation (Table 3.3) experiments.
 
@@ -32,6 +34,8 @@
 pub mod claims;
 pub mod closed_loop;
 pub mod door;
+#[cfg(feature = "engine")]
+pub mod engine;
 pub mod experiments;
 pub mod friction;
 pub mod integrator;

@@ -203,7 +203,12 @@ mod tests {
             prop_assume!(ab.beta > 1e-6);
             let alpha_p = (-r[1][2]).atan2(r[0][2]);
             let r516 = mul(&mul(&rz(-alpha_p), &ry(ab.beta)), &rz(ab.alpha));
-            prop_assert!(dist(&r, &r516) < 1e-12, "{}", dist(&r, &r516));
+            // α and α′ are directions of vectors of length O(β) (eq. 5.19
+            // and the third column) whose components carry O(ε) rounding,
+            // so each is off by O(ε/β): near the straight pose the product
+            // is good to that, not to 1e-12 (β = 2.6e-5 gives 1.75e-12).
+            let tol = 1e-12 + 16.0 * f64::EPSILON / ab.beta;
+            prop_assert!(dist(&r, &r516) < tol, "{} > {} at beta {}", dist(&r, &r516), tol, ab.beta);
             let (sp, cp) = c.phi().sin_cos();
             let beta_517 = (f.theta4.cos() * sp * sp + cp * cp).clamp(-1.0, 1.0).acos();
             prop_assert!((beta_517 - ab.beta).abs() < 1e-7);

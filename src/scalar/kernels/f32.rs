@@ -231,7 +231,7 @@ fn tan_of_magnitude(ax: f32, reflect: bool, sign: u32) -> f32 {
 pub const TAN_BOUNDED_MAX: f32 = 1.446_441_332_248_135_f64 as f32;
 
 /// [`tan`] for `|x| ≤ atan 8`, the torque estimator's argument of eq.
-/// (3.10) ([`Scalar::tan_bounded`](crate::scalar::Scalar::tan_bounded)):
+/// (3.10) (the `f32` backend's `tan_bounded`):
 /// the argument is limited by one floating-point comparison with
 /// [`TAN_BOUNDED_MAX`] instead of [`tan`]'s integer tests against the
 /// edge of the branch and NaN, and the rest is `tan`'s own code (the

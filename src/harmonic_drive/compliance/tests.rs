@@ -1,0 +1,371 @@
+use super::*;
+use crate::scalar::I16F16;
+use proptest::prelude::*;
+
+/// The named settings reach their own getters and roles: the slope of
+/// eq. (3.10) at zero torsion is `K_f0` (a finite difference), the cubic
+/// of eq. (2.10) is `a1 Δθ + a3 Δθ³` written out. Positional `f64`
+/// pairs could be swapped and still validate (`K_f0 = 0.02`,
+/// `c_f = 8000` is accepted).
+#[test]
+fn named_settings_reach_their_getters_and_roles() {
+    let fs = FlexsplineSettings {
+        k_f0: 8000.0,
+        c_f: 0.02,
+    };
+    let f = FlexsplineParams::try_new(fs).unwrap();
+    assert_eq!((f.k_f0(), f.c_f()), (8000.0, 0.02));
+    assert_eq!(f.settings(), fs);
+    let h = 1e-7;
+    let slope = (f.torque(h).torque - f.torque(-h).torque) / (2.0 * h);
+    assert!((slope - 8000.0).abs() < 1e-3, "{slope}");
+    assert!(FlexsplineParams::try_new(FlexsplineSettings {
+        k_f0: 0.02,
+        c_f: 8000.0
+    })
+    .is_ok());
+    let ws = WaveGeneratorSettings {
+        k_w0: 5e4,
+        c_w: 0.3,
+    };
+    let w = WaveGeneratorParams::try_new(ws).unwrap();
+    assert_eq!((w.k_w0(), w.c_w()), (5e4, 0.3));
+    assert_eq!(WaveGeneratorParams::try_new(w.settings()), Ok(w));
+    let cs = CubicStiffnessSettings {
+        a1: 7000.0,
+        a3: 3e9,
+    };
+    let c = CubicStiffness::try_new(cs).unwrap();
+    assert_eq!((c.a1(), c.a3(), c.settings()), (7000.0, 3e9, cs));
+    let d: f64 = 2e-3;
+    let want = 7000.0 * d + 3e9 * d * d * d;
+    assert!((c.torque(d) - want).abs() <= 1e-12 * want);
+}
+
+fn shd17() -> FlexsplineParams {
+    FlexsplineParams::try_new(FlexsplineSettings {
+        k_f0: 8.336e3,
+        c_f: 0.0449,
+    })
+    .unwrap()
+}
+
+#[test]
+fn piecewise_is_continuous_at_the_knees_and_odd() {
+    let c = CataloguePiecewise::try_new(CatalogueCurve {
+        k1: 8.4e3,
+        k2: 9.4e3,
+        k3: 1.2e4,
+        t1: 3.9,
+        t2: 12.0,
+    })
+    .unwrap();
+    for t in [3.9, 12.0] {
+        let below = c.torsion(t - 1e-9);
+        let above = c.torsion(t + 1e-9);
+        assert!((above - below).abs() < 1e-12, "jump at {t}");
+    }
+    assert_eq!(c.torsion(-5.0), -c.torsion(5.0));
+    // Hand values: 3.9/8400 and 3.9/8400 + 8.1/9400 + 3/12000.
+    assert!((c.torsion(3.9) - 3.9 / 8400.0).abs() < 1e-15);
+    assert!((c.torsion(15.0) - (3.9 / 8400.0 + 8.1 / 9400.0 + 3.0 / 12000.0)).abs() < 1e-15);
+}
+
+/// Huge torques used to overflow the cubic inside Newton's method and
+/// return NaN; the inverse is now finite and still inverts.
+#[test]
+fn cubic_inverse_is_finite_for_huge_torques() {
+    let q = CubicStiffness::try_new(CubicStiffnessSettings {
+        a1: 8.0e3,
+        a3: 2.0e9,
+    })
+    .unwrap();
+    for t in [1e100, 1e250, 1e300, f64::MAX] {
+        let x = q.torsion(t);
+        assert!(x.is_finite() && x > 0.0, "{t}: {x}");
+        let tt = t.min(1e300);
+        assert!(
+            (q.torque(x) - tt).abs() <= 1e-12 * tt,
+            "{t}: {}",
+            q.torque(x)
+        );
+        assert_eq!(q.torsion(-t), -x);
+    }
+}
+
+#[test]
+fn piecewise_rejects_unordered_knees() {
+    assert_eq!(
+        CataloguePiecewise::try_new(CatalogueCurve {
+            k1: 1.0,
+            k2: 2.0,
+            k3: 3.0,
+            t1: 5.0,
+            t2: 5.0
+        }),
+        Err(ParamError::NotIncreasing {
+            lower: "t1",
+            lower_value: 5.0,
+            upper: "t2",
+            upper_value: 5.0
+        })
+    );
+    assert!(matches!(
+        CataloguePiecewise::try_new(CatalogueCurve {
+            k1: -1.0,
+            k2: 2.0,
+            k3: 3.0,
+            t1: 1.0,
+            t2: 5.0
+        }),
+        Err(ParamError::NotPositive { name: "k1", .. })
+    ));
+}
+
+#[test]
+fn cubic_passes_through_the_knees() {
+    let c = CataloguePiecewise::try_new(CatalogueCurve {
+        k1: 8.4e3,
+        k2: 9.4e3,
+        k3: 1.2e4,
+        t1: 3.9,
+        t2: 12.0,
+    })
+    .unwrap();
+    let q = CubicStiffness::through_catalogue_knees(&c).unwrap();
+    assert!((q.torque(c.torsion_at_t1()) - 3.9).abs() < 1e-9);
+    assert!((q.torque(c.torsion_at_t2()) - 12.0).abs() < 1e-9);
+    // A softening catalogue (K2 < K1) has no admissible cubic.
+    let soft = CataloguePiecewise::try_new(CatalogueCurve {
+        k1: 9.4e3,
+        k2: 8.4e3,
+        k3: 8e3,
+        t1: 3.9,
+        t2: 12.0,
+    })
+    .unwrap();
+    assert!(CubicStiffness::through_catalogue_knees(&soft).is_err());
+}
+
+/// The values the issue found accepted (NaN, negative or zero
+/// stiffness and stiffening coefficients) are rejected, each naming
+/// the parameter, the value and the rule in its message.
+#[test]
+fn bad_drive_parameters_are_rejected_by_name() {
+    extern crate std;
+    use std::string::ToString;
+    let f = |k, c| {
+        FlexsplineParams::try_new(FlexsplineSettings { k_f0: k, c_f: c })
+            .map(|_| ())
+            .unwrap_err()
+            .to_string()
+    };
+    let w = |k, c| {
+        WaveGeneratorParams::try_new(WaveGeneratorSettings { k_w0: k, c_w: c })
+            .map(|_| ())
+            .unwrap_err()
+            .to_string()
+    };
+    let cases = [
+        (
+            f(8.3e3, f64::NAN),
+            "parameter `c_f` must be finite, got NaN",
+        ),
+        (f(-8.3e3, 0.045), "parameter `k_f0` must be > 0, got -8300"),
+        (f(0.0, 0.045), "parameter `k_f0` must be > 0, got 0"),
+        (
+            f(8.3e3, -0.045),
+            "parameter `c_f` must lie in [1e-6, 1e6], got -0.045",
+        ),
+        (
+            f(f64::INFINITY, 0.045),
+            "parameter `k_f0` must be finite, got inf",
+        ),
+        (
+            w(f64::NAN, 83.0),
+            "parameter `k_w0` must be finite, got NaN",
+        ),
+        (
+            w(0.83, -83.0),
+            "parameter `c_w` must lie in [1e-6, 1e6], got -83",
+        ),
+        (
+            w(0.83, 0.0),
+            "parameter `c_w` must lie in [1e-6, 1e6], got 0",
+        ),
+    ];
+    for (got, want) in cases {
+        assert_eq!(got, want);
+    }
+    // The composite: a flexspline so stiff that its inverse's domain
+    // π/(2 c_f K_f0) is below a micro-radian (here 1.9e-8 rad).
+    let e = FlexsplineParams::try_new(FlexsplineSettings {
+        k_f0: 8.3e7,
+        c_f: 1.0,
+    })
+    .unwrap_err();
+    let domain = core::f64::consts::FRAC_PI_2 / 8.3e7;
+    assert_eq!(
+        e,
+        ParamError::CombinationOutOfRange {
+            name: "π/(2·c_f·k_f0)",
+            value: domain,
+            min: 1e-6,
+            max: 1.0
+        }
+    );
+    // A drive whose wave generator twists by more than a radian on the
+    // output side.
+    let fl = FlexsplineParams::try_new(FlexsplineSettings {
+        k_f0: 8.3e3,
+        c_f: 0.045,
+    })
+    .unwrap();
+    let wg = WaveGeneratorParams::try_new(WaveGeneratorSettings {
+        k_w0: 1e-3,
+        c_w: 1e-3,
+    })
+    .unwrap();
+    let e = HarmonicDriveParams::try_new(fl, wg, 2.0).unwrap_err();
+    assert!(
+        matches!(e, ParamError::CombinationOutOfRange { name: "1/(wave_generator.c_w·ratio·wave_generator.k_w0)", value, .. } if value == 1.0 / (1e-3 * 2.0 * 1e-3)),
+        "{e:?}"
+    );
+    let e = HarmonicDriveParams::try_new(
+        fl,
+        WaveGeneratorParams::try_new(WaveGeneratorSettings {
+            k_w0: 0.83,
+            c_w: 83.0,
+        })
+        .unwrap(),
+        0.5,
+    )
+    .unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "parameter `ratio` must lie in [1, inf], got 0.5"
+    );
+}
+
+#[test]
+fn flexspline_torsion_saturates_at_max_torsion() {
+    let p = shd17();
+    // atan(u) = π/2 − 1/u + O(u⁻³): the torsion approaches the maximum
+    // from below by 1/(c_f τ) / (c_f K_f0).
+    let t = 1e9;
+    let expected = p.max_torsion() - 1.0 / (p.c_f * t) / (p.c_f * p.k_f0);
+    assert!((p.torsion(t) - expected).abs() <= 1e-15 * p.max_torsion());
+    let r = p.torque(1.5 * p.max_torsion());
+    assert!(r.saturated && r.torque > 0.0 && r.torque.is_finite());
+    let r = p.torque(-1.5 * p.max_torsion());
+    assert!(r.saturated && r.torque < 0.0);
+}
+
+/// The sign transfer in `output_torsion` equals the product form
+/// `sgn(τ_w)·(1 − e^{−c_w|τ_w|})·A` of eq. (2.29): bit for bit on every
+/// `I16F16` torque, and on `f32` for a sweep of torques including ±0,
+/// subnormals, ±∞ and NaN (up to the sign of a zero).
+#[test]
+fn wave_generator_sign_transfer_equals_the_product_form() {
+    fn product_form<S: Scalar>(w: &WaveGeneratorConfig<S>, t: S) -> S {
+        let e = t.abs().mul_coef(&w.c_w).exp_neg_abs();
+        t.sgn().mul(S::ONE.sub(e)).mul_coef(&w.amplitude)
+    }
+    let p = WaveGeneratorParams::try_new(WaveGeneratorSettings {
+        k_w0: 0.8276,
+        c_w: 83.33,
+    })
+    .unwrap();
+    let w = WaveGeneratorConfig::<I16F16>::new(&p, 100.0);
+    for bits in (i32::MIN..=i32::MAX)
+        .step_by(97)
+        .chain([-1, 0, 1, i32::MAX])
+    {
+        let t = I16F16::from_bits(bits);
+        assert_eq!(w.output_torsion(t), product_form(&w, t), "τ bits {bits}");
+    }
+    let w = WaveGeneratorConfig::<f32>::new(&p, 100.0);
+    let mut specials = std::vec![
+        0.0f32,
+        -0.0,
+        f32::MIN_POSITIVE / 8.0,
+        f32::INFINITY,
+        f32::NAN
+    ];
+    specials.extend((0..4000).map(|i| 1e-6 * 1.01f32.powi(i)));
+    for t in specials {
+        for t in [t, -t] {
+            let (a, b) = (w.output_torsion(t), product_form(&w, t));
+            assert!(a == b || (a.is_nan() && b.is_nan()), "τ {t}: {a} vs {b}");
+        }
+    }
+}
+
+proptest! {
+    /// Eq. (2.25): the torsion is the integral of 1/K_fl; its derivative
+    /// (central difference) must equal 1/K_fl of eq. (2.24).
+    #[test]
+    fn flexspline_torsion_derivative_is_inverse_local_stiffness(t in -150.0f64..150.0) {
+        let p = shd17();
+        let h = 1e-4;
+        let fd = (p.torsion(t + h) - p.torsion(t - h)) / (2.0 * h);
+        let exact = 1.0 / p.local_stiffness(t);
+        prop_assert!((fd - exact).abs() <= 1e-6 * exact, "{fd} vs {exact}");
+    }
+
+    /// Eq. (2.28): same for the wave generator and eq. (2.27).
+    #[test]
+    fn wave_generator_torsion_derivative_is_inverse_local_stiffness(t in 0.001f64..0.1) {
+        let p = WaveGeneratorParams::try_new(WaveGeneratorSettings { k_w0: 0.8276, c_w: 83.33 }).unwrap();
+        let h = 1e-7;
+        for t in [t, -t] {
+            let fd = (p.torsion(t + h) - p.torsion(t - h)) / (2.0 * h);
+            let exact = 1.0 / p.local_stiffness(t);
+            prop_assert!((fd - exact).abs() <= 1e-5 * exact, "{fd} vs {exact}");
+        }
+    }
+
+    /// Eq. (3.10) inverts eq. (2.26) inside the domain.
+    #[test]
+    fn flexspline_round_trip_f64(t in -500.0f64..500.0) {
+        let p = shd17();
+        let back = p.torque(p.torsion(t));
+        prop_assert!(!back.saturated);
+        prop_assert!((back.torque - t).abs() <= 1e-9 * (1.0 + t.abs()));
+    }
+
+    /// The cubic's inverse is exact to rounding.
+    #[test]
+    fn cubic_round_trip(t in -100.0f64..100.0) {
+        let q = CubicStiffness::try_new(CubicStiffnessSettings { a1: 8.0e3, a3: 2.0e9 }).unwrap();
+        prop_assert!((q.torque(q.torsion(t)) - t).abs() <= 1e-9 * (1.0 + t.abs()));
+    }
+
+    /// The piecewise inverse is exact to rounding.
+    #[test]
+    fn piecewise_round_trip(t in -100.0f64..100.0) {
+        let c = CataloguePiecewise::try_new(CatalogueCurve { k1: 8.4e3, k2: 9.4e3, k3: 1.2e4, t1: 3.9, t2: 12.0 }).unwrap();
+        prop_assert!((c.torque(c.torsion(t)) - t).abs() <= 1e-10 * (1.0 + t.abs()));
+    }
+
+    /// The fixed-point configuration agrees with f64 within its error
+    /// budget, derived term by term in stored units (LSB = 2⁻¹⁶):
+    /// quantizing τ costs ½ LSB, moving u = c_f τ by ½ c_f LSB; the
+    /// product with the 31-bit c_f rounds (½ LSB, plus |u|·2⁻³⁰); atan
+    /// errs by ≤ 2 LSB (its proven bound) and shrinks the first two by
+    /// 1/(1+u²); the scale 1/(c_f K_f0) multiplies all of it, and the
+    /// last product rounds (½ LSB, plus 2⁻³⁰ relative).
+    #[test]
+    fn fixed_config_tracks_f64(t in -150.0f64..150.0) {
+        let p = shd17();
+        let cfg = FlexsplineConfig::<I16F16>::new(&p);
+        let got = cfg.torsion(I16F16::from_f64(t)).to_f64(); // mrad
+        let exact = p.torsion(t) * 1e3;
+        let u = p.c_f * t;
+        let scale = 1e3 / (p.c_f * p.k_f0);
+        let bound_lsb = ((0.5 * p.c_f + 0.5 + u.abs() * 65536.0 * 2f64.powi(-30)) / (1.0 + u * u) + 2.0) * scale
+            + 0.5
+            + exact.abs() * 65536.0 * 2f64.powi(-30);
+        prop_assert!((got - exact).abs() <= bound_lsb / 65536.0, "{got} vs {exact}");
+    }
+}

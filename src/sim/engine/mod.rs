@@ -1,0 +1,34 @@
+//! Mechanisms on a rigid-body engine (feature `engine`): the library's
+//! kinematics and force mappings checked against bodies and joints that
+//! know nothing of its equations.
+//!
+//! The engine is [rapier3d](https://rapier.rs) in `f64` (crate
+//! `rapier3d-f64` 0.27, the last release on the library's nalgebra 0.33).
+//! Every mechanism here is built from its parts — bodies with mass, and
+//! revolute joints at the places the thesis draws them — and is driven and
+//! loaded only through joint motors and external forces. Its poses come from
+//! the engine's constraint solver; its holding torques from the deflection
+//! of stiff motor springs at rest.
+//!
+//! * [`wrist`] — the DAUJ wrist (thesis ch. 5): two motors, the oblique
+//!   joint between the semi-spheres, the output link and the outer
+//!   universal joint, as a closed loop.
+//! * [`ft_sensor`] — the wrist's F/T sensor as measured: the wrench the
+//!   tool puts through the sensor, read from the engine, and the strain
+//!   gauges that turn it into voltages through a sensitivity matrix off the
+//!   certificate by a stated calibration error, with offsets and noise.
+//! * [`universal_joint`] — the inner universal joint of eq. (5.1)–(5.3):
+//!   two shafts bent by `β` and the cross between them.
+//!
+//! Gravity is off in all of them: the checks are kinematic, static, or (the
+//! sensor in motion) about the inertia of the moving parts alone.
+
+pub mod ft_sensor;
+pub mod universal_joint;
+mod world;
+pub mod wrist;
+
+pub use ft_sensor::{GaugeErrors, SensedWrist, StrainGaugeSensor};
+pub use universal_joint::UniversalJointBench;
+pub use world::EngineSettings;
+pub use wrist::{DaujMechanism, MechanismAngles};
