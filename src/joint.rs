@@ -199,6 +199,7 @@ use crate::estimation::torque::{
 use crate::harmonic_drive::identification::CatalogueData;
 use crate::harmonic_drive::kinematic_error::KinematicErrorModel;
 use crate::scalar::units::{dequantize, quantize_keep_non_finite};
+use crate::scalar::target::mul_wide;
 use crate::scalar::{CountCoef, IntFactor, Scalar};
 use core::f64::consts::TAU;
 
@@ -478,6 +479,13 @@ pub struct JointConfig<S> {
     /// The largest `|q_m − 2πN·turns|` in counts that the backend's angle
     /// carries ([`JointConfig::frame_limit_counts`]).
     frame_limit: u64,
+    /// `2·frame_limit`: the frame test is one unsigned compare,
+    /// `in_frame + frame_limit ≤ frame_span`.
+    frame_span: u64,
+    /// One output revolution at the motor, `2πN` rad, in stored angle
+    /// units (`M·N` counts through `angle_per_count`): the step of the hold
+    /// point when the target's turns change by one.
+    output_rev: S,
 }
 
 /// The joint's state: the estimator's, the mode manager's, and the motor
@@ -498,6 +506,8 @@ pub struct JointState<S: Scalar> {
     /// positions (its hold point) are in: the last usable target's
     /// [`JointTarget::turns`].
     frame_turns: i32,
+    /// That frame's origin in counts, `frame_turns·M·N`.
+    frame_origin: i64,
 }
 
 impl<S: Scalar> JointState<S> {
@@ -755,20 +765,25 @@ impl<S: Scalar> JointConfig<S> {
         let u = S::UNITS;
         let s = &p.settings;
         let m = s.estimator.motor_counts_per_rev();
+        let motor_counts_per_output_rev = m as i64 * p.ratio() as i64;
+        let angle_per_count = CountCoef::new(p.motor_rad_per_count() * u.angle);
+        let frame_limit = Self::frame_limit_counts(p.motor_rad_per_count());
         JointConfig {
             estimator: TorqueEstimatorConfig::new(&s.estimator),
             mode: ModeConfig::new(&s.mode),
             ratio: IntFactor::new(p.ratio()),
-            angle_per_count: CountCoef::new(p.motor_rad_per_count() * u.angle),
+            angle_per_count,
             speed_per_count: CountCoef::new(p.speed_resolution() * u.speed),
             speed_window: s.speed_window,
             link_counts: s.estimator.link_counts_per_rev(),
-            motor_counts_per_output_rev: m as i64 * p.ratio() as i64,
+            motor_counts_per_output_rev,
             // Validated: at most 2³⁰ + 1.
             max_counts_per_tick: (s.max_motor_speed * p.sample_period() / p.motor_rad_per_count())
                 as u32
                 + 1,
-            frame_limit: Self::frame_limit_counts(p.motor_rad_per_count()),
+            frame_limit,
+            frame_span: 2 * frame_limit,
+            output_rev: S::from_counts_prepared(motor_counts_per_output_rev, &angle_per_count),
         }
     }
 
@@ -781,9 +796,8 @@ impl<S: Scalar> JointConfig<S> {
     /// backend still resolves to half a count, `1/(2ε)` (`f32`: 2²²
     /// counts, 13 176 rad at `M = 2000`; `f64`: 2⁵¹).
     pub fn frame_limit_counts(rad_per_count: f64) -> u64 {
-        let res = S::RESOLUTION.to_f64();
-        if res < 1e-6 {
-            (0.5 / res) as u64
+        if S::FLOAT {
+            (0.5 / S::RESOLUTION.to_f64()) as u64
         } else {
             (S::MAX.to_f64() / S::UNITS.angle / 2.0 / rad_per_count) as u64
         }
@@ -832,6 +846,7 @@ impl<S: Scalar> JointConfig<S> {
             history: [own; MAX_SPEED_WINDOW as usize],
             head: 0,
             frame_turns: 0,
+            frame_origin: 0,
         }
     }
 
@@ -945,22 +960,31 @@ impl<S: Scalar> JointConfig<S> {
     ) -> JointOutput<S> {
         let (estimate, motor_count, moved, counter_jump) = self.measure_counts(st, readings);
         // The motor position in the target's turn frame, formed in counts:
-        // `q_m − 2πN·turns` (exact in 64 bits: |turns| ≤ 2³¹ and
-        // M·N ≤ 2³² are validated).
+        // `q_m − 2πN·turns`. The frame's origin `turns·M·N` is kept in the
+        // state; only a change of the target's turns recomputes it (exact
+        // modulo 2⁶⁴: |turns| ≤ 2³¹ and M·N ≤ 2³² are validated).
         let turns = target.turns;
-        let in_frame =
-            motor_count.wrapping_sub((turns as i64).wrapping_mul(self.motor_counts_per_output_rev));
-        let frame_ok = in_frame.unsigned_abs() <= self.frame_limit;
-        if frame_ok && turns != st.frame_turns {
-            // The mode manager's stored hold point moves to the new frame.
-            let by = (turns as i64)
-                .wrapping_sub(st.frame_turns as i64)
-                .wrapping_mul(self.motor_counts_per_output_rev);
-            self.mode.shift_frame(
-                &mut st.mode,
-                S::from_counts_prepared(by, &self.angle_per_count),
-            );
+        let new_frame = turns != st.frame_turns;
+        let origin = if new_frame {
+            let whole = mul_wide(turns.unsigned_abs(), self.motor_counts_per_output_rev);
+            if turns < 0 {
+                whole.wrapping_neg()
+            } else {
+                whole
+            }
+        } else {
+            st.frame_origin
+        };
+        let in_frame = motor_count.wrapping_sub(origin);
+        // |in_frame| ≤ frame_limit as one unsigned compare.
+        let frame_ok = in_frame.wrapping_add(self.frame_limit as i64) as u64 <= self.frame_span;
+        if new_frame && frame_ok {
+            // The mode manager's stored hold point moves to the new frame by
+            // whole output revolutions (saturating on fixed point).
+            let by = S::from_i32(turns.saturating_sub(st.frame_turns)).mul(self.output_rev);
+            self.mode.shift_frame(&mut st.mode, by);
             st.frame_turns = turns;
+            st.frame_origin = origin;
         }
         let joint_torque = estimate.torque.neg();
         let motor_position = S::from_counts_prepared(in_frame, &self.angle_per_count);

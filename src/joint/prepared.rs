@@ -34,6 +34,8 @@ impl JointConfig<I16F16> {
             motor_counts_per_output_rev: r.i64(),
             max_counts_per_tick: r.u32(),
             frame_limit: r.u64(),
+            frame_span: r.u64(),
+            output_rev: r.fixed(),
         }
     }
 
@@ -49,6 +51,8 @@ impl JointConfig<I16F16> {
         s.i64(self.motor_counts_per_output_rev);
         s.u32(self.max_counts_per_tick);
         s.u64(self.frame_limit);
+        s.u64(self.frame_span);
+        s.fixed(self.output_rev);
     }
 }
 
@@ -164,9 +168,10 @@ pub(crate) const TABLE_4_1_I16F16_WORDS: [u32; WORDS] = [
     0x00000000, 0x00000001, 0x6487ed51, 0x00000000, 0x40000000, 0x0000001e, 0x00000000, 0xffffffff,
     0x54442d18, 0x40e921fb, 0x47490fdb, 0x6487ed51, 0x00000000, 0x0000000f, 0x6487ed51, 0x00000000,
     0x00000001, 0x6487ed51, 0x00000000, 0x00004000, 0x0000000e, 0x0000c90f, 0xffff36f0, 0x7fffffff,
-    0x00000001, 0x00020000, 0x00030d40, 0x00000000, 0x000004fa, 0x004f93d5, 0x00000000,
+    0x00000001, 0x00020000, 0x00030d40, 0x00000000, 0x000004fa, 0x004f93d5, 0x00000000, 0x009f27aa,
+    0x00000000, 0x0274518b,
 ];
-const WORDS: usize = 791;
+const WORDS: usize = 794;
 
 #[cfg(test)]
 mod tests {
