@@ -486,6 +486,10 @@ pub struct JointConfig<S> {
     /// units (`M·N` counts through `angle_per_count`): the step of the hold
     /// point when the target's turns change by one.
     output_rev: S,
+    /// The most whole output revolutions whose angle the backend holds,
+    /// `⌊MAX/output_rev⌋` (at most `i32::MAX`): a larger turn change moves
+    /// the hold point by this many.
+    max_shift_turns: i32,
 }
 
 /// The joint's state: the estimator's, the mode manager's, and the motor
@@ -768,6 +772,7 @@ impl<S: Scalar> JointConfig<S> {
         let motor_counts_per_output_rev = m as i64 * p.ratio() as i64;
         let angle_per_count = CountCoef::new(p.motor_rad_per_count() * u.angle);
         let frame_limit = Self::frame_limit_counts(p.motor_rad_per_count());
+        let output_rev = S::from_counts_prepared(motor_counts_per_output_rev, &angle_per_count);
         JointConfig {
             estimator: TorqueEstimatorConfig::new(&s.estimator),
             mode: ModeConfig::new(&s.mode),
@@ -783,7 +788,9 @@ impl<S: Scalar> JointConfig<S> {
                 + 1,
             frame_limit,
             frame_span: 2 * frame_limit,
-            output_rev: S::from_counts_prepared(motor_counts_per_output_rev, &angle_per_count),
+            output_rev,
+            max_shift_turns: (S::MAX.to_f64() / output_rev.to_f64().abs())
+                .min(i32::MAX as f64) as i32,
         }
     }
 
@@ -792,14 +799,17 @@ impl<S: Scalar> JointConfig<S> {
     /// for a motor of `rad_per_count` (`2π/M`) rad per count: on fixed
     /// point the counts whose angle is within half the backend's range
     /// (`I16F16`: 16 384 rad, so that the error to a target within `±π`
-    /// at the link cannot saturate); on floats the counts whose angle the
+    /// at the link cannot saturate), and at most `2³¹ − 1` counts (the
+    /// fixed-point count product takes 32-bit counts; the cap binds above
+    /// about 823 000 counts per motor revolution on `I16F16`); on floats
+    /// the counts whose angle the
     /// backend still resolves to half a count, `1/(2ε)` (`f32`: 2²²
     /// counts, 13 176 rad at `M = 2000`; `f64`: 2⁵¹).
     pub fn frame_limit_counts(rad_per_count: f64) -> u64 {
         if S::FLOAT {
             (0.5 / S::RESOLUTION.to_f64()) as u64
         } else {
-            (S::MAX.to_f64() / S::UNITS.angle / 2.0 / rad_per_count) as u64
+            ((S::MAX.to_f64() / S::UNITS.angle / 2.0 / rad_per_count) as u64).min(i32::MAX as u64)
         }
     }
 
@@ -980,8 +990,14 @@ impl<S: Scalar> JointConfig<S> {
         let frame_ok = in_frame.wrapping_add(self.frame_limit as i64) as u64 <= self.frame_span;
         if new_frame && frame_ok {
             // The mode manager's stored hold point moves to the new frame by
-            // whole output revolutions (saturating on fixed point).
-            let by = S::from_i32(turns.saturating_sub(st.frame_turns)).mul(self.output_rev);
+            // whole output revolutions, at most the turns the backend's
+            // angle holds (a bound that only fixed point reaches).
+            let mut whole = turns.saturating_sub(st.frame_turns);
+            if !S::FLOAT {
+                // (`max`/`min`, not `clamp`: no bounds assertion.)
+                whole = whole.max(-self.max_shift_turns).min(self.max_shift_turns);
+            }
+            let by = self.output_rev.mul_whole(whole);
             self.mode.shift_frame(&mut st.mode, by);
             st.frame_turns = turns;
             st.frame_origin = origin;
@@ -1001,8 +1017,9 @@ impl<S: Scalar> JointConfig<S> {
         };
         // An unusable sample (a rejected counter jump, a target too far
         // from the motor for the backend, an impossible torsion or link
-        // count): the command is the fallback and the state holds.
-        if counter_jump || !frame_ok || estimate.invalid_input || estimate.link_count_invalid {
+        // count): the command is the fallback and the state holds. One
+        // branch on the four flags.
+        if counter_jump | !frame_ok | estimate.invalid_input | estimate.link_count_invalid {
             let control = self.mode.reject(&mut st.mode, &x);
             return JointOutput {
                 motor_torque: control.torque,
@@ -1016,7 +1033,8 @@ impl<S: Scalar> JointConfig<S> {
             };
         }
         // The measured fields are finite (count products, the estimate):
-        // only the other five are tested.
+        // only the other five are tested. The estimate's flags are clear
+        // here.
         let control = self.mode.update_measured(&mut st.mode, &x);
         JointOutput {
             motor_torque: control.torque,
@@ -1024,9 +1042,7 @@ impl<S: Scalar> JointConfig<S> {
             joint_torque,
             motor_position,
             motor_velocity,
-            invalid_input: estimate.invalid_input
-                || estimate.link_count_invalid
-                || control.invalid_input,
+            invalid_input: control.invalid_input,
             estimate,
             control,
         }

@@ -266,3 +266,53 @@ fn from_si_splits_whole_turns() {
     let t = JointTarget::<f32>::from_si(f64::NAN, 0.0, 0.0);
     assert!(t.turns == 0 && t.position.is_nan());
 }
+
+/// On `I16F16` the frame is also capped at `2³¹ − 1` counts, where the
+/// fixed-point count product ends: with a high-resolution motor encoder
+/// (2²¹ counts per revolution; with a 4096-count link encoder, within
+/// the estimator's `L·M·N` rule) half the angle range, 16 384 rad, would
+/// be 5.5·10⁹ counts. A motor 2³¹ + 10⁶ counts (6 437 rad) from a target's
+/// whole turns is flagged, not read as the angle of 2³¹ counts; 10⁶
+/// counts inside the cap it is measured to the count.
+#[test]
+fn i16f16_frame_is_capped_at_32_bit_counts() {
+    let p = params();
+    let s = p.settings();
+    let estimator = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+        motor_counts_per_rev: 1 << 21,
+        link_counts_per_rev: 4096,
+        ..s.estimator.settings()
+    })
+    .unwrap();
+    let p = JointParams::try_new(JointSettings { estimator, ..s }).unwrap();
+    let cfg = JointConfig::<I16F16>::new(&p);
+    let m = (1u64 << 21) as f64;
+    let n = p.ratio();
+    assert_eq!(
+        JointConfig::<I16F16>::frame_limit_counts(TAU / m),
+        i32::MAX as u64
+    );
+    for (counts, flagged) in [((1i64 << 31) - 1_000_000, false), ((1 << 31) + 1_000_000, true)] {
+        let link = counts as f64 * TAU / m / n;
+        let link_count = ((link / TAU).rem_euclid(1.0) * 4096.0).round() as u32 % 4096;
+        let mut st = cfg.state_at(counts, counts as u32);
+        let flat = JointTarget {
+            turns: 0,
+            position: I16F16::from_num(link),
+            ..JointTarget::default()
+        };
+        let out = cfg.update(
+            &mut st,
+            &JointReadings::counts(link_count, counts as u32),
+            &flat,
+        );
+        assert_eq!(out.invalid_input, flagged, "{counts}: {out:?}");
+        if !flagged {
+            let want = counts as f64 * TAU / m;
+            assert!(
+                (out.motor_position_si() - want).abs() < 1e-3,
+                "{counts}: {out:?} vs {want}"
+            );
+        }
+    }
+}

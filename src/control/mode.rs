@@ -1007,6 +1007,12 @@ impl<S: Scalar> ModeConfig<S> {
     pub(crate) fn shift_frame(&self, st: &mut ModeState<S>, by: S) {
         st.hold = st.hold.sub(by);
     }
+
+    /// The stored hold point (the joint's frame tests).
+    #[cfg(test)]
+    pub(crate) fn hold_point(&self, st: &ModeState<S>) -> S {
+        st.hold
+    }
 }
 
 #[cfg(any(kani, test))]

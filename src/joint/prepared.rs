@@ -36,6 +36,7 @@ impl JointConfig<I16F16> {
             frame_limit: r.u64(),
             frame_span: r.u64(),
             output_rev: r.fixed(),
+            max_shift_turns: r.i32(),
         }
     }
 
@@ -53,6 +54,7 @@ impl JointConfig<I16F16> {
         s.u64(self.frame_limit);
         s.u64(self.frame_span);
         s.fixed(self.output_rev);
+        s.i32(self.max_shift_turns);
     }
 }
 
@@ -169,9 +171,9 @@ pub(crate) const TABLE_4_1_I16F16_WORDS: [u32; WORDS] = [
     0x54442d18, 0x40e921fb, 0x47490fdb, 0x6487ed51, 0x00000000, 0x0000000f, 0x6487ed51, 0x00000000,
     0x00000001, 0x6487ed51, 0x00000000, 0x00004000, 0x0000000e, 0x0000c90f, 0xffff36f0, 0x7fffffff,
     0x00000001, 0x00020000, 0x00030d40, 0x00000000, 0x000004fa, 0x004f93d5, 0x00000000, 0x009f27aa,
-    0x00000000, 0x0274518b,
+    0x00000000, 0x0274518b, 0x00000034,
 ];
-const WORDS: usize = 794;
+const WORDS: usize = 795;
 
 #[cfg(test)]
 mod tests {

@@ -755,3 +755,50 @@ fn si_readers_are_the_stored_value_in_si_on_every_backend() {
         assert!((b[0] - a[0]).abs() < 1e-7, "{} vs {}", b[0], a[0]);
     }
 }
+
+/// A change of the target's whole turns moves the stored hold point into
+/// the new frame by whole output revolutions `2πN` (expected values from
+/// `f64` here), and on `I16F16` by at most the turns its angle holds
+/// (`⌊32 768/(200π)⌋ = 52` at `N = 100`). A target outside the frame
+/// moves nothing.
+#[test]
+fn turn_changes_move_the_hold_point_by_whole_revolutions() {
+    fn run<S: Scalar>(turns: &[(i32, i64, bool)], tol: f64) -> f64 {
+        let p = firmware_params();
+        let cfg = JointConfig::<S>::new(&p);
+        let mn = cfg.motor_counts_per_output_rev;
+        let mut st = cfg.state_at(0, 0);
+        let mut want = 0.0;
+        let mut frame = 0i32;
+        for &(t, rev_from_origin, flagged) in turns {
+            // The motor `rev_from_origin` output revolutions from the
+            // target's whole turns, the link where zero torsion puts it.
+            let counts = (t as i64 + rev_from_origin) * mn;
+            st.motor_count = counts;
+            st.last_counter = counts as u32;
+            let target = JointTarget::<S> {
+                turns: t,
+                ..JointTarget::default()
+            };
+            let out = cfg.update(&mut st, &JointReadings::counts(0, counts as u32), &target);
+            assert_eq!(out.invalid_input, flagged, "{t}: {out:?}");
+            if !flagged {
+                let whole = (t - frame).clamp(-52, 52) as f64;
+                let whole = if S::FLOAT { (t - frame) as f64 } else { whole };
+                want -= whole * TAU * 100.0;
+                frame = t;
+            }
+            let got = cfg.mode.hold_point(&st.mode).to_f64();
+            assert!((got - want).abs() <= tol * want.abs().max(1.0), "{t}: {got} vs {want}");
+        }
+        want
+    }
+    let f64_turns = [(1, 0, false), (3, 0, false), (-2, 0, false), (7, 1 << 40, true)];
+    let two_revs = 2.0 * TAU * 100.0;
+    assert!((run::<f64>(&f64_turns, 1e-12) - two_revs).abs() < 1e-9);
+    assert!((run::<f32>(&f64_turns[..3], 1e-6) - two_revs).abs() < 1e-9);
+    // I16F16: 60 turns at once move the hold point by 52, one back by 1.
+    let i_turns = [(60, 0, false), (59, 0, false), (62, 100, true)];
+    let want = run::<I16F16>(&i_turns, 1e-6);
+    assert!((want + 51.0 * TAU * 100.0).abs() < 1e-9);
+}
