@@ -198,8 +198,8 @@ use crate::estimation::torque::{
 };
 use crate::harmonic_drive::identification::CatalogueData;
 use crate::harmonic_drive::kinematic_error::KinematicErrorModel;
-use crate::scalar::units::{dequantize, quantize_keep_non_finite};
 use crate::scalar::target::mul_wide;
+use crate::scalar::units::{dequantize, quantize_keep_non_finite};
 use crate::scalar::{CountCoef, IntFactor, Scalar};
 use core::f64::consts::TAU;
 
@@ -789,8 +789,8 @@ impl<S: Scalar> JointConfig<S> {
             frame_limit,
             frame_span: 2 * frame_limit,
             output_rev,
-            max_shift_turns: (S::MAX.to_f64() / output_rev.to_f64().abs())
-                .min(i32::MAX as f64) as i32,
+            max_shift_turns: (S::MAX.to_f64() / output_rev.to_f64().abs()).min(i32::MAX as f64)
+                as i32,
         }
     }
 

@@ -292,7 +292,10 @@ fn i16f16_frame_is_capped_at_32_bit_counts() {
         JointConfig::<I16F16>::frame_limit_counts(TAU / m),
         i32::MAX as u64
     );
-    for (counts, flagged) in [((1i64 << 31) - 1_000_000, false), ((1 << 31) + 1_000_000, true)] {
+    for (counts, flagged) in [
+        ((1i64 << 31) - 1_000_000, false),
+        ((1 << 31) + 1_000_000, true),
+    ] {
         let link = counts as f64 * TAU / m / n;
         let link_count = ((link / TAU).rem_euclid(1.0) * 4096.0).round() as u32 % 4096;
         let mut st = cfg.state_at(counts, counts as u32);

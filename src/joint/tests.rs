@@ -789,11 +789,19 @@ fn turn_changes_move_the_hold_point_by_whole_revolutions() {
                 frame = t;
             }
             let got = cfg.mode.hold_point(&st.mode).to_f64();
-            assert!((got - want).abs() <= tol * want.abs().max(1.0), "{t}: {got} vs {want}");
+            assert!(
+                (got - want).abs() <= tol * want.abs().max(1.0),
+                "{t}: {got} vs {want}"
+            );
         }
         want
     }
-    let f64_turns = [(1, 0, false), (3, 0, false), (-2, 0, false), (7, 1 << 40, true)];
+    let f64_turns = [
+        (1, 0, false),
+        (3, 0, false),
+        (-2, 0, false),
+        (7, 1 << 40, true),
+    ];
     let two_revs = 2.0 * TAU * 100.0;
     assert!((run::<f64>(&f64_turns, 1e-12) - two_revs).abs() < 1e-9);
     assert!((run::<f32>(&f64_turns[..3], 1e-6) - two_revs).abs() < 1e-9);
