@@ -912,7 +912,9 @@ impl<S: Scalar> JointConfig<S> {
         // it is left out, and the next tick is measured from this reading.
         let raw = counter.wrapping_sub(st.last_counter) as i32;
         st.last_counter = counter;
-        let counter_jump = raw.unsigned_abs() > self.max_counts_per_tick;
+        // |raw| > max as one unsigned compare (2·max ≤ 2³¹ + 2, validated).
+        let max = self.max_counts_per_tick;
+        let counter_jump = (raw as u32).wrapping_add(max) > max << 1;
         let delta = if counter_jump { 0 } else { raw };
         let motor_count = st.motor_count.wrapping_add(delta as i64);
         st.motor_count = motor_count;
@@ -1003,7 +1005,15 @@ impl<S: Scalar> JointConfig<S> {
             st.frame_origin = origin;
         }
         let joint_torque = estimate.torque.neg();
-        let motor_position = S::from_counts_prepared(in_frame, &self.angle_per_count);
+        // On `f32` every frame is within 2³¹ counts: one 32-bit conversion,
+        // the count clamped to it (only a flagged sample outside its frame
+        // is farther).
+        let motor_position = if S::FLOAT && Self::frame_fits_i32() {
+            let c = in_frame.max(i32::MIN as i64).min(i32::MAX as i64) as i32;
+            S::from_counts_i32(c, &self.angle_per_count)
+        } else {
+            S::from_counts_prepared(in_frame, &self.angle_per_count)
+        };
         let motor_velocity = S::from_counts_i32(moved, &self.speed_per_count);
         let x = ControlInput {
             desired_position: target.position.mul_int(&self.ratio),
@@ -1017,9 +1027,8 @@ impl<S: Scalar> JointConfig<S> {
         };
         // An unusable sample (a rejected counter jump, a target too far
         // from the motor for the backend, an impossible torsion or link
-        // count): the command is the fallback and the state holds. One
-        // branch on the four flags.
-        if counter_jump | !frame_ok | estimate.invalid_input | estimate.link_count_invalid {
+        // count): the command is the fallback and the state holds.
+        if counter_jump || !frame_ok || estimate.invalid_input || estimate.link_count_invalid {
             let control = self.mode.reject(&mut st.mode, &x);
             return JointOutput {
                 motor_torque: control.torque,
@@ -1046,6 +1055,18 @@ impl<S: Scalar> JointConfig<S> {
             estimate,
             control,
         }
+    }
+}
+
+impl<S: Scalar> JointConfig<S> {
+    /// Whether every frame limit of backend `S`
+    /// ([`frame_limit_counts`](Self::frame_limit_counts)) is below 2³¹
+    /// counts: on fixed point always (the limit is capped there), on
+    /// floats when `1/(2ε)` is (`f32`, not `f64`). A constant of the
+    /// backend.
+    #[inline(always)]
+    fn frame_fits_i32() -> bool {
+        !S::FLOAT || 0.5 / S::RESOLUTION.to_f64() <= i32::MAX as f64
     }
 }
 
