@@ -64,18 +64,24 @@
 //! `q_m − 2πN·turns`, rad at the motor; the absolute position is
 //! [`JointState::motor_position_counts`] (64-bit counts,
 //! `q_m = counts·2π/M`). When the target's `turns` change, the mode
-//! manager's stored hold point moves with the frame (the rejoin offset is a
-//! difference and needs no move).
+//! manager's stored hold point moves with the frame by the whole output
+//! revolutions between the two, `2πN` each (on fixed point at most the
+//! revolutions its angle holds, `⌊32 768/(2πN)⌋` = 52 at `N = 100` on
+//! `I16F16`, beyond which the hold point is out of range anyway); the
+//! rejoin offset is a difference and needs no move.
 //!
 //! The frame has a range: `|q_m − 2πN·turns|` at most
 //! [`JointConfig::frame_limit_counts`] counts — half the stored angle
-//! range on fixed point (`I16F16`: 16 384 rad at the motor, 26 output
-//! revolutions at `N = 100`), and on floats the counts whose angle still
+//! range on fixed point, at most `2³¹ − 1` counts (`I16F16`: 16 384 rad at
+//! the motor, 26 output revolutions at `N = 100`), and on floats the counts whose angle still
 //! resolves half a count (`f32`: 2²² counts, 13 176 rad at `M = 2000`,
 //! 21 output revolutions; `f64`: 2⁵¹ counts). A target whose whole turns
 //! leave the motor farther than that (a target given without its turns,
 //! as `turns: 0` and a large `position`) is **flagged** `invalid_input`
-//! and not used (below), never read as a saturated or rounded error.
+//! and not used (below), never read as a saturated or rounded error
+//! (its reported `motor_position` is still in the target's frame; on
+//! `f32` a count beyond `±(2³¹ − 1)` from the frame's origin is reported
+//! at that bound).
 //! `JointTarget::position` itself is a stored angle: keep it within a
 //! revolution (on `I16F16`, `N·position` saturates beyond `±32 768/N` rad).
 //!
