@@ -5,7 +5,7 @@
 #![doc = "[equations]: crate::docs::equations\n[errata]: crate::docs::errata\n[guide]: crate::docs::guide\n"]
 #![doc = "[verification]: crate::docs::verification\n[kani]: crate::docs::verification#kani\n[kernel-bounds]: crate::docs::verification#kernel-bounds\n"]
 #![doc = "[performance]: crate::docs::performance\n[reproduction]: crate::docs::reproduction\n[figures]: crate::docs::reproduction#figures-thesis-against-reproduction\n"]
-#![doc = "[Scalar]: crate::scalar::Scalar\n[api]: crate\n[design]: crate::control::design\n[claims]: crate::sim::claims\n[mutants]: crate::docs::mutants\n"]
+#![doc = "[Scalar]: crate::scalar::Scalar\n[api]: crate\n[design]: crate::control::design\n[claims]: crate::sim::claims\n[mutants]: crate::docs::mutants\n[engine]: crate::sim::engine\n"]
 #![doc = include_str!("../README.md")]
 #![cfg_attr(not(any(feature = "std", test, kani)), no_std)]
 // docs.rs (nightly, `--cfg docsrs`): mark feature-gated items with their feature.

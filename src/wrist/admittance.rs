@@ -613,6 +613,234 @@ mod tests {
         assert!(loop_decay(kc, kt, t, 0, 2000) < 1e-6);
     }
 
+    /// Settings on every validated boundary, chosen so that each bound is
+    /// an exact `f64`: `T = 0.5` s and `K_t = 4` N·m/rad with `d = 0` give
+    /// `K_c,max = 2 sin(π/2)/(0.5·4) = 1` rad/(s·N·m).
+    fn edge() -> AdmittanceSettings {
+        AdmittanceSettings {
+            gain: [0.5, 0.5],
+            stiffness: 4.0,
+            sample_period: 0.5,
+            lag_samples: 0,
+            limits: [1.0, 1.0],
+            max_rate: 1.0,
+            deadband: 0.0,
+            desired_torque: [0.0; 2],
+        }
+    }
+
+    /// The next `f64` above and below `x > 0`.
+    fn up(x: f64) -> f64 {
+        f64::from_bits(x.to_bits() + 1)
+    }
+    fn down(x: f64) -> f64 {
+        f64::from_bits(x.to_bits() - 1)
+    }
+
+    /// Every validated range: the largest and smallest accepted values are
+    /// accepted and reach their getters, the next ones are rejected with
+    /// the field's name, the value and the range. The closed bounds (`T ∈
+    /// [1e-6, 1]`, `d ≤ 16`, `limits ≤ π/2`, `max_rate ≤ 1000`,
+    /// `|desired_torque| ≤ 1000`, `deadband ≤ 1000`) accept the bound
+    /// itself; the gain's open interval `(0, K_c,max)` rejects both ends.
+    #[test]
+    fn every_range_is_accepted_to_its_bound_and_rejected_past_it() {
+        let ok = |s: AdmittanceSettings| AdmittanceParams::try_new(s).unwrap();
+        let range = |name, value, min, max| {
+            Err(ParamError::OutOfRange {
+                name,
+                value,
+                min,
+                max,
+            })
+        };
+        let s = edge();
+        // Getters: the settings as given.
+        let p = ok(AdmittanceSettings {
+            gain: [0.125, 0.2],
+            limits: [0.5, 1.25],
+            lag_samples: 3,
+            ..s
+        });
+        assert_eq!(
+            (
+                p.gain(),
+                p.stiffness(),
+                p.sample_period(),
+                p.lag_samples(),
+                p.limits()
+            ),
+            ([0.125, 0.2], 4.0, 0.5, 3, [0.5, 1.25])
+        );
+        // The gain: (0, 1) here, either axis.
+        let g = down(1.0);
+        for i in 0..2 {
+            let name = ["gain[0]", "gain[1]"][i];
+            let with = |v: f64| {
+                let mut gain = [0.5; 2];
+                gain[i] = v;
+                AdmittanceParams::try_new(AdmittanceSettings { gain, ..s })
+            };
+            assert_eq!(with(g).unwrap().gain()[i], g);
+            assert_eq!(with(1e-300).unwrap().gain()[i], 1e-300);
+            assert_eq!(with(1.0), range(name, 1.0, 0.0, 1.0));
+            assert_eq!(with(0.0), range(name, 0.0, 0.0, 1.0));
+            assert_eq!(with(-0.5), range(name, -0.5, 0.0, 1.0));
+        }
+        // The sample period, with gains well inside their range.
+        let small = AdmittanceSettings {
+            gain: [1e-9; 2],
+            ..s
+        };
+        for t in [1e-6, 1.0] {
+            assert_eq!(
+                ok(AdmittanceSettings {
+                    sample_period: t,
+                    ..small
+                })
+                .sample_period(),
+                t
+            );
+        }
+        for t in [down(1e-6), up(1.0)] {
+            assert_eq!(
+                AdmittanceParams::try_new(AdmittanceSettings {
+                    sample_period: t,
+                    ..small
+                }),
+                range("sample_period", t, 1e-6, 1.0)
+            );
+        }
+        // The lag: 16 accepted (a_max(16) = 2 sin(π/66) ≈ 0.095 > 1e-9·2).
+        assert_eq!(
+            ok(AdmittanceSettings {
+                lag_samples: 16,
+                ..small
+            })
+            .lag_samples(),
+            16
+        );
+        assert_eq!(
+            AdmittanceParams::try_new(AdmittanceSettings {
+                lag_samples: 17,
+                ..small
+            }),
+            range("lag_samples", 17.0, 0.0, 16.0)
+        );
+        // The workspace half-widths: up to π/2, either axis.
+        let h = core::f64::consts::FRAC_PI_2;
+        for i in 0..2 {
+            let name = ["limits[0]", "limits[1]"][i];
+            let with = |v: f64| {
+                let mut limits = [1.0; 2];
+                limits[i] = v;
+                AdmittanceParams::try_new(AdmittanceSettings { limits, ..s })
+            };
+            assert_eq!(with(h).unwrap().limits()[i], h);
+            assert_eq!(with(up(h)), range(name, up(h), 0.0, h));
+        }
+        // The rate, the deadband and the desired torque: up to 1000.
+        assert!(AdmittanceParams::try_new(AdmittanceSettings { max_rate: 1e3, ..s }).is_ok());
+        assert_eq!(
+            AdmittanceParams::try_new(AdmittanceSettings {
+                max_rate: up(1e3),
+                ..s
+            }),
+            range("max_rate", up(1e3), 0.0, 1e3)
+        );
+        assert!(AdmittanceParams::try_new(AdmittanceSettings { deadband: 1e3, ..s }).is_ok());
+        assert_eq!(
+            AdmittanceParams::try_new(AdmittanceSettings {
+                deadband: up(1e3),
+                ..s
+            }),
+            range("deadband", up(1e3), 0.0, 1e3)
+        );
+        for i in 0..2 {
+            let name = ["desired_torque[0]", "desired_torque[1]"][i];
+            for sign in [1.0, -1.0] {
+                let mut d = [0.0; 2];
+                d[i] = sign * 1e3;
+                assert!(AdmittanceParams::try_new(AdmittanceSettings {
+                    desired_torque: d,
+                    ..s
+                })
+                .is_ok());
+                d[i] = sign * up(1e3);
+                assert_eq!(
+                    AdmittanceParams::try_new(AdmittanceSettings {
+                        desired_torque: d,
+                        ..s
+                    }),
+                    range(name, sign * up(1e3), -1e3, 1e3)
+                );
+            }
+        }
+    }
+
+    /// `a_max(d) = 2 sin(π/(2(2d+1)))` and `K_c,max = a_max/(T K_t)`
+    /// against hand values: `a_max(0) = 2`, `a_max(1) = 2 sin(π/6) = 1`,
+    /// `a_max(4) = 2 sin(π/18) = 0.347296355333861`; `T = 0.25`,
+    /// `K_t = 8` divide by 2.
+    #[test]
+    fn stability_limit_and_max_gain_hand_values() {
+        for (d, a) in [(0u8, 2.0), (1, 1.0), (4, 0.347_296_355_333_860_7)] {
+            assert!((stability_limit(d) - a).abs() < 1e-15, "{d}");
+            assert!(
+                (max_admittance_gain(8.0, 0.25, d) - a / 2.0).abs() < 1e-15,
+                "{d}"
+            );
+        }
+        // Not symmetric in its arguments' roles: T K_t = 0.5·3 = 1.5.
+        assert!((max_admittance_gain(3.0, 0.5, 0) - 2.0 / 1.5).abs() < 1e-15);
+    }
+
+    /// The rate limit and the workspace are strict: a step of exactly
+    /// `max_rate·T` and a reference landing exactly on a limit are not
+    /// saturated; one LSB of torque past them is. With [`edge`] and
+    /// `K_c = 0.5`: `K_c T = 0.25` rad/(N·m), `max_rate·T = 0.5` rad, so
+    /// 2 N·m steps by exactly 0.5 rad.
+    #[test]
+    fn rate_limit_and_workspace_are_strict() {
+        let c = AdmittanceConfig::<f64>::new(&AdmittanceParams::try_new(edge()).unwrap());
+        assert_eq!(c.params(), &AdmittanceParams::try_new(edge()).unwrap());
+        for sign in [1.0, -1.0] {
+            // From 0.5·sign by exactly 0.5 onto the limit ±1: nothing saturated.
+            let mut st = c.state_at([0.5 * sign, 0.0]);
+            let o = c.update(&mut st, [2.0 * sign, 0.0]);
+            assert_eq!(o.reference, [sign, 0.0]);
+            assert_eq!(o.rate, [sign, 0.0]); // 0.5 rad in 0.5 s
+            assert!(!o.saturated && !o.invalid_input, "{sign}: {o:?}");
+            // From 0 by exactly 0.5 on the other axis: not saturated.
+            let mut st = c.state_at([0.0, 0.0]);
+            let o = c.update(&mut st, [0.0, 2.0 * sign]);
+            assert_eq!(o.reference, [0.0, 0.5 * sign]);
+            assert!(!o.saturated, "{sign}: {o:?}");
+            // A larger torque is limited to the same step, flagged.
+            let mut st = c.state_at([0.0, 0.0]);
+            let o = c.update(&mut st, [0.0, 3.0 * sign]);
+            assert_eq!(o.reference, [0.0, 0.5 * sign]);
+            assert_eq!(o.rate, [0.0, sign]);
+            assert!(o.saturated, "{sign}: {o:?}");
+            // Past the limit: held on it, flagged, with the rate applied.
+            let mut st = c.state_at([0.75 * sign, 0.0]);
+            let o = c.update(&mut st, [2.0 * sign, 0.0]);
+            assert_eq!(o.reference, [sign, 0.0]);
+            assert_eq!(o.rate, [0.5 * sign, 0.0]);
+            assert!(o.saturated, "{sign}: {o:?}");
+        }
+        // An infinite torque is invalid (not only NaN), either axis.
+        for tau in [[f64::INFINITY, 0.0], [0.0, f64::NEG_INFINITY]] {
+            let mut st = c.state_at([0.25, -0.25]);
+            let o = c.update(&mut st, tau);
+            assert!(o.invalid_input && !o.saturated, "{tau:?}");
+            assert_eq!((o.reference, o.rate), ([0.25, -0.25], [0.0; 2]));
+        }
+        // A state seeded at a NaN pose is at 0 on that axis, clamped on
+        // the other.
+        assert_eq!(c.state_at([f64::NAN, -3.0]).reference, [0.0, -1.0]);
+    }
+
     #[test]
     fn limits_deadband_and_backends() {
         let p = AdmittanceParams::try_new(AdmittanceSettings {

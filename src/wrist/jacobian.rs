@@ -596,6 +596,57 @@ mod tests {
         check::<I16F16>();
     }
 
+    /// `singular` is `|det J| < DET_MIN`, strict and blind to the sign:
+    /// diagonal and anti-diagonal matrices whose determinant is exactly
+    /// `±DET_MIN` (one product with 1, so no rounding) are regular, half of
+    /// it is singular.
+    #[test]
+    fn singular_is_strict_at_det_min_for_either_sign() {
+        for (m, det, singular) in [
+            ([[DET_MIN, 0.0], [0.0, 1.0]], DET_MIN, false),
+            ([[0.0, DET_MIN], [1.0, 0.0]], -DET_MIN, false),
+            ([[0.5 * DET_MIN, 0.0], [0.0, 1.0]], 0.5 * DET_MIN, true),
+            ([[0.0, 0.5 * DET_MIN], [1.0, 0.0]], -0.5 * DET_MIN, true),
+            ([[1.0, 2.0], [3.0, 4.0]], -2.0, false),
+        ] {
+            let j = Jacobian::<f64>::from_matrix(m);
+            assert_eq!(j.m, m);
+            assert_eq!(j.det, det, "{m:?}");
+            assert_eq!(j.singular, singular, "{m:?}");
+        }
+    }
+
+    /// `saturated` is set by each clamped or NaN input torque alone, in
+    /// both directions of the mapping, and not by inputs within
+    /// `±MAX_TORQUE` (the limits included); a clamped input maps as the
+    /// limit itself, NaN as 0.
+    #[test]
+    fn saturated_is_set_by_each_clamped_or_nan_input_alone() {
+        let p = WristParams::thesis();
+        let fm = ForceMapping::<f64>::new(&p, JacobianKind::Exact);
+        assert_eq!(fm.config(), &WristConfig::new(&p));
+        let m = MotorAngles {
+            theta1: 0.3,
+            theta3: -1.2,
+        };
+        let (l, big, nan) = (MAX_TORQUE, 3.0 * MAX_TORQUE, f64::NAN);
+        for (t, same_as, saturated) in [
+            ([1.0, -2.0], [1.0, -2.0], false),
+            ([l, -l], [l, -l], false),
+            ([big, 1.0], [l, 1.0], true),
+            ([1.0, -big], [1.0, -l], true),
+            ([nan, 1.0], [0.0, 1.0], true),
+            ([1.0, nan], [1.0, 0.0], true),
+        ] {
+            let (a, b) = (fm.motor_torques(m, t), fm.motor_torques(m, same_as));
+            assert_eq!(a.saturated, saturated, "{t:?}");
+            assert_eq!(a.torque, b.torque, "{t:?}");
+            let (a, b) = (fm.task_torques(m, t), fm.task_torques(m, same_as));
+            assert_eq!(a.saturated, saturated, "{t:?}");
+            assert_eq!(a.torque, b.torque, "{t:?}");
+        }
+    }
+
     #[test]
     fn backends_agree_on_the_force_mapping() {
         let p = WristParams::thesis();

@@ -1000,6 +1000,171 @@ pub(crate) mod tests {
         assert!(worst < 1e-14, "{worst}");
     }
 
+    /// `φ ∈ [1°, 30°]`, closed: both ends accepted and read back, the next
+    /// `f64` past each rejected by name with the range; `2φ` is the
+    /// largest bend.
+    #[test]
+    fn phi_bounds_are_inclusive_and_max_bend_is_twice_phi() {
+        let (lo, hi) = (1f64.to_radians(), 30f64.to_radians());
+        for phi in [lo, hi, 0.3] {
+            let p = WristParams::try_new(phi).unwrap();
+            assert_eq!(p.phi(), phi);
+            assert_eq!(p.max_bend(), phi + phi);
+            assert_eq!(WristConfig::<f64>::new(&p).phi(), phi);
+        }
+        for bad in [
+            f64::from_bits(lo.to_bits() - 1),
+            f64::from_bits(hi.to_bits() + 1),
+        ] {
+            assert_eq!(
+                WristParams::try_new(bad),
+                Err(ParamError::OutOfRange {
+                    name: "phi",
+                    value: bad,
+                    min: lo,
+                    max: hi
+                })
+            );
+        }
+        assert_eq!(WristParams::thesis().phi(), 16f64.to_radians());
+    }
+
+    /// The workspace test against hand values at `φ = 16°`
+    /// (`cos 32° = 0.8480`): `cos 0.3 · cos 0.3 = 0.9127` inside,
+    /// `cos 0.5 · cos 0.3 = 0.8384` and `cos²0.8 = 0.4854` outside; a pure
+    /// pitch or yaw of exactly `2φ` is on the edge (inside), one part in
+    /// 10⁹ more is outside; `(π, π)` has `cos δ cos γ = 1` but
+    /// `|δ|, |γ| > π/2`: outside.
+    #[test]
+    fn is_reachable_against_hand_values() {
+        let p = WristParams::thesis();
+        let b = p.max_bend();
+        for (d, g, inside) in [
+            (0.0, 0.0, true),
+            (0.3, -0.3, true),
+            (0.5, -0.3, false),
+            (-0.3, 0.5, false),
+            (0.8, 0.8, false),
+            (b, 0.0, true),
+            (0.0, -b, true),
+            (b * (1.0 + 1e-9), 0.0, false),
+            (0.0, -b * (1.0 + 1e-9), false),
+            (PI, PI, false),
+            (-PI, PI, false),
+        ] {
+            assert_eq!(p.is_reachable(d, g), inside, "({d}, {g})");
+        }
+    }
+
+    /// `wrap` maps to `(−π, π]`: `π` stays, `−π` becomes `π`, `π + 0.5`
+    /// becomes `0.5 − π`; `denan` keeps every finite value, the largest
+    /// ones included, and reads NaN and ±∞ as 0 — on `f64` and `f32`.
+    #[test]
+    fn wrap_is_half_open_and_denan_keeps_every_finite_value() {
+        fn check<S: Scalar>(max: S, inf: S, nan: S) {
+            let pi = S::PI;
+            assert_eq!(wrap(pi), pi, "{}", S::NAME);
+            assert_eq!(wrap(pi.neg()), pi, "{}", S::NAME);
+            let half = S::from_f64(0.5);
+            let w = wrap(pi.add(half)).to_f64();
+            assert!((w - (0.5 - PI)).abs() < 1e-6, "{} {w}", S::NAME);
+            let w = wrap(pi.neg().sub(half)).to_f64();
+            assert!((w - (PI - 0.5)).abs() < 1e-6, "{} {w}", S::NAME);
+            assert_eq!(wrap(half), half);
+            for x in [max, max.neg(), half, S::ZERO] {
+                assert_eq!(denan(x), x, "{}", S::NAME);
+            }
+            for x in [inf, inf.neg(), nan] {
+                assert_eq!(denan(x), S::ZERO, "{}", S::NAME);
+            }
+        }
+        check::<f64>(f64::MAX, f64::INFINITY, f64::NAN);
+        check::<f32>(f32::MAX, f32::INFINITY, f32::NAN);
+        assert_eq!(wrap(I16F16::PI), I16F16::PI);
+    }
+
+    /// `try_inverse`'s error carries the request, its bend (here from the
+    /// output axis `z = (sin δ cos γ, −sin γ, cos δ cos γ)`, not from the
+    /// library's formula) and `2φ`, and its message names them. NaN on
+    /// either axis is rejected, and so is `(3, π)`, whose half-angle
+    /// measure `sin²(δ/2) + cos δ sin²(γ/2) = 0.005` is below `sin²φ` but
+    /// whose `|δ|, |γ|` exceed `π/2`.
+    #[test]
+    fn unreachable_error_names_the_pose_its_bend_and_the_limit() {
+        let p = WristParams::thesis();
+        let cfg = WristConfig::<f64>::new(&p);
+        for (d, g) in [(0.5, 0.6), (-0.2, 1.2), (3.0, 0.0), (-2.0, 0.5)] {
+            let e = cfg
+                .try_inverse(PitchYaw { delta: d, gamma: g })
+                .unwrap_err();
+            let z = [d.sin() * g.cos(), -g.sin(), d.cos() * g.cos()];
+            let bend = z[0].hypot(z[1]).atan2(z[2]);
+            assert_eq!((e.delta, e.gamma), (d, g));
+            assert!(
+                (e.bend - bend).abs() < 1e-12,
+                "{d} {g}: {} vs {bend}",
+                e.bend
+            );
+            assert!((e.max_bend - 32f64.to_radians()).abs() < 1e-15);
+            let text = std::format!("{e}");
+            for part in [d, g, e.bend, e.max_bend] {
+                assert!(text.contains(&std::format!("{part}")), "{text}");
+            }
+        }
+        for (d, g) in [(f64::NAN, 0.1), (0.1, f64::NAN), (3.0, PI), (-3.0, -PI)] {
+            assert!(
+                cfg.try_inverse(PitchYaw { delta: d, gamma: g }).is_err(),
+                "({d}, {g})"
+            );
+        }
+    }
+
+    /// On `I16F16` the edge tolerance is `2 q sin 2φ` on `sin²(β/2)`
+    /// (`q = 2⁻¹⁶`): a pure pitch 5 resolution steps beyond `2φ` exceeds
+    /// `sin²φ` by about 1.25 tolerances (`Δ ≈ ½ sin 2φ · 5 q`) and is
+    /// rejected (a tolerance with `sin(2 + φ)` or `1/sin 2φ` for
+    /// `sin 2φ`, 1.4 and 3.6 times larger, would accept it); the edge
+    /// rounded to the backend is accepted.
+    #[test]
+    fn try_inverse_tolerance_is_a_few_steps_on_i16f16() {
+        let p = WristParams::thesis();
+        let cfg = WristConfig::<I16F16>::new(&p);
+        let q = I16F16::RESOLUTION.to_f64();
+        let tol = 2.0 * q * (2.0 * p.phi()).sin();
+        let at = |d: f64| PitchYaw {
+            delta: I16F16::from_f64(d),
+            gamma: I16F16::ZERO,
+        };
+        let beyond = at(p.max_bend() + 5.0 * q);
+        let d = beyond.delta.to_f64();
+        let excess = (d / 2.0).sin().powi(2) - p.phi().sin().powi(2);
+        assert!(
+            excess > 1.05 * tol && excess < 1.4 * tol,
+            "{}",
+            excess / tol
+        );
+        assert!(cfg.try_inverse(beyond).is_err());
+        assert!(cfg.try_inverse(at(p.max_bend())).is_ok());
+    }
+
+    /// A pure pitch of exactly `2φ` lies on the edge: the saturating
+    /// inverse does not flag it, and one part in 10⁶ more is flagged.
+    #[test]
+    fn inverse_does_not_flag_the_edge_itself() {
+        let p = WristParams::thesis();
+        let cfg = WristConfig::<f64>::new(&p);
+        let r = cfg.inverse(PitchYaw {
+            delta: p.max_bend(),
+            gamma: 0.0,
+        });
+        assert!(!r.saturated, "{r:?}");
+        let r = cfg.inverse(PitchYaw {
+            delta: p.max_bend() * (1.0 + 1e-6),
+            gamma: 0.0,
+        });
+        assert!(r.saturated, "{r:?}");
+    }
+
     #[test]
     fn params_reject_bad_inclinations_naming_them() {
         assert!(WristParams::try_new(16f64.to_radians()).is_ok());

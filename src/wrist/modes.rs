@@ -369,7 +369,7 @@ impl<S: Scalar> WristModeConfig<S> {
             // or a NaN (`v − v` is 0 exactly when `v` is finite).
             // Fixed point saturates instead (folded at compile
             // time).
-            let float = S::RESOLUTION.to_f64() < 1e-6;
+            let float = S::FLOAT;
             let (o, od) = if !float || od.sub(od).add(o.sub(o)) == S::ZERO {
                 (o, od)
             } else {
@@ -523,6 +523,163 @@ mod tests {
         })
         .unwrap();
         assert_eq!(switch_at(&swapped), Some(4));
+    }
+
+    /// Parameters whose thresholds are exact `f64` values: `T = 0.5` s
+    /// (admittance gain limit 1 rad/(s·N·m) for `K_t = 4`, `d = 0`), both
+    /// gains `2⁻⁶`, so a torque `τ` moves the passive reference by
+    /// `K_c T τ = 2⁻⁷ τ` rad per sample, at `2⁻⁶ τ` rad/s; the rejoin
+    /// bandwidth may go up to `0.5/T = 1` rad/s.
+    fn exact(enter: f64, exit: f64, rest: f64) -> WristModeSettings {
+        WristModeSettings {
+            admittance: AdmittanceParams::try_new(crate::wrist::admittance::AdmittanceSettings {
+                gain: [1.0 / 64.0; 2],
+                stiffness: 4.0,
+                sample_period: 0.5,
+                lag_samples: 0,
+                limits: [1.5, 1.5],
+                max_rate: 1.0,
+                deadband: 0.0,
+                desired_torque: [0.0; 2],
+            })
+            .unwrap(),
+            enter_passive: enter,
+            exit_passive: exit,
+            rest_speed: rest,
+            debounce: 2,
+            dwell: 0,
+            rejoin_bandwidth: 0.5,
+        }
+    }
+
+    fn up(x: f64) -> f64 {
+        f64::from_bits(x.to_bits() + 1)
+    }
+
+    /// The largest `enter_passive` (1000 N·m) and rejoin bandwidth
+    /// (`0.5/T`) are accepted, the next `f64` above each is rejected by
+    /// name with its range.
+    #[test]
+    fn enter_and_rejoin_bounds_are_inclusive() {
+        let s = exact(2.0, 1.5, 1.0);
+        let p = WristModeParams::try_new(WristModeSettings {
+            enter_passive: 1e3,
+            rejoin_bandwidth: 1.0,
+            ..s
+        })
+        .unwrap();
+        assert_eq!(p.settings().enter_passive, 1e3);
+        assert_eq!(p.settings().rejoin_bandwidth, 1.0);
+        assert_eq!(p.admittance(), &s.admittance);
+        assert_eq!(
+            WristModeParams::try_new(WristModeSettings {
+                enter_passive: up(1e3),
+                ..s
+            }),
+            Err(ParamError::OutOfRange {
+                name: "enter_passive",
+                value: up(1e3),
+                min: 0.0,
+                max: 1e3
+            })
+        );
+        assert_eq!(
+            WristModeParams::try_new(WristModeSettings {
+                rejoin_bandwidth: up(1.0),
+                ..s
+            }),
+            Err(ParamError::OutOfRange {
+                name: "rejoin_bandwidth",
+                value: up(1.0),
+                min: 0.0,
+                max: 1.0
+            })
+        );
+    }
+
+    /// The sample (1-based) at which a constant input switches the mode,
+    /// within 8 samples, from `mode` at rest at the origin.
+    fn switch_at(s: WristModeSettings, mode: WristMode, tau: [f64; 2]) -> Option<usize> {
+        let c = WristModeConfig::<f64>::new(&WristModeParams::try_new(s).unwrap());
+        let mut st = c.initial_state(mode, [0.0; 2]);
+        let x = WristModeInput {
+            interaction: tau,
+            ..Default::default()
+        };
+        (1..=8).find(|_| c.update(&mut st, &x).switched)
+    }
+
+    /// Every switching threshold is strict, on either axis and sign:
+    /// Active leaves above `enter_passive` (a torque of exactly 2 N·m
+    /// stays), Passive leaves below `exit_passive` (exactly 1.5 N·m stays)
+    /// and only at rest — a reference rate of exactly `rest_speed` on
+    /// either axis (`τ = 1` N·m: `2⁻⁶` rad/s) keeps it passive. Debounce
+    /// 2: Passive's first sample sees the seeded rate 0, the second the
+    /// law's rate.
+    #[test]
+    fn switching_thresholds_are_strict() {
+        let s = exact(2.0, 1.5, 1.0);
+        for tau in [[2.0, 0.0], [0.0, -2.0], [-1.0, 2.0]] {
+            assert_eq!(switch_at(s, WristMode::Active, tau), None, "{tau:?}");
+        }
+        for tau in [[up(2.0), 0.0], [0.0, -up(2.0)]] {
+            assert_eq!(switch_at(s, WristMode::Active, tau), Some(2), "{tau:?}");
+        }
+        // Exit: rest_speed 1 rad/s is never the limit here.
+        for tau in [[1.5, 0.0], [0.0, -1.5]] {
+            assert_eq!(switch_at(s, WristMode::Passive, tau), None, "{tau:?}");
+        }
+        let below = f64::from_bits(1.5f64.to_bits() - 1);
+        for tau in [[below, 0.0], [0.0, -below]] {
+            assert_eq!(switch_at(s, WristMode::Passive, tau), Some(2), "{tau:?}");
+        }
+        // Rest: exactly 2⁻⁶ rad/s on one axis stays, half of it leaves.
+        let s = exact(2.0, 1.5, 1.0 / 64.0);
+        for tau in [[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]] {
+            assert_eq!(switch_at(s, WristMode::Passive, tau), None, "{tau:?}");
+        }
+        for tau in [[0.5, 0.0], [0.0, -0.5], [0.5, 0.5]] {
+            assert_eq!(switch_at(s, WristMode::Passive, tau), Some(2), "{tau:?}");
+        }
+    }
+
+    /// The Active reference is clamped to the workspace (1.5 rad here) per
+    /// axis and flagged; its rate is then the clamped reference's change
+    /// over `T` (from 0 to ±1.5 in 0.5 s: ±3 rad/s), or, when the step
+    /// does not ask for it, the unclamped rate. Unclamped, the reference
+    /// is the desired pose (no offset at start) and its rate the desired
+    /// rate — not the pose's change over `T`, which differs here.
+    #[test]
+    fn active_reference_is_clamped_per_axis_and_flagged() {
+        let c =
+            WristModeConfig::<f64>::new(&WristModeParams::try_new(exact(2.0, 1.5, 1.0)).unwrap());
+        for (desired, out, sat, rate) in [
+            ([0.25, -0.25], [0.25, -0.25], false, [0.125, 0.5]),
+            ([2.0, 0.25], [1.5, 0.25], true, [3.0, 0.5]),
+            ([0.25, -2.0], [0.25, -1.5], true, [0.5, -3.0]),
+        ] {
+            let x = WristModeInput {
+                desired,
+                desired_rate: [0.125, 0.5],
+                ..Default::default()
+            };
+            let mut st = c.initial_state(WristMode::Active, [0.0; 2]);
+            let o = c.update(&mut st, &x);
+            assert_eq!(
+                (o.reference, o.saturated, o.reference_rate),
+                (out, sat, rate),
+                "{desired:?}"
+            );
+            assert_eq!(st.reference(), out);
+            assert_eq!(st.mode(), WristMode::Active);
+            let mut st = c.initial_state(WristMode::Active, [0.0; 2]);
+            let o = c.update_with(&mut st, &x, false);
+            assert_eq!(
+                (o.reference, o.saturated, o.reference_rate),
+                (out, sat, [0.125, 0.5]),
+                "{desired:?}"
+            );
+        }
     }
 
     fn params() -> WristModeParams {

@@ -677,7 +677,7 @@ impl<S: Scalar> WristStepConfig<S> {
         // a table lookup instead of a reduction modulo π/2 and polynomials
         // (the same 1-LSB bound: `Scalar::to_turn`).
         let sin_cos = |a: S| {
-            if S::RESOLUTION.to_f64() >= 1e-6 {
+            if !S::FLOAT {
                 S::sin_cos_turn(a.to_turn())
             } else {
                 a.sin_cos()
