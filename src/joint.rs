@@ -996,7 +996,28 @@ impl<S: Scalar> JointConfig<S> {
         let in_frame = motor_count.wrapping_sub(origin);
         // |in_frame| ≤ frame_limit as one unsigned compare.
         let frame_ok = in_frame.wrapping_add(self.frame_limit as i64) as u64 <= self.frame_span;
-        if new_frame && frame_ok {
+        let joint_torque = estimate.torque.neg();
+        let motor_velocity = S::from_counts_i32(moved, &self.speed_per_count);
+        // An unusable sample (a rejected counter jump, a target too far
+        // from the motor for the backend, an impossible torsion or link
+        // count): the command is the fallback and the state holds, the
+        // frame included (a new target frame is taken on the next usable
+        // sample; the hold point is not read before).
+        if counter_jump || !frame_ok || estimate.invalid_input || estimate.link_count_invalid {
+            let motor_position = self.position_beyond_frame(in_frame);
+            let control = self.mode.reject(&mut st.mode, motor_position);
+            return JointOutput {
+                motor_torque: control.torque,
+                mode: control.mode,
+                joint_torque,
+                motor_position,
+                motor_velocity,
+                invalid_input: true,
+                estimate,
+                control,
+            };
+        }
+        if new_frame {
             // The mode manager's stored hold point moves to the new frame by
             // whole output revolutions, at most the turns the backend's
             // angle holds (a bound that only fixed point reaches).
@@ -1010,17 +1031,14 @@ impl<S: Scalar> JointConfig<S> {
             st.frame_turns = turns;
             st.frame_origin = origin;
         }
-        let joint_torque = estimate.torque.neg();
-        // On `f32` every frame is within 2³¹ counts: one 32-bit conversion,
-        // the count clamped to it (only a flagged sample outside its frame
-        // is farther).
-        let motor_position = if S::FLOAT && Self::frame_fits_i32() {
-            let c = in_frame.max(i32::MIN as i64).min(i32::MAX as i64) as i32;
-            S::from_counts_i32(c, &self.angle_per_count)
+        // In the frame (`|in_frame| ≤ frame_limit`): on fixed point and
+        // `f32` the limit is below 2³¹, so the count is one 32-bit
+        // conversion.
+        let motor_position = if Self::frame_fits_i32() {
+            S::from_counts_i32(in_frame as i32, &self.angle_per_count)
         } else {
             S::from_counts_prepared(in_frame, &self.angle_per_count)
         };
-        let motor_velocity = S::from_counts_i32(moved, &self.speed_per_count);
         let x = ControlInput {
             desired_position: target.position.mul_int(&self.ratio),
             desired_velocity: target.velocity.mul_int(&self.ratio),
@@ -1031,22 +1049,6 @@ impl<S: Scalar> JointConfig<S> {
             desired_joint_torque: target.joint_torque,
             expected_joint_torque: target.expected_joint_torque,
         };
-        // An unusable sample (a rejected counter jump, a target too far
-        // from the motor for the backend, an impossible torsion or link
-        // count): the command is the fallback and the state holds.
-        if counter_jump || !frame_ok || estimate.invalid_input || estimate.link_count_invalid {
-            let control = self.mode.reject(&mut st.mode, &x);
-            return JointOutput {
-                motor_torque: control.torque,
-                mode: control.mode,
-                joint_torque,
-                motor_position,
-                motor_velocity,
-                invalid_input: true,
-                estimate,
-                control,
-            };
-        }
         // The measured fields are finite (count products, the estimate):
         // only the other five are tested. The estimate's flags are clear
         // here.
@@ -1060,6 +1062,20 @@ impl<S: Scalar> JointConfig<S> {
             invalid_input: control.invalid_input,
             estimate,
             control,
+        }
+    }
+
+    /// The reported motor position of an unusable sample, `in_frame`
+    /// counts from the target's frame (possibly beyond its limit): on
+    /// `f32` the count clamped to `±(2³¹ − 1)` and converted from 32 bits,
+    /// elsewhere [`Scalar::from_counts_prepared`] (`I16F16` saturates).
+    #[inline(always)]
+    fn position_beyond_frame(&self, in_frame: i64) -> S {
+        if S::FLOAT && Self::frame_fits_i32() {
+            let c = in_frame.max(i32::MIN as i64).min(i32::MAX as i64) as i32;
+            S::from_counts_i32(c, &self.angle_per_count)
+        } else {
+            S::from_counts_prepared(in_frame, &self.angle_per_count)
         }
     }
 }

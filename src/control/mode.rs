@@ -869,23 +869,14 @@ impl<S: Scalar> ModeConfig<S> {
         ) -> ModeOutput<S> {
             let interaction = x.joint_torque.sub(x.expected_joint_torque);
             if !finite {
-                st.last_torque = S::ZERO;
-                return ModeOutput {
-                    torque: S::ZERO,
-                    mode: st.mode,
-                    switched: false,
-                    saturated: true,
-                    invalid_input: true,
-                    interaction: S::ZERO,
-                    collision: st.latched,
-                    // Never NaN out of a step: the measured position when it is
-                    // a number (`v − v` is 0 only for a finite float), else 0.
-                    reference_position: if x.motor_position.sub(x.motor_position) == S::ZERO {
-                        x.motor_position
-                    } else {
-                        S::ZERO
-                    },
+                // Never NaN out of a step: the measured position when it is
+                // a number (`v − v` is 0 only for a finite float), else 0.
+                let position = if x.motor_position.sub(x.motor_position) == S::ZERO {
+                    x.motor_position
+                } else {
+                    S::ZERO
                 };
+                return Self::invalid_sample(st, position);
             }
             let mut reaction = None;
             if let Some(c) = &self.collision {
@@ -990,13 +981,34 @@ impl<S: Scalar> ModeConfig<S> {
 /// The joint step's hooks into the manager (`crate::joint`): an unusable
 /// sample and the turn frame of the joint's positions.
 impl<S: Scalar> ModeConfig<S> {
+    /// The invalid-sample output of [`update`](Self::update): command 0
+    /// with `invalid_input` and `saturated` set, `reference_position` the
+    /// finite `position`; the state is not advanced (only the last
+    /// command, now 0, is recorded).
+    #[inline(always)]
+    fn invalid_sample(st: &mut ModeState<S>, position: S) -> ModeOutput<S> {
+        st.last_torque = S::ZERO;
+        ModeOutput {
+            torque: S::ZERO,
+            mode: st.mode,
+            switched: false,
+            saturated: true,
+            invalid_input: true,
+            interaction: S::ZERO,
+            collision: st.latched,
+            reference_position: position,
+        }
+    }
+
     /// The invalid-sample path of [`update`](Self::update) for a sample the
     /// joint found unusable (a counter jump, a target too far from the
-    /// motor): command 0 with `invalid_input` and `saturated` set, the
-    /// state not advanced (only the last command, now 0, is recorded).
+    /// motor, an impossible reading) at the finite measured
+    /// `motor_position`: the output of a non-finite sample, without running
+    /// the manager's step (so that this rare path and the law's are
+    /// separate paths of the joint step).
     #[inline(always)]
-    pub(crate) fn reject(&self, st: &mut ModeState<S>, x: &ControlInput<S>) -> ModeOutput<S> {
-        self.update_checked(st, x, false)
+    pub(crate) fn reject(&self, st: &mut ModeState<S>, motor_position: S) -> ModeOutput<S> {
+        Self::invalid_sample(st, motor_position)
     }
 
     /// Move the stored hold point into a frame whose origin lies `by`
