@@ -488,36 +488,31 @@ pub struct JointConfig<S> {
     /// `2·frame_limit`: the frame test is one unsigned compare,
     /// `in_frame + frame_limit ≤ frame_span`.
     frame_span: u64,
-    /// One output revolution at the motor, `2πN` rad, in stored angle
-    /// units (`M·N` counts through `angle_per_count`): the step of the hold
-    /// point when the target's turns change by one.
-    output_rev: S,
-    /// The most whole output revolutions whose angle the backend holds,
-    /// `⌊MAX/output_rev⌋` (at most `i32::MAX`): a larger turn change moves
-    /// the hold point by this many.
-    max_shift_turns: i32,
 }
 
 /// The joint's state: the estimator's, the mode manager's, and the motor
 /// position and speed meter's.
+///
+/// `repr(C)`, the joint's own per-tick values first and the 64-word speed
+/// history last, so that they lie within a short load's reach of the
+/// state's base (124 bytes for a word load on Armv6-M).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C)]
 pub struct JointState<S: Scalar> {
-    estimator: TorqueEstimatorState,
-    mode: ModeState<S>,
     /// Motor position, counts, chapter-4 sign.
     motor_count: i64,
+    /// The origin in counts, `turns·M·N`, of the frame of the mode
+    /// manager's inputs: the whole output turns of the last usable target
+    /// ([`JointTarget::turns`]), kept in the mode manager's state.
+    frame_origin: i64,
     /// Last raw counter (chapter-4 sign).
     last_counter: u32,
+    head: u8,
+    estimator: TorqueEstimatorState,
+    mode: ModeState<S>,
     /// The low 32 bits of the motor position of the last `w` ticks
     /// (a counter without its rejected jumps), oldest at `head`.
     history: [u32; MAX_SPEED_WINDOW as usize],
-    head: u8,
-    /// The whole output turns of the frame the mode manager's stored
-    /// positions (its hold point) are in: the last usable target's
-    /// [`JointTarget::turns`].
-    frame_turns: i32,
-    /// That frame's origin in counts, `frame_turns·M·N`.
-    frame_origin: i64,
 }
 
 impl<S: Scalar> JointState<S> {
@@ -559,9 +554,12 @@ impl<S: Scalar> JointState<S> {
     }
     /// This state with the mode manager's state replaced by `mode` (one
     /// reached by running the same [`ModeConfig`], e.g. to resume a joint
-    /// or to start a test in a given mode); the estimator and the motor
-    /// position are kept.
-    pub fn with_mode_state(mut self, mode: ModeState<S>) -> Self {
+    /// or to start a test in a given mode); the estimator, the motor
+    /// position and the target frame are kept (a hold point in `mode`
+    /// keeps its own frame's whole turns and moves to the joint's when it
+    /// is read).
+    pub fn with_mode_state(mut self, mut mode: ModeState<S>) -> Self {
+        mode.set_frame(self.mode.frame());
         self.mode = mode;
         self
     }
@@ -778,10 +776,12 @@ impl<S: Scalar> JointConfig<S> {
         let motor_counts_per_output_rev = m as i64 * p.ratio() as i64;
         let angle_per_count = CountCoef::new(p.motor_rad_per_count() * u.angle);
         let frame_limit = Self::frame_limit_counts(p.motor_rad_per_count());
+        // One output revolution at the motor, `2πN` rad, from its `M·N`
+        // counts: the hold point's step between turn frames.
         let output_rev = S::from_counts_prepared(motor_counts_per_output_rev, &angle_per_count);
         JointConfig {
             estimator: TorqueEstimatorConfig::new(&s.estimator),
-            mode: ModeConfig::new(&s.mode),
+            mode: ModeConfig::new(&s.mode).with_output_revolution(output_rev),
             ratio: IntFactor::new(p.ratio()),
             angle_per_count,
             speed_per_count: CountCoef::new(p.speed_resolution() * u.speed),
@@ -794,9 +794,6 @@ impl<S: Scalar> JointConfig<S> {
                 + 1,
             frame_limit,
             frame_span: 2 * frame_limit,
-            output_rev,
-            max_shift_turns: (S::MAX.to_f64() / output_rev.to_f64().abs()).min(i32::MAX as f64)
-                as i32,
         }
     }
 
@@ -861,7 +858,6 @@ impl<S: Scalar> JointConfig<S> {
             last_counter: motor_counter,
             history: [own; MAX_SPEED_WINDOW as usize],
             head: 0,
-            frame_turns: 0,
             frame_origin: 0,
         }
     }
@@ -982,7 +978,7 @@ impl<S: Scalar> JointConfig<S> {
         // state; only a change of the target's turns recomputes it (exact
         // modulo 2⁶⁴: |turns| ≤ 2³¹ and M·N ≤ 2³² are validated).
         let turns = target.turns;
-        let new_frame = turns != st.frame_turns;
+        let new_frame = turns != st.mode.frame();
         let origin = if new_frame {
             let whole = mul_wide(turns.unsigned_abs(), self.motor_counts_per_output_rev);
             if turns < 0 {
@@ -1018,17 +1014,10 @@ impl<S: Scalar> JointConfig<S> {
             };
         }
         if new_frame {
-            // The mode manager's stored hold point moves to the new frame by
-            // whole output revolutions, at most the turns the backend's
-            // angle holds (a bound that only fixed point reaches).
-            let mut whole = turns.saturating_sub(st.frame_turns);
-            if !S::FLOAT {
-                // (`max`/`min`, not `clamp`: no bounds assertion.)
-                whole = whole.max(-self.max_shift_turns).min(self.max_shift_turns);
-            }
-            let by = self.output_rev.mul_whole(whole);
-            self.mode.shift_frame(&mut st.mode, by);
-            st.frame_turns = turns;
+            // The mode manager's inputs move to the new frame; its stored
+            // hold point follows by whole output revolutions where it is
+            // read (`ModeState::set_frame`).
+            st.mode.set_frame(turns);
             st.frame_origin = origin;
         }
         // In the frame (`|in_frame| ≤ frame_limit`): on fixed point and

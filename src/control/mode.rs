@@ -440,6 +440,13 @@ pub struct ModeConfig<S> {
     release_samples: u16,
     debounce: u16,
     dwell: u16,
+    /// One output revolution at the motor, `2πN` rad, stored angle units,
+    /// and the most whole revolutions whose angle the backend holds
+    /// (`⌊MAX/output_rev⌋`): the step and the limit of the hold point's
+    /// move between turn frames ([`ModeConfig::with_output_revolution`];
+    /// 0 and 0 until the joint sets them).
+    output_rev: S,
+    max_shift_turns: i32,
 }
 
 /// The manager's state.
@@ -456,6 +463,11 @@ pub struct ModeState<S: Scalar> {
     collision: CollisionState,
     latched: bool,
     last_torque: S,
+    /// The whole output turns of the frame the inputs' positions are in
+    /// (set by the joint, [`ModeState::set_frame`]; 0 for a manager run on
+    /// its own) and of the frame the hold point was stored in.
+    frame_turns: i32,
+    hold_turns: i32,
 }
 
 impl<S: Scalar> ModeState<S> {
@@ -481,6 +493,20 @@ impl<S: Scalar> ModeState<S> {
     /// forward); it decays to 0.
     pub fn bias_si(&self) -> f64 {
         self.bias.to_f64() / S::UNITS.motor_torque
+    }
+    /// The inputs' positions are from now on in the frame of `turns` whole
+    /// output revolutions (`q_m − 2πN·turns`; the joint's target frame): a
+    /// stored hold point moves with them by whole revolutions when it is
+    /// next read. The other stored positions are differences (the rejoin
+    /// offset) and need no move.
+    #[inline(always)]
+    pub(crate) fn set_frame(&mut self, turns: i32) {
+        self.frame_turns = turns;
+    }
+    /// The frame of the inputs' positions ([`set_frame`](Self::set_frame)).
+    #[inline(always)]
+    pub(crate) fn frame(&self) -> i32 {
+        self.frame_turns
     }
     /// `true` while a collision reaction is latched.
     pub fn collision_latched(&self) -> bool {
@@ -558,6 +584,8 @@ impl<S: Scalar> ModeConfig<S> {
             exit_passive: S::from_f64(p.exit_passive * u.link_torque),
             debounce: p.debounce,
             dwell: p.dwell,
+            output_rev: S::ZERO,
+            max_shift_turns: 0,
             release_speed: S::from_f64(p.release.speed * u.speed),
             release_samples: p.release.samples,
             offset_row: CoefRow::new([2.0 * w, w * w * u.speed / u.angle]),
@@ -583,6 +611,8 @@ impl<S: Scalar> ModeConfig<S> {
             collision: CollisionState::default(),
             latched: false,
             last_torque: S::ZERO,
+            frame_turns: 0,
+            hold_turns: 0,
         }
     }
 
@@ -618,13 +648,19 @@ impl<S: Scalar> ModeConfig<S> {
     #[inline]
     fn reference(
         &self,
-        st: &ModeState<S>,
+        st: &mut ModeState<S>,
         x: &ControlInput<S>,
         seeded: Option<S>,
     ) -> (ControlInput<S>, S) {
         let mut xr = *x;
         match st.mode {
             JointMode::Hold => {
+                // The hold point in the inputs' frame (moved here, where it
+                // is read, and not where the frame changes: the move and
+                // the Active reference are then separate paths).
+                if st.hold_turns != st.frame_turns {
+                    self.move_hold(st);
+                }
                 xr.desired_position = st.hold;
                 xr.desired_velocity = S::ZERO;
                 xr.desired_acceleration = S::ZERO;
@@ -714,7 +750,8 @@ impl<S: Scalar> ModeConfig<S> {
         let law = match st.mode {
             JointMode::Passive => self.passive.law(x, &st.active.friction),
             _ => {
-                let (xr, _) = self.reference(st, x, None);
+                // (A copy: the hold point moves to the inputs' frame in it.)
+                let (xr, _) = self.reference(&mut st.clone(), x, None);
                 self.active.law(&st.active, &xr).law
             }
         };
@@ -803,6 +840,7 @@ impl<S: Scalar> ModeConfig<S> {
             }
             JointMode::Hold => {
                 st.hold = x.motor_position;
+                st.hold_turns = st.frame_turns;
                 None
             }
         };
@@ -827,6 +865,7 @@ impl<S: Scalar> ModeConfig<S> {
                 st.mode = JointMode::Hold;
                 st.in_mode = 0;
                 st.hold = x.motor_position;
+                st.hold_turns = st.frame_turns;
                 st.active.integral = S::ZERO;
                 true
             }
@@ -1011,18 +1050,44 @@ impl<S: Scalar> ModeConfig<S> {
         Self::invalid_sample(st, motor_position)
     }
 
-    /// Move the stored hold point into a frame whose origin lies `by`
-    /// (stored angle units) ahead of the old one: `hold − by`. The other
-    /// stored positions are differences (the rejoin offset) and need no
-    /// shift.
-    #[inline(always)]
-    pub(crate) fn shift_frame(&self, st: &mut ModeState<S>, by: S) {
-        st.hold = st.hold.sub(by);
+    /// This manager for a joint whose output revolution is `output_rev`
+    /// at the motor (`2πN` rad, stored angle units, as the joint's counts
+    /// give it): the step by which the hold point moves between turn
+    /// frames, at most `⌊MAX/output_rev⌋` revolutions at once (on fixed
+    /// point; a larger move is out of the angle's range anyway).
+    pub(crate) fn with_output_revolution(mut self, output_rev: S) -> Self {
+        self.output_rev = output_rev;
+        self.max_shift_turns =
+            (S::MAX.to_f64() / output_rev.to_f64().abs()).min(i32::MAX as f64) as i32;
+        self
     }
 
-    /// The stored hold point (the joint's frame tests).
+    /// Move the stored hold point from the frame it was stored in to the
+    /// inputs' frame: `hold − 2πN·(frame − hold frame)`, on fixed point by
+    /// at most `max_shift_turns` revolutions.
+    #[inline(always)]
+    fn move_hold(&self, st: &mut ModeState<S>) {
+        let mut whole = st.frame_turns.saturating_sub(st.hold_turns);
+        if !S::FLOAT {
+            // (`max`/`min`, not `clamp`: no bounds assertion.)
+            whole = whole.max(-self.max_shift_turns).min(self.max_shift_turns);
+        }
+        st.hold = st.hold.sub(self.output_rev.mul_whole(whole));
+        st.hold_turns = st.frame_turns;
+    }
+
+    /// One output revolution at the motor, stored angle units
+    /// ([`with_output_revolution`](Self::with_output_revolution)).
+    #[cfg(any(kani, test))]
+    pub(crate) fn output_revolution(&self) -> S {
+        self.output_rev
+    }
+
+    /// The hold point in the inputs' frame (the joint's frame tests).
     #[cfg(test)]
     pub(crate) fn hold_point(&self, st: &ModeState<S>) -> S {
+        let mut st = *st;
+        self.move_hold(&mut st);
         st.hold
     }
 }
@@ -1058,6 +1123,8 @@ mod words {
                 step_position: Coef::take(r),
                 bias_decay: Coef::take(r),
                 limit: r.fixed(),
+                output_rev: r.fixed(),
+                max_shift_turns: r.i32(),
             }
         }
 
@@ -1080,6 +1147,8 @@ mod words {
             self.step_position.put(s);
             self.bias_decay.put(s);
             s.fixed(self.limit);
+            s.fixed(self.output_rev);
+            s.i32(self.max_shift_turns);
         }
     }
 }

@@ -756,11 +756,12 @@ fn si_readers_are_the_stored_value_in_si_on_every_backend() {
     }
 }
 
-/// A change of the target's whole turns moves the stored hold point into
-/// the new frame by whole output revolutions `2πN` (expected values from
-/// `f64` here), and on `I16F16` by at most the turns its angle holds
-/// (`⌊32 768/(200π)⌋ = 52` at `N = 100`). A target outside the frame
-/// moves nothing.
+/// The hold point read in the target's frame is the stored one moved by
+/// the whole output revolutions `2πN` between the frame it was stored in
+/// and the target's (expected values from `f64` here), on `I16F16` by at
+/// most the turns its angle holds (`⌊32 768/(200π)⌋ = 52` at `N = 100`),
+/// however many turn changes came between: back at the stored frame it is
+/// the stored point again. A target outside the frame moves nothing.
 #[test]
 fn turn_changes_move_the_hold_point_by_whole_revolutions() {
     fn run<S: Scalar>(turns: &[(i32, i64, bool)], tol: f64) -> f64 {
@@ -768,8 +769,8 @@ fn turn_changes_move_the_hold_point_by_whole_revolutions() {
         let cfg = JointConfig::<S>::new(&p);
         let mn = cfg.motor_counts_per_output_rev;
         let mut st = cfg.state_at(0, 0);
+        // The hold point of the initial state, stored in frame 0.
         let mut want = 0.0;
-        let mut frame = 0i32;
         for &(t, rev_from_origin, flagged) in turns {
             // The motor `rev_from_origin` output revolutions from the
             // target's whole turns, the link where zero torsion puts it.
@@ -783,10 +784,8 @@ fn turn_changes_move_the_hold_point_by_whole_revolutions() {
             let out = cfg.update(&mut st, &JointReadings::counts(0, counts as u32), &target);
             assert_eq!(out.invalid_input, flagged, "{t}: {out:?}");
             if !flagged {
-                let whole = (t - frame).clamp(-52, 52) as f64;
-                let whole = if S::FLOAT { (t - frame) as f64 } else { whole };
-                want -= whole * TAU * 100.0;
-                frame = t;
+                let whole = if S::FLOAT { t } else { t.clamp(-52, 52) };
+                want = -(whole as f64) * TAU * 100.0;
             }
             let got = cfg.mode.hold_point(&st.mode).to_f64();
             assert!(
@@ -805,8 +804,69 @@ fn turn_changes_move_the_hold_point_by_whole_revolutions() {
     let two_revs = 2.0 * TAU * 100.0;
     assert!((run::<f64>(&f64_turns, 1e-12) - two_revs).abs() < 1e-9);
     assert!((run::<f32>(&f64_turns[..3], 1e-6) - two_revs).abs() < 1e-9);
-    // I16F16: 60 turns at once move the hold point by 52, one back by 1.
+    // I16F16: 60 and 59 turns from the stored frame move the hold point
+    // by 52; back in the stored frame it is where it was stored.
     let i_turns = [(60, 0, false), (59, 0, false), (62, 100, true)];
     let want = run::<I16F16>(&i_turns, 1e-6);
-    assert!((want + 51.0 * TAU * 100.0).abs() < 1e-9);
+    assert!((want + 52.0 * TAU * 100.0).abs() < 1e-9);
+    let round_trip = [(60, 0, false), (59, 0, false), (0, 0, false)];
+    assert_eq!(run::<I16F16>(&round_trip, 1e-6), 0.0);
+}
+
+/// In Hold (a collision latched under `CollisionReaction::Stop`) the law
+/// holds the hold point in the target's frame: the reference of each
+/// tick is the point where the joint stopped, in the frame of the target
+/// it stopped under (`t0` whole turns), minus `2πN` per whole turn of the
+/// target since (expected values from `f64`), through turn changes there
+/// and back.
+#[test]
+fn hold_reference_follows_the_target_frame() {
+    fn run<S: Scalar>(t0: i32, turns: &[i32], tol: f64) {
+        let p = firmware_params();
+        let cfg = JointConfig::<S>::new(&p);
+        // The link at π/4 (2¹⁷/8 counts), the motor at N times it
+        // (25 000 counts, zero torsion), at rest.
+        let (link, counts) = (1u32 << 14, 25_000u32);
+        let mut st = cfg.state(link, counts);
+        let readings = JointReadings::counts(link, counts);
+        // An expected joint torque 10 N·m away from the estimate: a
+        // collision (threshold 4 N·m), and the joint stops.
+        let mut target = JointTarget::<S> {
+            turns: t0,
+            expected_joint_torque: S::from_f64(10.0),
+            ..JointTarget::default()
+        };
+        let mut out = cfg.update(&mut st, &readings, &target);
+        for _ in 0..10 {
+            if out.mode == JointMode::Hold {
+                break;
+            }
+            out = cfg.update(&mut st, &readings, &target);
+        }
+        assert_eq!(out.mode, JointMode::Hold, "{out:?}");
+        assert_eq!(st.motor_position_counts(), counts as i64);
+        let rev = TAU * 100.0;
+        let stored = counts as f64 * TAU / 2000.0 - t0 as f64 * rev;
+        let got = out.control.reference_position.to_f64();
+        assert!((got - stored).abs() <= tol * 20.0 * rev, "{got} vs {stored}");
+        for &t in turns {
+            target.turns = t;
+            let out = cfg.update(&mut st, &readings, &target);
+            assert!(!out.invalid_input, "{t}: {out:?}");
+            assert_eq!(out.mode, JointMode::Hold);
+            let want = stored - (t - t0) as f64 * rev;
+            let got = out.control.reference_position.to_f64();
+            // (Within `tol` of the largest hold point visited, 20
+            // revolutions: `f32` rounds each move.)
+            assert!((got - want).abs() <= tol * 20.0 * rev, "{t}: {got} vs {want}");
+        }
+    }
+    // Within every backend's frame (I16F16: 26 output revolutions, f32:
+    // 20 at M = 2000).
+    let turns = [1, 3, -2, 0, 20, 19, 0, 2];
+    for t0 in [0, 2] {
+        run::<f64>(t0, &turns, 1e-12);
+        run::<f32>(t0, &turns, 1e-6);
+        run::<I16F16>(t0, &turns, 1e-6);
+    }
 }
