@@ -990,8 +990,15 @@ impl<S: Scalar> JointConfig<S> {
             st.frame_origin
         };
         let in_frame = motor_count.wrapping_sub(origin);
-        // |in_frame| ≤ frame_limit as one unsigned compare.
-        let frame_ok = in_frame.wrapping_add(self.frame_limit as i64) as u64 <= self.frame_span;
+        // |in_frame| ≤ frame_limit as one unsigned compare; where the limit
+        // is below 2³¹ (a constant of the backend), of the limit's and the
+        // span's low words.
+        let frame_ok = if Self::frame_fits_i32() {
+            in_frame.wrapping_add(self.frame_limit as u32 as i64) as u64
+                <= self.frame_span as u32 as u64
+        } else {
+            in_frame.wrapping_add(self.frame_limit as i64) as u64 <= self.frame_span
+        };
         let joint_torque = estimate.torque.neg();
         let motor_velocity = S::from_counts_i32(moved, &self.speed_per_count);
         // An unusable sample (a rejected counter jump, a target too far
