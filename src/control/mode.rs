@@ -450,18 +450,24 @@ pub struct ModeConfig<S> {
 }
 
 /// The manager's state.
+///
+/// `repr(C)`, the byte and half-word fields first: on Armv6-M a byte load
+/// reaches 31 bytes past its base register and a half-word load 62, so
+/// that the mode, the latch and the sample counters are read without
+/// forming their addresses.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C)]
 pub struct ModeState<S: Scalar> {
     mode: JointMode,
+    latched: bool,
+    in_mode: u16,
+    run: u16,
+    collision: CollisionState,
     active: RobustAdaptiveState<S>,
     offset: S,
     offset_rate: S,
     hold: S,
     bias: S,
-    in_mode: u16,
-    run: u16,
-    collision: CollisionState,
-    latched: bool,
     last_torque: S,
     /// The whole output turns of the frame the inputs' positions are in
     /// (set by the joint, [`ModeState::set_frame`]; 0 for a manager run on
@@ -648,7 +654,7 @@ impl<S: Scalar> ModeConfig<S> {
     #[inline]
     fn reference(
         &self,
-        st: &mut ModeState<S>,
+        st: &ModeState<S>,
         x: &ControlInput<S>,
         seeded: Option<S>,
     ) -> (ControlInput<S>, S) {
@@ -658,10 +664,7 @@ impl<S: Scalar> ModeConfig<S> {
                 // The hold point in the inputs' frame (moved here, where it
                 // is read, and not where the frame changes: the move and
                 // the Active reference are then separate paths).
-                if st.hold_turns != st.frame_turns {
-                    self.move_hold(st);
-                }
-                xr.desired_position = st.hold;
+                xr.desired_position = self.hold_in_frame(st);
                 xr.desired_velocity = S::ZERO;
                 xr.desired_acceleration = S::ZERO;
                 (xr, S::ZERO)
@@ -750,8 +753,7 @@ impl<S: Scalar> ModeConfig<S> {
         let law = match st.mode {
             JointMode::Passive => self.passive.law(x, &st.active.friction),
             _ => {
-                // (A copy: the hold point moves to the inputs' frame in it.)
-                let (xr, _) = self.reference(&mut st.clone(), x, None);
+                let (xr, _) = self.reference(st, x, None);
                 self.active.law(&st.active, &xr).law
             }
         };
@@ -831,6 +833,9 @@ impl<S: Scalar> ModeConfig<S> {
         st.mode = to;
         st.in_mode = 0;
         st.run = 0;
+        // (The hold point's frame; outside Hold the hold point is not read
+        // before it is stored again.)
+        st.hold_turns = st.frame_turns;
         let sum = match to {
             JointMode::Passive => return None,
             JointMode::Active => {
@@ -840,7 +845,6 @@ impl<S: Scalar> ModeConfig<S> {
             }
             JointMode::Hold => {
                 st.hold = x.motor_position;
-                st.hold_turns = st.frame_turns;
                 None
             }
         };
@@ -1062,18 +1066,22 @@ impl<S: Scalar> ModeConfig<S> {
         self
     }
 
-    /// Move the stored hold point from the frame it was stored in to the
-    /// inputs' frame: `hold − 2πN·(frame − hold frame)`, on fixed point by
-    /// at most `max_shift_turns` revolutions.
+    /// The stored hold point in the inputs' frame: moved from the frame it
+    /// was stored in by whole output revolutions,
+    /// `hold − 2πN·(frame − hold frame)`, on fixed point by at most
+    /// `max_shift_turns` revolutions. The stored point keeps its frame, so
+    /// that back in that frame it is the stored point again.
     #[inline(always)]
-    fn move_hold(&self, st: &mut ModeState<S>) {
+    fn hold_in_frame(&self, st: &ModeState<S>) -> S {
+        if st.hold_turns == st.frame_turns {
+            return st.hold;
+        }
         let mut whole = st.frame_turns.saturating_sub(st.hold_turns);
         if !S::FLOAT {
             // (`max`/`min`, not `clamp`: no bounds assertion.)
             whole = whole.max(-self.max_shift_turns).min(self.max_shift_turns);
         }
-        st.hold = st.hold.sub(self.output_rev.mul_whole(whole));
-        st.hold_turns = st.frame_turns;
+        st.hold.sub(self.output_rev.mul_whole(whole))
     }
 
     /// One output revolution at the motor, stored angle units
@@ -1086,9 +1094,7 @@ impl<S: Scalar> ModeConfig<S> {
     /// The hold point in the inputs' frame (the joint's frame tests).
     #[cfg(test)]
     pub(crate) fn hold_point(&self, st: &ModeState<S>) -> S {
-        let mut st = *st;
-        self.move_hold(&mut st);
-        st.hold
+        self.hold_in_frame(st)
     }
 }
 
