@@ -1020,13 +1020,12 @@ impl<S: Scalar> JointConfig<S> {
                 control,
             };
         }
-        if new_frame {
-            // The mode manager's inputs move to the new frame; its stored
-            // hold point follows by whole output revolutions where it is
-            // read (`ModeState::set_frame`).
-            st.mode.set_frame(turns);
-            st.frame_origin = origin;
-        }
+        // The mode manager's inputs are in the target's frame (stored on
+        // every usable sample, unchanged but on a new frame: no branch);
+        // its hold point follows by whole output revolutions where it is
+        // read (`ModeState::set_frame`).
+        st.mode.set_frame(turns);
+        st.frame_origin = origin;
         // In the frame (`|in_frame| ≤ frame_limit`): on fixed point and
         // `f32` the limit is below 2³¹, so the count is one 32-bit
         // conversion.
