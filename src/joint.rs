@@ -63,12 +63,15 @@
 //! `reference_position`) are **in the target's frame**:
 //! `q_m − 2πN·turns`, rad at the motor; the absolute position is
 //! [`JointState::motor_position_counts`] (64-bit counts,
-//! `q_m = counts·2π/M`). When the target's `turns` change, the mode
-//! manager's stored hold point moves with the frame by the whole output
-//! revolutions between the two, `2πN` each (on fixed point at most the
-//! revolutions its angle holds, `⌊32 768/(2πN)⌋` = 52 at `N = 100` on
-//! `I16F16`, beyond which the hold point is out of range anyway); the
-//! rejoin offset is a difference and needs no move.
+//! `q_m = counts·2π/M`). When the target's `turns` change, nothing
+//! stored moves: the mode manager's hold point keeps the whole turns of
+//! the frame it was stored in and is read in the target's frame, moved
+//! by the whole output revolutions between the two, `2πN` each (on fixed
+//! point by at most the revolutions its angle holds, `⌊32 768/(2πN)⌋` =
+//! 52 at `N = 100` on `I16F16`, beyond which the hold point is out of
+//! range anyway), so that back in its own frame it is the stored point
+//! again; the rejoin offset is a difference and needs no move. A target
+//! frame is taken on a usable sample (below).
 //!
 //! The frame has a range: `|q_m − 2πN·turns|` at most
 //! [`JointConfig::frame_limit_counts`] counts — half the stored angle
@@ -1022,8 +1025,7 @@ impl<S: Scalar> JointConfig<S> {
         }
         // The mode manager's inputs are in the target's frame (stored on
         // every usable sample, unchanged but on a new frame: no branch);
-        // its hold point follows by whole output revolutions where it is
-        // read (`ModeState::set_frame`).
+        // its hold point is read in that frame (`ModeState::set_frame`).
         st.mode.set_frame(turns);
         st.frame_origin = origin;
         // In the frame (`|in_frame| ≤ frame_limit`): on fixed point and

@@ -502,9 +502,9 @@ impl<S: Scalar> ModeState<S> {
     }
     /// The inputs' positions are from now on in the frame of `turns` whole
     /// output revolutions (`q_m − 2πN·turns`; the joint's target frame): a
-    /// stored hold point moves with them by whole revolutions when it is
-    /// next read. The other stored positions are differences (the rejoin
-    /// offset) and need no move.
+    /// stored hold point is read in it, moved by whole revolutions from
+    /// the frame it was stored in. The other stored positions are
+    /// differences (the rejoin offset) and need no move.
     #[inline(always)]
     pub(crate) fn set_frame(&mut self, turns: i32) {
         self.frame_turns = turns;
@@ -663,7 +663,8 @@ impl<S: Scalar> ModeConfig<S> {
             JointMode::Hold => {
                 // The hold point in the inputs' frame (moved here, where it
                 // is read, and not where the frame changes: the move and
-                // the Active reference are then separate paths).
+                // the Active reference are then separate paths of the
+                // step).
                 xr.desired_position = self.hold_in_frame(st);
                 xr.desired_velocity = S::ZERO;
                 xr.desired_acceleration = S::ZERO;

@@ -848,7 +848,10 @@ fn hold_reference_follows_the_target_frame() {
         let rev = TAU * 100.0;
         let stored = counts as f64 * TAU / 2000.0 - t0 as f64 * rev;
         let got = out.control.reference_position.to_f64();
-        assert!((got - stored).abs() <= tol * 20.0 * rev, "{got} vs {stored}");
+        assert!(
+            (got - stored).abs() <= tol * 20.0 * rev,
+            "{got} vs {stored}"
+        );
         for &t in turns {
             target.turns = t;
             let out = cfg.update(&mut st, &readings, &target);
@@ -858,7 +861,10 @@ fn hold_reference_follows_the_target_frame() {
             let got = out.control.reference_position.to_f64();
             // (Within `tol` of the largest hold point visited, 20
             // revolutions: `f32` rounds each move.)
-            assert!((got - want).abs() <= tol * 20.0 * rev, "{t}: {got} vs {want}");
+            assert!(
+                (got - want).abs() <= tol * 20.0 * rev,
+                "{t}: {got} vs {want}"
+            );
         }
     }
     // Within every backend's frame (I16F16: 26 output revolutions, f32:
