@@ -604,10 +604,12 @@ def joint_steps(quick=False):
     for backend, core, vecs, dec, xs in (("f32", "M4F", JOINT_F32, f32_of, "f32"),
                                          ("I16F16", "M0+", JOINT_X, x_of, "i16f16")):
         key = "f32" if backend == "f32" else "x"
-        # M4F: 818, the bound of the step written without per-target layout
-        # or inlining in the domain code (800 before; the 4 ms tick is
-        # 600,000 cycles, the budget keeps the step small).
-        budget = dict(max_insns=818) if core == "M4F" else dict(max_insns=4000, max_arm_share=0.12)
+        # M4F: 828, the bound of the step with multi-turn targets and the
+        # counter's plausibility test (818 before them, the bound of the
+        # step written without per-target layout or inlining in the domain
+        # code; 800 before that; the 4 ms tick is 600,000 cycles, the
+        # budget keeps the step small).
+        budget = dict(max_insns=828) if core == "M4F" else dict(max_insns=4000, max_arm_share=0.12)
         found = found_vectors(core, [f"joint_{i}{xs}" for i, _, _ in JOINT_CONFIGS])
         for infix, label, reaction in JOINT_CONFIGS:
             own = vecs if not infix else vecs[::3]

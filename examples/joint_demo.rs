@@ -115,6 +115,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         estimator,
         mode,
         speed_window: 4,
+        max_motor_speed: mrr_control::joint::TABLE_4_1_MAX_MOTOR_SPEED,
     })?;
     let joint = JointConfig::<f32>::new(&params);
     println!(

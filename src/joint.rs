@@ -41,6 +41,77 @@
 //! [`JointConfig::state`] starts the motor at `N` times the link angle
 //! (zero torsion), the link angle taken in `[−π, π)`.
 //!
+//! # Multi-turn positions and targets
+//! No absolute angle is stored in the backend's number, so a joint turning
+//! in one direction keeps its control for any number of turns on every
+//! backend (`tests/multi_turn.rs`: 10⁴ output revolutions in closed loop
+//! on `I16F16`, `f32` and `f64`, tracking as at the first). A target is
+//! whole output revolutions plus the rest, link angle
+//! `2π·`[`turns`](JointTarget::turns)` + `[`position`](JointTarget::position)
+//! ([`JointTarget::from_si`] splits an SI angle so, the rest in
+//! `[−π, π]`), and the step forms the motor position in that target's
+//! frame from the 64-bit count, in counts, before it becomes the
+//! backend's number:
+//!
+//! `q_m − 2πN·turns = (c − turns·M·N)·2π/M`, compared with `N·position`
+//! (eq. 4.15).
+//!
+//! The law's error `e = q_m − N q_d` (eq. 4.19) is then a difference of two
+//! numbers of the size of one output revolution at the motor (`2πN` rad),
+//! exact to the count on every backend. So
+//! [`JointOutput::motor_position`] (and the mode manager's
+//! `reference_position`) are **in the target's frame**:
+//! `q_m − 2πN·turns`, rad at the motor; the absolute position is
+//! [`JointState::motor_position_counts`] (64-bit counts,
+//! `q_m = counts·2π/M`). When the target's `turns` change, nothing
+//! stored moves: the mode manager's hold point keeps the whole turns of
+//! the frame it was stored in and is read in the target's frame, moved
+//! by the whole output revolutions between the two, `2πN` each (on fixed
+//! point by at most the revolutions its angle holds, `⌊32 768/(2πN)⌋` =
+//! 52 at `N = 100` on `I16F16`, beyond which the hold point is out of
+//! range anyway), so that back in its own frame it is the stored point
+//! again; the rejoin offset is a difference and needs no move. A target
+//! frame is taken on a usable sample (below).
+//!
+//! The frame has a range: `|q_m − 2πN·turns|` at most
+//! [`JointConfig::frame_limit_counts`] counts — half the stored angle
+//! range on fixed point, at most `2³¹ − 1` counts (`I16F16`: 16 384 rad at
+//! the motor, 26 output revolutions at `N = 100`), and on floats the counts whose angle still
+//! resolves half a count (`f32`: 2²² counts, 13 176 rad at `M = 2000`,
+//! 21 output revolutions; `f64`: 2⁵¹ counts). A target whose whole turns
+//! leave the motor farther than that (a target given without its turns,
+//! as `turns: 0` and a large `position`) is **flagged** `invalid_input`
+//! and not used (below), never read as a saturated or rounded error
+//! (its reported `motor_position` is still in the target's frame; on
+//! `f32` a count beyond `±(2³¹ − 1)` from the frame's origin is reported
+//! at that bound).
+//! `JointTarget::position` itself is a stored angle: keep it within a
+//! revolution (on `I16F16`, `N·position` saturates beyond `±32 768/N` rad).
+//!
+//! # Plausibility of readings
+//! A motor cannot turn faster than [`JointSettings::max_motor_speed`]
+//! (from its data sheet; [`TABLE_4_1_MAX_MOTOR_SPEED`] in the presets). A
+//! counter that moved more than `⌊max_motor_speed·T·M/(2π)⌋ + 1` counts in
+//! one tick (one count of quantization above the speed) is a counter fault
+//! — a glitch, a lost or doubled reading, a jump of whole revolutions that
+//! the torsion cannot see because it is a multiple of `M·N` counts. Then:
+//!
+//! * the sample is flagged `invalid_input` (and
+//!   [`JointMeasurement::counter_jump`] from [`JointConfig::measure`]);
+//! * the joint **holds its last valid state**: the move is left out of the
+//!   motor position, the speed meter and the estimator see no motion for
+//!   this tick, and the mode manager is not advanced (command 0 N·m, the
+//!   last command recorded as 0, as for any invalid sample);
+//! * **recovery**: the next tick is measured from the jumped counter, so a
+//!   counter that jumped and stays (an offset) costs one flagged tick and
+//!   the offset never enters the position; a one-tick spike costs two (out
+//!   and back). The position then continues from where it was held
+//!   (`tests/plausibility.rs`).
+//!
+//! The same holding path takes every sample the step cannot use: an
+//! impossible torsion or a link count not below `L` (the estimator's
+//! flags), and a target outside the frame (above).
+//!
 //! # Units
 //! [`JointTarget`] is link-side: rad, rad/s, rad/s² and N·m — the stored
 //! units of every backend (`S::UNITS` scales angles, speeds and link
@@ -58,7 +129,11 @@
 //!
 //! * **`invalid_input`** — this sample could not be used: an input was NaN
 //!   or infinite or an impossible reading (a link count not below `L`, a
-//!   counter jump), or, on floats, finite inputs so large that the law
+//!   torsion no torque can produce, a counter faster than the motor's
+//!   maximum speed — [plausibility](self#plausibility-of-readings)), on
+//!   the joint a target outside the frame of its whole turns
+//!   ([multi-turn](self#multi-turn-positions-and-targets)), or, on floats,
+//!   finite inputs so large that the law
 //!   overflowed to NaN. The command is the documented fallback (0 N·m from
 //!   a law; in the mode manager 0 for a non-finite input, the decaying
 //!   bump-transfer bias for an overflow) and the adapted state is not
@@ -132,12 +207,31 @@ use crate::estimation::torque::{
 };
 use crate::harmonic_drive::identification::CatalogueData;
 use crate::harmonic_drive::kinematic_error::KinematicErrorModel;
+use crate::scalar::target::mul_wide;
 use crate::scalar::units::{dequantize, quantize_keep_non_finite};
 use crate::scalar::{CountCoef, IntFactor, Scalar};
 use core::f64::consts::TAU;
 
 /// Longest speed window, ticks.
 pub const MAX_SPEED_WINDOW: u8 = 64;
+
+/// The plausibility limit of the presets' motor speed, rad/s
+/// ([`JointSettings::max_motor_speed`] of [`JointParams::table_4_1`] and
+/// [`JointParams::table_4_1_at`]): 1000 rad/s (about 9,550 rpm).
+///
+/// Source: the thesis gives no speed rating for its motor (a Maxon
+/// 218014 brushed DC motor, ch. 2.5 and 3.4; only its weight, torque
+/// limit and torque constant are printed). The fastest motion it reports
+/// on this joint is 1.56 rad/s at the link (Table 3.3), 156 rad/s at the
+/// motor through `N = 100`, and the 4 ms design assumes motor speeds up
+/// to 100 rad/s ([`JointParams::table_4_1_at`]). The limit is a
+/// plausibility bound about 6.4 times the fastest reported speed, not a
+/// rating: set [`JointSettings::max_motor_speed`] from your motor's data
+/// sheet (its maximum permissible speed). At 4 ms and 2000 counts per
+/// revolution it admits up to 1274 counts per tick; one motor revolution
+/// (2000 counts) or a whole output revolution (200 000) in one tick is
+/// rejected.
+pub const TABLE_4_1_MAX_MOTOR_SPEED: f64 = 1000.0;
 const _: () = assert!(MAX_SPEED_WINDOW.is_power_of_two());
 
 /// The settings of a joint by name, for [`JointParams::try_new`].
@@ -153,6 +247,11 @@ pub struct JointSettings {
     /// Window of the motor speed's count difference, ticks, in
     /// `[1, MAX_SPEED_WINDOW]`.
     pub speed_window: u8,
+    /// The fastest the motor can turn, rad/s (> 0; from the motor's data
+    /// sheet, e.g. its maximum permissible speed): a reading whose counter
+    /// moved farther in one tick is a counter fault, flagged and not used
+    /// ([plausibility of readings](self#plausibility-of-readings)).
+    pub max_motor_speed: f64,
 }
 
 /// Parameters of one joint, SI; built only by [`try_new`](Self::try_new).
@@ -167,9 +266,16 @@ impl JointParams {
     /// with the drive's ratio as both bounds); `speed_window` in
     /// `[1, MAX_SPEED_WINDOW]`; the motor speed resolution
     /// `2π/(M·w·T)` at most 32 768 rad/s (named
-    /// `2π/(estimator.motor_counts_per_rev·speed_window·mode.active.sample_period)`). The
-    /// estimator and mode parameters were validated by their own
-    /// `try_new`.
+    /// `2π/(estimator.motor_counts_per_rev·speed_window·mode.active.sample_period)`);
+    /// `max_motor_speed` finite and > 0, and the counts it moves in one
+    /// tick, `max_motor_speed·T·M/(2π)`, at most 2³⁰ (named
+    /// `max_motor_speed·mode.active.sample_period·estimator.motor_counts_per_rev/2π`;
+    /// the wrapping 32-bit counter difference must resolve them); and the
+    /// motor counts per output revolution `M·N` at most 2³² (named
+    /// `estimator.motor_counts_per_rev·estimator.drive.ratio`; whole output
+    /// turns of a target, [`JointTarget::turns`], are then exact 64-bit
+    /// counts). The estimator and mode parameters were validated by their
+    /// own `try_new`.
     pub fn try_new(settings: JointSettings) -> Result<Self, ParamError> {
         let n = settings.estimator.drive().ratio();
         let mode_ratio = settings.mode.settings().active.design().ratio;
@@ -189,12 +295,25 @@ impl JointParams {
                 max: MAX_SPEED_WINDOW as f64,
             });
         }
+        crate::error::positive("max_motor_speed", settings.max_motor_speed)?;
         let p = JointParams { settings };
         crate::error::combination(
             "2π/(estimator.motor_counts_per_rev·speed_window·mode.active.sample_period)",
             p.speed_resolution(),
             0.0,
             32_768.0,
+        )?;
+        crate::error::combination(
+            "max_motor_speed·mode.active.sample_period·estimator.motor_counts_per_rev/2π",
+            settings.max_motor_speed * p.sample_period() / p.motor_rad_per_count(),
+            0.0,
+            (1u64 << 30) as f64,
+        )?;
+        crate::error::combination(
+            "estimator.motor_counts_per_rev·estimator.drive.ratio",
+            settings.estimator.motor_counts_per_rev() as f64 * p.ratio(),
+            1.0,
+            (1u64 << 32) as f64,
         )?;
         Ok(p)
     }
@@ -206,7 +325,8 @@ impl JointParams {
     /// (`T = 4 ms`) and passive law with the default gain
     /// ([`PassiveParams::table_4_1_default`]) under the manager settings of
     /// [`ModeSettings::table_4_1`] (no collision detector); speed over one
-    /// tick (resolution `2π/(2000·4 ms) = 0.785` rad/s).
+    /// tick (resolution `2π/(2000·4 ms) = 0.785` rad/s); readings implying
+    /// a motor faster than [`TABLE_4_1_MAX_MOTOR_SPEED`] rejected.
     ///
     /// # Does not hold at its own 4 ms
     /// These are the thesis's numbers, kept for reproducing ch. 4, and the
@@ -244,6 +364,7 @@ impl JointParams {
             estimator,
             mode,
             speed_window: 1,
+            max_motor_speed: TABLE_4_1_MAX_MOTOR_SPEED,
         })
     }
 
@@ -361,21 +482,40 @@ pub struct JointConfig<S> {
     link_counts: u32,
     /// `M·N`, motor counts per output revolution.
     motor_counts_per_output_rev: i64,
+    /// The most counts the counter may move in one tick:
+    /// `⌊max_motor_speed·T·M/(2π)⌋ + 1` (one count of quantization).
+    max_counts_per_tick: u32,
+    /// The largest `|q_m − 2πN·turns|` in counts that the backend's angle
+    /// carries ([`JointConfig::frame_limit_counts`]).
+    frame_limit: u64,
+    /// `2·frame_limit`: the frame test is one unsigned compare,
+    /// `in_frame + frame_limit ≤ frame_span`.
+    frame_span: u64,
 }
 
 /// The joint's state: the estimator's, the mode manager's, and the motor
 /// position and speed meter's.
+///
+/// `repr(C)`, the joint's own per-tick values first and the 64-word speed
+/// history last, so that they lie within a short load's reach of the
+/// state's base (124 bytes for a word load on Armv6-M).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C)]
 pub struct JointState<S: Scalar> {
-    estimator: TorqueEstimatorState,
-    mode: ModeState<S>,
     /// Motor position, counts, chapter-4 sign.
     motor_count: i64,
+    /// The origin in counts, `turns·M·N`, of the frame of the mode
+    /// manager's inputs: the whole output turns of the last usable target
+    /// ([`JointTarget::turns`]), kept in the mode manager's state.
+    frame_origin: i64,
     /// Last raw counter (chapter-4 sign).
     last_counter: u32,
-    /// The last `w` raw counters, oldest at `head`.
-    history: [u32; MAX_SPEED_WINDOW as usize],
     head: u8,
+    estimator: TorqueEstimatorState,
+    mode: ModeState<S>,
+    /// The low 32 bits of the motor position of the last `w` ticks
+    /// (a counter without its rejected jumps), oldest at `head`.
+    history: [u32; MAX_SPEED_WINDOW as usize],
 }
 
 impl<S: Scalar> JointState<S> {
@@ -392,10 +532,14 @@ impl<S: Scalar> JointState<S> {
         &self.estimator
     }
     /// The motor position in counts since the state was made, offset by the
-    /// start position, chapter-4 sign (`q_m = counts · 2π/M`).
+    /// start position, chapter-4 sign (`q_m = counts · 2π/M`); a rejected
+    /// counter jump is not in it. The absolute position on every backend,
+    /// whatever the range of its stored angle: `q_m` in rad is
+    /// `counts · 2π/M` (in `f64`, exact below 2⁵³ counts).
     pub fn motor_position_counts(&self) -> i64 {
         self.motor_count
     }
+
     /// The active law's adapted state (friction estimate and integral;
     /// SI readers [`RobustAdaptiveState::friction_si`] and
     /// [`RobustAdaptiveState::integral_si`]).
@@ -413,9 +557,12 @@ impl<S: Scalar> JointState<S> {
     }
     /// This state with the mode manager's state replaced by `mode` (one
     /// reached by running the same [`ModeConfig`], e.g. to resume a joint
-    /// or to start a test in a given mode); the estimator and the motor
-    /// position are kept.
-    pub fn with_mode_state(mut self, mode: ModeState<S>) -> Self {
+    /// or to start a test in a given mode); the estimator, the motor
+    /// position and the target frame are kept (a hold point in `mode`
+    /// keeps its own frame's whole turns and moves to the joint's when it
+    /// is read).
+    pub fn with_mode_state(mut self, mut mode: ModeState<S>) -> Self {
+        mode.set_frame(self.mode.frame());
         self.mode = mode;
         self
     }
@@ -449,9 +596,20 @@ impl<S> JointReadings<S> {
 }
 
 /// What the joint should do on this tick, link side.
+///
+/// The desired link angle is `2π·turns + position`: whole output
+/// revolutions as an integer and the rest as a number, so that a joint
+/// turning in one direction keeps its resolution and its range on every
+/// backend ([multi-turn](self#multi-turn-positions-and-targets));
+/// [`from_si`](Self::from_si) splits an SI angle so.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct JointTarget<S> {
-    /// Desired link angle `q_d`, stored angle units (rad).
+    /// Whole output (link) revolutions of the desired link angle, positive
+    /// forward: the desired link angle is `2π·turns + position`.
+    pub turns: i32,
+    /// Desired link angle `q_d` beyond the whole [`turns`](Self::turns),
+    /// stored angle units (rad); any value the backend holds, best within
+    /// `±π` ([`from_si`](Self::from_si) puts it in `[−π, π]`).
     pub position: S,
     /// Desired link speed `q̇_d`, stored speed units (rad/s).
     pub velocity: S,
@@ -469,18 +627,38 @@ pub struct JointTarget<S> {
 
 impl<S: Scalar> JointTarget<S> {
     /// A trajectory point from SI values (rad, rad/s, rad/s²), no desired
-    /// or expected joint torque. A NaN or infinity stays one on floats (the
-    /// step then flags it); fixed point saturates it (see
-    /// [`quantize_keep_non_finite`]).
+    /// or expected joint torque. The link angle is split into whole
+    /// revolutions and the rest, `position = 2π·turns + r` with `turns`
+    /// the nearest integer to `position/2π` and `r ∈ [−π, π]` (an angle
+    /// beyond `±2³¹` revolutions keeps `turns = 0`). A NaN or infinity
+    /// stays one on floats (the step then flags it); fixed point saturates
+    /// it (see [`quantize_keep_non_finite`]).
     pub fn from_si(position: f64, velocity: f64, acceleration: f64) -> Self {
         let u = S::UNITS;
+        let (turns, position) = split_turns(position);
         JointTarget {
+            turns,
             position: quantize_keep_non_finite(position, u.angle),
             velocity: quantize_keep_non_finite(velocity, u.speed),
             acceleration: quantize_keep_non_finite(acceleration, u.speed),
             joint_torque: S::ZERO,
             expected_joint_torque: S::ZERO,
         }
+    }
+}
+
+/// `angle = 2π·turns + rest` with `turns` the nearest integer to
+/// `angle/2π` (halves away from zero) and `rest ∈ [−π, π]`; an angle that
+/// is not a number or beyond `±2³¹` revolutions gives `(0, angle)`.
+fn split_turns(angle: f64) -> (i32, f64) {
+    let t = angle / TAU;
+    // `as` saturates and takes NaN to 0; the range test keeps the split
+    // exact in `i32`.
+    if t.abs() < 2_147_483_647.0 {
+        let k = (t + if t < 0.0 { -0.5 } else { 0.5 }) as i32;
+        (k, angle - k as f64 * TAU)
+    } else {
+        (0, angle)
     }
 }
 
@@ -491,7 +669,10 @@ pub struct JointMeasurement<S> {
     /// The estimated joint torque `τ̂_t` (eq. 4.1 sign: the torque the drive
     /// applies to the link), stored link-torque units; `−estimate.torque`.
     pub joint_torque: S,
-    /// The measured motor position `q_m`, stored angle units.
+    /// The measured motor position `q_m` (from the state's 64-bit count,
+    /// [`JointState::motor_position_counts`]), stored angle units: it
+    /// saturates on `I16F16` beyond ±32 768 rad and rounds on floats
+    /// (on `f32` to coarser than half a count beyond 2²² counts).
     pub motor_position: S,
     /// The measured motor speed `q̇_m` (count difference over the window),
     /// stored speed units.
@@ -499,6 +680,11 @@ pub struct JointMeasurement<S> {
     /// The estimator's output, in the estimator's sign (errata E2.10); its
     /// `invalid_input` and `link_count_invalid` flag impossible readings.
     pub estimate: TorqueEstimate<S>,
+    /// The motor counter moved farther than
+    /// [`JointSettings::max_motor_speed`] allows in one tick: the reading
+    /// was rejected (the position, the speed meter and the estimator's
+    /// motor position hold; [plausibility](self#plausibility-of-readings)).
+    pub counter_jump: bool,
 }
 
 impl<S: Scalar> JointMeasurement<S> {
@@ -529,18 +715,24 @@ pub struct JointOutput<S> {
     /// The estimated joint torque `τ̂_t` (eq. 4.1 sign: the torque the drive
     /// applies to the link), stored link-torque units; `−estimate.torque`.
     pub joint_torque: S,
-    /// The measured motor position `q_m` (chapter-4 sign), stored angle
-    /// units.
+    /// The measured motor position in the target's frame,
+    /// `q_m − 2πN·turns` (chapter-4 sign; `turns` the target's
+    /// [`JointTarget::turns`]), stored angle units
+    /// ([multi-turn](self#multi-turn-positions-and-targets); the absolute
+    /// position is [`JointState::motor_position_counts`]).
     pub motor_position: S,
     /// The measured motor speed `q̇_m` (count difference over the window),
     /// stored speed units.
     pub motor_velocity: S,
     /// An input was impossible, at either stage (the meaning is shared with
     /// the wrist: [status flags](self#status-flags)): a link count not below
-    /// `L`, a counter jump or torsion no torque can produce, a NaN or
-    /// infinite motor torque (estimator), a NaN or infinite target, or a
-    /// law that overflowed (mode manager). The values that replace it are
-    /// documented on [`TorqueEstimate`] and [`ModeOutput`].
+    /// `L`, a torsion no torque can produce, a NaN or infinite motor torque
+    /// (estimator), a counter faster than the motor's maximum speed
+    /// ([plausibility](self#plausibility-of-readings)), a target outside
+    /// its turns' frame ([multi-turn](self#multi-turn-positions-and-targets)),
+    /// a NaN or infinite target, or a law that overflowed (mode manager).
+    /// The command is then 0 N·m from the mode manager's invalid-sample
+    /// path (an overflow: the decaying bias) and the state holds.
     pub invalid_input: bool,
     /// The estimator's output, in the estimator's sign (errata E2.10).
     pub estimate: TorqueEstimate<S>,
@@ -567,7 +759,8 @@ impl<S: Scalar> JointOutput<S> {
     pub fn joint_torque_si(&self) -> f64 {
         dequantize(self.joint_torque, S::UNITS.link_torque)
     }
-    /// [`motor_position`](Self::motor_position) in rad.
+    /// [`motor_position`](Self::motor_position) in rad, in the target's
+    /// frame (`q_m − 2πN·turns`).
     pub fn motor_position_si(&self) -> f64 {
         dequantize(self.motor_position, S::UNITS.angle)
     }
@@ -583,15 +776,46 @@ impl<S: Scalar> JointConfig<S> {
         let u = S::UNITS;
         let s = &p.settings;
         let m = s.estimator.motor_counts_per_rev();
+        let motor_counts_per_output_rev = m as i64 * p.ratio() as i64;
+        let angle_per_count = CountCoef::new(p.motor_rad_per_count() * u.angle);
+        let frame_limit = Self::frame_limit_counts(p.motor_rad_per_count());
+        // One output revolution at the motor, `2πN` rad, from its `M·N`
+        // counts: the hold point's step between turn frames.
+        let output_rev = S::from_counts_prepared(motor_counts_per_output_rev, &angle_per_count);
         JointConfig {
             estimator: TorqueEstimatorConfig::new(&s.estimator),
-            mode: ModeConfig::new(&s.mode),
+            mode: ModeConfig::new(&s.mode).with_output_revolution(output_rev),
             ratio: IntFactor::new(p.ratio()),
-            angle_per_count: CountCoef::new(p.motor_rad_per_count() * u.angle),
+            angle_per_count,
             speed_per_count: CountCoef::new(p.speed_resolution() * u.speed),
             speed_window: s.speed_window,
             link_counts: s.estimator.link_counts_per_rev(),
-            motor_counts_per_output_rev: m as i64 * p.ratio() as i64,
+            motor_counts_per_output_rev,
+            // Validated: at most 2³⁰ + 1.
+            max_counts_per_tick: (s.max_motor_speed * p.sample_period() / p.motor_rad_per_count())
+                as u32
+                + 1,
+            frame_limit,
+            frame_span: 2 * frame_limit,
+        }
+    }
+
+    /// The largest motor-side distance from the target's whole turns,
+    /// `|q_m − 2πN·turns|` in counts, that the step accepts on backend `S`
+    /// for a motor of `rad_per_count` (`2π/M`) rad per count: on fixed
+    /// point the counts whose angle is within half the backend's range
+    /// (`I16F16`: 16 384 rad, so that the error to a target within `±π`
+    /// at the link cannot saturate), and at most `2³¹ − 1` counts (the
+    /// fixed-point count product takes 32-bit counts; the cap binds above
+    /// about 823 000 counts per motor revolution on `I16F16`); on floats
+    /// the counts whose angle the
+    /// backend still resolves to half a count, `1/(2ε)` (`f32`: 2²²
+    /// counts, 13 176 rad at `M = 2000`; `f64`: 2⁵¹).
+    pub fn frame_limit_counts(rad_per_count: f64) -> u64 {
+        if S::FLOAT {
+            (0.5 / S::RESOLUTION.to_f64()) as u64
+        } else {
+            ((S::MAX.to_f64() / S::UNITS.angle / 2.0 / rad_per_count) as u64).min(i32::MAX as u64)
         }
     }
 
@@ -621,16 +845,23 @@ impl<S: Scalar> JointConfig<S> {
 
     /// A state for a motor at `motor_position` counts (chapter-4 sign,
     /// `q_m = counts · 2π/M`) while its counter reads `motor_counter`.
+    ///
+    /// The estimator and the speed meter are given the joint's own count
+    /// (the counter without its rejected jumps), so the estimator state's
+    /// [`last_counter`](TorqueEstimatorState::last_counter) is the low 32
+    /// bits of the negated motor position, not the raw counter.
     pub fn state_at(&self, motor_position: i64, motor_counter: u32) -> JointState<S> {
+        let own = motor_position as u32;
         JointState {
             estimator: self
                 .estimator
-                .state(motor_position.wrapping_neg(), motor_counter.wrapping_neg()),
+                .state(motor_position.wrapping_neg(), own.wrapping_neg()),
             mode: self.mode.initial_state(),
             motor_count: motor_position,
             last_counter: motor_counter,
-            history: [motor_counter; MAX_SPEED_WINDOW as usize],
+            history: [own; MAX_SPEED_WINDOW as usize],
             head: 0,
+            frame_origin: 0,
         }
     }
 
@@ -649,13 +880,53 @@ impl<S: Scalar> JointConfig<S> {
     // Inlined into its caller: the joint step is then one function,
     // without call and argument-struct overhead, also in a firmware that
     // builds several joint configurations.
+    ///
+    /// A counter that moved farther than
+    /// [`JointSettings::max_motor_speed`] allows is rejected
+    /// ([`JointMeasurement::counter_jump`]; module docs).
     #[inline(always)]
     pub fn measure(
         &self,
         st: &mut JointState<S>,
         readings: &JointReadings<S>,
     ) -> JointMeasurement<S> {
+        let (estimate, motor_count, moved, counter_jump) = self.measure_counts(st, readings);
+        JointMeasurement {
+            joint_torque: estimate.torque.neg(),
+            motor_position: S::from_counts_prepared(motor_count, &self.angle_per_count),
+            motor_velocity: S::from_counts_i32(moved, &self.speed_per_count),
+            estimate,
+            counter_jump,
+        }
+    }
+
+    /// The counting half of [`measure`](Self::measure): the plausibility
+    /// test of the counter, the motor position (64-bit count), the
+    /// estimate and the speed meter's count difference over the window.
+    /// Returns `(estimate, motor count, counts moved over the window,
+    /// counter jump)`.
+    #[inline(always)]
+    fn measure_counts(
+        &self,
+        st: &mut JointState<S>,
+        readings: &JointReadings<S>,
+    ) -> (TorqueEstimate<S>, i64, i32, bool) {
         let counter = readings.motor_counter;
+        // Position: wrapping 32-bit difference, exact 64-bit sum; a move
+        // faster than the motor can turn is a counter fault, not motion:
+        // it is left out, and the next tick is measured from this reading.
+        let raw = counter.wrapping_sub(st.last_counter) as i32;
+        st.last_counter = counter;
+        // |raw| > max as one unsigned compare (2·max ≤ 2³¹ + 2, validated).
+        let max = self.max_counts_per_tick;
+        let counter_jump = (raw as u32).wrapping_add(max) > max << 1;
+        let delta = if counter_jump { 0 } else { raw };
+        let motor_count = st.motor_count.wrapping_add(delta as i64);
+        st.motor_count = motor_count;
+        // The joint's own counter: the position's low 32 bits, which the
+        // estimator and the speed meter follow (a rejected jump is in
+        // neither).
+        let own = motor_count as u32;
         // The previous command is finite (the mode manager limits it): the
         // estimator then does not test it.
         let (motor_torque, torque_finite) = match readings.motor_torque {
@@ -665,31 +936,21 @@ impl<S: Scalar> JointConfig<S> {
         let estimate = self.estimator.update_with(
             &mut st.estimator,
             readings.link_count,
-            counter.wrapping_neg(),
+            own.wrapping_neg(),
             motor_torque,
             torque_finite,
         );
-        // Position: wrapping 32-bit difference, exact 64-bit sum.
-        let delta = counter.wrapping_sub(st.last_counter) as i32;
-        st.last_counter = counter;
-        let motor_count = st.motor_count.wrapping_add(delta as i64);
-        st.motor_count = motor_count;
-        // Speed: difference to the counter `w` ticks ago (`w` is validated
+        // Speed: difference to the count `w` ticks ago (`w` is validated
         // in [1, MAX_SPEED_WINDOW]; the ring index is taken modulo its
         // power-of-two length anyway, one mask and no bounds test, so no
         // reading can index past it).
         let w = self.speed_window;
         let head = if st.head < w { st.head } else { 0 };
         let slot = &mut st.history[head as usize % MAX_SPEED_WINDOW as usize];
-        let old = core::mem::replace(slot, counter);
+        let old = core::mem::replace(slot, own);
         st.head = if head + 1 >= w { 0 } else { head + 1 };
-        let moved = counter.wrapping_sub(old) as i32;
-        JointMeasurement {
-            joint_torque: estimate.torque.neg(),
-            motor_position: S::from_counts_prepared(motor_count, &self.angle_per_count),
-            motor_velocity: S::from_counts_i32(moved, &self.speed_per_count),
-            estimate,
-        }
+        let moved = own.wrapping_sub(old) as i32;
+        (estimate, motor_count, moved, counter_jump)
     }
 
     /// One tick: [`measure`](Self::measure) (estimate the joint torque from
@@ -714,12 +975,67 @@ impl<S: Scalar> JointConfig<S> {
         readings: &JointReadings<S>,
         target: &JointTarget<S>,
     ) -> JointOutput<S> {
-        let JointMeasurement {
-            joint_torque,
-            motor_position,
-            motor_velocity,
-            estimate,
-        } = self.measure(st, readings);
+        let (estimate, motor_count, moved, counter_jump) = self.measure_counts(st, readings);
+        // The motor position in the target's turn frame, formed in counts:
+        // `q_m − 2πN·turns`. The frame's origin `turns·M·N` is kept in the
+        // state; only a change of the target's turns recomputes it (exact
+        // modulo 2⁶⁴: |turns| ≤ 2³¹ and M·N ≤ 2³² are validated).
+        let turns = target.turns;
+        let new_frame = turns != st.mode.frame();
+        let origin = if new_frame {
+            let whole = mul_wide(turns.unsigned_abs(), self.motor_counts_per_output_rev);
+            if turns < 0 {
+                whole.wrapping_neg()
+            } else {
+                whole
+            }
+        } else {
+            st.frame_origin
+        };
+        let in_frame = motor_count.wrapping_sub(origin);
+        // |in_frame| ≤ frame_limit as one unsigned compare; where the limit
+        // is below 2³¹ (a constant of the backend), of the limit's and the
+        // span's low words.
+        let frame_ok = if Self::frame_fits_i32() {
+            in_frame.wrapping_add(self.frame_limit as u32 as i64) as u64
+                <= self.frame_span as u32 as u64
+        } else {
+            in_frame.wrapping_add(self.frame_limit as i64) as u64 <= self.frame_span
+        };
+        let joint_torque = estimate.torque.neg();
+        let motor_velocity = S::from_counts_i32(moved, &self.speed_per_count);
+        // An unusable sample (a rejected counter jump, a target too far
+        // from the motor for the backend, an impossible torsion or link
+        // count): the command is the fallback and the state holds, the
+        // frame included (a new target frame is taken on the next usable
+        // sample; the hold point is not read before).
+        if counter_jump || !frame_ok || estimate.invalid_input || estimate.link_count_invalid {
+            let motor_position = self.position_beyond_frame(in_frame);
+            let control = self.mode.reject(&mut st.mode, motor_position);
+            return JointOutput {
+                motor_torque: control.torque,
+                mode: control.mode,
+                joint_torque,
+                motor_position,
+                motor_velocity,
+                invalid_input: true,
+                estimate,
+                control,
+            };
+        }
+        // The mode manager's inputs are in the target's frame (stored on
+        // every usable sample, unchanged but on a new frame: no branch);
+        // its hold point is read in that frame (`ModeState::set_frame`).
+        st.mode.set_frame(turns);
+        st.frame_origin = origin;
+        // In the frame (`|in_frame| ≤ frame_limit`): on fixed point and
+        // `f32` the limit is below 2³¹, so the count is one 32-bit
+        // conversion.
+        let motor_position = if Self::frame_fits_i32() {
+            S::from_counts_i32(in_frame as i32, &self.angle_per_count)
+        } else {
+            S::from_counts_prepared(in_frame, &self.angle_per_count)
+        };
         let x = ControlInput {
             desired_position: target.position.mul_int(&self.ratio),
             desired_velocity: target.velocity.mul_int(&self.ratio),
@@ -731,7 +1047,8 @@ impl<S: Scalar> JointConfig<S> {
             expected_joint_torque: target.expected_joint_torque,
         };
         // The measured fields are finite (count products, the estimate):
-        // only the other five are tested.
+        // only the other five are tested. The estimate's flags are clear
+        // here.
         let control = self.mode.update_measured(&mut st.mode, &x);
         JointOutput {
             motor_torque: control.torque,
@@ -739,12 +1056,36 @@ impl<S: Scalar> JointConfig<S> {
             joint_torque,
             motor_position,
             motor_velocity,
-            invalid_input: estimate.invalid_input
-                || estimate.link_count_invalid
-                || control.invalid_input,
+            invalid_input: control.invalid_input,
             estimate,
             control,
         }
+    }
+
+    /// The reported motor position of an unusable sample, `in_frame`
+    /// counts from the target's frame (possibly beyond its limit): on
+    /// `f32` the count clamped to `±(2³¹ − 1)` and converted from 32 bits,
+    /// elsewhere [`Scalar::from_counts_prepared`] (`I16F16` saturates).
+    #[inline(always)]
+    fn position_beyond_frame(&self, in_frame: i64) -> S {
+        if S::FLOAT && Self::frame_fits_i32() {
+            let c = in_frame.max(i32::MIN as i64).min(i32::MAX as i64) as i32;
+            S::from_counts_i32(c, &self.angle_per_count)
+        } else {
+            S::from_counts_prepared(in_frame, &self.angle_per_count)
+        }
+    }
+}
+
+impl<S: Scalar> JointConfig<S> {
+    /// Whether every frame limit of backend `S`
+    /// ([`frame_limit_counts`](Self::frame_limit_counts)) is below 2³¹
+    /// counts: on fixed point always (the limit is capped there), on
+    /// floats when `1/(2ε)` is (`f32`, not `f64`). A constant of the
+    /// backend.
+    #[inline(always)]
+    fn frame_fits_i32() -> bool {
+        !S::FLOAT || 0.5 / S::RESOLUTION.to_f64() <= i32::MAX as f64
     }
 }
 

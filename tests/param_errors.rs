@@ -422,6 +422,25 @@ fn all_rows() -> Vec<Row> {
             "parameter `mode.active.ratio` must lie in [100, 100], got 50"),
         row("JointSettings", "speed_window", joint(|s| s.speed_window = 65),
             "parameter `speed_window` must lie in [1, 64], got 65"),
+        row("JointSettings", "max_motor_speed", joint(|s| s.max_motor_speed = 0.0),
+            "parameter `max_motor_speed` must be > 0, got 0"),
+        // 1e9 rad/s · 4 ms · 2000/2π = 1.273e9 counts per tick > 2³⁰.
+        row("JointSettings", "max_motor_speed·sample_period·motor_counts_per_rev",
+            joint(|s| s.max_motor_speed = 1e9),
+            "`max_motor_speed·mode.active.sample_period·estimator.motor_counts_per_rev/2π` \
+             must lie in [0, 1.073741824e9], got 1.2732395447351627e9"),
+        // M·N = 2²⁶·100 = 6.711e9 > 2³² (a 64-count link encoder keeps
+        // L·M·N within the estimator's limit).
+        row("JointSettings", "estimator.motor_counts_per_rev·drive.ratio",
+            joint(|s| {
+                s.estimator = estimator(|e| {
+                    e.link_counts_per_rev = 64;
+                    e.motor_counts_per_rev = 1 << 26;
+                })
+                .unwrap()
+            }),
+            "`estimator.motor_counts_per_rev·estimator.drive.ratio` must lie in [1, 4.294967296e9], \
+             got 6.7108864e9"),
         // CataloguePiecewise::try_new(CatalogueCurve)
         row("CatalogueCurve", "k1", curve(|c| c.k1 = 0.0), "parameter `k1` must be > 0, got 0"),
         row("CatalogueCurve", "k2", curve(|c| c.k2 = -1.0), "parameter `k2` must be > 0, got -1"),
@@ -648,7 +667,7 @@ fn every_settings_field_names_itself() {
 }
 
 /// Number of (type, field) rows of the table.
-const ROWS: usize = 151;
+const ROWS: usize = 154;
 
 /// No message carries a value in long decimal form: every number has at
 /// most 17 significant digits and no run of zeros.
@@ -1125,6 +1144,29 @@ fn boundaries_drive_and_estimator() {
     assert!(with_ratio(1.0).is_ok());
     upper_edge("drive.ratio", with_ratio, 65535.0);
     rejected_naming("drive.ratio", with_ratio(65536.0), "65536");
+    // max_motor_speed: > 0, and at most 2³⁰ counts per 4 ms tick at
+    // 2000 counts per revolution, 2³⁰·(2π/2000)/0.004 rad/s (the largest
+    // accepted float found by stepping down from it, checked to lie within
+    // rounding of it).
+    let speed = |v: f64| joint(|s| s.max_motor_speed = v);
+    let top = (1u64 << 30) as f64 * (core::f64::consts::TAU / 2000.0) / 0.004;
+    let mut hi = top.next_up().next_up();
+    while speed(hi).is_err() {
+        hi = hi.next_down();
+    }
+    assert!((hi / top - 1.0).abs() < 1e-15, "{hi} vs {top}");
+    let tiny = f64::MIN_POSITIVE * f64::EPSILON;
+    assert!(speed(tiny).is_ok());
+    rejected_naming("max_motor_speed", speed(0.0), "0");
+    rejected_naming("max_motor_speed", speed(f64::NAN), "NaN");
+    match speed(hi.next_up()) {
+        Err(e) => assert!(
+            e.to_string()
+                .starts_with("`max_motor_speed·mode.active.sample_period·"),
+            "{e}"
+        ),
+        Ok(_) => panic!("{:e} should be rejected", hi.next_up()),
+    }
     integer_edges(
         "speed_window",
         |v| joint(|s| s.speed_window = v as u8),

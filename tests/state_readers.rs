@@ -224,3 +224,32 @@ fn joint_flags_separate_invalid_samples_from_the_limit() {
     run::<f32>(&p);
     run::<I16F16>(&p);
 }
+
+/// The wrist's adapted state is read per motor through `motors()` (its
+/// field is private) and gives the same SI values on every backend: at the
+/// start, Table 6.1's initial friction estimate of each motor.
+#[test]
+fn wrist_state_reads_in_si_on_every_backend() {
+    use mrr_control::wrist::active::{WristActiveConfig, WristActiveParams};
+    let p = WristActiveParams::table_6_1().unwrap();
+    let a = WristActiveConfig::<f64>::new(&p).initial_state();
+    let b = WristActiveConfig::<I16F16>::new(&p).initial_state();
+    for i in 0..2 {
+        let fa = a.motors()[i].friction_si();
+        let fb = b.motors()[i].friction_si();
+        let want = p.laws()[i].design().initial_friction;
+        for (x, y, w) in [
+            (fa.viscous, fb.viscous, want.viscous),
+            (fa.coulomb, fb.coulomb, want.coulomb),
+            (fa.stribeck, fb.stribeck, want.stribeck),
+        ] {
+            assert!((x - w).abs() <= 1e-12 * w.abs(), "motor {i}: {x} vs {w}");
+            assert!(
+                (y - w).abs() <= 2e-5 + 1e-3 * w.abs(),
+                "motor {i}: {y} vs {w}"
+            );
+        }
+        assert_eq!(a.motors()[i].integral_si(), 0.0);
+        assert_eq!(b.motors()[i].integral_si(), 0.0);
+    }
+}

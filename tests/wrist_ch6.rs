@@ -201,7 +201,7 @@ fn wrist_bound_run(case: &WristCase, design: &WristMotorDesign, duration: f64) -
                     velocity: v,
                     interaction_torque: fb[i],
                 };
-                let mut scratch = held.motors[i];
+                let mut scratch = held.motors()[i];
                 let tc = law
                     .law(i)
                     .update(&mut scratch, &xc.to_control_input())

@@ -115,6 +115,7 @@ fn joint_params(p: &TorqueEstimatorParams, r: CollisionReaction) -> JointParams 
         estimator: *p,
         mode: mode_params(r),
         speed_window: 1,
+        max_motor_speed: mrr_control::joint::TABLE_4_1_MAX_MOTOR_SPEED,
     }))
 }
 
@@ -295,6 +296,7 @@ unsafe fn desired(i: usize) -> u32 {
 #[inline(always)]
 fn target<S: Scalar>(a: [S; 4], td: S) -> JointTarget<S> {
     JointTarget {
+        turns: 0,
         position: a[0],
         velocity: a[1],
         acceleration: a[2],

@@ -7,6 +7,18 @@
 //! (`TorqueEstimatorSettings`, `update_radians`) and the wrist's admittance
 //! law (`AdmittanceSettings`, eq. 6.32).
 //!
+//! The joint also runs multi-turn sequences (a motor up to ±2²⁰ output
+//! revolutions out, turning within its speed limit, readings and SI target
+//! consistent with it; a whole-revolution counter jump that stays), with
+//! the target's whole turns drawn raw, and `max_motor_speed` scaled or
+//! raw. Laws: no panic, no NaN or ∞ output, the torque within its limit,
+//! the state readers finite (the last command within the limit), a counter
+//! move beyond the speed limit flagged and left out of the position and
+//! every other move counted exactly, the motor position in the target's
+//! frame within half an output revolution, and — for the table's
+//! parameters and a link encoder of at least 2¹⁴ counts — no tick of a
+//! multi-turn sequence flagged.
+//!
 //! Asserted, for every input: a typed error (its message names the
 //! parameter in backticks), or finite outputs within their stated range
 //! with the flags telling the truth (`invalid_input` exactly when a float
@@ -58,7 +70,9 @@ use mrr_control::estimation::{
 use mrr_control::friction::{FrictionConfig, FrictionParams};
 use mrr_control::harmonic_drive::kinematic_error::KinematicErrorModel;
 use mrr_control::harmonic_drive::CatalogueData;
-use mrr_control::joint::{JointConfig, JointParams, JointReadings, JointSettings, JointTarget};
+use mrr_control::joint::{
+    JointConfig, JointParams, JointReadings, JointSettings, JointState, JointTarget,
+};
 use mrr_control::proofs::law_budget::law_error_budget;
 use mrr_control::scalar::units::quantize_keep_non_finite;
 use mrr_control::scalar::{Scalar, I16F16};
@@ -172,7 +186,9 @@ fn active<S: Scalar>(p: &RobustAdaptiveParams, xs: &[ControlInput<f64>], compare
         let (lo, hi) = (d.friction_bounds.min(), d.friction_bounds.max());
         let f = before.friction_si().to_array();
         let f = FrictionParams::from_array(core::array::from_fn(|j| f[j].clamp(lo[j], hi[j])));
-        let z = before.integral_si().clamp(-d.integral_limit, d.integral_limit);
+        let z = before
+            .integral_si()
+            .clamp(-d.integral_limit, d.integral_limit);
         let mut st64: RobustAdaptiveState<f64> = c64.state(f, z).expect("a state inside the box");
         let a = c64.update(&mut st64, &xq.to_si());
         let tol = law_error_budget(&cfg, &before, &xq) + (c64.torque_limit() - limit).abs();
@@ -270,17 +286,55 @@ fn mode<S: Scalar>(p: &ModeParams, xs: &[ControlInput<f64>], ack: u8) {
     }
 }
 
-/// The joint from raw counts: invariants and truthful flags.
-fn joint<S: Scalar>(p: &JointParams, readings: &[(u32, u32, u64, u8)], target: &[i32; 8]) {
+/// The state readers after a step: finite SI values, the last command
+/// within the limit.
+fn readers_finite<S: Scalar>(st: &JointState<S>, limit: f64) {
+    let a = st.active_state();
+    let f = a.friction_si();
+    for v in [
+        f.viscous,
+        f.coulomb,
+        f.stribeck,
+        f.stribeck_shape,
+        a.integral_si(),
+    ] {
+        assert!(v.is_finite(), "{a:?}");
+    }
+    assert!(st.mode_state().bias_si().is_finite());
+    let c = st.last_command_si();
+    assert!(c.is_finite() && c.abs() <= limit, "{c}");
+}
+
+/// The most counts one tick may move under the joint's speed limit,
+/// computed here from the settings: `⌊ω_max·T·M/(2π)⌋ + 1`.
+fn max_counts_per_tick(p: &JointParams) -> u64 {
+    let s = p.settings();
+    let m = s.estimator.motor_counts_per_rev() as f64;
+    (s.max_motor_speed * p.sample_period() * m / std::f64::consts::TAU) as u64 + 1
+}
+
+/// The joint from raw counts: invariants and truthful flags. With
+/// `target[3]` as the target's whole turns when `turns` is set.
+fn joint<S: Scalar>(
+    p: &JointParams,
+    readings: &[(u32, u32, u64, u8)],
+    target: &[i32; 8],
+    turns: bool,
+) {
     let cfg = JointConfig::<S>::new(p);
     let limit = cfg.mode().torque_limit_si();
     let first = readings.first().map_or((0, 0), |r| (r.0, r.1));
     let mut st = cfg.state(first.0, first.1);
-    let t = JointTarget::<S>::from_si(
+    let mut t = JointTarget::<S>::from_si(
         target[0] as f64 / 65536.0,
         target[1] as f64 / 65536.0,
         target[2] as f64 / 65536.0,
     );
+    if turns {
+        t.turns = target[3];
+    }
+    let max_counts = max_counts_per_tick(p);
+    let mut last = first.1;
     for &(link, motor, tau, k) in readings {
         let motor_torque = match k & 3 {
             0 => None,
@@ -293,6 +347,7 @@ fn joint<S: Scalar>(p: &JointParams, readings: &[(u32, u32, u64, u8)], target: &
             motor_torque: motor_torque
                 .map(|v| quantize_keep_non_finite::<S>(v, S::UNITS.motor_torque)),
         };
+        let before = st.motor_position_counts();
         let o = cfg.update(&mut st, &r, &t);
         assert!(o.motor_torque_si().is_finite() && o.motor_torque_si().abs() <= limit);
         assert!(o.joint_torque_si().is_finite() && o.motor_velocity_si().is_finite());
@@ -300,6 +355,109 @@ fn joint<S: Scalar>(p: &JointParams, readings: &[(u32, u32, u64, u8)], target: &
         let bad_torque = motor_torque.is_some_and(|v| !v.is_finite());
         if S::NAME != "I16F16" && bad_torque {
             assert!(o.invalid_input, "{o:?}");
+        }
+        // A counter move beyond the speed limit is flagged and left out
+        // of the position; one within it is counted.
+        let moved = motor.wrapping_sub(last) as i32;
+        last = motor;
+        if moved.unsigned_abs() as u64 > max_counts {
+            assert!(o.invalid_input && o.control.invalid_input, "{o:?}");
+            assert_eq!(st.motor_position_counts(), before);
+        } else {
+            assert_eq!(st.motor_position_counts(), before + moved as i64);
+        }
+        // A flagged joint step took the mode manager's invalid path.
+        assert!(!o.invalid_input || o.control.invalid_input, "{o:?}");
+        readers_finite(&st, limit);
+    }
+}
+
+/// The link count and the SI target of a joint whose motor is at `c`
+/// counts with no torsion, turning `step` counts per tick: the link at
+/// `c·L/(M·N)` counts, the target the link angle `2π·c/(M·N)` (whole turns
+/// split off in `i64`, so `from_si` gets the angle to `f64` rounding).
+fn consistent<S: Scalar>(p: &JointParams, c: i64, step: i64) -> (u32, JointTarget<S>) {
+    let s = p.settings();
+    let l = s.estimator.link_counts_per_rev() as i128;
+    let mn = s.estimator.motor_counts_per_rev() as i64 * p.ratio() as i64;
+    let link = (c as i128 * l).div_euclid(mn as i128).rem_euclid(l) as u32;
+    let tau = std::f64::consts::TAU;
+    let qd = (c.div_euclid(mn) as f64 + c.rem_euclid(mn) as f64 / mn as f64) * tau;
+    let vd = step as f64 * tau / (mn as f64 * p.sample_period());
+    (link, JointTarget::from_si(qd, vd, 0.0))
+}
+
+/// A joint turning continuously far from its start: the motor at
+/// `start_turns` output revolutions (up to ±2²⁰) plus a fraction, moving
+/// `step` counts per tick (within the speed limit), the link count and the
+/// SI target consistent with it ([`consistent`]). The position is counted
+/// exactly, the motor position in the target's frame stays within half an
+/// output revolution at the motor, and with the table's estimator and
+/// laws (`sane`) and a link encoder of at least 2¹⁴ counts no tick is
+/// flagged. At the middle tick a whole-revolution
+/// jump of `jump` output revolutions that stays: flagged when its wrapping
+/// 32-bit move exceeds the limit, the position held, the next ticks
+/// counted from the held position (and, `sane`, not flagged).
+fn joint_multi_turn<S: Scalar>(
+    p: &JointParams,
+    start_turns: i32,
+    step: i32,
+    ticks: usize,
+    jump: i32,
+    sane: bool,
+) {
+    let cfg = JointConfig::<S>::new(p);
+    let limit = cfg.mode().torque_limit_si();
+    let s = p.settings();
+    let m = s.estimator.motor_counts_per_rev() as i64;
+    let n = p.ratio();
+    let mn = m * n as i64;
+    let max_counts = max_counts_per_tick(p) as i64;
+    let step = step as i64 % (max_counts + 1);
+    // A link encoder coarser than 2¹⁴ counts quantizes the torsion past
+    // what the drive can twist (one count 3.8e-4 rad at 2¹⁴; 6.1e-3 rad at
+    // 2¹⁰, beyond a torsion range of about 4.6e-3 rad): the estimator's
+    // flag is then the truth, not a false one.
+    let sane = sane && s.estimator.link_counts_per_rev() >= 1 << 14;
+    let start_turns = (start_turns >> 11) as i64;
+    let start = start_turns * mn + start_turns.rem_euclid(mn);
+    let counter0 = start as u32 ^ 0x5a5a_5a5a;
+    let mut st = cfg.state_at(start, counter0);
+    let jump_at = ticks as i64 / 2;
+    let offset = (jump as i64).wrapping_mul(mn) as u32;
+    // `held` counts the ticks the joint rejected (none or the jump's).
+    let mut held = 0i64;
+    for k in 0..ticks as i64 {
+        let jumped = jump != 0 && k >= jump_at;
+        let counter = counter0
+            .wrapping_add((k * step) as u32)
+            .wrapping_add(if jumped { offset } else { 0 });
+        // The joint's own count: what it should hold.
+        let c = start + (k - held) * step;
+        let (link, target) = consistent::<S>(p, c, step);
+        let before = st.motor_position_counts();
+        let o = cfg.update(&mut st, &JointReadings::counts(link, counter), &target);
+        assert!(o.motor_torque_si().is_finite() && o.motor_torque_si().abs() <= limit);
+        assert!(o.joint_torque_si().is_finite() && o.motor_velocity_si().is_finite());
+        assert!(o.motor_position_si().is_finite());
+        readers_finite(&st, limit);
+        let seen = (offset.wrapping_add(step as u32) as i32).unsigned_abs() as i64;
+        if jump != 0 && k == jump_at {
+            if seen > max_counts {
+                assert!(o.invalid_input && o.control.invalid_input, "{o:?}");
+                assert_eq!(o.motor_torque_si(), 0.0);
+                assert_eq!(st.motor_position_counts(), before);
+                held = 1;
+                continue;
+            }
+            // A jump the 32-bit difference cannot tell from motion.
+            return;
+        }
+        assert_eq!(st.motor_position_counts(), c, "{o:?}");
+        let half = 0.5 * std::f64::consts::TAU * n + 2.0 * std::f64::consts::TAU / m as f64;
+        assert!(o.motor_position_si().abs() <= half, "{o:?}");
+        if sane {
+            assert!(!o.invalid_input, "{} tick {k}: {o:?}", S::NAME);
         }
     }
 }
@@ -427,6 +585,7 @@ fuzz_target!(|data: (
         stribeck_shape: field(raw[11] >> 7, flag(5), 1.0).clamp(0.01, 10.0),
     };
     let spread = spread && !flag(1) && !flag(2) && !flag(3) && !flag(4) && !flag(5);
+    let law_spread = spread;
     let active_params = match RobustAdaptiveParams::try_new(d) {
         Ok(p) => {
             active::<f64>(&p, &xs, false);
@@ -580,15 +739,30 @@ fuzz_target!(|data: (
             estimator,
             mode: m,
             speed_window: window,
+            max_motor_speed: field(
+                raw[11] >> 3,
+                flag(16),
+                mrr_control::joint::TABLE_4_1_MAX_MOTOR_SPEED,
+            ),
         }) {
             Ok(j) => {
                 let readings: Vec<(u32, u32, u64, u8)> = samples
                     .iter()
                     .map(|(v, s, k, b)| (v[0] as u32, *s, *b, *k))
                     .collect();
-                joint::<f64>(&j, &readings, &target);
-                joint::<f32>(&j, &readings, &target);
-                joint::<I16F16>(&j, &readings, &target);
+                joint::<f64>(&j, &readings, &target, flag(17));
+                joint::<f32>(&j, &readings, &target, flag(17));
+                joint::<I16F16>(&j, &readings, &target, flag(17));
+                // Multi-turn sequences: up to 32 ticks from `target[4]`
+                // output revolutions, `target[5]` counts per tick, a
+                // whole-revolution jump of `target[6]` revolutions.
+                let ticks = 4 + (target[7] as u32 % 29) as usize;
+                let jump = if flag(18) { target[6] } else { 0 };
+                let sane =
+                    est_spread && law_spread && !flag(8) && !flag(10) && !flag(11) && !flag(16);
+                joint_multi_turn::<f64>(&j, target[4], target[5], ticks, jump, sane);
+                joint_multi_turn::<f32>(&j, target[4], target[5], ticks, jump, sane);
+                joint_multi_turn::<I16F16>(&j, target[4], target[5], ticks, jump, sane);
             }
             Err(e) => typed(e),
         }

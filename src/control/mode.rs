@@ -440,22 +440,40 @@ pub struct ModeConfig<S> {
     release_samples: u16,
     debounce: u16,
     dwell: u16,
+    /// One output revolution at the motor, `2πN` rad, stored angle units,
+    /// and the most whole revolutions whose angle the backend holds
+    /// (`⌊MAX/output_rev⌋`): the step and the limit of the hold point's
+    /// move between turn frames ([`ModeConfig::with_output_revolution`];
+    /// 0 and 0 until the joint sets them).
+    output_rev: S,
+    max_shift_turns: i32,
 }
 
 /// The manager's state.
+///
+/// `repr(C)`, the byte and half-word fields first: on Armv6-M a byte load
+/// reaches 31 bytes past its base register and a half-word load 62, so
+/// that the mode, the latch and the sample counters are read without
+/// forming their addresses.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C)]
 pub struct ModeState<S: Scalar> {
     mode: JointMode,
+    latched: bool,
+    in_mode: u16,
+    run: u16,
+    collision: CollisionState,
     active: RobustAdaptiveState<S>,
     offset: S,
     offset_rate: S,
     hold: S,
     bias: S,
-    in_mode: u16,
-    run: u16,
-    collision: CollisionState,
-    latched: bool,
     last_torque: S,
+    /// The whole output turns of the frame the inputs' positions are in
+    /// (set by the joint, [`ModeState::set_frame`]; 0 for a manager run on
+    /// its own) and of the frame the hold point was stored in.
+    frame_turns: i32,
+    hold_turns: i32,
 }
 
 impl<S: Scalar> ModeState<S> {
@@ -481,6 +499,20 @@ impl<S: Scalar> ModeState<S> {
     /// forward); it decays to 0.
     pub fn bias_si(&self) -> f64 {
         self.bias.to_f64() / S::UNITS.motor_torque
+    }
+    /// The inputs' positions are from now on in the frame of `turns` whole
+    /// output revolutions (`q_m − 2πN·turns`; the joint's target frame): a
+    /// stored hold point is read in it, moved by whole revolutions from
+    /// the frame it was stored in. The other stored positions are
+    /// differences (the rejoin offset) and need no move.
+    #[inline(always)]
+    pub(crate) fn set_frame(&mut self, turns: i32) {
+        self.frame_turns = turns;
+    }
+    /// The frame of the inputs' positions ([`set_frame`](Self::set_frame)).
+    #[inline(always)]
+    pub(crate) fn frame(&self) -> i32 {
+        self.frame_turns
     }
     /// `true` while a collision reaction is latched.
     pub fn collision_latched(&self) -> bool {
@@ -558,6 +590,8 @@ impl<S: Scalar> ModeConfig<S> {
             exit_passive: S::from_f64(p.exit_passive * u.link_torque),
             debounce: p.debounce,
             dwell: p.dwell,
+            output_rev: S::ZERO,
+            max_shift_turns: 0,
             release_speed: S::from_f64(p.release.speed * u.speed),
             release_samples: p.release.samples,
             offset_row: CoefRow::new([2.0 * w, w * w * u.speed / u.angle]),
@@ -583,6 +617,8 @@ impl<S: Scalar> ModeConfig<S> {
             collision: CollisionState::default(),
             latched: false,
             last_torque: S::ZERO,
+            frame_turns: 0,
+            hold_turns: 0,
         }
     }
 
@@ -625,7 +661,11 @@ impl<S: Scalar> ModeConfig<S> {
         let mut xr = *x;
         match st.mode {
             JointMode::Hold => {
-                xr.desired_position = st.hold;
+                // The hold point in the inputs' frame (moved here, where it
+                // is read, and not where the frame changes: the move and
+                // the Active reference are then separate paths of the
+                // step).
+                xr.desired_position = self.hold_in_frame(st);
                 xr.desired_velocity = S::ZERO;
                 xr.desired_acceleration = S::ZERO;
                 (xr, S::ZERO)
@@ -794,6 +834,9 @@ impl<S: Scalar> ModeConfig<S> {
         st.mode = to;
         st.in_mode = 0;
         st.run = 0;
+        // (The hold point's frame; outside Hold the hold point is not read
+        // before it is stored again.)
+        st.hold_turns = st.frame_turns;
         let sum = match to {
             JointMode::Passive => return None,
             JointMode::Active => {
@@ -827,6 +870,7 @@ impl<S: Scalar> ModeConfig<S> {
                 st.mode = JointMode::Hold;
                 st.in_mode = 0;
                 st.hold = x.motor_position;
+                st.hold_turns = st.frame_turns;
                 st.active.integral = S::ZERO;
                 true
             }
@@ -869,23 +913,14 @@ impl<S: Scalar> ModeConfig<S> {
         ) -> ModeOutput<S> {
             let interaction = x.joint_torque.sub(x.expected_joint_torque);
             if !finite {
-                st.last_torque = S::ZERO;
-                return ModeOutput {
-                    torque: S::ZERO,
-                    mode: st.mode,
-                    switched: false,
-                    saturated: true,
-                    invalid_input: true,
-                    interaction: S::ZERO,
-                    collision: st.latched,
-                    // Never NaN out of a step: the measured position when it is
-                    // a number (`v − v` is 0 only for a finite float), else 0.
-                    reference_position: if x.motor_position.sub(x.motor_position) == S::ZERO {
-                        x.motor_position
-                    } else {
-                        S::ZERO
-                    },
+                // Never NaN out of a step: the measured position when it is
+                // a number (`v − v` is 0 only for a finite float), else 0.
+                let position = if x.motor_position.sub(x.motor_position) == S::ZERO {
+                    x.motor_position
+                } else {
+                    S::ZERO
                 };
+                return Self::invalid_sample(st, position);
             }
             let mut reaction = None;
             if let Some(c) = &self.collision {
@@ -987,6 +1022,83 @@ impl<S: Scalar> ModeConfig<S> {
     }
 }
 
+/// The joint step's hooks into the manager (`crate::joint`): an unusable
+/// sample and the turn frame of the joint's positions.
+impl<S: Scalar> ModeConfig<S> {
+    /// The invalid-sample output of [`update`](Self::update): command 0
+    /// with `invalid_input` and `saturated` set, `reference_position` the
+    /// finite `position`; the state is not advanced (only the last
+    /// command, now 0, is recorded).
+    #[inline(always)]
+    fn invalid_sample(st: &mut ModeState<S>, position: S) -> ModeOutput<S> {
+        st.last_torque = S::ZERO;
+        ModeOutput {
+            torque: S::ZERO,
+            mode: st.mode,
+            switched: false,
+            saturated: true,
+            invalid_input: true,
+            interaction: S::ZERO,
+            collision: st.latched,
+            reference_position: position,
+        }
+    }
+
+    /// The invalid-sample path of [`update`](Self::update) for a sample the
+    /// joint found unusable (a counter jump, a target too far from the
+    /// motor, an impossible reading) at the finite measured
+    /// `motor_position`: the output of a non-finite sample, without running
+    /// the manager's step (so that this rare path and the law's are
+    /// separate paths of the joint step).
+    #[inline(always)]
+    pub(crate) fn reject(&self, st: &mut ModeState<S>, motor_position: S) -> ModeOutput<S> {
+        Self::invalid_sample(st, motor_position)
+    }
+
+    /// This manager for a joint whose output revolution is `output_rev`
+    /// at the motor (`2πN` rad, stored angle units, as the joint's counts
+    /// give it): the step by which the hold point moves between turn
+    /// frames, at most `⌊MAX/output_rev⌋` revolutions at once (on fixed
+    /// point; a larger move is out of the angle's range anyway).
+    pub(crate) fn with_output_revolution(mut self, output_rev: S) -> Self {
+        self.output_rev = output_rev;
+        self.max_shift_turns =
+            (S::MAX.to_f64() / output_rev.to_f64().abs()).min(i32::MAX as f64) as i32;
+        self
+    }
+
+    /// The stored hold point in the inputs' frame: moved from the frame it
+    /// was stored in by whole output revolutions,
+    /// `hold − 2πN·(frame − hold frame)`, on fixed point by at most
+    /// `max_shift_turns` revolutions. The stored point keeps its frame, so
+    /// that back in that frame it is the stored point again.
+    #[inline(always)]
+    fn hold_in_frame(&self, st: &ModeState<S>) -> S {
+        if st.hold_turns == st.frame_turns {
+            return st.hold;
+        }
+        let mut whole = st.frame_turns.saturating_sub(st.hold_turns);
+        if !S::FLOAT {
+            // (`max`/`min`, not `clamp`: no bounds assertion.)
+            whole = whole.max(-self.max_shift_turns).min(self.max_shift_turns);
+        }
+        st.hold.sub(self.output_rev.mul_whole(whole))
+    }
+
+    /// One output revolution at the motor, stored angle units
+    /// ([`with_output_revolution`](Self::with_output_revolution)).
+    #[cfg(any(kani, test))]
+    pub(crate) fn output_revolution(&self) -> S {
+        self.output_rev
+    }
+
+    /// The hold point in the inputs' frame (the joint's frame tests).
+    #[cfg(test)]
+    pub(crate) fn hold_point(&self, st: &ModeState<S>) -> S {
+        self.hold_in_frame(st)
+    }
+}
+
 #[cfg(any(kani, test))]
 mod words {
     use super::ModeConfig;
@@ -1018,6 +1130,8 @@ mod words {
                 step_position: Coef::take(r),
                 bias_decay: Coef::take(r),
                 limit: r.fixed(),
+                output_rev: r.fixed(),
+                max_shift_turns: r.i32(),
             }
         }
 
@@ -1040,6 +1154,8 @@ mod words {
             self.step_position.put(s);
             self.bias_decay.put(s);
             s.fixed(self.limit);
+            s.fixed(self.output_rev);
+            s.i32(self.max_shift_turns);
         }
     }
 }

@@ -40,6 +40,7 @@ fn firmware_params() -> JointParams {
         estimator,
         mode,
         speed_window: 3,
+        max_motor_speed: crate::joint::TABLE_4_1_MAX_MOTOR_SPEED,
     })
     .unwrap()
 }
@@ -152,6 +153,7 @@ fn reproduces_the_firmware_wiring<S: Scalar>() {
         let mc = (q_l / TAU * mn as f64 + torsion).round() as i64 + start_counter as i64 - motor0;
         let (lc, mc) = (lc.rem_euclid(l) as u32, mc as u32);
         let target = JointTarget::<S> {
+            turns: 0,
             position: S::from_f64(q_l + sym(&mut seed, 0.01)),
             velocity: S::from_f64(sym(&mut seed, 0.5)),
             acceleration: S::from_f64(sym(&mut seed, 20.0)),
@@ -438,6 +440,10 @@ fn signs_match_the_simulated_joint() {
         estimator,
         mode,
         speed_window: 4,
+        // The simulated motor, back-driven by the push in Passive, turns
+        // faster than the presets' limit; the simulator's counters never
+        // jump.
+        max_motor_speed: 100.0 * crate::joint::TABLE_4_1_MAX_MOTOR_SPEED,
     })
     .unwrap();
     let cfg = JointConfig::<f64>::new(&p);
@@ -747,5 +753,126 @@ fn si_readers_are_the_stored_value_in_si_on_every_backend() {
         }
         // The saturated command: the limit, quantized once.
         assert!((b[0] - a[0]).abs() < 1e-7, "{} vs {}", b[0], a[0]);
+    }
+}
+
+/// The hold point read in the target's frame is the stored one moved by
+/// the whole output revolutions `2πN` between the frame it was stored in
+/// and the target's (expected values from `f64` here), on `I16F16` by at
+/// most the turns its angle holds (`⌊32 768/(200π)⌋ = 52` at `N = 100`),
+/// however many turn changes came between: back at the stored frame it is
+/// the stored point again. A target outside the frame moves nothing.
+#[test]
+fn turn_changes_move_the_hold_point_by_whole_revolutions() {
+    fn run<S: Scalar>(turns: &[(i32, i64, bool)], tol: f64) -> f64 {
+        let p = firmware_params();
+        let cfg = JointConfig::<S>::new(&p);
+        let mn = cfg.motor_counts_per_output_rev;
+        let mut st = cfg.state_at(0, 0);
+        // The hold point of the initial state, stored in frame 0.
+        let mut want = 0.0;
+        for &(t, rev_from_origin, flagged) in turns {
+            // The motor `rev_from_origin` output revolutions from the
+            // target's whole turns, the link where zero torsion puts it.
+            let counts = (t as i64 + rev_from_origin) * mn;
+            st.motor_count = counts;
+            st.last_counter = counts as u32;
+            let target = JointTarget::<S> {
+                turns: t,
+                ..JointTarget::default()
+            };
+            let out = cfg.update(&mut st, &JointReadings::counts(0, counts as u32), &target);
+            assert_eq!(out.invalid_input, flagged, "{t}: {out:?}");
+            if !flagged {
+                let whole = if S::FLOAT { t } else { t.clamp(-52, 52) };
+                want = -(whole as f64) * TAU * 100.0;
+            }
+            let got = cfg.mode.hold_point(&st.mode).to_f64();
+            assert!(
+                (got - want).abs() <= tol * want.abs().max(1.0),
+                "{t}: {got} vs {want}"
+            );
+        }
+        want
+    }
+    let f64_turns = [
+        (1, 0, false),
+        (3, 0, false),
+        (-2, 0, false),
+        (7, 1 << 40, true),
+    ];
+    let two_revs = 2.0 * TAU * 100.0;
+    assert!((run::<f64>(&f64_turns, 1e-12) - two_revs).abs() < 1e-9);
+    assert!((run::<f32>(&f64_turns[..3], 1e-6) - two_revs).abs() < 1e-9);
+    // I16F16: 60 and 59 turns from the stored frame move the hold point
+    // by 52; back in the stored frame it is where it was stored.
+    let i_turns = [(60, 0, false), (59, 0, false), (62, 100, true)];
+    let want = run::<I16F16>(&i_turns, 1e-6);
+    assert!((want + 52.0 * TAU * 100.0).abs() < 1e-9);
+    let round_trip = [(60, 0, false), (59, 0, false), (0, 0, false)];
+    assert_eq!(run::<I16F16>(&round_trip, 1e-6), 0.0);
+}
+
+/// In Hold (a collision latched under `CollisionReaction::Stop`) the law
+/// holds the hold point in the target's frame: the reference of each
+/// tick is the point where the joint stopped, in the frame of the target
+/// it stopped under (`t0` whole turns), minus `2πN` per whole turn of the
+/// target since (expected values from `f64`), through turn changes there
+/// and back.
+#[test]
+fn hold_reference_follows_the_target_frame() {
+    fn run<S: Scalar>(t0: i32, turns: &[i32], tol: f64) {
+        let p = firmware_params();
+        let cfg = JointConfig::<S>::new(&p);
+        // The link at π/4 (2¹⁷/8 counts), the motor at N times it
+        // (25 000 counts, zero torsion), at rest.
+        let (link, counts) = (1u32 << 14, 25_000u32);
+        let mut st = cfg.state(link, counts);
+        let readings = JointReadings::counts(link, counts);
+        // An expected joint torque 10 N·m away from the estimate: a
+        // collision (threshold 4 N·m), and the joint stops.
+        let mut target = JointTarget::<S> {
+            turns: t0,
+            expected_joint_torque: S::from_f64(10.0),
+            ..JointTarget::default()
+        };
+        let mut out = cfg.update(&mut st, &readings, &target);
+        for _ in 0..10 {
+            if out.mode == JointMode::Hold {
+                break;
+            }
+            out = cfg.update(&mut st, &readings, &target);
+        }
+        assert_eq!(out.mode, JointMode::Hold, "{out:?}");
+        assert_eq!(st.motor_position_counts(), counts as i64);
+        let rev = TAU * 100.0;
+        let stored = counts as f64 * TAU / 2000.0 - t0 as f64 * rev;
+        let got = out.control.reference_position.to_f64();
+        assert!(
+            (got - stored).abs() <= tol * 20.0 * rev,
+            "{got} vs {stored}"
+        );
+        for &t in turns {
+            target.turns = t;
+            let out = cfg.update(&mut st, &readings, &target);
+            assert!(!out.invalid_input, "{t}: {out:?}");
+            assert_eq!(out.mode, JointMode::Hold);
+            let want = stored - (t - t0) as f64 * rev;
+            let got = out.control.reference_position.to_f64();
+            // (Within `tol` of the largest hold point visited, 20
+            // revolutions: `f32` rounds each move.)
+            assert!(
+                (got - want).abs() <= tol * 20.0 * rev,
+                "{t}: {got} vs {want}"
+            );
+        }
+    }
+    // Within every backend's frame (I16F16: 26 output revolutions, f32:
+    // 20 at M = 2000).
+    let turns = [1, 3, -2, 0, 20, 19, 0, 2];
+    for t0 in [0, 2] {
+        run::<f64>(t0, &turns, 1e-12);
+        run::<f32>(t0, &turns, 1e-6);
+        run::<I16F16>(t0, &turns, 1e-6);
     }
 }

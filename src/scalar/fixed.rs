@@ -687,6 +687,12 @@ impl super::sealed::Sealed for I16F16 {
     const FLOAT: bool = false;
 
     #[inline(always)]
+    fn mul_whole(self, n: i32) -> Self {
+        // `|n·bits| ≤ i32::MAX` by the precondition: the exact product.
+        I16F16::from_bits(self.to_bits().wrapping_mul(n))
+    }
+
+    #[inline(always)]
     fn from_counts_i32(counts: i32, scale: &super::CountCoef) -> Self {
         // `scale_i32(x)` equals `scale_int(x, 0)` for every coefficient
         // and `i32`, and the factor moved up 16 bits with the same

@@ -1368,6 +1368,18 @@ pub(crate) mod sealed {
         {
             Self::sin_cos_turn(turn)
         }
+        /// `n·self` for a whole number `n` whose product the backend holds,
+        /// `|n·self| ≤ MAX` (the caller bounds `n`, e.g. by
+        /// `⌊MAX/|self|⌋`): fixed point multiplies its bits by `n`, one
+        /// 32-bit product that cannot wrap under the precondition (and
+        /// wraps, never panics, outside it); floats convert `n` and multiply.
+        #[inline]
+        fn mul_whole(self, n: i32) -> Self
+        where
+            Self: Scalar,
+        {
+            Self::from_i32(n).mul(self)
+        }
     }
 }
 

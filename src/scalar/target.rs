@@ -9,14 +9,15 @@
 /// library loop).
 pub(crate) const HAS_DIVIDE: bool = cfg!(not(armv6m));
 
-/// `a·b` exactly, for `0 ≤ b < 2⁴⁸` (callers: products below 2⁶³). On
+/// `a·b` exactly, for `0 ≤ b < 2⁴⁸` (callers: products below 2⁶³; a
+/// larger product wraps, the value modulo 2⁶⁴ on every target). On
 /// Armv6-M the split form [`mul_wide_split`] (no `__aeabi_lmul`, no
 /// branch); elsewhere the plain product.
 #[inline(always)]
 pub(crate) fn mul_wide(a: u32, b: i64) -> i64 {
     // Cores with a long multiply (`umull`, x86) take the plain product.
     if cfg!(not(armv6m)) {
-        return a as i64 * b;
+        return (a as i64).wrapping_mul(b);
     }
     mul_wide_split(a, b)
 }

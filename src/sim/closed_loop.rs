@@ -239,6 +239,9 @@ pub fn joint_params(
         estimator,
         mode,
         speed_window: w as u8,
+        // A plausibility limit far above any simulated motor (100 times
+        // the presets'): the simulated counters never jump.
+        max_motor_speed: 100.0 * crate::joint::TABLE_4_1_MAX_MOTOR_SPEED,
     })
 }
 

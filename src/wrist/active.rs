@@ -441,11 +441,31 @@ pub struct WristActiveConfig<S> {
 }
 
 /// The adapted state of both motors (ch. 4 state: `F̂^c_i` and the
-/// integral).
+/// integral), made only by [`WristActiveConfig::initial_state`] and
+/// advanced only by [`WristActiveConfig::update`]: its fields are private,
+/// so no public call puts a NaN or a value outside the projection box in
+/// it. Read it per motor with [`motors`](Self::motors) and the SI readers
+/// of [`RobustAdaptiveState`] (`friction_si`, `integral_si`).
+///
+/// ```compile_fail
+/// use mrr_control::wrist::active::{WristActiveConfig, WristActiveParams};
+/// let cfg = WristActiveConfig::<f64>::new(&WristActiveParams::table_6_1().unwrap());
+/// let mut st = cfg.initial_state();
+/// st.motors[0] = st.motors[1]; // private: does not compile
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WristActiveState<S: Scalar> {
-    /// Per motor.
-    pub motors: [RobustAdaptiveState<S>; 2],
+    motors: [RobustAdaptiveState<S>; 2],
+}
+
+impl<S: Scalar> WristActiveState<S> {
+    /// The adapted state of motor 1 and motor 2 (index 0 and 1): friction
+    /// estimate and integral, read in SI with
+    /// [`RobustAdaptiveState::friction_si`] and
+    /// [`RobustAdaptiveState::integral_si`].
+    pub fn motors(&self) -> &[RobustAdaptiveState<S>; 2] {
+        &self.motors
+    }
 }
 
 /// One sample of one wrist joint, stored units of `S::UNITS`.
