@@ -242,3 +242,96 @@ fn plants_share_no_model_code() {
     // The dynamic joint plant of chapters 3–4 is among them.
     assert!(std::path::Path::new(dir).join("joint.rs").exists());
 }
+
+/// One backend spot check on the joint plant at 4 ms: the 4 ms preset
+/// with its estimator's kinematic-error model removed, on a plant whose
+/// kinematic error is zeroed (so that nothing but the backend differs; with
+/// the plant's kinematic error and no model the estimate errs by up to
+/// 3 N·m and the manager leaves Active, claim 3.1-low), tracks the slow
+/// sine with the payload on `f64`, `f32` and `I16F16` from the same plant
+/// and seed. Each backend stays Active, and its peak estimate error is
+/// within 0.3 N·m (about one motor count seen as torque) of the `f64`
+/// run's.
+#[test]
+fn backends_agree_on_the_joint_plant_at_4ms() {
+    use mrr_control::estimation::{TorqueEstimatorParams, TorqueEstimatorSettings};
+    use mrr_control::joint::{JointConfig, JointParams, JointReadings, JointSettings, JointTarget};
+    use mrr_control::prelude::JointMode;
+    use mrr_control::sim::SplitMix64;
+    use mrr_control::{Scalar, I16F16};
+
+    let preset = JointParams::table_4_1_at(0.004).unwrap();
+    let s = preset.settings();
+    let e = s.estimator;
+    let estimator = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+        drive: e.drive(),
+        kinematic_error: None,
+        link_counts_per_rev: e.link_counts_per_rev(),
+        motor_counts_per_rev: e.motor_counts_per_rev(),
+        max_torque: e.max_torque(),
+    })
+    .unwrap();
+    let params = JointParams::try_new(JointSettings { estimator, ..s }).unwrap();
+    let plant = quick_joint_family().remove(0);
+
+    fn peak_error<S: Scalar>(params: &JointParams, plant: &JointPlant) -> (f64, usize) {
+        let cfg = JointConfig::<S>::new(params);
+        let mut rng = SplitMix64::new(3);
+        let mut st = plant.rest(0.0, 3);
+        let k = &mut st.kinematic_error;
+        k.wave_generator.iter_mut().for_each(|h| h.0 = 0.0);
+        k.ripple.0 = 0.0;
+        k.output.0 = 0.0;
+        st.x[0] = 0.0;
+        st.motor.iter_mut().for_each(|z| *z = 0.0);
+        st.mesh = plant.mesh_friction.relaxed(0.0);
+        let r0 = plant.read(&st, &mut rng);
+        let mut js = cfg.state(r0.link_count, r0.motor_counter);
+        let (mut peak, mut passive, mut command) = (0.0f64, 0, 0.0);
+        for k in 0..900 {
+            let t = k as f64 * 0.004;
+            let w = std::f64::consts::TAU / 3.0;
+            let s = (t - 0.2).clamp(0.0, 3.0);
+            let q = 0.4 * (1.0 - (w * s).cos());
+            let qd = if (0.2..3.2).contains(&t) {
+                0.4 * w * (w * s).sin()
+            } else {
+                0.0
+            };
+            let qdd = if (0.2..3.2).contains(&t) {
+                0.4 * w * w * (w * s).cos()
+            } else {
+                0.0
+            };
+            let r = plant.read(&st, &mut rng);
+            let truth = plant.transmitted(&st, &st.x);
+            let mut target = JointTarget::<S>::from_si(q, qd, qdd);
+            target.expected_joint_torque = S::from_f64(plant.payload * q.sin());
+            let readings = JointReadings {
+                link_count: r.link_count,
+                motor_counter: r.motor_counter,
+                motor_torque: None,
+            };
+            let o = cfg.update(&mut js, &readings, &target);
+            if o.mode != JointMode::Active {
+                passive += 1;
+            }
+            if t >= 0.2 {
+                peak = peak.max((o.joint_torque_si() - truth).abs());
+            }
+            command = o.motor_torque_si();
+            plant.advance(&mut st, command, 0.004, |_, _| 0.0);
+        }
+        let _ = command;
+        (peak, passive)
+    }
+    let (p64, n64) = peak_error::<f64>(&params, &plant);
+    let (p32, n32) = peak_error::<f32>(&params, &plant);
+    let (pfx, nfx) = peak_error::<I16F16>(&params, &plant);
+    println!("peak estimate error: f64 {p64:.3}, f32 {p32:.3}, I16F16 {pfx:.3} N·m; ticks out of Active {n64} {n32} {nfx}");
+    assert_eq!((n64, n32, nfx), (0, 0, 0));
+    assert!(
+        (p32 - p64).abs() <= 0.3 && (pfx - p64).abs() <= 0.3,
+        "{p64} {p32} {pfx}"
+    );
+}
