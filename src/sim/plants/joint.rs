@@ -553,21 +553,25 @@ mod tests {
         assert!(p.transmitted(&st, &st.x).abs() < 1e-3);
     }
 
-    /// Back-driving: with no motor torque, a link torque of 3 N·m (above
-    /// the drive's back-driving torque `N F (1 + a)` plus the link
-    /// bearing's 0.3 N·m) turns the link by more than 0.1 rad in 0.5 s; a
-    /// torque of 0.2 N·m (below the link bearing's break-away) moves it by
-    /// less than its largest pre-sliding displacement.
+    /// Back-driving: with no motor torque, a link torque of 5 N·m (above
+    /// the mesh friction's 2 N·m plus the motor's `N F (1 + a)` = 1.38 N·m
+    /// plus the link bearing's 0.3 N·m) turns the link by more than 0.1 rad
+    /// in 0.5 s; a
+    /// torque of 0.2 N·m (below the link bearing's break-away and the
+    /// drive's back-driving torque) moves it by less than twice the link
+    /// bearing's largest pre-sliding displacement (a step load overshoots
+    /// its static deflection by at most a factor of two, and the friction
+    /// keeps what it overshoots).
     #[test]
     fn back_driving_needs_the_breakaway() {
         let mut p = quick_joint_family().remove(0);
         p.payload = 0.0;
         let mut st = p.rest(0.0, 1);
-        p.advance(&mut st, 0.0, 0.5, |_, _| 3.0);
+        p.advance(&mut st, 0.0, 0.5, |_, _| 5.0);
         assert!(st.x[2] > 0.1, "{:?}", st.x);
         let mut st = p.rest(0.0, 1);
         p.advance(&mut st, 0.0, 0.5, |_, _| 0.2);
-        assert!(st.x[2].abs() < LINK_PRESLIDING[3], "{:?}", st.x);
+        assert!(st.x[2].abs() < 2.0 * LINK_PRESLIDING[3], "{:?}", st.x);
     }
 
     /// The motor friction's levels are asymmetric as stated, and inside
