@@ -1,17 +1,23 @@
-//! The claims registry as a table: each chapter-2 claim with its criterion,
-//! verdict, median and spread over the independent plant family × seeds.
+//! The claims registry as a table: each claim of chapters 2–4 with its
+//! criterion, verdict, median and spread over the independent plant
+//! families × seeds (chapter 2 on the drive bench, chapters 3–4 on the
+//! dynamic joint at the thesis's 4 ms).
 //!
 //! ```text
-//! cargo run --release --features sim --example claims               # full: 216 plants × 20 seeds
-//! cargo run --release --features sim --example claims -- --quick    # 4 plants × 3 seeds
+//! cargo run --release --features sim --example claims               # full: 216 drive + 24 joint plants × 20 seeds
+//! cargo run --release --features sim --example claims -- --quick    # 4 drive + 2 joint plants × 3 seeds
 //! cargo run --release --features sim --example claims -- 2.19-blind # one claim
 //! cargo run --release --features sim --example claims -- --seeds 5
 //! ```
 
 use std::time::Instant;
 
-use mrr_control::sim::claims::{evaluate, registry, run, RunMetrics, Spread, RERUN};
-use mrr_control::sim::plants::{family, quick_family, DrivePlant};
+use mrr_control::sim::claims::{
+    evaluate, registry, run, run_joint, JointRunMetrics, Metric, RunMetrics, Spread, RERUN,
+};
+use mrr_control::sim::plants::{
+    family, joint_family, quick_family, quick_joint_family, DrivePlant, JointPlant,
+};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -30,36 +36,63 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .map(|(_, a)| a)
         .collect();
 
-    let start = Instant::now();
-    let plants: Vec<DrivePlant> = if quick { quick_family() } else { family() };
-    let built = start.elapsed();
-    let runs = run(&plants, seeds)?;
-    let wall = start.elapsed();
     let claims: Vec<_> = registry()?
         .into_iter()
         .filter(|c| only.is_empty() || only.iter().any(|o| o.as_str() == c.id))
         .collect();
-    let results = evaluate(&claims, &runs)?;
+    let need_drive = claims.iter().any(|c| matches!(c.metric, Metric::Drive(_)));
+    let need_joint = claims.iter().any(|c| matches!(c.metric, Metric::Joint(_)));
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+
+    let start = Instant::now();
+    let plants: Vec<DrivePlant> = match (need_drive, quick) {
+        (false, _) => Vec::new(),
+        (true, true) => quick_family(),
+        (true, false) => family(),
+    };
+    let runs = if need_drive {
+        run(&plants, seeds)?
+    } else {
+        Vec::new()
+    };
+    let drive_time = start.elapsed();
+    let joints: Vec<JointPlant> = match (need_joint, quick) {
+        (false, _) => Vec::new(),
+        (true, true) => quick_joint_family(),
+        (true, false) => joint_family(),
+    };
+    let joint_runs = if need_joint {
+        run_joint(&joints, seeds, threads)?
+    } else {
+        Vec::new()
+    };
+    let wall = start.elapsed();
+    let results = evaluate(&claims, &runs, &joint_runs)?;
 
     println!(
-        "{} plants × {} seeds = {} runs; family built in {:.1} s, runs done in {:.1} s (wall)",
+        "drive: {} plants × {} seeds = {} runs in {:.1} s; joint (4 ms): {} plants × {} seeds = {} runs in {:.1} s on {threads} threads; total {:.1} s (wall)",
         plants.len(),
         seeds,
         runs.len(),
-        built.as_secs_f64(),
+        drive_time.as_secs_f64(),
+        joints.len(),
+        seeds,
+        joint_runs.len(),
+        (wall - drive_time).as_secs_f64(),
         wall.as_secs_f64()
     );
     println!();
     println!(
-        "| claim | figure | criterion | verdict | median | spread (min / q1 / q3 / max) | share sup./ref. | runs |"
+        "| claim | figure | at | criterion | verdict | median | spread (min / q1 / q3 / max) | share sup./ref. | runs |"
     );
-    println!("|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|");
     for r in &results {
         let s = r.spread;
         println!(
-            "| {} | {} | {} | **{}** | {:.3e} | {:.3e} / {:.3e} / {:.3e} / {:.3e} | {:.2} / {:.2} | {} |",
+            "| {} | {} | {} | {} | **{}** | {:.3e} | {:.3e} / {:.3e} / {:.3e} / {:.3e} | {:.2} / {:.2} | {} |",
             r.claim.id,
             r.claim.figure,
+            r.claim.operating_point,
             r.claim.criterion.describe(r.claim.unit),
             r.verdict,
             s.median,
@@ -86,7 +119,42 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         println!("  rerun: {RERUN}{mode} {}", r.claim.id);
     }
 
-    // Where the verdict comes from: medians by the swept choices.
+    // Where the verdicts come from: medians by the swept choices.
+    if !joint_runs.is_empty() {
+        println!();
+        println!("Joint medians by plant (est. peak fit / none N·m; RMS fit / none / Table 3.2 N·m; 3.7 residual; T1 ratio preset / Table 4.1; active share; link RMS A/B/C rad; step share; hand RMS A/B/C N·m):");
+        for (i, p) in joints.iter().enumerate() {
+            let sel: Vec<&JointRunMetrics> = joint_runs.iter().filter(|m| m.plant == i).collect();
+            let med = |f: &dyn Fn(&JointRunMetrics) -> f64| {
+                Spread::of(&sel.iter().map(|m| f(m)).collect::<Vec<_>>())
+                    .map_or(f64::NAN, |s| s.median)
+            };
+            println!(
+                "  {:>2} {}: {:.2}/{:.2}; {:.2}/{:.2}/{:.2}; {:.2}; {:.2}/{:.2}; {:.3}; {:.2e}/{:.2e}/{:.2e}; {:.2}; {:.2}/{:.2}/{:.2}",
+                i,
+                p.label(),
+                med(&|m| m.est_peak_fit),
+                med(&|m| m.est_peak_none),
+                med(&|m| m.est_rms_fit),
+                med(&|m| m.est_rms_none),
+                med(&|m| m.est_rms_table),
+                med(&|m| m.ke_fit_residual),
+                med(&|m| m.preset_bound_ratio),
+                med(&|m| m.thesis_bound_ratio),
+                med(&|m| m.preset_active_share),
+                med(&|m| m.link_rms_none),
+                med(&|m| m.link_rms_sensor),
+                med(&|m| m.link_rms_estimate),
+                med(&|m| m.step_share),
+                med(&|m| m.hand_rms_none),
+                med(&|m| m.hand_rms_estimate),
+                med(&|m| m.hand_rms_sensor),
+            );
+        }
+    }
+    if runs.is_empty() {
+        return Ok(());
+    }
     println!();
     println!("Medians by open choice (reduction blind / oracle; peak |e| rad of 2.11 and 2.30 blind; held 2.30 blind):");
     let group = |name: &str, key: &dyn Fn(&DrivePlant) -> String| {

@@ -1,10 +1,11 @@
 //! The claims registry in its quick form, the criterion logic on synthetic
-//! metric sets, and the independence of the plant family's sources.
+//! metric sets, and the independence of the plant families' sources.
 
 use mrr_control::sim::claims::{
-    evaluate, registry, run, ClaimError, Condition, Criterion, Rule, Verdict,
+    evaluate, registry, run, run_joint, ClaimError, Condition, Criterion, Metric, Rule, Verdict,
+    RERUN,
 };
-use mrr_control::sim::plants::{quick_family, DrivePlant};
+use mrr_control::sim::plants::{quick_family, quick_joint_family, DrivePlant, JointPlant};
 
 fn reduction_criterion() -> Criterion {
     Criterion::try_new(
@@ -108,12 +109,101 @@ fn quick_registry_gives_every_claim_a_verdict() {
             assert!((1e-5..2e-3).contains(&e), "{m:?}");
         }
     }
-    let claims = registry().unwrap();
-    let results = evaluate(&claims, &runs).unwrap();
+    let claims: Vec<_> = registry()
+        .unwrap()
+        .into_iter()
+        .filter(|c| matches!(c.metric, Metric::Drive(_)))
+        .collect();
+    assert_eq!(claims.len(), 4);
+    let results = evaluate(&claims, &runs, &[]).unwrap();
     assert_eq!(results.len(), claims.len());
     for r in &results {
         assert_eq!(r.runs, runs.len());
         assert!(r.spread.min <= r.spread.median && r.spread.median <= r.spread.max);
+    }
+}
+
+/// The chapter 3–4 claims in their quick form: 2 joint plants × 2 seeds at
+/// 4 ms. Every joint claim gets a verdict from finite metrics; the metrics
+/// are physically sized (estimate errors between a motor count seen as
+/// torque, 0.26 N·m, and the estimator's 60 N·m limit; link errors below
+/// the 0.8 rad stroke; hand torques below 30 N·m); a claim asked of an
+/// experiment that was not run is a typed error, not a verdict.
+#[test]
+fn quick_joint_registry_gives_every_claim_a_verdict() {
+    let plants: Vec<JointPlant> = quick_joint_family();
+    let runs = run_joint(&plants, 2, 2).unwrap();
+    assert_eq!(runs.len(), plants.len() * 2);
+    for m in &runs {
+        for e in [m.est_peak_fit, m.est_peak_none] {
+            assert!((0.26..60.0).contains(&e), "{m:?}");
+        }
+        assert!(m.est_rms_fit <= m.est_peak_fit && m.est_rms_none <= m.est_peak_none);
+        for e in [m.link_rms_none, m.link_rms_sensor, m.link_rms_estimate] {
+            assert!(e > 0.0 && e < 0.8, "{m:?}");
+        }
+        for h in [m.hand_rms_none, m.hand_rms_estimate, m.hand_rms_sensor] {
+            assert!(h > 0.0 && h < 30.0, "{m:?}");
+        }
+        assert!((0.0..1.0).contains(&m.ke_fit_residual), "{m:?}");
+        assert!((0.0..=1.0).contains(&m.preset_active_share));
+    }
+    let claims: Vec<_> = registry()
+        .unwrap()
+        .into_iter()
+        .filter(|c| matches!(c.metric, Metric::Joint(_)))
+        .collect();
+    assert!(claims.len() >= 12, "{}", claims.len());
+    let results = evaluate(&claims, &[], &runs).unwrap();
+    for r in &results {
+        assert_eq!(r.runs, runs.len());
+        assert!(r.claim.operating_point.contains("4 ms") || r.claim.id == "3.1-fit");
+        assert!(r.spread.min <= r.spread.median && r.spread.median <= r.spread.max);
+    }
+    // Asked without the joint runs, a joint claim is an error.
+    assert_eq!(
+        evaluate(&claims[..1], &[], &[]).unwrap_err(),
+        ClaimError::NoMetrics
+    );
+    assert!(matches!(
+        run_joint(&[], 2, 1),
+        Err(ClaimError::NoRuns { name: "family" })
+    ));
+    assert!(matches!(
+        run_joint(&plants[..1], 0, 1),
+        Err(ClaimError::NoRuns { name: "seeds" })
+    ));
+}
+
+/// Every claim id is unique and selects exactly itself on the example's
+/// command line (the rerun command of docs/ERRATA.md), and the rerun
+/// command names the example.
+#[test]
+fn every_rerun_command_selects_its_claim() {
+    let claims = registry().unwrap();
+    assert!(RERUN.contains("--example claims"));
+    for c in &claims {
+        let selected: Vec<_> = claims.iter().filter(|d| d.id == c.id).collect();
+        assert_eq!(selected.len(), 1, "{}", c.id);
+        assert!(!c.id.starts_with("--") && !c.id.contains(' '), "{}", c.id);
+    }
+    // The chapter 3–4 claims named in the report are all registered.
+    for id in [
+        "3.1-fit",
+        "3.1-low",
+        "3.1-bound",
+        "3.3-reduction",
+        "3.6-level",
+        "3.8-step",
+        "4.3-jtf",
+        "4.3-sensor",
+        "T1-preset",
+        "T1-table4.1",
+        "4.5-active",
+        "4.11-passive",
+        "4.11-sensor",
+    ] {
+        assert!(claims.iter().any(|c| c.id == id), "{id}");
     }
 }
 
@@ -130,6 +220,8 @@ fn plants_share_no_model_code() {
         "sim::transmission",
         "sim::experiments",
         "sim::friction",
+        "crate::joint",
+        "sim::claims",
     ];
     let mut files = 0;
     for entry in std::fs::read_dir(dir).unwrap() {
@@ -146,5 +238,100 @@ fn plants_share_no_model_code() {
             }
         }
     }
-    assert!(files >= 3, "found {files} plant sources");
+    assert!(files >= 4, "found {files} plant sources");
+    // The dynamic joint plant of chapters 3–4 is among them.
+    assert!(std::path::Path::new(dir).join("joint.rs").exists());
+}
+
+/// One backend spot check on the joint plant at 4 ms: the 4 ms preset
+/// with its estimator's kinematic-error model removed, on a plant whose
+/// kinematic error is zeroed (so that nothing but the backend differs; with
+/// the plant's kinematic error and no model the estimate errs by up to
+/// 3 N·m and the manager leaves Active, claim 3.1-low), tracks the slow
+/// sine with the payload on `f64`, `f32` and `I16F16` from the same plant
+/// and seed. Each backend stays Active, and its peak estimate error is
+/// within 0.3 N·m (about one motor count seen as torque) of the `f64`
+/// run's.
+#[test]
+fn backends_agree_on_the_joint_plant_at_4ms() {
+    use mrr_control::estimation::{TorqueEstimatorParams, TorqueEstimatorSettings};
+    use mrr_control::joint::{JointConfig, JointParams, JointReadings, JointSettings, JointTarget};
+    use mrr_control::prelude::JointMode;
+    use mrr_control::sim::SplitMix64;
+    use mrr_control::{Scalar, I16F16};
+
+    let preset = JointParams::table_4_1_at(0.004).unwrap();
+    let s = preset.settings();
+    let e = s.estimator;
+    let estimator = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
+        drive: e.drive(),
+        kinematic_error: None,
+        link_counts_per_rev: e.link_counts_per_rev(),
+        motor_counts_per_rev: e.motor_counts_per_rev(),
+        max_torque: e.max_torque(),
+    })
+    .unwrap();
+    let params = JointParams::try_new(JointSettings { estimator, ..s }).unwrap();
+    let plant = quick_joint_family().remove(0);
+
+    fn peak_error<S: Scalar>(params: &JointParams, plant: &JointPlant) -> (f64, usize) {
+        let cfg = JointConfig::<S>::new(params);
+        let mut rng = SplitMix64::new(3);
+        let mut st = plant.rest(0.0, 3);
+        let k = &mut st.kinematic_error;
+        k.wave_generator.iter_mut().for_each(|h| h.0 = 0.0);
+        k.ripple.0 = 0.0;
+        k.output.0 = 0.0;
+        st.x[0] = 0.0;
+        st.motor.iter_mut().for_each(|z| *z = 0.0);
+        st.mesh = plant.mesh_friction.relaxed(0.0);
+        let r0 = plant.read(&st, &mut rng);
+        let mut js = cfg.state(r0.link_count, r0.motor_counter);
+        let (mut peak, mut passive, mut command) = (0.0f64, 0, 0.0);
+        for k in 0..900 {
+            let t = k as f64 * 0.004;
+            let w = std::f64::consts::TAU / 3.0;
+            let s = (t - 0.2).clamp(0.0, 3.0);
+            let q = 0.4 * (1.0 - (w * s).cos());
+            let qd = if (0.2..3.2).contains(&t) {
+                0.4 * w * (w * s).sin()
+            } else {
+                0.0
+            };
+            let qdd = if (0.2..3.2).contains(&t) {
+                0.4 * w * w * (w * s).cos()
+            } else {
+                0.0
+            };
+            let r = plant.read(&st, &mut rng);
+            let truth = plant.transmitted(&st, &st.x);
+            let mut target = JointTarget::<S>::from_si(q, qd, qdd);
+            target.expected_joint_torque = S::from_f64(plant.payload * q.sin());
+            let readings = JointReadings {
+                link_count: r.link_count,
+                motor_counter: r.motor_counter,
+                motor_torque: None,
+            };
+            let o = cfg.update(&mut js, &readings, &target);
+            if o.mode != JointMode::Active {
+                passive += 1;
+            }
+            if t >= 0.2 {
+                peak = peak.max((o.joint_torque_si() - truth).abs());
+            }
+            command = o.motor_torque_si();
+            plant.advance(&mut st, command, 0.004, |_, _| 0.0);
+        }
+        let _ = command;
+        (peak, passive)
+    }
+    let (p64, n64) = peak_error::<f64>(&params, &plant);
+    let (p32, n32) = peak_error::<f32>(&params, &plant);
+    let (pfx, nfx) = peak_error::<I16F16>(&params, &plant);
+    println!("peak estimate error: f64 {p64:.3}, f32 {p32:.3}, I16F16 {pfx:.3} N·m; ticks out of Active {n64} {n32} {nfx}");
+    assert_eq!((n64, n32, nfx), (0, 0, 0));
+    assert!(
+        (p32 - p64).abs() <= 0.3 && (pfx - p64).abs() <= 0.3,
+        "{p64} {p32} {pfx}"
+    );
 }

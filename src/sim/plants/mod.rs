@@ -15,6 +15,10 @@
 //! | kinematic error | wave-generator harmonics 1–4, tooth-pass ripple, output eccentricity | Table 3.2 magnitudes, Table 3.1 bound 4.4e-4 rad p-p |
 //! | sensors | quantizing encoders (2000 and 2^17 counts/rev), torque sensor 1/376 N·m, ±2 % torque constant | §3.2 (Mini45) ; counts assumed |
 //!
+//! The dynamic joint of [`joint`] (rotor, drive, link, payload, 4 ms
+//! sensors) reuses the backbone, hysteresis and kinematic-error elements
+//! with an asymmetric Maxwell-slip motor friction for chapters 3–4.
+//!
 //! What the thesis leaves open is swept, not picked: the Fig. 2.17
 //! amplitude, the split of `Ψ` between the mesh/bearing mechanism and the
 //! flexspline, the mesh break-away between the two measured torques, the
@@ -28,5 +32,7 @@
 
 pub mod drive;
 pub mod elements;
+pub mod joint;
 
 pub use drive::{family, quick_family, DrivePlant, Sample};
+pub use joint::{joint_family, quick_joint_family, JointPlant};
