@@ -25,8 +25,8 @@
 use core::f64::consts::TAU;
 
 use super::elements::{
-    CatalogueNumbers, FlexsplineBackbone, KinematicErrorPlant, MaxwellSlip, MaxwellSlipState,
-    QuantizingEncoder, WaveGeneratorCompliance,
+    illinois, CatalogueNumbers, FlexsplineBackbone, KinematicErrorPlant, MaxwellSlip,
+    MaxwellSlipState, QuantizingEncoder, WaveGeneratorCompliance,
 };
 use crate::sim::sensors::SplitMix64;
 
@@ -143,30 +143,9 @@ fn solve_increasing(f: impl Fn(f64) -> f64, x0: f64, step: f64) -> f64 {
         fb = f(b);
         n += 1;
     }
-    let mut side = 0;
-    for _ in 0..200 {
-        let c = (a * fb - b * fa) / (fb - fa);
-        let fc = f(c);
-        if fc == 0.0 || (b - a).abs() <= 1e-15 * (1e-12 + c.abs()) {
-            return c;
-        }
-        if fc.signum() == fb.signum() {
-            b = c;
-            fb = fc;
-            if side == -1 {
-                fa *= 0.5;
-            }
-            side = -1;
-        } else {
-            a = c;
-            fa = fc;
-            if side == 1 {
-                fb *= 0.5;
-            }
-            side = 1;
-        }
-    }
-    (a * fb - b * fa) / (fb - fa)
+    illinois(&f, (a, fa), (b, fb), 200, |a, b, c| {
+        (b - a).abs() <= 1e-15 * (1e-12 + c.abs())
+    })
 }
 
 /// Quasi-static responses of one step (plant signs).

@@ -45,7 +45,8 @@ use super::drive::{
     self, BearingShape, DrivePlant, PlantChoice, CATALOGUE, RATIO, TORQUE_SENSOR_RESOLUTION,
 };
 use super::elements::{
-    FlexsplineBackbone, KinematicErrorPlant, MaxwellSlip, MaxwellSlipState, WaveGeneratorCompliance,
+    illinois, FlexsplineBackbone, KinematicErrorPlant, MaxwellSlip, MaxwellSlipState,
+    WaveGeneratorCompliance,
 };
 use crate::sim::sensors::SplitMix64;
 
@@ -125,30 +126,7 @@ fn solve_increasing(f: impl Fn(f64) -> f64, y0: f64) -> f64 {
         fb = f(b);
         n += 1;
     }
-    let mut side = 0;
-    for _ in 0..100 {
-        let c = (a * fb - b * fa) / (fb - fa);
-        let fc = f(c);
-        if fc == 0.0 || (b - a).abs() <= 1e-13 {
-            return c;
-        }
-        if fc.signum() == fb.signum() {
-            b = c;
-            fb = fc;
-            if side == -1 {
-                fa *= 0.5;
-            }
-            side = -1;
-        } else {
-            a = c;
-            fa = fc;
-            if side == 1 {
-                fb *= 0.5;
-            }
-            side = 1;
-        }
-    }
-    (a * fb - b * fa) / (fb - fa)
+    illinois(&f, (a, fa), (b, fb), 100, |a, b, _| (b - a).abs() <= 1e-13)
 }
 
 /// Asymmetric Maxwell-slip friction with damping of the sticking elements.
