@@ -833,6 +833,14 @@ impl<S: Scalar> JointConfig<S> {
     /// `motor_counter` (chapter-4 sign): the motor position is taken as
     /// `N` times the link angle in `[−π, π)` (zero torsion), in counts
     /// `⌊c·M·N/L⌋` with `c` the link count in `[−L/2, L/2)`.
+    ///
+    /// That start ignores the drive's kinematic error `e_k` (eq. 3.7): at
+    /// rest and unloaded the motor is `N·e_k(θ_l)` away from `Nθ_l`, so
+    /// with a kinematic-error model configured the first estimates read
+    /// about `K·|e_k(θ_l)|` of torque that is not there (more than 0.5 N·m on some
+    /// drives of the `sim::plants` joint family). Where the motor's
+    /// absolute position is known, start from it with
+    /// [`state_at`](Self::state_at).
     pub fn state(&self, link_count: u32, motor_counter: u32) -> JointState<S> {
         let l = self.link_counts as i64;
         let mut c = link_count as i64 % l;
