@@ -470,6 +470,42 @@ impl QuantizingEncoder {
     }
 }
 
+/// Illinois regula falsi on a bracket `(a, f(a))`, `(b, f(b))` of opposite
+/// signs: at most `iterations` steps, stopping at a zero or when
+/// `converged(a, b, c)` holds for the bracket and the new point `c`.
+pub(crate) fn illinois(
+    f: impl Fn(f64) -> f64,
+    (mut a, mut fa): (f64, f64),
+    (mut b, mut fb): (f64, f64),
+    iterations: usize,
+    converged: impl Fn(f64, f64, f64) -> bool,
+) -> f64 {
+    let mut side = 0;
+    for _ in 0..iterations {
+        let c = (a * fb - b * fa) / (fb - fa);
+        let fc = f(c);
+        if fc == 0.0 || converged(a, b, c) {
+            return c;
+        }
+        if fc.signum() == fb.signum() {
+            b = c;
+            fb = fc;
+            if side == -1 {
+                fa *= 0.5;
+            }
+            side = -1;
+        } else {
+            a = c;
+            fa = fc;
+            if side == 1 {
+                fb *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    (a * fb - b * fa) / (fb - fa)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -572,40 +608,4 @@ mod tests {
             assert!(k.amplitude_sum() <= 0.5 * KINEMATIC_ERROR_PEAK_TO_PEAK * (1.0 + 1e-12));
         }
     }
-}
-
-/// Illinois regula falsi on a bracket `(a, f(a))`, `(b, f(b))` of opposite
-/// signs: at most `iterations` steps, stopping at a zero or when
-/// `converged(a, b, c)` holds for the bracket and the new point `c`.
-pub(crate) fn illinois(
-    f: impl Fn(f64) -> f64,
-    (mut a, mut fa): (f64, f64),
-    (mut b, mut fb): (f64, f64),
-    iterations: usize,
-    converged: impl Fn(f64, f64, f64) -> bool,
-) -> f64 {
-    let mut side = 0;
-    for _ in 0..iterations {
-        let c = (a * fb - b * fa) / (fb - fa);
-        let fc = f(c);
-        if fc == 0.0 || converged(a, b, c) {
-            return c;
-        }
-        if fc.signum() == fb.signum() {
-            b = c;
-            fb = fc;
-            if side == -1 {
-                fa *= 0.5;
-            }
-            side = -1;
-        } else {
-            a = c;
-            fa = fc;
-            if side == 1 {
-                fb *= 0.5;
-            }
-            side = 1;
-        }
-    }
-    (a * fb - b * fa) / (fb - fa)
 }
