@@ -235,7 +235,7 @@ pub(crate) mod kani_entries {
     #[kani::stub(crate::scalar::fixed::mul_bits, mul_bits_as_contract)]
     fn kani_joint_step_products_i16f16() {
         let cfg = joint();
-        let mut st = cfg.state(0, 0);
+        let mut st = cfg.state_at(0, 0);
         assert!(joint_step_bounded(&cfg, &mut st, &any_readings(), &any_target()).holds);
     }
 
@@ -296,7 +296,7 @@ mod tests {
 
     fn run<S: Scalar>(seq: &[(u32, i32, Option<f64>, [f64; 5])]) -> bool {
         let cfg = JointConfig::<S>::new(&JointParams::table_4_1().unwrap());
-        let mut st = cfg.state(0, 0);
+        let mut st = cfg.state_at(0, 0);
         let mut counter = 0u32;
         let u = S::UNITS;
         seq.iter().all(|&(link, step, tau, t)| {
@@ -324,7 +324,7 @@ mod tests {
     #[test]
     fn joint_step_check_sees_a_nonzero_command() {
         let cfg = JointConfig::<f64>::new(&JointParams::table_4_1().unwrap());
-        let mut st = cfg.state(0, 0);
+        let mut st = cfg.state_at(0, 0);
         let r = JointReadings::counts(0, 50);
         let out = cfg.update(&mut st, &r, &JointTarget::from_si(0.5, 0.0, 0.0));
         assert!(out.motor_torque != 0.0);

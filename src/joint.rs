@@ -38,8 +38,10 @@
 //! speed as the count difference over a window of `w` ticks,
 //! `q̇_m = (c_k − c_{k−w})·2π/(M w T)` (resolution `2π/(M w T)`, lag half
 //! the window), both converted once per tick by [`Scalar::from_counts`].
-//! [`JointConfig::state`] starts the motor at `N` times the link angle
-//! (zero torsion), the link angle taken in `[−π, π)`.
+//! [`JointConfig::state`] starts the motor where the estimator reads no
+//! torsion: `N` times the link angle in `[−π, π)`, moved by the
+//! kinematic error `N·e_k` when a model of it is configured (a motor
+//! count started elsewhere is a torque offset on every later estimate).
 //!
 //! # Multi-turn positions and targets
 //! No absolute angle is stored in the backend's number, so a joint turning
@@ -829,17 +831,25 @@ impl<S: Scalar> JointConfig<S> {
         &self.mode
     }
 
-    /// A state for a joint at rest whose encoders read `link_count` and
-    /// `motor_counter` (chapter-4 sign): the motor position is taken as
-    /// `N` times the link angle in `[−π, π)` (zero torsion), in counts
-    /// `⌊c·M·N/L⌋` with `c` the link count in `[−L/2, L/2)`.
+    /// A state for a joint at rest and unloaded whose encoders read
+    /// `link_count` and `motor_counter` (chapter-4 sign): the motor
+    /// position is taken where the estimator reads no torsion. Without a
+    /// kinematic-error model that is `N` times the link angle in `[−π, π)`,
+    /// in counts `⌊c·M·N/L⌋` with `c` the link count in `[−L/2, L/2)`.
+    /// With one, the unloaded motor stands `N·e_k` away from `Nθ_l`
+    /// (eq. 3.7): the count is moved from `⌊c·M·N/L⌋` until the
+    /// estimator's flexspline torsion (eq. 3.9: the torsion less the
+    /// kinematic error, at zero motor torque) is zero to within half a
+    /// motor count (a few chord steps on the count, each one
+    /// [`measure`](Self::measure) of a scratch state; the error's slope
+    /// in the motor angle is far below the drive ratio's, so the steps
+    /// converge at once). The first estimates then read no torque that is
+    /// not there; without the move they read `K·|e_k(θ_l)|` (Table 3.2
+    /// with a 2¹⁶-count motor encoder: up to 8.2e-5 rad of flexspline
+    /// torsion over the 64 link angles of its unit test; more than
+    /// 0.5 N·m on some drives of the `sim::plants` joint family).
     ///
-    /// That start ignores the drive's kinematic error `e_k` (eq. 3.7): at
-    /// rest and unloaded the motor is `N·e_k(θ_l)` away from `Nθ_l`, so
-    /// with a kinematic-error model configured the first estimates read
-    /// about `K·|e_k(θ_l)|` of torque that is not there (more than 0.5 N·m on some
-    /// drives of the `sim::plants` joint family). Where the motor's
-    /// absolute position is known, start from it with
+    /// Where the motor's absolute position is known, start from it with
     /// [`state_at`](Self::state_at).
     pub fn state(&self, link_count: u32, motor_counter: u32) -> JointState<S> {
         let l = self.link_counts as i64;
@@ -848,7 +858,43 @@ impl<S: Scalar> JointConfig<S> {
             c -= l;
         }
         let motor = (c * self.motor_counts_per_output_rev).div_euclid(l);
-        self.state_at(motor, motor_counter)
+        if !self.estimator.has_kinematic_error() {
+            return self.state_at(motor, motor_counter);
+        }
+        let link_count = (link_count as i64 % l) as u32;
+        let torsion = |m: i64| -> Option<f64> {
+            let mut st = self.state_at(m, motor_counter);
+            let readings = JointReadings {
+                link_count,
+                motor_counter,
+                motor_torque: Some(S::ZERO),
+            };
+            let e = self.measure(&mut st, &readings).estimate;
+            (!e.invalid_input).then(|| e.flexspline_torsion_si())
+        };
+        // The chord's slope from a step of one output milliradian.
+        let h = ((self.motor_counts_per_output_rev as f64 * 1e-3 / core::f64::consts::TAU) as i64)
+            .max(1);
+        let (Some(t0), Some(t1)) = (torsion(motor), torsion(motor + h)) else {
+            return self.state_at(motor, motor_counter);
+        };
+        let slope = (t1 - t0) / h as f64;
+        if !(slope.abs() > 0.0) {
+            return self.state_at(motor, motor_counter);
+        }
+        let (mut m, mut t) = (motor, t0);
+        for _ in 0..4 {
+            let step = libm::round(t / slope);
+            if step == 0.0 || step.abs() > h as f64 {
+                break;
+            }
+            let next = m - step as i64;
+            match torsion(next) {
+                Some(tn) if tn.abs() <= t.abs() => (m, t) = (next, tn),
+                _ => break,
+            }
+        }
+        self.state_at(m, motor_counter)
     }
 
     /// A state for a motor at `motor_position` counts (chapter-4 sign,

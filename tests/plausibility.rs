@@ -42,7 +42,7 @@ fn snapshot<S: Scalar>(st: &JointState<S>) -> ((FrictionParams, f64), f64, i64) 
 /// A joint at rest for a few ticks, holding its start; returns the state
 /// and the last output.
 fn at_rest<S: Scalar>(cfg: &JointConfig<S>) -> (JointState<S>, JointOutput<S>) {
-    let mut st = cfg.state(0, 0);
+    let mut st = cfg.state_at(0, 0);
     let hold = JointTarget::from_si(0.0, 0.0, 0.0);
     let mut out = cfg.update(&mut st, &JointReadings::counts(0, 0), &hold);
     // A small motion first, so the adapted state is not its initial one.
@@ -174,7 +174,7 @@ fn the_limit_and_a_spike_i16f16() {
 #[test]
 fn measure_reports_the_counter_jump() {
     let cfg = JointConfig::<f32>::new(&params());
-    let mut st = cfg.state(0, 0);
+    let mut st = cfg.state_at(0, 0);
     let m = cfg.measure(&mut st, &JointReadings::counts(0, 1_000_000_000));
     assert!(m.counter_jump && m.motor_position == 0.0 && m.motor_velocity == 0.0);
     let m = cfg.measure(&mut st, &JointReadings::counts(0, 1_000_000_005));

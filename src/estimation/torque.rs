@@ -826,6 +826,11 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         st.motor_in_turn = (p % self.m as i64) as u32;
     }
 
+    /// Whether a kinematic-error model (eq. 3.7) is configured.
+    pub(crate) fn has_kinematic_error(&self) -> bool {
+        self.kinematic_error_phase.is_some() || self.kinematic_error.is_some()
+    }
+
     /// Eq. (3.7) at link and motor angles (rad) given as `(sin, cos)` pairs.
     #[inline]
     fn kinematic_error(&self, link: (S, S), motor: (S, S)) -> S {

@@ -7,11 +7,17 @@ use crate::scalar::{Coef, I16F16};
 /// `embedded/src/joint.rs`): Table 4.1 laws with passive gain 2000, a
 /// collision detector stopping the joint above 4 N·m.
 fn firmware_params() -> JointParams {
+    params_with(Some(KinematicErrorModel::table_3_2()), 2000)
+}
+
+/// [`firmware_params`] with the kinematic-error model `ke` and `m` motor
+/// counts per revolution.
+fn params_with(ke: Option<KinematicErrorModel>, m: u32) -> JointParams {
     let estimator = TorqueEstimatorParams::try_new(TorqueEstimatorSettings {
         drive: CatalogueData::SHD_17_100.identify().unwrap(),
-        kinematic_error: Some(KinematicErrorModel::table_3_2()),
+        kinematic_error: ke,
         link_counts_per_rev: 1 << 17,
-        motor_counts_per_rev: 2000,
+        motor_counts_per_rev: m,
         max_torque: 60.0,
     })
     .unwrap();
@@ -134,9 +140,8 @@ fn reproduces_the_firmware_wiring<S: Scalar>() {
     // Start near the top of the counter so that it wraps.
     let start_counter = u32::MAX - 5000;
     let link0 = 1000u32;
-    let mut st = cfg.state(link0, start_counter);
     let motor0 = link0 as i64 * mn / l;
-    assert_eq!(st.motor_position_counts(), motor0);
+    let mut st = cfg.state_at(motor0, start_counter);
     let mut r = Reference::<S>::new(&p, motor0, start_counter);
     let mut modes = [0usize; 3];
     let mut q_l = link0 as f64 / l as f64 * TAU;
@@ -277,7 +282,8 @@ fn measure_is_the_measuring_half_of_update() {
 
 #[test]
 fn state_starts_the_motor_at_n_times_the_link_angle() {
-    let cfg = JointConfig::<f32>::new(&firmware_params());
+    // Without a kinematic-error model zero torsion is `q_m = N θ_l`.
+    let cfg = JointConfig::<f32>::new(&params_with(None, 2000));
     let l = 1u32 << 17;
     // A quarter turn forward and a quarter turn back (count 3L/4).
     assert_eq!(cfg.state(l / 4, 0).motor_position_counts(), 50_000);
@@ -286,11 +292,54 @@ fn state_starts_the_motor_at_n_times_the_link_angle() {
     assert_eq!(cfg.state(l + l / 4, 0).motor_position_counts(), 50_000);
 }
 
+/// With the Table 3.2 kinematic-error model the unloaded motor stands
+/// `N·e_k` away from `N θ_l` (eq. 3.7), and `state` starts it there: the
+/// first reading at rest is a torsion of at most half a motor count,
+/// `π/(M N)` (plus the backend's torsion resolution), where a start at
+/// `N θ_l` reads the whole kinematic error — checked here to be several
+/// counts at some of the angles, so the test tells the two apart (a
+/// 2¹⁶-count motor encoder: with the firmware's 2000 counts the Table 3.2
+/// error stays within a count).
+#[test]
+fn state_starts_at_zero_torsion_with_the_kinematic_error() {
+    fn check<S: Scalar>() -> f64 {
+        const M: u32 = 1 << 16;
+        let cfg = JointConfig::<S>::new(&params_with(Some(KinematicErrorModel::table_3_2()), M));
+        let (l, mn) = (1i64 << 17, M as f64 * 100.0);
+        let count = core::f64::consts::TAU / mn;
+        let tol = 0.5 * count + 2.0 * S::RESOLUTION.to_f64() / S::UNITS.torsion;
+        let mut worst_naive = 0.0f64;
+        for k in 0..64i64 {
+            let c = (k * 2047 + 11) % l;
+            let counter = (k as u32).wrapping_mul(0x9E37_79B9);
+            let r = JointReadings {
+                link_count: c as u32,
+                motor_counter: counter,
+                motor_torque: Some(S::ZERO),
+            };
+            let mut st = cfg.state(c as u32, counter);
+            let m = cfg.measure(&mut st, &r);
+            assert!(!m.estimate.invalid_input && !m.counter_jump, "{}", S::NAME);
+            let t = m.estimate.flexspline_torsion_si();
+            assert!(t.abs() <= tol, "{} count {c}: torsion {t} > {tol}", S::NAME);
+            // The start at `N θ_l` (⌊c·M·N/L⌋, link angle in [−π, π)).
+            let cc = if c >= l / 2 { c - l } else { c };
+            let mut naive = cfg.state_at((cc * mn as i64).div_euclid(l), counter);
+            let n = cfg.measure(&mut naive, &r).estimate.flexspline_torsion_si();
+            worst_naive = worst_naive.max(n.abs() / count);
+        }
+        worst_naive
+    }
+    for worst in [check::<f64>(), check::<f32>(), check::<I16F16>()] {
+        assert!(worst > 3.0, "the naive start reads at most {worst} counts");
+    }
+}
+
 #[test]
 fn invalid_readings_are_flagged_and_outputs_stay_finite() {
     fn check<S: Scalar>(bad_torque: Option<S>) {
         let cfg = JointConfig::<S>::new(&firmware_params());
-        let mut st = cfg.state(0, 0);
+        let mut st = cfg.state_at(0, 0);
         let rest = JointTarget::<S>::default();
         let good = cfg.update(&mut st, &JointReadings::counts(0, 0), &rest);
         assert!(!good.invalid_input);
@@ -309,7 +358,7 @@ fn invalid_readings_are_flagged_and_outputs_stay_finite() {
             if i == 2 && bad_torque.is_none() {
                 continue;
             }
-            let mut s2 = cfg.state(0, 0);
+            let mut s2 = cfg.state_at(0, 0);
             let o = cfg.update(&mut s2, r, &rest);
             assert!(o.invalid_input, "case {i} on {}", S::NAME);
             for v in [
@@ -327,7 +376,7 @@ fn invalid_readings_are_flagged_and_outputs_stay_finite() {
     check::<I16F16>(None);
     // A NaN target on a float backend: flagged, torque 0.
     let cfg = JointConfig::<f32>::new(&firmware_params());
-    let mut st = cfg.state(0, 0);
+    let mut st = cfg.state_at(0, 0);
     let o = cfg.update(
         &mut st,
         &JointReadings::counts(0, 0),
@@ -564,7 +613,7 @@ fn default_passive_gain_is_stable_when_sampled() {
 #[test]
 fn with_mode_state_resumes_the_manager() {
     let cfg = JointConfig::<f32>::new(&firmware_params());
-    let mut a = cfg.state(0, 0);
+    let mut a = cfg.state_at(0, 0);
     let push = JointReadings::counts(0, 30); // ≈ 7 N·m of torsion
     for _ in 0..8 {
         cfg.update(&mut a, &push, &JointTarget::default());
@@ -638,10 +687,10 @@ fn si_tick<S: Stored>() -> ([f64; 7], f64) {
         motor_counter: 10,
         motor_torque: Some(S::ZERO),
     };
-    let mut st = cfg.state(0, 0);
+    let mut st = cfg.state_at(0, 0);
     let out = cfg.update(&mut st, &readings, &JointTarget::from_si(0.5, 0.0, 0.0));
     assert!(out.control.saturated && !out.invalid_input, "{out:?}");
-    let mut st = cfg.state(0, 0);
+    let mut st = cfg.state_at(0, 0);
     let m = cfg.measure(&mut st, &readings);
     let o = &out;
     (
@@ -827,7 +876,7 @@ fn hold_reference_follows_the_target_frame() {
         // The link at π/4 (2¹⁷/8 counts), the motor at N times it
         // (25 000 counts, zero torsion), at rest.
         let (link, counts) = (1u32 << 14, 25_000u32);
-        let mut st = cfg.state(link, counts);
+        let mut st = cfg.state_at(counts as i64, counts);
         let readings = JointReadings::counts(link, counts);
         // An expected joint torque 10 N·m away from the estimate: a
         // collision (threshold 4 N·m), and the joint stops.

@@ -801,9 +801,10 @@ mod tests {
 
     /// The power-up state: started from the kinematic-error-aware motor
     /// position, the estimate of an unloaded joint at rest is within
-    /// 0.5 N·m (two motor counts seen as torque) of zero; started by
-    /// `JointConfig::state` (motor at `N θ_l`, no kinematic error) it is
-    /// off by `K e_k(θ_l)`, more than 0.5 N·m for some of the seeds.
+    /// 0.5 N·m (two motor counts seen as torque) of zero, and so is
+    /// `JointConfig::state`'s; started with the motor at `N θ_l` (no
+    /// kinematic error) it is off by `K e_k(θ_l)`, more than 0.5 N·m for
+    /// some of the seeds.
     #[test]
     fn power_up_state_accounts_for_the_kinematic_error() {
         let mut plant = quick_joint_family().remove(0);
@@ -822,11 +823,25 @@ mod tests {
             let aware = cfg
                 .update(&mut js, &readings(&r, 0.0), &hold)
                 .joint_torque_si();
+            // The library's own power-up state finds the same start.
             let mut js = cfg.state(r.link_count, r.motor_counter);
+            let library = cfg
+                .update(&mut js, &readings(&r, 0.0), &hold)
+                .joint_torque_si();
+            // The motor at `N θ_l`, ignoring the kinematic error.
+            let l = 1i64 << 17;
+            let c = r.link_count as i64;
+            let c = if c >= l / 2 { c - l } else { c };
+            let motor = (c * MOTOR_COUNTS as i64 * RATIO as i64).div_euclid(l);
+            let mut js = cfg.state_at(motor, r.motor_counter);
             let naive = cfg
                 .update(&mut js, &readings(&r, 0.0), &hold)
                 .joint_torque_si();
             assert!(aware.abs() < 0.5, "seed {seed}: {aware} (naive {naive})");
+            assert!(
+                library.abs() < 0.5,
+                "seed {seed}: {library} (naive {naive})"
+            );
             worst_naive = worst_naive.max(naive.abs());
         }
         assert!(worst_naive > 0.5, "{worst_naive}");
