@@ -28,11 +28,13 @@
 //! alone. The arm carries its gravity as a force on every body.
 
 pub mod arm;
+pub mod door;
 pub mod ft_sensor;
 pub mod universal_joint;
 mod world;
 pub mod wrist;
 
+pub use door::{engine_door_opening, Backend, DoorBody, EngineDoorRun, EngineDoorSample};
 pub use arm::{
     arm_settings, DriveModel, DriveState, DriveTorques, EngineArm, LinearDrives, PlantDrives,
     RotorBody, ARM_DT,
