@@ -373,7 +373,6 @@ pub(crate) struct BaseMotion {
 }
 
 impl BaseMotion {
-
     /// The nominal circle of radius `radius` (m) about the hinge with the
     /// seeded slip knots (every 0.2 s, uniform within `±cfg.slip`) and
     /// jerks (Poisson instants at `cfg.jerk_rate`, raised-cosine pulses of

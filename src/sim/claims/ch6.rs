@@ -187,7 +187,11 @@ pub fn run_door(
     }
     let threads = threads.clamp(1, seeds as usize);
     let chunks: Vec<Vec<u64>> = (0..threads)
-        .map(|t| (1..=seeds).filter(|s| (s - 1) as usize % threads == t).collect())
+        .map(|t| {
+            (1..=seeds)
+                .filter(|s| (s - 1) as usize % threads == t)
+                .collect()
+        })
         .collect();
     let results: Vec<Result<Vec<_>, ParamError>> = std::thread::scope(|scope| {
         let handles: Vec<_> = chunks

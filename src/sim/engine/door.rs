@@ -56,7 +56,11 @@
 //!   origin `l`; the wrench it puts through that joint is read by momentum
 //!   balance as in [`super::SensedWrist`], and turned into gauge voltages
 //!   by a [`StrainGaugeSensor`] whose matrix is off the certificate by
-//!   ±2 % (seeded) with 0.3 mV noise (offsets tared).
+//!   ±2 % (seeded) with 0.3 mV noise (offsets tared). The wrench is
+//!   averaged over each 4 ms tick before it is read (the amplifiers'
+//!   anti-aliasing filter): the one-step momentum balance carries the
+//!   engine's step-scale content, which a sampled sensor behind a filter
+//!   does not see.
 //! * **Grasp** — a stiff spring between the gripper's grasp point and the
 //!   knob, as in [`crate::sim::door`]: `k_g` (N/m) with 40 N·s/m, and
 //!   `k_r` (N·m/rad) with 0.3 N·m·s/rad about every axis.
@@ -91,7 +95,9 @@ use crate::control::{
 };
 use crate::error::ParamError;
 use crate::scalar::{Scalar, I16F16};
-use crate::sim::door::{door_wrist_design, turret_hold_design, BaseMotion, DoorConfig, DoorControl};
+use crate::sim::door::{
+    door_wrist_design, turret_hold_design, BaseMotion, DoorConfig, DoorControl,
+};
 use crate::sim::mrr::ModuleParams;
 use crate::sim::{FrictionParams, SplitMix64};
 use crate::wrist::active::WristActiveParams;
@@ -395,26 +401,51 @@ fn build_scene(
         Vector::zeros(),
         Vector::new(w / 2.0, 0.0, 0.0),
         door.mass,
-        Vector::new(door.mass * 0.04, door.mass * w * w / 12.0, door.mass * w * w / 12.0),
+        Vector::new(
+            door.mass * 0.04,
+            door.mass * w * w / 12.0,
+            door.mass * w * w / 12.0,
+        ),
     );
     let dj = world
         .multibody_joints
-        .insert(ground, door_h, hinge(z, Vector::zeros(), Vector::zeros()), true)
+        .insert(
+            ground,
+            door_h,
+            hinge(z, Vector::zeros(), Vector::zeros()),
+            true,
+        )
         .ok_or(fail("door hinge"))?;
     if let Some((mb, _)) = world.multibody_joints.get_mut(dj) {
         mb.damping_mut().fill(0.0);
     }
     // The robot: one multibody rooted at the free base.
-    let base = body_at(&mut world, b0, Vector::zeros(), BASE_MASS, Vector::repeat(BASE_INERTIA));
+    let base = body_at(
+        &mut world,
+        b0,
+        Vector::zeros(),
+        BASE_MASS,
+        Vector::repeat(BASE_INERTIA),
+    );
     let (arm_mass, arm_com) = (3.0, 0.25);
     let link = body_at(
         &mut world,
         b0,
         Vector::new(0.0, arm_com, 0.0),
         arm_mass,
-        Vector::new(0.35 - arm_mass * arm_com * arm_com, 0.01, 0.35 - arm_mass * arm_com * arm_com),
+        Vector::new(
+            0.35 - arm_mass * arm_com * arm_com,
+            0.01,
+            0.35 - arm_mass * arm_com * arm_com,
+        ),
     );
-    let t_rotor = body_at(&mut world, b0, Vector::zeros(), 0.3, Vector::new(1e-4, 1e-4, 1.14e-5));
+    let t_rotor = body_at(
+        &mut world,
+        b0,
+        Vector::zeros(),
+        0.3,
+        Vector::new(1e-4, 1e-4, 1.14e-5),
+    );
     let rotor_inertia = |v: Vector<Real>| {
         // Axial along the arm (+y), transverse 1e-5.
         Vector::new(1e-5, 1e-5, 1e-5) + v
@@ -445,8 +476,13 @@ fn build_scene(
     let first = mb
         .insert(base, link, hinge(z, Vector::zeros(), Vector::zeros()), true)
         .ok_or(fail("turret joint"))?;
-    mb.insert(base, t_rotor, hinge(z, Vector::zeros(), Vector::zeros()), true)
-        .ok_or(fail("turret rotor joint"))?;
+    mb.insert(
+        base,
+        t_rotor,
+        hinge(z, Vector::zeros(), Vector::zeros()),
+        true,
+    )
+    .ok_or(fail("turret rotor joint"))?;
     let mut rotor_joints = Vec::new();
     for h in w_rotor {
         rotor_joints.push(
@@ -458,10 +494,20 @@ fn build_scene(
         .insert(link, lower, hinge(zw, at_wrist, Vector::zeros()), true)
         .ok_or(fail("J1"))?;
     let j4 = mb
-        .insert(lower, upper, hinge(oblique, Vector::zeros(), Vector::zeros()), true)
+        .insert(
+            lower,
+            upper,
+            hinge(oblique, Vector::zeros(), Vector::zeros()),
+            true,
+        )
         .ok_or(fail("J4"))?;
     let j3 = mb
-        .insert(upper, output, hinge(zw, Vector::zeros(), Vector::zeros()), true)
+        .insert(
+            upper,
+            output,
+            hinge(zw, Vector::zeros(), Vector::zeros()),
+            true,
+        )
         .ok_or(fail("J3"))?;
     let jp = mb
         .insert(link, cross, hinge(yw, at_wrist, Vector::zeros()), true)
@@ -503,16 +549,20 @@ fn build_scene(
         m.forward_kinematics(&world.bodies, true);
         m.update_rigid_bodies(&mut world.bodies, false);
         // The gripper to its place on L2.
-        let pose = *world.bodies[output].position() * Isometry::translation(zw.x * ls, zw.y * ls, zw.z * ls);
+        let pose = *world.bodies[output].position()
+            * Isometry::translation(zw.x * ls, zw.y * ls, zw.z * ls);
         world.bodies[gripper].set_position(pose, true);
     }
     let mb = &mut world.multibody_joints;
     if let Some((m, _)) = mb.get_mut(first) {
         m.damping_mut().fill(0.0);
     }
-    world
-        .impulse_joints
-        .insert(cross, output, hinge(xw, Vector::zeros(), Vector::zeros()), true);
+    world.impulse_joints.insert(
+        cross,
+        output,
+        hinge(xw, Vector::zeros(), Vector::zeros()),
+        true,
+    );
     let mount = FixedJointBuilder::new()
         .local_anchor1(Point::from(zw * ls))
         .local_anchor2(Point::origin());
@@ -597,7 +647,10 @@ pub fn engine_door_opening(
 /// motors by [`door_wrist_design`] at 4 ms, the mode manager of
 /// [`crate::sim::door`] (admittance `K_c = 0.1`, validated for the grasp's
 /// stiffness [`DoorConfig::wrist_stiffness_bound`]).
-pub fn door_wrist_step(cfg: &DoorConfig, initial_mode: WristMode) -> Result<WristStepParams, ParamError> {
+pub fn door_wrist_step(
+    cfg: &DoorConfig,
+    initial_mode: WristMode,
+) -> Result<WristStepParams, ParamError> {
     let limit = 30f64.to_radians();
     let admittance = AdmittanceParams::try_new(AdmittanceSettings {
         gain: [0.1, 0.1],
@@ -665,7 +718,11 @@ fn run<S: Scalar>(
         GaugeErrors::try_new(0.02, 0.0, 3e-4, cfg.seed ^ 0x5E45_0000)?,
     )?;
     let turret_module = ModuleParams::thesis_joint();
-    let mut turret_drive = PlantDrives::of(core::slice::from_ref(&turret_module), true, &[DriveState::default()]);
+    let mut turret_drive = PlantDrives::of(
+        core::slice::from_ref(&turret_module),
+        true,
+        &[DriveState::default()],
+    );
     let wrist_friction = FrictionParams {
         coulomb: 0.008,
         static_excess: 0.004,
@@ -695,7 +752,8 @@ fn run<S: Scalar>(
     let start_motors: MotorAngles<S> = WristReadings::<S>::from_si([0.0; 6], q0, [0.0; 2]).motors;
     let mut wstate = wstep.state(start_motors);
     let passive = PassiveConfig::<S>::new(&PassiveParams::table_4_1(0.1 / 1.14e-5)?);
-    let hold = RobustAdaptiveConfig::<S>::new(&RobustAdaptiveParams::try_new(turret_hold_design())?);
+    let hold =
+        RobustAdaptiveConfig::<S>::new(&RobustAdaptiveParams::try_new(turret_hold_design())?);
     let mut hold_state = hold.initial_state();
     let wrist_count = core::f64::consts::TAU / 2000.0;
     let quant = |x: f64, q: f64| (x / q).round() * q;
@@ -710,8 +768,8 @@ fn run<S: Scalar>(
     let mut last_enc = q0;
     let mut last_turret_enc = 0.0f64;
     let mut wrench = [0.0f64; 6];
-    let mut torque_motor = [0.0f64; 2];
-    let mut torque_turret = 0.0f64;
+    let mut torque_motor: [f64; 2];
+    let mut torque_turret: f64;
     let mut transmission = 0.0f64;
     let mut true_tau = [0.0f64; 2];
     let mut force_now = 0.0f64;
@@ -750,10 +808,6 @@ fn run<S: Scalar>(
             request
         });
         let turret_passive = !pre && cfg.control == DoorControl::Passive;
-        if k < 6 {
-            let b = &sc.world.bodies;
-            eprintln!("DEBUG k {k} turret {:.4} {:.4} wrist {:?} motors {:?} base {:?} tm {:?} tt {}", sc.turret_link.angle(b, mem.turret[0]), sc.turret_motor.angle(b, mem.turret[1]), [0,1].map(|i| sc.wrist_joint[i].angle(b, mem.wrist[i][0])), [0,1].map(|i| sc.wrist_motor[i].angle(b, mem.wrist[i][1]) / WRIST_RATIO), b[sc.base].translation(), torque_motor, torque_turret);
-        }
         // ---- sensors at the tick ----
         let b = &sc.world.bodies;
         let m_angle = [0, 1].map(|i| sc.wrist_motor[i].angle(b, mem.wrist[i][1]));
@@ -790,7 +844,25 @@ fn run<S: Scalar>(
         // ---- record (from the grasp on) ----
         let b = &sc.world.bodies;
         if pre {
-            step_ticks(&mut sc, &mut mem, &motion, &mut pose, time, dt, per_tick, cfg, (kp, kd), (kg, kr), &mut turret_drive, (&wrist_friction, &hinge, door), (torque_motor, torque_turret), &mut transmission, &mut true_tau, &mut force_now, &mut wrench);
+            step_ticks(
+                &mut sc,
+                &mut mem,
+                &motion,
+                &mut pose,
+                time,
+                dt,
+                per_tick,
+                cfg,
+                (kp, kd),
+                (kg, kr),
+                &mut turret_drive,
+                (&wrist_friction, &hinge, door),
+                (torque_motor, torque_turret),
+                &mut transmission,
+                &mut true_tau,
+                &mut force_now,
+                &mut wrench,
+            );
             continue;
         }
         let delta = sc.pitch.angle(b, 0.0);
@@ -817,13 +889,33 @@ fn run<S: Scalar>(
         out.peak_force = out.peak_force.max(force_now);
         out.loop_error = out.loop_error.max(loop_error(&sc, delta, gamma));
         // ---- engine steps until the next tick ----
-        step_ticks(&mut sc, &mut mem, &motion, &mut pose, time, dt, per_tick, cfg, (kp, kd), (kg, kr), &mut turret_drive, (&wrist_friction, &hinge, door), (torque_motor, torque_turret), &mut transmission, &mut true_tau, &mut force_now, &mut wrench);
+        step_ticks(
+            &mut sc,
+            &mut mem,
+            &motion,
+            &mut pose,
+            time,
+            dt,
+            per_tick,
+            cfg,
+            (kp, kd),
+            (kg, kr),
+            &mut turret_drive,
+            (&wrist_friction, &hinge, door),
+            (torque_motor, torque_turret),
+            &mut transmission,
+            &mut true_tau,
+            &mut force_now,
+            &mut wrench,
+        );
     }
     out.door_angle = mem.door_angle;
     Ok(out)
 }
 
-/// The engine steps of one control tick.
+/// The engine steps of one control tick; `wrench` becomes the sensor's
+/// wrench averaged over the tick (the gauge amplifiers' integrate-and-dump
+/// anti-aliasing filter ahead of the 4 ms sampling).
 #[allow(clippy::too_many_arguments)]
 fn step_ticks(
     sc: &mut Scene,
@@ -844,9 +936,10 @@ fn step_ticks(
     force_now: &mut f64,
     wrench: &mut [f64; 6],
 ) {
+    let mut sum = [0.0; 6];
     for s in 0..per_tick {
         let t = time + s as f64 * dt;
-        *wrench = step_engine(
+        let w = step_engine(
             sc,
             mem,
             motion,
@@ -863,7 +956,11 @@ fn step_ticks(
             true_tau,
             force_now,
         );
+        for (a, b) in sum.iter_mut().zip(w) {
+            *a += b;
+        }
     }
+    *wrench = sum.map(|x| x / per_tick as f64);
 }
 
 /// The angle (rad) between `L2`'s orientation and the one the universal
@@ -1023,8 +1120,15 @@ fn step_engine(
     mem.turret = [ts.link_angle, ts.motor_angle];
     for i in 0..2 {
         let (j, m) = (sc.wrist_joint[i], sc.wrist_motor[i]);
-        mem.wrist[i] = [j.angle(bodies, mem.wrist[i][0]), m.angle(bodies, mem.wrist[i][1])];
-        wrist_friction.update_anchor(mem.wrist[i][1], m.speed(bodies), &mut mem.wrist_friction_anchor[i]);
+        mem.wrist[i] = [
+            j.angle(bodies, mem.wrist[i][0]),
+            m.angle(bodies, mem.wrist[i][1]),
+        ];
+        wrist_friction.update_anchor(
+            mem.wrist[i][1],
+            m.speed(bodies),
+            &mut mem.wrist_friction_anchor[i],
+        );
     }
     let qd = dh.angle(bodies, -mem.door_angle);
     hinge.update_anchor(qd, dh.speed(bodies), &mut mem.hinge_anchor);

@@ -34,11 +34,11 @@ pub mod universal_joint;
 mod world;
 pub mod wrist;
 
-pub use door::{engine_door_opening, Backend, DoorBody, EngineDoorRun, EngineDoorSample};
 pub use arm::{
     arm_settings, DriveModel, DriveState, DriveTorques, EngineArm, LinearDrives, PlantDrives,
     RotorBody, ARM_DT,
 };
+pub use door::{engine_door_opening, Backend, DoorBody, EngineDoorRun, EngineDoorSample};
 pub use ft_sensor::{GaugeErrors, SensedWrist, StrainGaugeSensor};
 pub use universal_joint::UniversalJointBench;
 pub use world::EngineSettings;
