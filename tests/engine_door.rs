@@ -74,9 +74,27 @@ fn passive_peaks_are_below_the_held_active_ones_on_every_seed() {
             hold.peak(),
             hold.peak_true()
         );
+        // The wrist itself yields (its admittance reference follows the
+        // knob) where the held one does not move: over a degree of yaw
+        // against a hundredth. And the relief is the wrist's as well as the
+        // turret's: with the wrist forced Active and only the turret
+        // passive the ratio was 0.60 and 0.56 on these seeds (measured by
+        // breaking the run), with both passive about 0.36, so half
+        // separates them.
+        eprintln!(
+            "  wrist yaw range passive {:.3}°, held {:.3}°",
+            passive.wrist_range[1].to_degrees(),
+            hold.wrist_range[1].to_degrees()
+        );
         assert!(
-            passive.peak() < hold.peak() && passive.peak_true() < hold.peak_true(),
-            "seed {seed}: passive {:.2} N·m not below held {:.2} N·m",
+            passive.wrist_range[1].to_degrees() >= 1.0 && hold.wrist_range[1].to_degrees() <= 0.1,
+            "seed {seed}: wrist yaw ranges {:?} {:?}",
+            passive.wrist_range,
+            hold.wrist_range
+        );
+        assert!(
+            passive.peak() <= 0.5 * hold.peak() && passive.peak_true() <= 0.5 * hold.peak_true(),
+            "seed {seed}: passive {:.2} N·m not below half the held {:.2} N·m",
             passive.peak(),
             hold.peak()
         );
