@@ -330,7 +330,6 @@ struct Scene {
     world: World,
     base: RigidBodyHandle,
     link: RigidBodyHandle,
-    cross: RigidBodyHandle,
     output: RigidBodyHandle,
     gripper: RigidBodyHandle,
     door: RigidBodyHandle,
@@ -353,7 +352,6 @@ struct Scene {
     sensor_local: Vector<Real>,
     gripper_mass: f64,
     gripper_inertia: f64,
-    phi: f64,
 }
 
 const BASE_MASS: f64 = 120.0;
@@ -576,7 +574,6 @@ fn build_scene(
         world,
         base,
         link,
-        cross,
         output,
         gripper,
         door: door_h,
@@ -593,7 +590,6 @@ fn build_scene(
         sensor_local: zw * ls,
         gripper_mass: GRIPPER_MASS,
         gripper_inertia: GRIPPER_INERTIA,
-        phi,
     })
 }
 
@@ -842,52 +838,32 @@ fn run<S: Scalar>(
                 .torque_si()
         };
         // ---- record (from the grasp on) ----
-        let b = &sc.world.bodies;
-        if pre {
-            step_ticks(
-                &mut sc,
-                &mut mem,
-                &motion,
-                &mut pose,
+        if !pre {
+            let b = &sc.world.bodies;
+            let delta = sc.pitch.angle(b, 0.0);
+            let gamma = sc.yaw.angle(b, 0.0);
+            let door_angle = -sc.door_hinge.angle(b, -mem.door_angle);
+            out.samples.push(EngineDoorSample {
                 time,
-                dt,
-                per_tick,
-                cfg,
-                (kp, kd),
-                (kg, kr),
-                &mut turret_drive,
-                (&wrist_friction, &hinge, door),
-                (torque_motor, torque_turret),
-                &mut transmission,
-                &mut true_tau,
-                &mut force_now,
-                &mut wrench,
-            );
-            continue;
+                door: door_angle,
+                turret: sc.turret_link.angle(b, mem.turret[0]),
+                wrist: [delta, gamma],
+                reference: wout.reference_si(),
+                measured,
+                interaction: true_tau,
+                base: pose,
+                motors: enc,
+                motor_reference: wout.motor_reference_si(),
+            });
+            for i in 0..2 {
+                out.peak_measured[i] = out.peak_measured[i].max(measured[i].abs());
+                out.peak_interaction[i] = out.peak_interaction[i].max(true_tau[i].abs());
+            }
+            out.wrist_range[0] = out.wrist_range[0].max(delta.abs());
+            out.wrist_range[1] = out.wrist_range[1].max(gamma.abs());
+            out.peak_force = out.peak_force.max(force_now);
+            out.loop_error = out.loop_error.max(loop_error(&sc, delta, gamma));
         }
-        let delta = sc.pitch.angle(b, 0.0);
-        let gamma = sc.yaw.angle(b, 0.0);
-        let door_angle = -sc.door_hinge.angle(b, -mem.door_angle);
-        out.samples.push(EngineDoorSample {
-            time,
-            door: door_angle,
-            turret: sc.turret_link.angle(b, mem.turret[0]),
-            wrist: [delta, gamma],
-            reference: wout.reference_si(),
-            measured,
-            interaction: true_tau,
-            base: pose,
-            motors: enc,
-            motor_reference: wout.motor_reference_si(),
-        });
-        for i in 0..2 {
-            out.peak_measured[i] = out.peak_measured[i].max(measured[i].abs());
-            out.peak_interaction[i] = out.peak_interaction[i].max(true_tau[i].abs());
-        }
-        out.wrist_range[0] = out.wrist_range[0].max(delta.abs());
-        out.wrist_range[1] = out.wrist_range[1].max(gamma.abs());
-        out.peak_force = out.peak_force.max(force_now);
-        out.loop_error = out.loop_error.max(loop_error(&sc, delta, gamma));
         // ---- engine steps until the next tick ----
         step_ticks(
             &mut sc,
@@ -907,7 +883,7 @@ fn run<S: Scalar>(
             &mut true_tau,
             &mut force_now,
             &mut wrench,
-        );
+        )?;
     }
     out.door_angle = mem.door_angle;
     Ok(out)
@@ -935,7 +911,7 @@ fn step_ticks(
     true_tau: &mut [f64; 2],
     force_now: &mut f64,
     wrench: &mut [f64; 6],
-) {
+) -> Result<(), ParamError> {
     let mut sum = [0.0; 6];
     for s in 0..per_tick {
         let t = time + s as f64 * dt;
@@ -955,12 +931,17 @@ fn step_ticks(
             transmission,
             true_tau,
             force_now,
-        );
+        )
+        .ok_or(ParamError::NotFinite {
+            name: "dt (the engine state diverged: the step is too coarse for the drive springs)",
+            value: dt,
+        })?;
         for (a, b) in sum.iter_mut().zip(w) {
             *a += b;
         }
     }
     *wrench = sum.map(|x| x / per_tick as f64);
+    Ok(())
 }
 
 /// The angle (rad) between `L2`'s orientation and the one the universal
@@ -990,8 +971,16 @@ fn step_engine(
     transmission: &mut f64,
     true_tau: &mut [f64; 2],
     force_now: &mut f64,
-) -> [f64; 6] {
+) -> Option<[f64; 6]> {
     let bodies = &mut sc.world.bodies;
+    let finite = bodies.iter().all(|(_, b)| {
+        b.translation().iter().all(|x| x.is_finite())
+            && b.linvel().iter().all(|x| x.is_finite())
+            && b.angvel().iter().all(|x| x.is_finite())
+    });
+    if !finite {
+        return None;
+    }
     for (_, rb) in bodies.iter_mut() {
         rb.reset_forces(false);
         rb.reset_torques(false);
@@ -1145,9 +1134,7 @@ fn step_engine(
     let m_s = -(m_joint + (mb.com - mb.origin).cross(&f_joint));
     let f = mb.frame.inverse() * f_s;
     let m = mb.frame.inverse() * m_s;
-    let _ = sc.phi;
-    let _ = sc.cross;
-    [f.x, f.y, f.z, m.x, m.y, m.z]
+    Some([f.x, f.y, f.z, m.x, m.y, m.z])
 }
 
 /// The base's heading at the start, rad.
