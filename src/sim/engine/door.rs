@@ -76,6 +76,30 @@
 //! * Held-active run (contrast): the turret by the ch. 4 active law holding
 //!   its initial angle, the wrist step held Active at the straight pose.
 //!
+//! # The start pose and the straight pose
+//! The wrist's joints are set, before the first step, to the configuration
+//! of the library's inverse kinematics for the start pose (pitch
+//! `start_pitch`, yaw 0; the branch `θ4 ≥ 0`), the only use of the
+//! library's kinematics in the scene; the engine then closes the loop
+//! (the loop error is reported, [`EngineDoorRun::loop_error`]). A half
+//! second before the grasp lets the wrist settle in Active mode; the grasp
+//! spring is attached where the gripper then is.
+//!
+//! The DAUJ has two assembly modes for the same motor angles (the two
+//! roots of eq. 5.10); the library's kinematics describe one, and the two
+//! meet at the straight pose, where the mechanism is singular. Grasped at
+//! the straight pose (`start_pitch = 0`), the passive wrist leaves it as
+//! the knob pulls, its motors turn the bend's direction at once (the
+//! inverse kinematics there jump by up to π), and in the engine the
+//! mechanism can come out in the other assembly mode, where the pose the
+//! motors reach is not the one the step assumes: the admittance loop then
+//! pushes against the knob. On seeds 1–3 that gave passive peaks of 113,
+//! 87 and 13 N·m (held active: 6.5 N·m) —
+//! `cargo run --release --features sim --example door_opening -- --straight`.
+//! Grasped with the wrist bent (5°–15° of pitch, kept by the knob), the
+//! path stays away from the straight pose and the runs are regular: that
+//! is the operating point of the claims ([`crate::sim::claims::ch6`]).
+//!
 //! # The engine step
 //! The explicit drive springs and the hooks are evaluated once per engine
 //! step and held over it, with one solver substep (as [`super::EngineArm`]
