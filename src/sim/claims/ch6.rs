@@ -222,3 +222,62 @@ pub fn run_door(
     all.sort_by_key(|(m, _)| m.seed);
     Ok(all)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn metrics(nominal: f64, heading: f64, hold: f64) -> DoorRunMetrics {
+        DoorRunMetrics {
+            seed: 1,
+            start_pitch: 0.1,
+            nominal,
+            heading,
+            hold,
+            true_peaks: [nominal, heading, hold],
+            door_angle: [1.57; 3],
+        }
+    }
+
+    /// The verdicts follow the criteria written above: 1.5 N·m in every
+    /// seed supports the 2 N·m bound, 3.5 refutes it, one seed in two at
+    /// 2.5 leaves it undecided; the relief is the ratio passive/held.
+    #[test]
+    fn verdicts_follow_the_criteria() {
+        use super::super::Verdict::{Refuted, Supported, Undecided};
+        let c = claims().unwrap();
+        let judge = |runs: &[DoorRunMetrics]| -> Vec<_> {
+            evaluate(&c, runs)
+                .unwrap()
+                .iter()
+                .map(|r| r.verdict)
+                .collect()
+        };
+        assert_eq!(judge(&[metrics(1.5, 2.9, 6.0); 5]), [Supported; 3]);
+        assert_eq!(
+            judge(&[metrics(3.5, 5.0, 3.5); 5]),
+            [Refuted, Refuted, Refuted]
+        );
+        let mixed = [metrics(1.5, 3.0, 2.0), metrics(2.5, 4.0, 3.0)];
+        // 1.5/2.0 = 0.75 and 2.5/3.0 = 0.83: neither a relief nor none.
+        assert_eq!(judge(&mixed), [Undecided; 3]);
+        let r = evaluate(&c, &mixed).unwrap();
+        assert!((r[0].spread.median - 2.0).abs() < 1e-12);
+        assert!((r[2].spread.max - 2.5 / 3.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn evaluate_rejects_what_it_cannot_judge() {
+        let c = claims().unwrap();
+        assert!(matches!(evaluate(&c, &[]), Err(ClaimError::NoMetrics)));
+        assert!(matches!(
+            evaluate(&c, &[metrics(f64::NAN, 1.0, 1.0)]),
+            Err(ClaimError::NotFinite { run: 0, .. })
+        ));
+        let other = super::super::ch34::claims().unwrap();
+        assert!(matches!(
+            evaluate(&other[..1], &[metrics(1.0, 1.0, 1.0)]),
+            Err(ClaimError::NoMetrics)
+        ));
+    }
+}
