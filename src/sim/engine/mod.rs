@@ -20,6 +20,9 @@
 //! * [`arm`] — the modular arm of ch. 4: links and rotors as bodies on
 //!   multibody revolute joints, coupled by the library's drive models; the
 //!   independent check of eq. (4.1)–(4.6) of [`crate::sim::Mrr`].
+//! * [`door`] — the door opening of §6.4.4: the mobile base, the turret on
+//!   a drive plant, the DAUJ and its F/T sensor on the arm, a hinged door,
+//!   with the library's wrist step and passive law in the loop at 4 ms.
 //! * [`universal_joint`] — the inner universal joint of eq. (5.1)–(5.3):
 //!   two shafts bent by `β` and the cross between them.
 //!
