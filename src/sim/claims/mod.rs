@@ -23,6 +23,7 @@
 use core::fmt;
 
 pub mod ch34;
+pub mod ch6;
 
 pub use ch34::{run_joint, JointRunMetrics};
 
@@ -332,6 +333,9 @@ pub enum Metric {
     Drive(fn(&RunMetrics) -> f64),
     /// From the joint experiments of chapters 3–4 ([`run_joint`]).
     Joint(fn(&JointRunMetrics) -> f64),
+    /// From the door opening of chapter 6 on the engine ([`ch6`]; judged
+    /// by [`ch6::evaluate`], not by [`evaluate`]).
+    Door(fn(&ch6::DoorRunMetrics) -> f64),
 }
 
 /// One entry of the registry.
@@ -367,7 +371,10 @@ pub(crate) fn rule(condition: Condition, share: f64) -> Rule {
 }
 
 /// The registry: the chapter-2 claims (criteria fixed here) and those of
-/// chapters 3–4 ([`ch34::claims`]), all fixed before any run.
+/// chapters 3–4 ([`ch34::claims`]), all fixed before any run. The
+/// chapter-6 door claims ([`ch6::claims`]) run on the engine (feature
+/// `engine`, `examples/door_opening.rs`) and are judged by
+/// [`ch6::evaluate`].
 pub fn registry() -> Result<Vec<Claim>, ParamError> {
     let mut v = ch2_claims()?;
     v.extend(ch34::claims()?);
@@ -474,6 +481,7 @@ pub fn evaluate(
             let values: Vec<f64> = match c.metric {
                 Metric::Drive(f) => drive.iter().map(f).collect(),
                 Metric::Joint(f) => joint.iter().map(f).collect(),
+                Metric::Door(_) => Vec::new(),
             };
             let verdict = c.criterion.verdict(&values)?;
             Ok(ClaimResult {

@@ -20,6 +20,9 @@
 //! * [`arm`] — the modular arm of ch. 4: links and rotors as bodies on
 //!   multibody revolute joints, coupled by the library's drive models; the
 //!   independent check of eq. (4.1)–(4.6) of [`crate::sim::Mrr`].
+//! * [`door`] — the door opening of §6.4.4: the mobile base, the turret on
+//!   a drive plant, the DAUJ and its F/T sensor on the arm, a hinged door,
+//!   with the library's wrist step and passive law in the loop at 4 ms.
 //! * [`universal_joint`] — the inner universal joint of eq. (5.1)–(5.3):
 //!   two shafts bent by `β` and the cross between them.
 //!
@@ -28,6 +31,7 @@
 //! alone. The arm carries its gravity as a force on every body.
 
 pub mod arm;
+pub mod door;
 pub mod ft_sensor;
 pub mod universal_joint;
 mod world;
@@ -37,6 +41,7 @@ pub use arm::{
     arm_settings, DriveModel, DriveState, DriveTorques, EngineArm, LinearDrives, PlantDrives,
     RotorBody, ARM_DT,
 };
+pub use door::{engine_door_opening, Backend, DoorBody, EngineDoorRun, EngineDoorSample};
 pub use ft_sensor::{GaugeErrors, SensedWrist, StrainGaugeSensor};
 pub use universal_joint::UniversalJointBench;
 pub use world::EngineSettings;
