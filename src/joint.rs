@@ -879,7 +879,7 @@ impl<S: Scalar> JointConfig<S> {
             return self.state_at(motor, motor_counter);
         };
         let slope = (t1 - t0) / h as f64;
-        if !(slope.abs() > 0.0) {
+        if !slope.is_finite() || slope == 0.0 {
             return self.state_at(motor, motor_counter);
         }
         let (mut m, mut t) = (motor, t0);

@@ -62,7 +62,8 @@
 //! approximation. Over seeds 1–20 (the same slip and jerk sequences) the
 //! two agree on the peak measured `max(|τ_δ|, |τ_γ|)`: here median 2.71
 //! N·m (quartiles 2.46–3.15, range 2.20–3.98) passive, 2.66 with the 3°
-//! heading error, 6.28 held active; on the engine, with the wrist grasping
+//! heading error, 6.28 held active (`cargo run --release --features sim
+//! --example door_approximation`); on the engine, with the wrist grasping
 //! at 5°–15° of pitch, 2.73 (2.36–3.22, 2.22–3.79), 2.62 and 6.4. The
 //! engine also shows what this Cartesian wrist cannot: grasped at the
 //! straight pose, the DAUJ's singularity gives passive peaks of 13–113 N·m
