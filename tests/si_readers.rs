@@ -118,10 +118,10 @@ fn joint<S: Stored>() -> [f64; 14] {
         motor_torque: Some(S::from_f64(0.05 * S::UNITS.motor_torque)),
     };
     let target = JointTarget::<S>::from_si(0.5, 0.0, 0.0);
-    let mut st = cfg.state(0, 0);
+    let mut st = cfg.state_at(0, 0);
     let out: JointOutput<S> = cfg.update(&mut st, &readings, &target);
     assert!(out.control.saturated && !out.invalid_input, "{out:?}");
-    let mut st = cfg.state(0, 0);
+    let mut st = cfg.state_at(0, 0);
     let m = cfg.measure(&mut st, &readings);
     let e: TorqueEstimate<S> = out.estimate;
     let c: ModeOutput<S> = out.control;
