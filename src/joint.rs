@@ -174,7 +174,9 @@
 //! use mrr_control::joint::{JointConfig, JointParams, JointReadings, JointTarget};
 //! let p = JointParams::table_4_1()?;
 //! let cfg = JointConfig::<f64>::new(&p);
-//! let mut st = cfg.state(0, 0);
+//! // The motor at count 0 (`state(0, 0)` would start it where the
+//! // kinematic error puts an unloaded motor).
+//! let mut st = cfg.state_at(0, 0);
 //! let hold = JointTarget::from_si(0.0, 0.0, 0.0);
 //! // Motor 10 counts forward of a link at 0, no motor torque applied.
 //! let readings = JointReadings { link_count: 0, motor_counter: 10, motor_torque: Some(0.0) };
