@@ -17,7 +17,7 @@ use std::sync::OnceLock;
 
 use mrr_control::sim::engine::door::door_engine_settings;
 use mrr_control::sim::engine::wrist_bench::{
-    engine_finger_push, EngineWristBenchRun, FingerCase, FingerPush, CASE1_TRAVEL, HELD,
+    engine_finger_push, EngineWristBenchRun, FingerCase, FingerPush, CASE1_TRAVEL, HELD, START,
 };
 use mrr_control::sim::engine::EngineSettings;
 
@@ -67,6 +67,9 @@ fn the_wrist_yields_under_admittance_and_not_with_the_motors_off() {
     // …its motors turn (the rotors leave their start by far more than
     // the friction's presliding)…
     assert!(on.slip > 100.0 * HELD, "{}", on.slip);
+    // …along the push (pitch, δ increasing)…
+    let last = on.samples.last().expect("samples").pose;
+    assert!(last[0] - START[0] > 0.8 * push.travel, "{last:?}");
     // …while with the motors off, under a push twice as far, the pose
     // moves only by the drives' compliance.
     assert!(CASE1_TRAVEL > 2.0 * push.travel);
@@ -99,6 +102,14 @@ fn the_ft_chain_reads_the_engine_and_the_loop_stays_closed() {
         let rel = (r.peak_measured - r.peak_interaction).abs() / r.peak_interaction;
         // ±2 % calibration error and noise of the gauges (module docs).
         assert!(rel < 0.05, "{} vs {}", r.peak_measured, r.peak_interaction);
+        // Component by component (signs included): the reading, averaged
+        // over the tick before, within a tenth of the peak of the engine's.
+        let worst = r
+            .samples
+            .iter()
+            .map(|s| (s.measured[0] - s.interaction[0]).hypot(s.measured[1] - s.interaction[1]))
+            .fold(0.0, f64::max);
+        assert!(worst < 0.1 * r.peak_interaction, "{worst}");
         assert!(r.loop_error < 1e-3, "{}", r.loop_error);
     }
 }
