@@ -20,6 +20,7 @@ use mrr_control::sim::engine::wrist_bench::{
     engine_finger_push, EngineWristBenchRun, FingerCase, FingerPush, CASE1_TRAVEL, HELD, START,
 };
 use mrr_control::sim::engine::EngineSettings;
+use mrr_control::wrist::{ForceMapping, JacobianKind, PitchYaw, WristConfig, WristParams};
 
 /// The thesis's admittance gain `K_c`, rad/(s·N·m) (§6.4.3).
 const K_C: f64 = 0.1;
@@ -51,6 +52,39 @@ fn motors_off_hold_ten_newton_metres_and_admittance_relieves_them() {
         off.held
     );
     assert_eq!(on.off_mode_ticks, 0);
+}
+
+/// Case 1 with weaker gears, where the push breaks them away: the torque
+/// held is what the library's force mapping (eq. 6.1, exact Jacobian) says
+/// the two gears can take at the start pose, `B / max_i |(Jᵀ e_δ)_i|` for
+/// a pitch push — the mechanism and the library agree on where the wrist
+/// gives, to within the presliding and the push's dynamics (the engine
+/// holds 0–20 % more).
+#[test]
+fn motors_off_give_where_the_library_force_mapping_says() {
+    let wp = WristParams::thesis();
+    let m = WristConfig::<f64>::new(&wp)
+        .inverse(PitchYaw {
+            delta: START[0],
+            gamma: START[1],
+        })
+        .motors;
+    let t = ForceMapping::<f64>::new(&wp, JacobianKind::Exact)
+        .motor_torques(m, [1.0, 0.0])
+        .torque;
+    let share = t[0].abs().max(t[1].abs());
+    let e = door_engine_settings();
+    for b in [3.0, 6.0] {
+        let push = FingerPush {
+            breakaway: b,
+            ..FingerPush::nominal(1)
+        };
+        let off = engine_finger_push(FingerCase::MotorsOff, &push, &e).expect("valid bench");
+        // The push (26 N·m if held) breaks the gears away.
+        assert!(off.slip > 100.0 * HELD, "B {b}: slip {}", off.slip);
+        let r = off.held / (b / share);
+        assert!((1.0..1.2).contains(&r), "B {b}: held {} vs {}", off.held, b / share);
+    }
 }
 
 #[test]
