@@ -22,7 +22,12 @@
 //!   at the motor that is `B/N`. What the engine adds is the mechanism:
 //!   the finger's force reaches the two gears through the DAUJ's parts, not
 //!   through the library's `Jᵀ`, so the task torque they hold is the
-//!   engine's answer, not the assumption's.
+//!   engine's answer, not the assumption's. At the start pose a pitch push
+//!   reaches each gear as 0.27 of itself (eq. 6.1 with the exact
+//!   Jacobian), so the gears hold about `3.7 B` of pitch torque; the
+//!   engine holds 0–20 % more than that prediction
+//!   (`tests/engine_wrist_bench.rs`), and the thesis's 10 N·m needs only
+//!   `B ≈ 2.7 N·m` per gear there.
 //! * **F/T sensor and tool** — the tool (0.3 kg) on a fixed joint to `L2`
 //!   at the sensor origin (`l = 0.05 m`); the wrench it puts through that
 //!   joint by momentum balance, averaged over each 4 ms tick, turned into
