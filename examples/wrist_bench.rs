@@ -43,7 +43,13 @@ fn main() -> Result<(), Error> {
     let mut runs: Vec<WristBenchMetrics> = std::thread::scope(|scope| {
         let handles: Vec<_> = chunks
             .iter()
-            .map(|c| scope.spawn(move || c.iter().map(|&s| bench_seed(s, &engine)).collect::<Vec<_>>()))
+            .map(|c| {
+                scope.spawn(move || {
+                    c.iter()
+                        .map(|&s| bench_seed(s, &engine))
+                        .collect::<Vec<_>>()
+                })
+            })
             .collect();
         handles
             .into_iter()
@@ -93,7 +99,10 @@ fn main() -> Result<(), Error> {
             r.runs,
             r.claim.criterion.describe(r.claim.unit)
         );
-        println!("{:<15} thesis: \"{}\" ({})", "", r.claim.quote, r.claim.figure);
+        println!(
+            "{:<15} thesis: \"{}\" ({})",
+            "", r.claim.quote, r.claim.figure
+        );
     }
     // The home-made bench against the engine on the nominal push.
     println!();

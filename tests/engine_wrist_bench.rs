@@ -83,7 +83,12 @@ fn motors_off_give_where_the_library_force_mapping_says() {
         // The push (26 N·m if held) breaks the gears away.
         assert!(off.slip > 100.0 * HELD, "B {b}: slip {}", off.slip);
         let r = off.held / (b / share);
-        assert!((1.0..1.2).contains(&r), "B {b}: held {} vs {}", off.held, b / share);
+        assert!(
+            (1.0..1.2).contains(&r),
+            "B {b}: held {} vs {}",
+            off.held,
+            b / share
+        );
     }
 }
 
@@ -107,7 +112,12 @@ fn the_wrist_yields_under_admittance_and_not_with_the_motors_off() {
     // …while with the motors off, under a push twice as far, the pose
     // moves only by the drives' compliance.
     assert!(CASE1_TRAVEL > 2.0 * push.travel);
-    assert!(off.travel < 0.1 * on.travel, "{} vs {}", off.travel, on.travel);
+    assert!(
+        off.travel < 0.1 * on.travel,
+        "{} vs {}",
+        off.travel,
+        on.travel
+    );
 }
 
 /// The admittance law `ẋ_d = K_c τ` follows a finger moving at `ẋ_f` with
@@ -125,7 +135,11 @@ fn case2_peak_is_the_finger_speed_over_k_c() {
         let expected = core::f64::consts::PI * push.travel / (2.0 * rise) / K_C;
         let on = engine_finger_push(FingerCase::Admittance, &push, &e).expect("valid bench");
         let r = on.peak_measured / expected;
-        assert!((0.85..1.15).contains(&r), "rise {rise}: {} vs {expected}", on.peak_measured);
+        assert!(
+            (0.85..1.15).contains(&r),
+            "rise {rise}: {} vs {expected}",
+            on.peak_measured
+        );
     }
 }
 
@@ -175,16 +189,34 @@ fn bad_inputs_are_named_errors() {
             .map(|x| x.name())
     };
     assert_eq!(
-        name(FingerPush { travel: f64::NAN, ..p }, &e),
+        name(
+            FingerPush {
+                travel: f64::NAN,
+                ..p
+            },
+            &e
+        ),
         Some("finger.travel")
     );
     assert_eq!(name(FingerPush { rise: 0.1, ..p }, &e), Some("finger.rise"));
     assert_eq!(
-        name(FingerPush { direction: 1.0, ..p }, &e),
+        name(
+            FingerPush {
+                direction: 1.0,
+                ..p
+            },
+            &e
+        ),
         Some("finger.direction")
     );
     assert_eq!(
-        name(FingerPush { breakaway: -1.0, ..p }, &e),
+        name(
+            FingerPush {
+                breakaway: -1.0,
+                ..p
+            },
+            &e
+        ),
         Some("finger.breakaway")
     );
     let coarse = EngineSettings::try_new(3e-4, 1, 20.0, 0.4).expect("valid settings");

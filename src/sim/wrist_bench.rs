@@ -56,8 +56,8 @@
 //! difference in reading [`BREAKAWAY`]: it is a torque at each gear's
 //! output, and a pitch push reaches each gear through `Jᵀ` as only 0.27 of
 //! itself at 10° of pitch, so the wrist holds about `3.7 B` of pitch torque
-//! there (here and on the engine, which holds 0–20 % more than the
-//! library's `Jᵀ` predicts): the thesis's "more than 10Nm" needs only
+//! there (the library's `Jᵀ`, which this bench applies, predicts `3.7 B`;
+//! the engine holds 0–20 % more): the thesis's "more than 10Nm" needs only
 //! `B ≈ 2.7 N·m` per gear at that pose, and the 12 N·m assumed here is an
 //! upper reading, not "20 % above" the bound.
 

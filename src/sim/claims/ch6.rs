@@ -23,9 +23,9 @@ use crate::sim::door::{DoorConfig, DoorControl};
 #[cfg(feature = "engine")]
 use crate::sim::engine::door::{engine_door_opening, Backend, DoorBody, EngineDoorRun};
 #[cfg(feature = "engine")]
-use crate::sim::engine::EngineSettings;
-#[cfg(feature = "engine")]
 use crate::sim::engine::wrist_bench::{engine_finger_push, FingerCase, FingerPush};
+#[cfg(feature = "engine")]
+use crate::sim::engine::EngineSettings;
 #[cfg(feature = "engine")]
 use crate::sim::SplitMix64;
 

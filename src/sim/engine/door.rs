@@ -315,7 +315,11 @@ pub(super) fn body_at(
 
 /// A revolute joint about `axis` (world at the start) through the point
 /// `anchor1` of the parent and `anchor2` of the child (body frames).
-pub(super) fn hinge(axis: Vector<Real>, anchor1: Vector<Real>, anchor2: Vector<Real>) -> RevoluteJointBuilder {
+pub(super) fn hinge(
+    axis: Vector<Real>,
+    anchor1: Vector<Real>,
+    anchor2: Vector<Real>,
+) -> RevoluteJointBuilder {
     RevoluteJointBuilder::new(UnitVector::new_normalize(axis))
         .local_anchor1(Point::from(anchor1))
         .local_anchor2(Point::from(anchor2))

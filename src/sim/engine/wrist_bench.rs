@@ -250,15 +250,8 @@ fn build(start: PitchYaw<f64>, settings: &EngineSettings) -> Result<Scene, Param
     let oblique = z * phi.cos() - y * phi.sin();
     let ground = world.base();
     let o = Vector::zeros();
-    let rotor = [0, 1].map(|_| {
-        body_at(
-            &mut world,
-            o,
-            o,
-            0.05,
-            Vector::new(1e-5, 1e-5, WRIST_ROTOR),
-        )
-    });
+    let rotor =
+        [0, 1].map(|_| body_at(&mut world, o, o, 0.05, Vector::new(1e-5, 1e-5, WRIST_ROTOR)));
     let lower = body_at(&mut world, o, o, 0.1, Vector::repeat(1e-3));
     let upper = body_at(&mut world, o, o, 0.1, Vector::repeat(1e-3));
     let output = body_at(&mut world, o, z * 0.04, 0.2, Vector::repeat(1e-3));
@@ -273,7 +266,10 @@ fn build(start: PitchYaw<f64>, settings: &EngineSettings) -> Result<Scene, Param
     let mb = &mut world.multibody_joints;
     let mut rj = Vec::new();
     for h in rotor {
-        rj.push(mb.insert(ground, h, hinge(z, o, o), true).ok_or(fail("rotor joint"))?);
+        rj.push(
+            mb.insert(ground, h, hinge(z, o, o), true)
+                .ok_or(fail("rotor joint"))?,
+        );
     }
     let j1 = mb
         .insert(ground, lower, hinge(z, o, o), true)
@@ -484,7 +480,8 @@ pub fn engine_finger_push(
         } else {
             WristMode::Passive
         };
-        let target = WristTarget::<f32>::from_si(START[0], START[1], 0.0, 0.0).with_request(request);
+        let target =
+            WristTarget::<f32>::from_si(START[0], START[1], 0.0, 0.0).with_request(request);
         let o = step.update(
             &mut state,
             &WristReadings::<f32>::from_si(sg, enc, enc_v),
@@ -548,7 +545,8 @@ pub fn engine_finger_push(
                 &mut true_tau,
             )
             .ok_or(ParamError::NotFinite {
-                name: "dt (the engine state diverged: the step is too coarse for the drive springs)",
+                name:
+                    "dt (the engine state diverged: the step is too coarse for the drive springs)",
                 value: dt,
             })?;
             for (a, b) in sum.iter_mut().zip(w) {
@@ -651,4 +649,3 @@ fn step_engine(
     let m = frame.inverse() * m_s;
     Some([f.x, f.y, f.z, m.x, m.y, m.z])
 }
-
