@@ -18,7 +18,9 @@ use std::time::Instant;
 
 use mrr_control::sim::claims::ch6::{bench_claims, bench_seed, evaluate_bench, WristBenchMetrics};
 use mrr_control::sim::engine::door::door_engine_settings;
-use mrr_control::sim::engine::wrist_bench::{engine_finger_push, FingerCase, FingerPush};
+use mrr_control::sim::engine::wrist_bench::{
+    engine_finger_push, engine_wrist_tracking, FingerCase, FingerPush,
+};
 use mrr_control::sim::wrist_bench::{self as home, wrist_finger_push};
 
 type Error = Box<dyn std::error::Error>;
@@ -146,6 +148,21 @@ fn main() -> Result<(), Error> {
         a.case2_travel.to_degrees(),
         b.case2_travel.to_degrees(),
         100.0 * rel(a.case2_travel, b.case2_travel)
+    );
+    // Active tracking (Fig. 6.10): engine against the home-made bench.
+    let t = engine_wrist_tracking(6.0, 1.0, &engine)?;
+    let h = home::wrist_tracking(6.0, 1.0);
+    let hmax = h
+        .position_error
+        .map(|e| e.max.abs().max(e.min.abs()).to_degrees());
+    println!(
+        "active tracking (6 s, after 1 s): max |δ−δ_d|, |γ−γ_d| engine {:.3}°, {:.3}° (RMS {:.3}°, {:.3}°) | home-made {:.3}°, {:.3}°",
+        t.max_error[0].to_degrees(),
+        t.max_error[1].to_degrees(),
+        t.rms_error[0].to_degrees(),
+        t.rms_error[1].to_degrees(),
+        hmax[0],
+        hmax[1]
     );
     println!("{:.1} s in all", start.elapsed().as_secs_f64());
     Ok(())

@@ -649,3 +649,148 @@ fn step_engine(
     let m = frame.inverse() * m_s;
     Some([f.x, f.y, f.z, m.x, m.y, m.z])
 }
+
+/// The result of [`engine_wrist_tracking`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct EngineTrackingRun {
+    /// Per 4 ms sample: time (s), desired `[δ_d, γ_d]` and the mechanism's
+    /// `[δ, γ]` (rad).
+    pub samples: Vec<(f64, [f64; 2], [f64; 2])>,
+    /// Largest `|δ − δ_d|`, `|γ − γ_d|` after the settling time, rad.
+    pub max_error: [f64; 2],
+    /// RMS of `δ − δ_d`, `γ − γ_d` after the settling time, rad.
+    pub rms_error: [f64; 2],
+    /// Largest loop-closure error of the DAUJ, rad.
+    pub loop_error: f64,
+    /// Ticks whose step left the Active mode.
+    pub off_mode_ticks: usize,
+}
+
+/// §6.4.2 (Fig. 6.10–6.11) on the engine: the library's wrist step on
+/// `f32`, held Active, tracks [`crate::sim::wrist_bench::tracking_trajectory`]
+/// (the home-made bench's: a bend of 12°–24° swinging from pitch through
+/// yaw; its rate by central differences, 1 ms) for `duration` s on the
+/// nominal gears (12 N·m break-away), starting at rest at its first pose;
+/// errors are those of the mechanism's universal joint, counted after
+/// `settle` s. Errors: `duration` or `settle` not finite or out of
+/// `[0, 60]` s (named), an engine step that does not divide 4 ms (`dt`) or
+/// under which the state diverges.
+pub fn engine_wrist_tracking(
+    duration: f64,
+    settle: f64,
+    engine: &EngineSettings,
+) -> Result<EngineTrackingRun, ParamError> {
+    use crate::sim::wrist_bench::tracking_trajectory;
+    let duration = crate::error::in_range("duration", duration, 0.0, 60.0)?;
+    let settle = crate::error::in_range("settle", settle, 0.0, 60.0)?;
+    let dt = engine.dt();
+    let per_tick = (CONTROL_PERIOD / dt).round();
+    if per_tick < 1.0 || (per_tick * dt - CONTROL_PERIOD).abs() > 1e-12 {
+        return Err(ParamError::OutOfRange {
+            name: "dt",
+            value: dt,
+            min: 1e-6,
+            max: CONTROL_PERIOD,
+        });
+    }
+    let per_tick = per_tick as usize;
+    let x0 = tracking_trajectory(0.0);
+    let mut sc = build(
+        PitchYaw {
+            delta: x0[0],
+            gamma: x0[1],
+        },
+        engine,
+    )?;
+    let b = 12.0 / WRIST_RATIO;
+    let friction = FrictionParams {
+        coulomb: b * 2.0 / 3.0,
+        static_excess: b / 3.0,
+        stribeck: 1e-3,
+        viscous: 2e-6,
+        presliding: 0.1,
+        presliding_damping: 0.0,
+    };
+    let mut gauges = StrainGaugeSensor::try_new(
+        DecouplingMatrix::example().matrix(),
+        GaugeErrors::try_new(0.02, 0.0, 3e-4, 0x5E45_0001)?,
+    )?;
+    let params = bench_wrist_step()?;
+    let step = WristStepConfig::<f32>::new(&params);
+    let q0 = [0, 1].map(|i| sc.joint[i].angle(&sc.world.bodies, 0.0));
+    let mut state = step.state(WristReadings::<f32>::from_si([0.0; 6], q0, [0.0; 2]).motors);
+    let count = core::f64::consts::TAU / 2000.0;
+    let quant = |x: f64| (x / count).round() * count;
+    let mut mem = q0.map(|q| [q, WRIST_RATIO * q]);
+    let mut anchor = q0.map(|q| WRIST_RATIO * q);
+    let mut last_enc = q0;
+    let mut wrench = [0.0f64; 6];
+    let mut true_tau = [0.0f64; 2];
+    let mut out = EngineTrackingRun {
+        samples: Vec::new(),
+        max_error: [0.0; 2],
+        rms_error: [0.0; 2],
+        loop_error: 0.0,
+        off_mode_ticks: 0,
+    };
+    let mut sum_sq = [0.0f64; 2];
+    let mut counted = 0usize;
+    let h = 1e-3;
+    for k in 0..(duration / CONTROL_PERIOD).round() as usize {
+        let time = k as f64 * CONTROL_PERIOD;
+        let b = &sc.world.bodies;
+        let enc = [0, 1].map(|i| quant(sc.motor[i].angle(b, mem[i][1])) / WRIST_RATIO);
+        let enc_v = [0, 1].map(|i| (enc[i] - last_enc[i]) / CONTROL_PERIOD);
+        last_enc = enc;
+        let pose = [sc.pitch.angle(b, 0.0), sc.yaw.angle(b, 0.0)];
+        let sg = gauges.read(&wrench).map(|v| v - V_REF);
+        let xd = tracking_trajectory(time);
+        let (xp, xm) = (tracking_trajectory(time + h), tracking_trajectory(time - h));
+        let rate = [0, 1].map(|i| (xp[i] - xm[i]) / (2.0 * h));
+        let target = WristTarget::<f32>::from_si(xd[0], xd[1], rate[0], rate[1])
+            .with_request(WristMode::Active);
+        let o = step.update(
+            &mut state,
+            &WristReadings::<f32>::from_si(sg, enc, enc_v),
+            &target,
+        );
+        out.off_mode_ticks += (o.mode != WristMode::Active) as usize;
+        let motor = o.motor_torque_si();
+        if time >= settle {
+            for i in 0..2 {
+                let e = pose[i] - xd[i];
+                out.max_error[i] = out.max_error[i].max(e.abs());
+                sum_sq[i] += e * e;
+            }
+            counted += 1;
+        }
+        out.loop_error = out.loop_error.max(loop_error(&sc, pose));
+        out.samples.push((time, xd, pose));
+        let mut sum = [0.0; 6];
+        for _ in 0..per_tick {
+            let w = step_engine(
+                &mut sc,
+                dt,
+                &mut mem,
+                &mut anchor,
+                &friction,
+                motor,
+                None,
+                &mut true_tau,
+            )
+            .ok_or(ParamError::NotFinite {
+                name:
+                    "dt (the engine state diverged: the step is too coarse for the drive springs)",
+                value: dt,
+            })?;
+            for (a, b) in sum.iter_mut().zip(w) {
+                *a += b;
+            }
+        }
+        wrench = sum.map(|x| x / per_tick as f64);
+    }
+    if counted > 0 {
+        out.rms_error = sum_sq.map(|s| (s / counted as f64).sqrt());
+    }
+    Ok(out)
+}
