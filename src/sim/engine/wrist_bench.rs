@@ -1,4 +1,4 @@
-//! The wrist bench of thesis §6.4.3 (Fig. 6.12–6.17) on the engine: a
+//! The wrist bench of thesis §6.4.2–6.4.3 (Fig. 6.10–6.17) on the engine: a
 //! finger pushes the output link of the DAUJ, built from its parts, with
 //! the motors off (Case 1) or under the library's wrist step in the
 //! admittance-passive mode (Case 2).
@@ -59,6 +59,14 @@
 //!   with `τ ≈ ẋ_f / K_c`: the thesis's "below 2 Nm" needs the finger
 //!   slower than about 0.2 rad/s; the seeds draw its speed
 //!   ([`FingerPush::peak_speed`]).
+//!
+//! # Active tracking
+//! [`engine_wrist_tracking`] (§6.4.2, Fig. 6.10): the same wrist step held
+//! Active tracks the home-made bench's task trajectory
+//! ([`crate::sim::wrist_bench::tracking_trajectory`]); the errors are the
+//! mechanism's universal-joint angles against the desired pose, so the
+//! library's inverse kinematics, motor laws and 4 ms sampling are checked
+//! together on parts that know nothing of them.
 //!
 //! The norm `|(τ_δ, τ_γ)|` is used (not the larger component, as the door
 //! claims do): the finger's direction is drawn, and the norm is the
