@@ -12,6 +12,7 @@
 //! ```text
 //! cargo run --release --features sim --example wrist_bench                  # 20 seeds
 //! cargo run --release --features sim --example wrist_bench -- --seeds 40
+//! cargo run --release --features sim --example wrist_bench -- --straight   # + study: a push through the straight pose
 //! ```
 
 use std::time::Instant;
@@ -19,7 +20,7 @@ use std::time::Instant;
 use mrr_control::sim::claims::ch6::{bench_claims, bench_seed, evaluate_bench, WristBenchMetrics};
 use mrr_control::sim::engine::door::door_engine_settings;
 use mrr_control::sim::engine::wrist_bench::{
-    engine_finger_push, engine_wrist_tracking, FingerCase, FingerPush,
+    engine_finger_push, engine_finger_push_from, engine_wrist_tracking, FingerCase, FingerPush,
 };
 use mrr_control::sim::wrist_bench::{self as home, wrist_finger_push};
 
@@ -164,6 +165,25 @@ fn main() -> Result<(), Error> {
         hmax[0],
         hmax[1]
     );
+    if args.iter().any(|a| a == "--straight") {
+        // Study (not the claims' operating point): the nominal push from 3°
+        // of pitch, away from the straight pose and through it.
+        for psi in [0.0f64, 180.0] {
+            let p = FingerPush {
+                direction: psi.to_radians(),
+                ..FingerPush::nominal(1)
+            };
+            let r =
+                engine_finger_push_from(FingerCase::Admittance, &p, 3f64.to_radians(), &engine)?;
+            println!(
+                "STUDY straight pose: from 3° of pitch, ψ = {psi}°: Case 2 peak {:.2} N·m (true {:.2}), travel {:.2}°, loop error {:.1e} rad",
+                r.peak_measured,
+                r.peak_interaction,
+                r.travel.to_degrees(),
+                r.loop_error
+            );
+        }
+    }
     println!("{:.1} s in all", start.elapsed().as_secs_f64());
     Ok(())
 }

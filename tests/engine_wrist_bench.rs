@@ -20,8 +20,8 @@ use std::sync::OnceLock;
 
 use mrr_control::sim::engine::door::door_engine_settings;
 use mrr_control::sim::engine::wrist_bench::{
-    engine_finger_push, engine_wrist_tracking, EngineWristBenchRun, FingerCase, FingerPush,
-    CASE1_TRAVEL, HELD, START,
+    engine_finger_push, engine_finger_push_from, engine_wrist_tracking, EngineWristBenchRun,
+    FingerCase, FingerPush, CASE1_TRAVEL, HELD, START,
 };
 use mrr_control::sim::engine::EngineSettings;
 use mrr_control::wrist::{ForceMapping, JacobianKind, PitchYaw, WristConfig, WristParams};
@@ -226,7 +226,7 @@ fn bad_inputs_are_named_errors() {
     assert_eq!(
         name(
             FingerPush {
-                direction: 1.0,
+                direction: 4.0,
                 ..p
             },
             &e
@@ -245,6 +245,12 @@ fn bad_inputs_are_named_errors() {
     );
     let coarse = EngineSettings::try_new(3e-4, 1, 20.0, 0.4).expect("valid settings");
     assert_eq!(name(p, &coarse), Some("dt"));
+    assert_eq!(
+        engine_finger_push_from(FingerCase::Admittance, &p, 0.5, &e)
+            .err()
+            .map(|x| x.name()),
+        Some("start_pitch")
+    );
     let tracking = |d: f64, s: f64| engine_wrist_tracking(d, s, &e).err().map(|x| x.name());
     assert_eq!(tracking(f64::NAN, 0.0), Some("duration"));
     assert_eq!(tracking(1.0, -1.0), Some("settle"));
