@@ -336,6 +336,9 @@ pub enum Metric {
     /// From the door opening of chapter 6 on the engine ([`ch6`]; judged
     /// by [`ch6::evaluate`], not by [`evaluate`]).
     Door(fn(&ch6::DoorRunMetrics) -> f64),
+    /// From the wrist bench of §6.4.3 on the engine ([`ch6`]; judged by
+    /// [`ch6::evaluate_bench`], not by [`evaluate`]).
+    WristBench(fn(&ch6::WristBenchMetrics) -> f64),
 }
 
 /// One entry of the registry.
@@ -481,7 +484,7 @@ pub fn evaluate(
             let values: Vec<f64> = match c.metric {
                 Metric::Drive(f) => drive.iter().map(f).collect(),
                 Metric::Joint(f) => joint.iter().map(f).collect(),
-                Metric::Door(_) => Vec::new(),
+                Metric::Door(_) | Metric::WristBench(_) => Vec::new(),
             };
             let verdict = c.criterion.verdict(&values)?;
             Ok(ClaimResult {

@@ -298,7 +298,7 @@ impl EngineDoorRun {
 /// A body at `origin` (m, world) whose frame is the world's at the start,
 /// with `mass` (kg), centre of mass `com` (m, body frame) and principal
 /// moments `inertia` (kg·m²) along the world axes.
-fn body_at(
+pub(super) fn body_at(
     world: &mut World,
     origin: Vector<Real>,
     com: Vector<Real>,
@@ -315,7 +315,11 @@ fn body_at(
 
 /// A revolute joint about `axis` (world at the start) through the point
 /// `anchor1` of the parent and `anchor2` of the child (body frames).
-fn hinge(axis: Vector<Real>, anchor1: Vector<Real>, anchor2: Vector<Real>) -> RevoluteJointBuilder {
+pub(super) fn hinge(
+    axis: Vector<Real>,
+    anchor1: Vector<Real>,
+    anchor2: Vector<Real>,
+) -> RevoluteJointBuilder {
     RevoluteJointBuilder::new(UnitVector::new_normalize(axis))
         .local_anchor1(Point::from(anchor1))
         .local_anchor2(Point::from(anchor2))
@@ -324,25 +328,25 @@ fn hinge(axis: Vector<Real>, anchor1: Vector<Real>, anchor2: Vector<Real>) -> Re
 /// A relative rotation coordinate: `child` about `axis` (fixed in
 /// `parent`'s frame, world at the start).
 #[derive(Clone, Copy)]
-struct Coord {
-    parent: RigidBodyHandle,
-    child: RigidBodyHandle,
-    axis: Vector<Real>,
+pub(super) struct Coord {
+    pub(super) parent: RigidBodyHandle,
+    pub(super) child: RigidBodyHandle,
+    pub(super) axis: Vector<Real>,
 }
 
 impl Coord {
-    fn angle(&self, b: &RigidBodySet, near: f64) -> f64 {
+    pub(super) fn angle(&self, b: &RigidBodySet, near: f64) -> f64 {
         let q = b[self.parent].rotation().inverse() * b[self.child].rotation();
         unwrap_near(angle_about(&q, &self.axis), near)
     }
-    fn world_axis(&self, b: &RigidBodySet) -> Vector<Real> {
+    pub(super) fn world_axis(&self, b: &RigidBodySet) -> Vector<Real> {
         b[self.parent].rotation() * self.axis
     }
-    fn speed(&self, b: &RigidBodySet) -> f64 {
+    pub(super) fn speed(&self, b: &RigidBodySet) -> f64 {
         (b[self.child].angvel() - b[self.parent].angvel()).dot(&self.world_axis(b))
     }
     /// A generalized force `tau` (N·m) on this coordinate: a torque pair.
-    fn push(&self, b: &mut RigidBodySet, tau: f64) {
+    pub(super) fn push(&self, b: &mut RigidBodySet, tau: f64) {
         let t = self.world_axis(b) * tau;
         b[self.child].add_torque(t, true);
         b[self.parent].add_torque(-t, true);
@@ -382,10 +386,10 @@ const BASE_MASS: f64 = 120.0;
 const BASE_INERTIA: f64 = 10.0;
 const GRIPPER_MASS: f64 = 0.3;
 const GRIPPER_INERTIA: f64 = 5e-4;
-const WRIST_RATIO: f64 = 531.0;
-const WRIST_ROTOR: f64 = 1.05e-6;
+pub(super) const WRIST_RATIO: f64 = 531.0;
+pub(super) const WRIST_ROTOR: f64 = 1.05e-6;
 /// Wrist drive stiffness `k_w` (N·m/rad) and damping `c_w` (N·m·s/rad).
-const WRIST_DRIVE: (f64, f64) = (400.0, 2.0);
+pub(super) const WRIST_DRIVE: (f64, f64) = (400.0, 2.0);
 /// The time before the grasp, s: the wrist holds its start pose in Active
 /// mode, the turret holds, the base stands, the door is free.
 const PRE_GRASP: f64 = 0.5;

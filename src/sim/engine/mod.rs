@@ -25,6 +25,9 @@
 //!   with the library's wrist step and passive law in the loop at 4 ms.
 //! * [`universal_joint`] — the inner universal joint of eq. (5.1)–(5.3):
 //!   two shafts bent by `β` and the cross between them.
+//! * [`wrist_bench`] — the wrist bench of §6.4.3: a finger pushing the
+//!   output link with the motors off (Case 1) and under the library's wrist
+//!   step in the admittance-passive mode (Case 2).
 //!
 //! Gravity is off in the wrist mechanisms: their checks are kinematic,
 //! static, or (the sensor in motion) about the inertia of the moving parts
@@ -36,6 +39,7 @@ pub mod ft_sensor;
 pub mod universal_joint;
 mod world;
 pub mod wrist;
+pub mod wrist_bench;
 
 pub use arm::{
     arm_settings, DriveModel, DriveState, DriveTorques, EngineArm, LinearDrives, PlantDrives,
