@@ -16,7 +16,7 @@
 //! |τ_γ|)` as the library's F/T chain reads them (Fig. 6.20 plots the
 //! sensor's reading), from the grasp to 1.5 s after the planned opening.
 
-use super::{rule, Claim, ClaimError, ClaimResult, Condition, Criterion, Metric, Spread};
+use super::{rule, Claim, ClaimError, ClaimResult, Condition, Criterion, Metric};
 use crate::error::ParamError;
 #[cfg(feature = "engine")]
 use crate::sim::door::{DoorConfig, DoorControl};
@@ -125,14 +125,7 @@ pub fn evaluate(claims: &[Claim], runs: &[DoorRunMetrics]) -> Result<Vec<ClaimRe
                 return Err(ClaimError::NoMetrics);
             };
             let values: Vec<f64> = runs.iter().map(f).collect();
-            let verdict = c.criterion.verdict(&values)?;
-            Ok(ClaimResult {
-                claim: *c,
-                verdict,
-                spread: Spread::of(&values).ok_or(ClaimError::NoMetrics)?,
-                runs: values.len(),
-                shares: c.criterion.shares(&values),
-            })
+            ClaimResult::of(c, &values)
         })
         .collect()
 }
@@ -324,14 +317,7 @@ pub fn evaluate_bench(
                 return Err(ClaimError::NoMetrics);
             };
             let values: Vec<f64> = runs.iter().map(f).collect();
-            let verdict = c.criterion.verdict(&values)?;
-            Ok(ClaimResult {
-                claim: *c,
-                verdict,
-                spread: Spread::of(&values).ok_or(ClaimError::NoMetrics)?,
-                runs: values.len(),
-                shares: c.criterion.shares(&values),
-            })
+            ClaimResult::of(c, &values)
         })
         .collect()
 }

@@ -469,6 +469,22 @@ pub struct ClaimResult {
     pub shares: (f64, f64),
 }
 
+impl ClaimResult {
+    /// `claim` judged on the metric's `values`, one per run: the verdict,
+    /// the median and spread, the shares meeting each condition. Errors:
+    /// no values ([`ClaimError::NoMetrics`]), a value that is not finite.
+    pub fn of(claim: &Claim, values: &[f64]) -> Result<Self, ClaimError> {
+        let verdict = claim.criterion.verdict(values)?;
+        Ok(ClaimResult {
+            claim: *claim,
+            verdict,
+            spread: Spread::of(values).ok_or(ClaimError::NoMetrics)?,
+            runs: values.len(),
+            shares: claim.criterion.shares(values),
+        })
+    }
+}
+
 /// Judge every claim on the runs of its experiment (`drive` for
 /// [`Metric::Drive`], `joint` for [`Metric::Joint`]). Errors: a claim
 /// whose experiment has no runs ([`ClaimError::NoMetrics`]), a metric
@@ -486,14 +502,7 @@ pub fn evaluate(
                 Metric::Joint(f) => joint.iter().map(f).collect(),
                 Metric::Door(_) | Metric::WristBench(_) => Vec::new(),
             };
-            let verdict = c.criterion.verdict(&values)?;
-            Ok(ClaimResult {
-                claim: *c,
-                verdict,
-                spread: Spread::of(&values).ok_or(ClaimError::NoMetrics)?,
-                runs: values.len(),
-                shares: c.criterion.shares(&values),
-            })
+            ClaimResult::of(c, &values)
         })
         .collect()
 }
