@@ -122,7 +122,20 @@ mod tests {
     /// `M·N` (2³² validated) and words with every high bit set.
     #[test]
     fn mul_wide_signed_edges() {
-        let aa = [0, 1, -1, 2, -2, 7, -7, i32::MAX, i32::MIN, i32::MIN + 1, 0x1_0000, -0x1_0000];
+        let aa = [
+            0,
+            1,
+            -1,
+            2,
+            -2,
+            7,
+            -7,
+            i32::MAX,
+            i32::MIN,
+            i32::MIN + 1,
+            0x1_0000,
+            -0x1_0000,
+        ];
         let bb = [
             0,
             1,
