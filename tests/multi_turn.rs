@@ -319,3 +319,62 @@ fn i16f16_frame_is_capped_at_32_bit_counts() {
         }
     }
 }
+
+/// The frame's origin `turns·M·N` on both sides of zero and at both ends
+/// of the `i32` turns: a motor `r` counts from `turns` whole output
+/// revolutions reads `r` counts in the frame of a target with those turns,
+/// on every backend (the count formed here in `i128`). A sign or a high
+/// word of the origin lost would read it billions of counts away, and be
+/// flagged or saturate.
+fn reads_its_count_in_every_turn_frame<S: Scalar>(tol: f64) {
+    let p = params();
+    let cfg = JointConfig::<S>::new(&p);
+    let est = p.settings().estimator;
+    let (m, l) = (
+        est.motor_counts_per_rev() as i128,
+        est.link_counts_per_rev() as i128,
+    );
+    let mn = m * p.ratio().round() as i128;
+    for turns in [
+        i32::MIN,
+        i32::MIN + 1,
+        -54,
+        -1,
+        0,
+        1,
+        54,
+        i32::MAX - 1,
+        i32::MAX,
+    ] {
+        for r in [-1234i128, -1, 0, 1, 1234] {
+            let counts = turns as i128 * mn + r;
+            let counts = i64::try_from(counts).unwrap();
+            let link_count = (r.rem_euclid(mn) * l / mn) as u32;
+            let mut st = cfg.state_at(counts, counts as u32);
+            let target = JointTarget {
+                turns,
+                ..JointTarget::default()
+            };
+            let out = cfg.update(
+                &mut st,
+                &JointReadings::counts(link_count, counts as u32),
+                &target,
+            );
+            assert!(!out.invalid_input, "{} {turns} {r}: {out:?}", S::NAME);
+            let want = r as f64 * TAU / m as f64;
+            assert!(
+                (out.motor_position_si() - want).abs() <= tol,
+                "{} {turns} {r}: {} vs {want}",
+                S::NAME,
+                out.motor_position_si()
+            );
+        }
+    }
+}
+
+#[test]
+fn every_backend_reads_its_count_in_every_turn_frame() {
+    reads_its_count_in_every_turn_frame::<f64>(1e-12);
+    reads_its_count_in_every_turn_frame::<f32>(1e-6);
+    reads_its_count_in_every_turn_frame::<I16F16>(1e-4);
+}
