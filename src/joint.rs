@@ -211,7 +211,7 @@ use crate::estimation::torque::{
 };
 use crate::harmonic_drive::identification::CatalogueData;
 use crate::harmonic_drive::kinematic_error::KinematicErrorModel;
-use crate::scalar::target::mul_wide;
+use crate::scalar::target::mul_wide_signed;
 use crate::scalar::units::{dequantize, quantize_keep_non_finite};
 use crate::scalar::{CountCoef, IntFactor, Scalar};
 use core::f64::consts::TAU;
@@ -508,10 +508,6 @@ pub struct JointConfig<S> {
 pub struct JointState<S: Scalar> {
     /// Motor position, counts, chapter-4 sign.
     motor_count: i64,
-    /// The origin in counts, `turns·M·N`, of the frame of the mode
-    /// manager's inputs: the whole output turns of the last usable target
-    /// ([`JointTarget::turns`]), kept in the mode manager's state.
-    frame_origin: i64,
     /// Last raw counter (chapter-4 sign).
     last_counter: u32,
     head: u8,
@@ -917,7 +913,6 @@ impl<S: Scalar> JointConfig<S> {
             last_counter: motor_counter,
             history: [own; MAX_SPEED_WINDOW as usize],
             head: 0,
-            frame_origin: 0,
         }
     }
 
@@ -1033,21 +1028,13 @@ impl<S: Scalar> JointConfig<S> {
     ) -> JointOutput<S> {
         let (estimate, motor_count, moved, counter_jump) = self.measure_counts(st, readings);
         // The motor position in the target's turn frame, formed in counts:
-        // `q_m − 2πN·turns`. The frame's origin `turns·M·N` is kept in the
-        // state; only a change of the target's turns recomputes it (exact
-        // modulo 2⁶⁴: |turns| ≤ 2³¹ and M·N ≤ 2³² are validated).
+        // `q_m − 2πN·turns`, from the frame's origin `turns·M·N` (exact
+        // modulo 2⁶⁴, so `in_frame` is exact whenever it is within the
+        // frame's limit). Formed on every tick, without a sign test: the
+        // bound counts the product on any path that has it, and a stored
+        // origin costs its test, load and store besides.
         let turns = target.turns;
-        let new_frame = turns != st.mode.frame();
-        let origin = if new_frame {
-            let whole = mul_wide(turns.unsigned_abs(), self.motor_counts_per_output_rev);
-            if turns < 0 {
-                whole.wrapping_neg()
-            } else {
-                whole
-            }
-        } else {
-            st.frame_origin
-        };
+        let origin = mul_wide_signed(turns, self.motor_counts_per_output_rev);
         let in_frame = motor_count.wrapping_sub(origin);
         // |in_frame| ≤ frame_limit as one unsigned compare; where the limit
         // is below 2³¹ (a constant of the backend), of the limit's and the
@@ -1083,7 +1070,6 @@ impl<S: Scalar> JointConfig<S> {
         // every usable sample, unchanged but on a new frame: no branch);
         // its hold point is read in that frame (`ModeState::set_frame`).
         st.mode.set_frame(turns);
-        st.frame_origin = origin;
         // In the frame (`|in_frame| ≤ frame_limit`): on fixed point and
         // `f32` the limit is below 2³¹, so the count is one 32-bit
         // conversion.

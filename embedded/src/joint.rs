@@ -108,6 +108,9 @@ static mut ACT_X: MaybeUninit<RobustAdaptiveState<I16F16>> = MaybeUninit::uninit
 /// Desired joint torque of the passive law (a free joint: 0), read
 /// volatile so the step does not specialise on it.
 static mut DESIRED_TORQUE: [u32; 2] = [0; 2];
+/// Whole output turns of the target, read volatile so the step does not
+/// specialise on them (the frame's origin moves at run time).
+static mut TARGET_TURNS: i32 = 0;
 
 /// The joint of estimator parameters `p` and collision reaction `r`.
 fn joint_params(p: &TorqueEstimatorParams, r: CollisionReaction) -> JointParams {
@@ -296,7 +299,9 @@ unsafe fn desired(i: usize) -> u32 {
 #[inline(always)]
 fn target<S: Scalar>(a: [S; 4], td: S) -> JointTarget<S> {
     JointTarget {
-        turns: 0,
+        // Read at run time, so that the bound covers a target whose turns
+        // change (a turret, a wheel).
+        turns: unsafe { (&raw const TARGET_TURNS).read_volatile() },
         position: a[0],
         velocity: a[1],
         acceleration: a[2],

@@ -604,14 +604,16 @@ impl Scalar for I16F16 {
         // Equal to `mul_coef(&n.coef)` for an integer `n < 2³¹` (its
         // coefficient is exact and the product rounds nothing); `new`
         // rounds any other value, which the callers' validation excludes.
+        // `low ≤ x ≤ high` as one unsigned compare (`low ≤ 0 ≤ high`);
+        // outside it the product saturates to the side of `x`'s sign.
         let x = self.to_bits();
-        I16F16::from_bits(if x > n.high {
-            i32::MAX
-        } else if x < n.low {
-            i32::MIN
-        } else {
-            x * n.n
-        })
+        I16F16::from_bits(
+            if (x.wrapping_sub(n.low) as u32) <= n.high.wrapping_sub(n.low) as u32 {
+                x.wrapping_mul(n.n)
+            } else {
+                i32::MAX ^ (x >> 31)
+            },
+        )
     }
     #[inline]
     fn mul_unit_range(self, u: Self) -> Self {
