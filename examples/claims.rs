@@ -1,20 +1,24 @@
-//! The claims registry as a table: each claim of chapters 2–4 with its
-//! criterion, verdict, median and spread over the independent plant
+//! The claims registry as a table: each claim of chapters 2–4 and 6 with
+//! its criterion, verdict, median and spread over the independent plant
 //! families × seeds (chapter 2 on the drive bench, chapters 3–4 on the
-//! dynamic joint at the thesis's 4 ms).
+//! dynamic joint at the thesis's 4 ms, chapter 6 on the engine: the door
+//! opening of §6.4.4 and the wrist bench of §6.4.3, the library's steps at
+//! 4 ms on `f32`).
 //!
 //! ```text
-//! cargo run --release --features sim --example claims               # full: 216 drive + 24 joint plants × 20 seeds
-//! cargo run --release --features sim --example claims -- --quick    # 4 drive + 2 joint plants × 3 seeds
+//! cargo run --release --features sim --example claims               # full: 216 drive + 24 joint plants, door, bench × 20 seeds
+//! cargo run --release --features sim --example claims -- --quick    # 4 drive + 2 joint plants, door, bench × 3 seeds
 //! cargo run --release --features sim --example claims -- 2.19-blind # one claim
 //! cargo run --release --features sim --example claims -- --seeds 5
 //! ```
 
 use std::time::Instant;
 
+use mrr_control::sim::claims::ch6::{run_bench, run_door};
 use mrr_control::sim::claims::{
-    evaluate, registry, run, run_joint, JointRunMetrics, Metric, RunMetrics, Spread, RERUN,
+    evaluate, registry, run, run_joint, JointRunMetrics, Metric, RunMetrics, Runs, Spread, RERUN,
 };
+use mrr_control::sim::engine::door::door_engine_settings;
 use mrr_control::sim::plants::{
     family, joint_family, quick_family, quick_joint_family, DrivePlant, JointPlant,
 };
@@ -66,11 +70,40 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     } else {
         Vec::new()
     };
+    let joint_time = start.elapsed();
+    // Chapter 6 on the engine: the same seeds whatever the mode (the
+    // scenes draw their own door, push and sensor error per seed).
+    let need_door = claims.iter().any(|c| matches!(c.metric, Metric::Door(_)));
+    let need_bench = claims
+        .iter()
+        .any(|c| matches!(c.metric, Metric::WristBench(_)));
+    let engine = door_engine_settings();
+    let door: Vec<_> = if need_door {
+        run_door(seeds, None, &engine, threads)?
+            .into_iter()
+            .map(|(m, _)| m)
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let bench = if need_bench {
+        run_bench(seeds, &engine, threads)?
+    } else {
+        Vec::new()
+    };
     let wall = start.elapsed();
-    let results = evaluate(&claims, &runs, &joint_runs)?;
+    let results = evaluate(
+        &claims,
+        &Runs {
+            drive: &runs,
+            joint: &joint_runs,
+            door: &door,
+            bench: &bench,
+        },
+    )?;
 
     println!(
-        "drive: {} plants × {} seeds = {} runs in {:.1} s; joint (4 ms): {} plants × {} seeds = {} runs in {:.1} s on {threads} threads; total {:.1} s (wall)",
+        "drive: {} plants × {} seeds = {} runs in {:.1} s; joint (4 ms): {} plants × {} seeds = {} runs in {:.1} s; engine (dt = {} ms): door {} seeds × 3 runs, wrist bench {} seeds × 2 cases in {:.1} s; on {threads} threads; total {:.1} s (wall)",
         plants.len(),
         seeds,
         runs.len(),
@@ -78,7 +111,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         joints.len(),
         seeds,
         joint_runs.len(),
-        (wall - drive_time).as_secs_f64(),
+        (joint_time - drive_time).as_secs_f64(),
+        engine.dt() * 1e3,
+        door.len(),
+        bench.len(),
+        (wall - joint_time).as_secs_f64(),
         wall.as_secs_f64()
     );
     println!();

@@ -23,7 +23,8 @@ use std::io::Write;
 use std::path::Path;
 use std::time::Instant;
 
-use mrr_control::sim::claims::ch6::{claims, evaluate, run_door, DoorRunMetrics};
+use mrr_control::sim::claims::ch6::{claims, run_door, DoorRunMetrics};
+use mrr_control::sim::claims::{evaluate, Runs};
 use mrr_control::sim::engine::door::{door_engine_settings, DoorBody, EngineDoorRun};
 use plotters::prelude::*;
 
@@ -102,7 +103,13 @@ fn main() -> Result<(), Error> {
         println!("(a study at another start pose: no verdicts)");
     } else {
         println!();
-        for r in evaluate(&claims()?, &metrics)? {
+        for r in evaluate(
+            &claims()?,
+            &Runs {
+                door: &metrics,
+                ..Runs::default()
+            },
+        )? {
             let s = r.spread;
             println!(
                 "{:<14} {:<10} median {:.2} [q1 {:.2}, q3 {:.2}; min {:.2}, max {:.2}] {} over {} seeds; {}",

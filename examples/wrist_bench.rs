@@ -17,7 +17,8 @@
 
 use std::time::Instant;
 
-use mrr_control::sim::claims::ch6::{bench_claims, bench_seed, evaluate_bench, WristBenchMetrics};
+use mrr_control::sim::claims::ch6::{bench_claims, bench_seed, run_bench};
+use mrr_control::sim::claims::{evaluate, Runs};
 use mrr_control::sim::engine::door::door_engine_settings;
 use mrr_control::sim::engine::wrist_bench::{
     engine_finger_push, engine_finger_push_from, engine_wrist_tracking, FingerCase, FingerPush,
@@ -39,27 +40,7 @@ fn main() -> Result<(), Error> {
     let engine = door_engine_settings();
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let start = Instant::now();
-    let all: Vec<u64> = (1..=seeds).collect();
-    let chunks: Vec<Vec<u64>> = (0..threads)
-        .map(|t| all.iter().copied().skip(t).step_by(threads).collect())
-        .collect();
-    let mut runs: Vec<WristBenchMetrics> = std::thread::scope(|scope| {
-        let handles: Vec<_> = chunks
-            .iter()
-            .map(|c| {
-                scope.spawn(move || {
-                    c.iter()
-                        .map(|&s| bench_seed(s, &engine))
-                        .collect::<Vec<_>>()
-                })
-            })
-            .collect();
-        handles
-            .into_iter()
-            .flat_map(|h| h.join().unwrap_or_default())
-            .collect::<Result<Vec<_>, _>>()
-    })?;
-    runs.sort_by_key(|m| m.seed);
+    let runs = run_bench(seeds, &engine, threads)?;
     println!(
         "wrist bench on the engine (dt = {} ms, wrist step at 4 ms on f32): {} seeds × 2 cases in {:.1} s on {threads} threads",
         engine.dt() * 1e3,
@@ -87,7 +68,13 @@ fn main() -> Result<(), Error> {
     }
     println!("(ψ: push direction from pitch; ẋ_f: the fingertip's peak speed at the tool, rad/s; B: gear break-away, N·m at the joint; torques N·m)");
     println!();
-    for r in evaluate_bench(&bench_claims()?, &runs)? {
+    for r in evaluate(
+        &bench_claims()?,
+        &Runs {
+            bench: &runs,
+            ..Runs::default()
+        },
+    )? {
         let s = r.spread;
         println!(
             "{:<15} {:<10} median {:.2} [q1 {:.2}, q3 {:.2}; min {:.2}, max {:.2}] {} over {} seeds; {}",

@@ -2,8 +2,8 @@
 //! metric sets, and the independence of the plant families' sources.
 
 use mrr_control::sim::claims::{
-    evaluate, registry, run, run_joint, ClaimError, Condition, Criterion, Metric, Rule, Verdict,
-    RERUN,
+    evaluate, registry, run, run_joint, ClaimError, Condition, Criterion, Metric, Rule, Runs,
+    Verdict, RERUN,
 };
 use mrr_control::sim::plants::{quick_family, quick_joint_family, DrivePlant, JointPlant};
 
@@ -115,7 +115,14 @@ fn quick_registry_gives_every_claim_a_verdict() {
         .filter(|c| matches!(c.metric, Metric::Drive(_)))
         .collect();
     assert_eq!(claims.len(), 4);
-    let results = evaluate(&claims, &runs, &[]).unwrap();
+    let results = evaluate(
+        &claims,
+        &Runs {
+            drive: &runs,
+            ..Runs::default()
+        },
+    )
+    .unwrap();
     assert_eq!(results.len(), claims.len());
     for r in &results {
         assert_eq!(r.runs, runs.len());
@@ -154,7 +161,14 @@ fn quick_joint_registry_gives_every_claim_a_verdict() {
         .filter(|c| matches!(c.metric, Metric::Joint(_)))
         .collect();
     assert!(claims.len() >= 12, "{}", claims.len());
-    let results = evaluate(&claims, &[], &runs).unwrap();
+    let results = evaluate(
+        &claims,
+        &Runs {
+            joint: &runs,
+            ..Runs::default()
+        },
+    )
+    .unwrap();
     for r in &results {
         assert_eq!(r.runs, runs.len());
         assert!(r.claim.operating_point.contains("4 ms") || r.claim.id == "3.1-fit");
@@ -162,7 +176,7 @@ fn quick_joint_registry_gives_every_claim_a_verdict() {
     }
     // Asked without the joint runs, a joint claim is an error.
     assert_eq!(
-        evaluate(&claims[..1], &[], &[]).unwrap_err(),
+        evaluate(&claims[..1], &Runs::default()).unwrap_err(),
         ClaimError::NoMetrics
     );
     assert!(matches!(
@@ -187,7 +201,8 @@ fn every_rerun_command_selects_its_claim() {
         assert_eq!(selected.len(), 1, "{}", c.id);
         assert!(!c.id.starts_with("--") && !c.id.contains(' '), "{}", c.id);
     }
-    // The chapter 3–4 claims named in the report are all registered.
+    // The chapter 3–4 and 6 claims named in the report and the README are
+    // all registered.
     for id in [
         "3.1-fit",
         "3.1-low",
@@ -202,6 +217,12 @@ fn every_rerun_command_selects_its_claim() {
         "4.5-active",
         "4.11-passive",
         "4.11-sensor",
+        "6.20-passive",
+        "6.20-heading",
+        "6.20-relief",
+        "6.15-case1",
+        "6.16-case2",
+        "6.16-reduction",
     ] {
         assert!(claims.iter().any(|c| c.id == id), "{id}");
     }

@@ -16,7 +16,7 @@
 //! |τ_γ|)` as the library's F/T chain reads them (Fig. 6.20 plots the
 //! sensor's reading), from the grasp to 1.5 s after the planned opening.
 
-use super::{rule, Claim, ClaimError, ClaimResult, Condition, Criterion, Metric};
+use super::{rule, Claim, ClaimError, Condition, Criterion, Metric};
 use crate::error::ParamError;
 #[cfg(feature = "engine")]
 use crate::sim::door::{DoorConfig, DoorControl};
@@ -114,22 +114,6 @@ pub fn claims() -> Result<Vec<Claim>, ParamError> {
     ])
 }
 
-/// Judge `claims` (door claims) on `runs`. Errors: no runs, a metric that
-/// is not finite, a claim that is not a door claim
-/// ([`ClaimError::NoMetrics`]).
-pub fn evaluate(claims: &[Claim], runs: &[DoorRunMetrics]) -> Result<Vec<ClaimResult>, ClaimError> {
-    claims
-        .iter()
-        .map(|c| {
-            let Metric::Door(f) = c.metric else {
-                return Err(ClaimError::NoMetrics);
-            };
-            let values: Vec<f64> = runs.iter().map(f).collect();
-            ClaimResult::of(c, &values)
-        })
-        .collect()
-}
-
 /// The three runs of one seed on the engine: the thesis's scene
 /// ([`DoorConfig::thesis`]) with the seed's door and start pitch, and the
 /// runs themselves (for figures). `start_pitch` overrides the drawn pitch
@@ -177,25 +161,29 @@ pub fn run_door(
     engine: &EngineSettings,
     threads: usize,
 ) -> Result<Vec<(DoorRunMetrics, [EngineDoorRun; 3])>, ClaimError> {
+    par_seeds(seeds, threads, |s| door_seed(s, start_pitch, engine))
+}
+
+/// `f` on seeds `1..=seeds`, spread over `threads` threads (at least one),
+/// in seed order. Errors: no seeds, the first error of `f`.
+#[cfg(feature = "engine")]
+fn par_seeds<T: Send>(
+    seeds: u64,
+    threads: usize,
+    f: impl Fn(u64) -> Result<T, ParamError> + Sync,
+) -> Result<Vec<T>, ClaimError> {
     if seeds == 0 {
         return Err(ClaimError::NoRuns { name: "seeds" });
     }
-    let threads = threads.clamp(1, seeds as usize);
-    let chunks: Vec<Vec<u64>> = (0..threads)
-        .map(|t| {
-            (1..=seeds)
-                .filter(|s| (s - 1) as usize % threads == t)
-                .collect()
-        })
-        .collect();
-    let results: Vec<Result<Vec<_>, ParamError>> = std::thread::scope(|scope| {
-        let handles: Vec<_> = chunks
-            .iter()
-            .map(|chunk| {
+    let threads = threads.clamp(1, usize::try_from(seeds).unwrap_or(usize::MAX));
+    let f = &f;
+    let results: Vec<Result<Vec<(u64, T)>, ParamError>> = std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..threads)
+            .map(|t| {
                 scope.spawn(move || {
-                    chunk
-                        .iter()
-                        .map(|&s| door_seed(s, start_pitch, engine))
+                    (1..=seeds)
+                        .filter(|s| (s - 1) % threads as u64 == t as u64)
+                        .map(|s| f(s).map(|v| (s, v)))
                         .collect::<Result<Vec<_>, _>>()
                 })
             })
@@ -204,7 +192,7 @@ pub fn run_door(
             .into_iter()
             .map(|h| {
                 h.join().unwrap_or(Err(ParamError::NotFinite {
-                    name: "door run thread",
+                    name: "seed run thread",
                     value: f64::NAN,
                 }))
             })
@@ -214,8 +202,8 @@ pub fn run_door(
     for r in results {
         all.extend(r?);
     }
-    all.sort_by_key(|(m, _)| m.seed);
-    Ok(all)
+    all.sort_by_key(|(s, _)| *s);
+    Ok(all.into_iter().map(|(_, v)| v).collect())
 }
 
 /// One seed of the wrist bench of §6.4.3 (N·m unless noted): the push
@@ -303,25 +291,6 @@ pub fn bench_claims() -> Result<Vec<Claim>, ParamError> {
     ])
 }
 
-/// Judge wrist-bench `claims` on `runs`. Errors: no runs, a metric that is
-/// not finite, a claim that is not a wrist-bench claim
-/// ([`ClaimError::NoMetrics`]).
-pub fn evaluate_bench(
-    claims: &[Claim],
-    runs: &[WristBenchMetrics],
-) -> Result<Vec<ClaimResult>, ClaimError> {
-    claims
-        .iter()
-        .map(|c| {
-            let Metric::WristBench(f) = c.metric else {
-                return Err(ClaimError::NoMetrics);
-            };
-            let values: Vec<f64> = runs.iter().map(f).collect();
-            ClaimResult::of(c, &values)
-        })
-        .collect()
-}
-
 /// Both cases of one seed on the engine ([`FingerPush::draw`]`(seed)`).
 #[cfg(feature = "engine")]
 pub fn bench_seed(seed: u64, engine: &EngineSettings) -> Result<WristBenchMetrics, ParamError> {
@@ -341,9 +310,35 @@ pub fn bench_seed(seed: u64, engine: &EngineSettings) -> Result<WristBenchMetric
     })
 }
 
+/// [`bench_seed`] for seeds `1..=seeds` on `threads` threads (at least
+/// one), in seed order.
+#[cfg(feature = "engine")]
+pub fn run_bench(
+    seeds: u64,
+    engine: &EngineSettings,
+    threads: usize,
+) -> Result<Vec<WristBenchMetrics>, ClaimError> {
+    par_seeds(seeds, threads, |s| bench_seed(s, engine))
+}
+
 #[cfg(test)]
 mod tests {
+    use super::super::{evaluate, Runs};
     use super::*;
+
+    fn door(runs: &[DoorRunMetrics]) -> Runs<'_> {
+        Runs {
+            door: runs,
+            ..Runs::default()
+        }
+    }
+
+    fn benches(runs: &[WristBenchMetrics]) -> Runs<'_> {
+        Runs {
+            bench: runs,
+            ..Runs::default()
+        }
+    }
 
     fn metrics(nominal: f64, heading: f64, hold: f64) -> DoorRunMetrics {
         DoorRunMetrics {
@@ -365,7 +360,7 @@ mod tests {
         use super::super::Verdict::{Refuted, Supported, Undecided};
         let c = claims().unwrap();
         let judge = |runs: &[DoorRunMetrics]| -> Vec<_> {
-            evaluate(&c, runs)
+            evaluate(&c, &door(runs))
                 .unwrap()
                 .iter()
                 .map(|r| r.verdict)
@@ -379,7 +374,7 @@ mod tests {
         let mixed = [metrics(1.5, 3.0, 2.0), metrics(2.5, 4.0, 3.0)];
         // 1.5/2.0 = 0.75 and 2.5/3.0 = 0.83: neither a relief nor none.
         assert_eq!(judge(&mixed), [Undecided; 3]);
-        let r = evaluate(&c, &mixed).unwrap();
+        let r = evaluate(&c, &door(&mixed)).unwrap();
         assert!((r[0].spread.median - 2.0).abs() < 1e-12);
         assert!((r[2].spread.max - 2.5 / 3.0).abs() < 1e-12);
     }
@@ -406,7 +401,7 @@ mod tests {
         use super::super::Verdict::{Refuted, Supported, Undecided};
         let c = bench_claims().unwrap();
         let judge = |runs: &[WristBenchMetrics]| -> Vec<_> {
-            evaluate_bench(&c, runs)
+            evaluate(&c, &benches(runs))
                 .unwrap()
                 .iter()
                 .map(|r| r.verdict)
@@ -415,9 +410,9 @@ mod tests {
         assert_eq!(judge(&[bench(12.0, 1.5); 5]), [Supported; 3]);
         assert_eq!(judge(&[bench(7.0, 3.5); 5]), [Refuted; 3]);
         assert_eq!(judge(&[bench(9.0, 2.5); 5]), [Undecided; 3]);
-        let door = claims().unwrap();
+        let door_claims = claims().unwrap();
         assert!(matches!(
-            evaluate_bench(&door, &[bench(12.0, 1.5)]),
+            evaluate(&door_claims, &benches(&[bench(12.0, 1.5)])),
             Err(ClaimError::NoMetrics)
         ));
     }
@@ -425,14 +420,17 @@ mod tests {
     #[test]
     fn evaluate_rejects_what_it_cannot_judge() {
         let c = claims().unwrap();
-        assert!(matches!(evaluate(&c, &[]), Err(ClaimError::NoMetrics)));
         assert!(matches!(
-            evaluate(&c, &[metrics(f64::NAN, 1.0, 1.0)]),
+            evaluate(&c, &door(&[])),
+            Err(ClaimError::NoMetrics)
+        ));
+        assert!(matches!(
+            evaluate(&c, &door(&[metrics(f64::NAN, 1.0, 1.0)])),
             Err(ClaimError::NotFinite { run: 0, .. })
         ));
         let other = super::super::ch34::claims().unwrap();
         assert!(matches!(
-            evaluate(&other[..1], &[metrics(1.0, 1.0, 1.0)]),
+            evaluate(&other[..1], &door(&[metrics(1.0, 1.0, 1.0)])),
             Err(ClaimError::NoMetrics)
         ));
     }

@@ -333,11 +333,9 @@ pub enum Metric {
     Drive(fn(&RunMetrics) -> f64),
     /// From the joint experiments of chapters 3–4 ([`run_joint`]).
     Joint(fn(&JointRunMetrics) -> f64),
-    /// From the door opening of chapter 6 on the engine ([`ch6`]; judged
-    /// by [`ch6::evaluate`], not by [`evaluate`]).
+    /// From the door opening of §6.4.4 on the engine ([`ch6`]).
     Door(fn(&ch6::DoorRunMetrics) -> f64),
-    /// From the wrist bench of §6.4.3 on the engine ([`ch6`]; judged by
-    /// [`ch6::evaluate_bench`], not by [`evaluate`]).
+    /// From the wrist bench of §6.4.3 on the engine ([`ch6`]).
     WristBench(fn(&ch6::WristBenchMetrics) -> f64),
 }
 
@@ -373,14 +371,16 @@ pub(crate) fn rule(condition: Condition, share: f64) -> Rule {
     Rule { condition, share }
 }
 
-/// The registry: the chapter-2 claims (criteria fixed here) and those of
-/// chapters 3–4 ([`ch34::claims`]), all fixed before any run. The
-/// chapter-6 door claims ([`ch6::claims`]) run on the engine (feature
-/// `engine`, `examples/door_opening.rs`) and are judged by
-/// [`ch6::evaluate`].
+/// The registry: every claim, its criterion fixed before any run — those
+/// of chapter 2 (here), of chapters 3–4 ([`ch34::claims`]) and of chapter
+/// 6, the door opening ([`ch6::claims`]) and the wrist bench
+/// ([`ch6::bench_claims`]) on the engine. [`evaluate`] judges each on the
+/// runs of its experiment.
 pub fn registry() -> Result<Vec<Claim>, ParamError> {
     let mut v = ch2_claims()?;
     v.extend(ch34::claims()?);
+    v.extend(ch6::claims()?);
+    v.extend(ch6::bench_claims()?);
     Ok(v)
 }
 
@@ -485,22 +485,35 @@ impl ClaimResult {
     }
 }
 
-/// Judge every claim on the runs of its experiment (`drive` for
-/// [`Metric::Drive`], `joint` for [`Metric::Joint`]). Errors: a claim
-/// whose experiment has no runs ([`ClaimError::NoMetrics`]), a metric
-/// that is not finite.
-pub fn evaluate(
-    claims: &[Claim],
-    drive: &[RunMetrics],
-    joint: &[JointRunMetrics],
-) -> Result<Vec<ClaimResult>, ClaimError> {
+/// The runs the registry's claims are judged on, one slice per
+/// experiment; an experiment that was not run is an empty slice.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Runs<'a> {
+    /// The drive bench of chapter 2 ([`run`]), for [`Metric::Drive`].
+    pub drive: &'a [RunMetrics],
+    /// The joint experiments of chapters 3–4 ([`run_joint`]), for
+    /// [`Metric::Joint`].
+    pub joint: &'a [JointRunMetrics],
+    /// The door opening of §6.4.4 on the engine (`ch6::run_door`), for
+    /// [`Metric::Door`].
+    pub door: &'a [ch6::DoorRunMetrics],
+    /// The wrist bench of §6.4.3 on the engine (`ch6::run_bench`), for
+    /// [`Metric::WristBench`].
+    pub bench: &'a [ch6::WristBenchMetrics],
+}
+
+/// Judge every claim on the runs of its experiment. Errors: a claim whose
+/// experiment has no runs ([`ClaimError::NoMetrics`]), a metric that is
+/// not finite.
+pub fn evaluate(claims: &[Claim], runs: &Runs<'_>) -> Result<Vec<ClaimResult>, ClaimError> {
     claims
         .iter()
         .map(|c| {
             let values: Vec<f64> = match c.metric {
-                Metric::Drive(f) => drive.iter().map(f).collect(),
-                Metric::Joint(f) => joint.iter().map(f).collect(),
-                Metric::Door(_) | Metric::WristBench(_) => Vec::new(),
+                Metric::Drive(f) => runs.drive.iter().map(f).collect(),
+                Metric::Joint(f) => runs.joint.iter().map(f).collect(),
+                Metric::Door(f) => runs.door.iter().map(f).collect(),
+                Metric::WristBench(f) => runs.bench.iter().map(f).collect(),
             };
             ClaimResult::of(c, &values)
         })
