@@ -142,7 +142,7 @@ fn quick_joint_registry_gives_every_claim_a_verdict() {
     let runs = run_joint(&plants, 2, 2).unwrap();
     assert_eq!(runs.len(), plants.len() * 2);
     for m in &runs {
-        for e in [m.est_peak_fit, m.est_peak_none] {
+        for e in [m.est_peak_fit, m.est_peak_none, m.table_3_3_peak] {
             assert!((0.26..60.0).contains(&e), "{m:?}");
         }
         assert!(m.est_rms_fit <= m.est_peak_fit && m.est_rms_none <= m.est_peak_none);
@@ -208,6 +208,7 @@ fn every_rerun_command_selects_its_claim() {
         "3.1-low",
         "3.1-bound",
         "3.3-reduction",
+        "3.3-table",
         "3.6-level",
         "3.8-step",
         "4.3-jtf",
