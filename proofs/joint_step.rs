@@ -5,8 +5,8 @@
 //!
 //! | property | I16F16 | f32 | f64 |
 //! |---|---|---|---|
-//! | `joint_step_bounded` — the step returns (no panic, no integer overflow), the command is within `±L` and is the state's last command, the integral within its limit, the friction estimates inside the projection box | Kani `kani_joint_step_products_i16f16` (kernels and products by contract, see below): VERIFIED in 993.7 s on `b27b3995a8` (limit 5,400 s; the record is `proofs/KANI_RESULTS.md`); random | random | random |
-//! | `mode_step_bounded` — the mode manager alone (the second half of the step), the same bounds | Kani `kani_joint_mode_step_i16f16` (`exp_neg_abs` and products by contract): VERIFIED in 237 s; random | in `joint_step_bounded` | in `joint_step_bounded` |
+//! | `joint_step_bounded` — the step returns (no panic, no integer overflow), the command is within `±L` and is the state's last command, the integral within its limit, the friction estimates inside the projection box | Kani `kani_joint_step_products_i16f16` (kernels and products by contract, see below): VERIFIED in 480.8 s on `1e9a0ede65` (limit 5,400 s; the record is `proofs/KANI_RESULTS.md`); random | random | random |
+//! | `mode_step_bounded` — the mode manager alone (the second half of the step), the same bounds | Kani `kani_joint_mode_step_i16f16` (`exp_neg_abs` and products by contract): VERIFIED in 891.9 s on `1e9a0ede65`; random | in `joint_step_bounded` | in `joint_step_bounded` |
 //!
 //! **The configuration is constant.** Both Kani harnesses take the
 //! configuration from `joint::TABLE_4_1_I16F16`:
