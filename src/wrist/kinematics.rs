@@ -402,8 +402,39 @@ impl<S: Scalar> WristConfig<S> {
 
     /// Inverse kinematics, eq. (5.13)–(5.15), saturating: a pose outside
     /// the workspace is replaced by the reachable pose of the same bend
-    /// direction on its boundary, and flagged. Never NaN.
+    /// direction on its boundary, and flagged. Never NaN. The root
+    /// `θ4 ≥ 0` (`cos(θ4/2) ≥ 0`); [`inverse_other_branch`](Self::inverse_other_branch)
+    /// gives the other preimage and [`update`](Self::update) chooses
+    /// between them (module docs).
     pub fn inverse(&self, target: PitchYaw<S>) -> Inverse<S> {
+        self.inverse_branches(target).0
+    }
+
+    /// The other preimage of [`inverse`](Self::inverse): the same pose
+    /// (and the same projection and flags) reached with the oblique joint
+    /// at `−θ4 ∈ [−π, 0]`, i.e. `cos(θ4/2) ≤ 0` in eq. (5.13). Its motor
+    /// angles are `θ1' = θ1 + 2ψ + π`, `θ3' = θ3 + 2ψ + π` (mod `2π`),
+    /// returned as `θ1' ∈ (−π, π]` and `θ1' + θ3' ∈ [−ε, π + ε]` (module
+    /// docs). At the straight pose it is [`inverse`](Self::inverse)'s
+    /// representative; on the workspace boundary (`θ4 = π`) the two
+    /// preimages are the same motor angles (`θ3'` may differ by `2π`).
+    ///
+    /// ```
+    /// use mrr_control::wrist::{PitchYaw, WristConfig, WristParams};
+    /// let cfg = WristConfig::<f64>::new(&WristParams::thesis());
+    /// let pose = PitchYaw { delta: 0.2, gamma: -0.1 };
+    /// let other = cfg.inverse_other_branch(pose);
+    /// assert!(other.theta4 < 0.0);
+    /// let back = cfg.forward(other.motors);
+    /// assert!((back.pose.delta - 0.2).abs() < 1e-12 && (back.pose.gamma + 0.1).abs() < 1e-12);
+    /// assert!((back.theta4 - other.theta4).abs() < 1e-12);
+    /// ```
+    pub fn inverse_other_branch(&self, target: PitchYaw<S>) -> Inverse<S> {
+        self.inverse_branches(target).1
+    }
+
+    /// Both preimages of `target`: `(θ4 ≥ 0, θ4 ≤ 0)`.
+    pub(crate) fn inverse_branches(&self, target: PitchYaw<S>) -> (Inverse<S>, Inverse<S>) {
         let half_pi = S::FRAC_PI_2;
         let d0 = denan(target.delta);
         let g0 = denan(target.gamma);
@@ -450,13 +481,14 @@ impl<S: Scalar> WristConfig<S> {
         let ch = S::ONE.sub(sq(sh)).sqrt();
         let theta4 = two.mul(sh.atan2(ch));
         if sh == S::ZERO {
-            return Inverse {
+            let r = Inverse {
                 motors: MotorAngles::default(),
                 theta4: S::ZERO,
                 pose,
                 saturated,
                 straight: true,
             };
+            return (r, r);
         }
         let psi = self.cos_phi.mul(sh).atan2(ch);
         // Eq. (5.14), divided by 2 sin(θ4/2) sin φ.
@@ -470,7 +502,7 @@ impl<S: Scalar> WristConfig<S> {
             .neg()
             .atan2(cg.mul(sq(sd)).add(cd.mul(sq(sg))));
         let u = eps.sub(two.mul(psi));
-        Inverse {
+        let plus = Inverse {
             motors: MotorAngles {
                 theta1,
                 theta3: u.sub(theta1),
@@ -479,7 +511,19 @@ impl<S: Scalar> WristConfig<S> {
             pose,
             saturated,
             straight: false,
-        }
+        };
+        // The root cos(θ4/2) ≤ 0 of eq. (5.13): ψ → π − ψ, so θ1 = az + ψ
+        // and u = ε + 2ψ (module docs).
+        let theta1 = wrap(az_z.add(psi));
+        let minus = Inverse {
+            motors: MotorAngles {
+                theta1,
+                theta3: eps.add(two.mul(psi)).sub(theta1),
+            },
+            theta4: theta4.neg(),
+            ..plus
+        };
+        (plus, minus)
     }
 
     /// Inverse kinematics that rejects an unreachable pose with a typed
@@ -536,9 +580,20 @@ impl<S: Scalar> WristConfig<S> {
     /// Motor angles accumulate turns; on `I16F16` they saturate after
     /// about 5,000 turns.
     pub fn update(&self, state: &mut IkState<S>, target: PitchYaw<S>) -> Inverse<S> {
-        let mut r = self.inverse(target);
+        let (plus, minus) = self.inverse_branches(target);
         let prev = state.motors;
         let (p1, p3) = (denan(prev.theta1), denan(prev.theta3));
+        // The branch whose θ1 is nearer the previous θ1 (`θ4 ≥ 0` on a
+        // tie); module docs.
+        let off = |n: S| {
+            let d = n.to_f64() - p1.to_f64();
+            libm::fabs(d - libm::round(d / core::f64::consts::TAU) * core::f64::consts::TAU)
+        };
+        let mut r = if off(minus.motors.theta1) < off(plus.motors.theta1) {
+            minus
+        } else {
+            plus
+        };
         let (n1, n3) = if r.straight {
             (p1, p1.neg())
         } else {

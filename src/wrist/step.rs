@@ -613,7 +613,7 @@ impl<S: Scalar> WristStepConfig<S> {
             theta1_sin_cos: m[0].sin_cos(),
             rate: [S::ZERO; 2],
         };
-        let ik = self.ik(pose);
+        let ik = self.ik(pose, Some(st.theta1_sin_cos));
         self.advance(&mut st, &ik);
         st.rate = [S::ZERO; 2];
         st
@@ -672,7 +672,7 @@ impl<S: Scalar> WristStepConfig<S> {
     /// pose within `2e-5` (`f32`) and `5e-3` (`I16F16`, dominated by bends
     /// of a few resolution steps) of [`WristConfig::inverse`].
     #[inline(always)]
-    fn ik(&self, r: PitchYaw<S>) -> Ik<S> {
+    fn ik(&self, r: PitchYaw<S>, prev_theta1: Option<(S, S)>) -> Ik<S> {
         // Fixed point (folded at compile time): through the binary angle,
         // a table lookup instead of a reduction modulo π/2 and polynomials
         // (the same 1-LSB bound: `Scalar::to_turn`).
@@ -765,6 +765,20 @@ impl<S: Scalar> WristStepConfig<S> {
                     .sqrt_small()
                     .mul_coef(&self.inv_2_sin_phi);
                 let py = n.mul_coef(&self.cot_phi_half);
+                // The branch: the root cos(θ4/2) ≤ 0 of eq. (5.13) is P
+                // with px negated (θ1 = arg A + ψ instead of arg A + π − ψ,
+                // mirror images about arg A ± π/2), so the θ1 nearer the
+                // previous θ1_r is that root's exactly when
+                // A·(cos θ1_r, sin θ1_r) > 0. Without a previous
+                // reference, θ4 ≥ 0.
+                let px = match prev_theta1 {
+                    Some((s1, c1))
+                        if ax.mul_unit_range(c1).add(ay.mul_unit_range(s1)) > S::ZERO =>
+                    {
+                        px.neg()
+                    }
+                    _ => px,
+                };
                 let v1 = rot(ax, ay, px, py);
                 let v3 = rot(sd, cd.mul_unit_range(sg), px, py);
                 // (sin θ1, cos θ1) = V1/|V1| (|V1| = |A|·|P'| = sin β (1 +
@@ -848,10 +862,13 @@ impl<S: Scalar> WristStepConfig<S> {
             false,
         );
         // 3. Inverse kinematics, continuous in time.
-        let ik = self.ik(PitchYaw {
-            delta: m.reference[0],
-            gamma: m.reference[1],
-        });
+        let ik = self.ik(
+            PitchYaw {
+                delta: m.reference[0],
+                gamma: m.reference[1],
+            },
+            Some(st.theta1_sin_cos),
+        );
         let (step, (s1, c1)) = self.advance(st, &ik);
         // 4. Reference rates and accelerations by difference.
         let mut rate = [S::ZERO; 2];
