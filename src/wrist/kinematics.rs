@@ -1466,6 +1466,148 @@ pub(crate) mod tests {
         check::<I16F16>();
     }
 
+    /// `dψ/dβ` at bend `beta` (rad), with `ψ = atan(cos φ tan(θ4/2))` and
+    /// `sin(θ4/2) = sin(β/2)/sin φ` (eq. 5.13): the product of
+    /// `dψ/dθ4 = (cos φ/2)/(cos²(θ4/2) + cos²φ sin²(θ4/2))` and
+    /// `dθ4/dβ = cos(β/2)/(sin φ cos(θ4/2))`, both increasing in `β` on
+    /// `[0, 2φ)`.
+    pub(crate) fn psi_rate(phi: f64, beta: f64) -> f64 {
+        let (sp, cp) = libm::sincos(phi);
+        let sh = libm::sin(beta / 2.0) / sp;
+        let ch = libm::sqrt(1.0 - sh * sh);
+        let dpsi_dt4 = 0.5 * cp / (ch * ch + cp * cp * sh * sh);
+        let dt4_db = libm::cos(beta / 2.0) / (sp * ch);
+        dpsi_dt4 * dt4_db
+    }
+
+    /// Both roots of eq. (5.13) reach the pose, checked against the
+    /// rotation matrices built from their definitions (eq. 5.4 = eq. 5.6),
+    /// with opposite `θ4`; their motor angles differ by `2ψ + π` on both
+    /// motors, `ψ = atan2(cos φ sin(θ4/2), cos(θ4/2))` (module docs).
+    #[test]
+    fn both_branches_reach_the_pose() {
+        let p = WristParams::thesis();
+        let phi = p.phi();
+        let cfg = WristConfig::<f64>::new(&p);
+        let mut worst: f64 = 0.0;
+        let n = 41;
+        for i in 0..n {
+            for j in 0..n {
+                let d = -0.6 + 1.2 * i as f64 / (n - 1) as f64;
+                let g = -0.6 + 1.2 * j as f64 / (n - 1) as f64 + 1e-3;
+                let target = PitchYaw { delta: d, gamma: g };
+                let plus = cfg.inverse(target);
+                let minus = cfg.inverse_other_branch(target);
+                assert_eq!(
+                    (plus.pose, plus.saturated, plus.straight),
+                    (minus.pose, minus.saturated, minus.straight)
+                );
+                let want = pitch_yaw(plus.pose.delta, plus.pose.gamma);
+                for r in [plus, minus] {
+                    let m = chain(phi, r.motors.theta1, r.theta4, r.motors.theta3);
+                    worst = worst.max(dist(&m, &want));
+                    let f = cfg.forward(r.motors);
+                    worst = worst
+                        .max((f.pose.delta - r.pose.delta).abs())
+                        .max((f.pose.gamma - r.pose.gamma).abs());
+                    if !r.saturated {
+                        worst = worst.max((f.theta4 - r.theta4).abs());
+                    }
+                }
+                assert!(plus.theta4 >= 0.0 && minus.theta4 == -plus.theta4);
+                let h = plus.theta4 / 2.0;
+                let psi = (phi.cos() * h.sin()).atan2(h.cos());
+                for (a, b) in [
+                    (plus.motors.theta1, minus.motors.theta1),
+                    (plus.motors.theta3, minus.motors.theta3),
+                ] {
+                    worst = worst.max(ang_dist(b, a + 2.0 * psi + PI));
+                }
+                // The other branch's continuity interval, mirrored.
+                let (u, eps) = (
+                    minus.motors.theta1 + minus.motors.theta3,
+                    (phi.sin().powi(2) / (2.0 * phi).cos()).atan(),
+                );
+                assert!(minus.motors.theta1.abs() <= PI);
+                assert!((-eps - 1e-12..=PI + eps + 1e-12).contains(&u), "{u}");
+            }
+        }
+        assert!(worst < 1e-12, "{worst}");
+    }
+
+    /// [`IkState`] along the line `(δ, γ) = s (cos a, sin a)`, `s` from
+    /// −10° to +10° in steps `Δs = 2 mrad` (0.5 rad/s at 4 ms), through
+    /// the straight pose, on every backend: each motor moves by at most
+    /// `(psi_rate(φ, 10°) + s_max/2)·Δs` a sample (derivation at the step's
+    /// test `crossing`) plus both ends' rounding (`tol` away from the
+    /// straight pose, and the bend direction `A` rounded, `4√2 q/s_min` at
+    /// the smallest bend `s_min` of the path, `q` the resolution); the
+    /// forward kinematics of the motors reaches the pose within the
+    /// round-trip bound of `proofs::wrist_ik`. On the branch `θ4 ≥ 0`
+    /// alone the motors turn by about π at the crossing.
+    #[test]
+    fn tracker_crosses_the_straight_pose_continuously() {
+        fn run<S: Scalar>(a_deg: f64, tol: f64) -> (f64, f64) {
+            let p = WristParams::thesis();
+            let cfg = WristConfig::<S>::new(&p);
+            let c64 = WristConfig::<f64>::new(&p);
+            let (sa, ca) = libm::sincos(a_deg.to_radians());
+            let (ds, s_max) = (0.002, 10f64.to_radians());
+            let n = libm::ceil(2.0 * s_max / ds) as usize;
+            let s = |k: usize| -s_max + k as f64 * ds;
+            let s_min = (0..=n).map(|k| s(k).abs()).fold(f64::MAX, f64::min);
+            let q = S::RESOLUTION.to_f64();
+            let bound = (psi_rate(p.phi(), s_max) + s_max / 2.0) * ds
+                + 2.0 * (tol + 4.0 * core::f64::consts::SQRT_2 * q / s_min);
+            let pose_bound = crate::proofs::wrist_ik::round_trip_bound::<S>();
+            let at = |k: usize| PitchYaw {
+                delta: S::from_f64(s(k) * ca),
+                gamma: S::from_f64(s(k) * sa),
+            };
+            let m0 = c64
+                .inverse(PitchYaw {
+                    delta: s(0) * ca,
+                    gamma: s(0) * sa,
+                })
+                .motors;
+            let mut st = IkState::new(MotorAngles {
+                theta1: S::from_f64(m0.theta1),
+                theta3: S::from_f64(m0.theta3),
+            });
+            let (mut worst_step, mut worst_pose) = (0.0f64, 0.0f64);
+            for k in 1..=n {
+                let before = st.motors;
+                let r = cfg.update(&mut st, at(k));
+                for (now, was) in [
+                    (r.motors.theta1, before.theta1),
+                    (r.motors.theta3, before.theta3),
+                ] {
+                    worst_step = worst_step.max((now.to_f64() - was.to_f64()).abs() / bound);
+                }
+                let f = c64.forward(MotorAngles {
+                    theta1: r.motors.theta1.to_f64(),
+                    theta3: r.motors.theta3.to_f64(),
+                });
+                let e = (f.pose.delta - at(k).delta.to_f64())
+                    .abs()
+                    .max((f.pose.gamma - at(k).gamma.to_f64()).abs());
+                worst_pose = worst_pose.max(e / pose_bound);
+            }
+            (worst_step, worst_pose)
+        }
+        for a in [0.0, 35.0, 90.0, 200.0] {
+            for (name, (step, pose)) in [
+                ("f64", run::<f64>(a, 1e-12)),
+                ("f32", run::<f32>(a, 2e-5)),
+                ("I16F16", run::<I16F16>(a, 5e-3)),
+            ] {
+                std::eprintln!("{name} a = {a}°: step {step:.3}, pose {pose:.3} of the bounds");
+                assert!(step <= 1.0, "{name} a = {a}°: motor step {step} of the bound");
+                assert!(pose <= 1.0, "{name} a = {a}°: pose error {pose} of the bound");
+            }
+        }
+    }
+
     #[test]
     fn tracker_is_continuous_through_the_cut_and_the_straight_pose() {
         let cfg = WristConfig::<f64>::new(&WristParams::thesis());

@@ -9,6 +9,7 @@
 use super::*;
 use crate::scalar::I16F16;
 use crate::wrist::jacobian::{ForceMapping, JacobianKind};
+use crate::wrist::kinematics::tests::psi_rate;
 use crate::wrist::kinematics::IkState;
 use crate::wrist::ujoint::transmit;
 use core::f64::consts::{PI, TAU};
@@ -591,8 +592,10 @@ fn joint_torque_overflow_is_flagged_and_outputs_stay_finite() {
         let cfg = WristStepConfig::<S>::new(&p);
         // At a bent reference, where ‖J‖ is largest (the first ticks from
         // the straight pose are rate-limited and nearly singular).
+        // On the root θ4 ≥ 0, where ‖Jᵀ‖ > 1 along the channels below (the
+        // step keeps the root nearest the motors it starts from).
         let bent = WristTarget::<S>::from_si(0.25, -0.2, 0.0, 0.0);
-        let mut warm = cfg.state(MotorAngles::default());
+        let mut warm = cfg.state(cfg.kinematics().inverse(bent.pose).motors);
         let quiet = WristReadings::<S>::from_si([0.0; 6], [0.0; 2], [0.0; 2]);
         for _ in 0..2000 {
             cfg.update(&mut warm, &quiet, &bent);
@@ -1228,20 +1231,6 @@ fn reference_saturated_is_either_limit_alone() {
             assert!(out.saturated);
         }
     }
-}
-
-/// `dψ/dβ` at bend `beta` (rad), with `ψ = atan(cos φ tan(θ4/2))` and
-/// `sin(θ4/2) = sin(β/2)/sin φ` (eq. 5.13): the product of
-/// `dψ/dθ4 = (cos φ/2)/(cos²(θ4/2) + cos²φ sin²(θ4/2))` and
-/// `dθ4/dβ = cos(β/2)/(sin φ cos(θ4/2))`, both increasing in `β` on
-/// `[0, 2φ)`.
-fn psi_rate(phi: f64, beta: f64) -> f64 {
-    let (sp, cp) = libm::sincos(phi);
-    let sh = libm::sin(beta / 2.0) / sp;
-    let ch = libm::sqrt(1.0 - sh * sh);
-    let dpsi_dt4 = 0.5 * cp / (ch * ch + cp * cp * sh * sh);
-    let dt4_db = libm::cos(beta / 2.0) / (sp * ch);
-    dpsi_dt4 * dt4_db
 }
 
 /// The step driven along the line `(δ, γ) = s (cos a, sin a)` from
