@@ -61,7 +61,8 @@
 //! library evaluates it in that half-angle form, with
 //! `sin²(β/2) = sin²(δ/2) + cos δ sin²(γ/2)`, which has no cancellation
 //! near the straight pose (the printed `acos((CδCγ − Cφ²)/Sφ²)` loses half
-//! the digits there). The branch `θ4 ≥ 0` of eq. (5.14) is taken. From the
+//! the digits there). [`WristConfig::inverse`] takes the root `θ4 ≥ 0` of
+//! eq. (5.14) (see "Two roots" below for the other). From the
 //! third column and row of `R` (derivation in
 //! `docs/derivations/wrist_fk.py`), with `ψ = atan2(Cφ sin(θ4/2), cos(θ4/2))`:
 //!
@@ -85,6 +86,50 @@
 //! branch lives (errata E5.5). `θ1` itself must jump by `2π` somewhere: it
 //! winds once around the straight pose. [`IkState`] unwraps both motors
 //! to the nearest multiple of `2π` of their previous value.
+//!
+//! # Two roots, and the one taken in time
+//!
+//! Eq. (5.13) fixes `sin(θ4/2) = sin(β/2)/sin φ ≥ 0` only; `cos(θ4/2)` is
+//! either square root. The axis of the output before `R_z(θ1)` has the
+//! horizontal part `−2 sin φ sin(θ4/2) · P` with `P = (cos(θ4/2),
+//! cos φ sin(θ4/2))` (as a complex number, `ψ = arg P`), which `R_z(θ1)`
+//! must turn onto `A = (Cγ Sδ, −Sγ)`. The root `cos(θ4/2) ≥ 0` (`θ4 ≥ 0`)
+//! gives the formulas above; the root `cos(θ4/2) ≤ 0` (`θ4 ≤ 0`, the same
+//! joint as `2π − θ4`) replaces `P` by `(−cos(θ4/2), cos φ sin(θ4/2))`,
+//! i.e. `ψ` by `π − ψ`:
+//!
+//! ```text
+//! θ1' = atan2(−Sγ, Cγ Sδ) + ψ = θ1 + 2ψ + π,
+//! θ3' = atan2(Cδ Sγ, Sδ) + ψ  = θ3 + 2ψ + π   (mod 2π),
+//! ```
+//!
+//! with `θ1' + θ3' = ε(δ, γ) + 2ψ ∈ [−ε, π + ε]`, the mirror image of
+//! eq. (5.15)'s interval ([`WristConfig::inverse_other_branch`]; checked
+//! against the rotation matrices in `tests::both_branches_reach_the_pose`).
+//! The two roots are the two motor positions of each pose; they are
+//! `π − 2ψ` apart on both motors: about `π` near the straight pose and `0`
+//! on the boundary `β = 2φ`, where they meet (`θ4 = ±π`).
+//!
+//! A path through the straight pose reverses `A`: on one root the motors
+//! turn by `π` there in no time, while on the path `θ1 = arg A + π − ψ`
+//! passes continuously into `θ1' = arg A' + ψ` of the other root (`A' = −A`,
+//! `ψ → 0`). [`WristConfig::update`] (and the wrist step,
+//! [`super::step`]) therefore takes, on every sample, **the root whose `θ1`
+//! is nearer the previous `θ1`**; `θ4 ≥ 0` on a tie. The two candidates
+//! `arg A + ψ` and `arg A + π − ψ` are mirror images about
+//! `arg A ± π/2`, so the nearer one is `θ4 ≤ 0` exactly when
+//! `A·(cos θ1_prev, sin θ1_prev) > 0`: two products, no root and no
+//! `atan2` more. `θ1` alone decides because the roots are the same angle
+//! `π − 2ψ` apart on both motors: a sample that moves the motors by less
+//! than half of it picks the same root for both; and where the roots
+//! are `π` apart, near the straight pose (held there at `θ3 = −θ1`),
+//! `B = (Sδ, Cδ Sγ)` is nearly `(A_x, −A_y)` and `θ3` nearly `−θ1`, so
+//! `θ3`'s own test, `B·(cos θ3_prev, sin θ3_prev) > 0`, agrees. Away from the straight pose and
+//! the boundary this is the root already in use; on the boundary the
+//! choice is void (the roots coincide). The motors then cross the straight
+//! pose with speeds bounded by the path's
+//! (`tests::tracker_crosses_the_straight_pose_continuously`).
+//! [`WristConfig::inverse`], which has no previous sample, keeps `θ4 ≥ 0`.
 
 use crate::error::{finite, ParamError};
 use crate::scalar::Scalar;
@@ -189,9 +234,13 @@ pub struct Forward<S> {
 pub struct Inverse<S> {
     /// The motor angles: `θ1 ∈ (−π, π]`, `θ1 + θ3 ∈ [−π − ε, ε]` with
     /// `ε = atan(sin²φ/cos 2φ)`, 0.09 for `φ = 16°` (rad, up to
-    /// rounding).
+    /// rounding) on the root `θ4 ≥ 0`, `[−ε, π + ε]` on the other;
+    /// continuous (turns accumulated) from [`WristConfig::update`].
     pub motors: MotorAngles<S>,
-    /// The oblique joint angle `θ4 ∈ [0, π]` (rad), eq. (5.13).
+    /// The oblique joint angle (rad), eq. (5.13): `θ4 ∈ [0, π]` from
+    /// [`WristConfig::inverse`], `[−π, 0]` from
+    /// [`WristConfig::inverse_other_branch`]; [`WristConfig::update`]
+    /// returns the root it took.
     pub theta4: S,
     /// The pose the motors reach: the input, or its projection onto the
     /// workspace boundary when `saturated`.
@@ -555,9 +604,10 @@ impl<S: Scalar> WristConfig<S> {
 }
 
 /// The motor positions of the previous sample, for an inverse kinematics
-/// that is continuous in time (eq. 5.15 generalized): each motor is
-/// unwrapped to the multiple of `2π` nearest its previous value, and at the
-/// straight pose the motors stay where they are on the circle
+/// that is continuous in time (eq. 5.15 generalized): the root of eq.
+/// (5.13) whose `θ1` is nearer the previous one (module docs), each motor
+/// unwrapped to the multiple of `2π` nearest its previous value, and at
+/// the straight pose the motors stay where they are on the circle
 /// `θ1 + θ3 = 0`.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct IkState<S> {
@@ -573,10 +623,15 @@ impl<S: Scalar> IkState<S> {
 }
 
 impl<S: Scalar> WristConfig<S> {
-    /// Inverse kinematics continuous in time: [`WristConfig::inverse`],
-    /// then each motor angle moved by a multiple of `2π` to the nearest of
-    /// the previous sample's (`state`), which it updates. At the straight
-    /// pose `θ1` keeps its previous value and `θ3 = −θ1` (mod `2π`).
+    /// Inverse kinematics continuous in time: of the two roots
+    /// ([`WristConfig::inverse`], `θ4 ≥ 0`, and
+    /// [`WristConfig::inverse_other_branch`], `θ4 ≤ 0`) the one whose `θ1`
+    /// is nearer the previous sample's (`state`; `θ4 ≥ 0` on a tie; module
+    /// docs), then each motor angle moved by a multiple of `2π` to the
+    /// nearest of the previous sample's, which it updates. At the straight
+    /// pose `θ1` keeps its previous value and `θ3 = −θ1` (mod `2π`). A
+    /// state started at measured motors picks their root on the first
+    /// sample.
     /// Motor angles accumulate turns; on `I16F16` they saturate after
     /// about 5,000 turns.
     pub fn update(&self, state: &mut IkState<S>, target: PitchYaw<S>) -> Inverse<S> {
@@ -1602,8 +1657,14 @@ pub(crate) mod tests {
                 ("I16F16", run::<I16F16>(a, 5e-3)),
             ] {
                 std::eprintln!("{name} a = {a}°: step {step:.3}, pose {pose:.3} of the bounds");
-                assert!(step <= 1.0, "{name} a = {a}°: motor step {step} of the bound");
-                assert!(pose <= 1.0, "{name} a = {a}°: pose error {pose} of the bound");
+                assert!(
+                    step <= 1.0,
+                    "{name} a = {a}°: motor step {step} of the bound"
+                );
+                assert!(
+                    pose <= 1.0,
+                    "{name} a = {a}°: pose error {pose} of the bound"
+                );
             }
         }
     }

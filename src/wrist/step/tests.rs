@@ -1344,3 +1344,33 @@ fn motor_references_are_continuous_through_the_straight_pose() {
         }
     }
 }
+
+/// A state started at motors on the root `θ4 < 0` keeps them: its
+/// references are those motors (the root nearest them), not the other
+/// motor position of the same pose (about `π − 2ψ` away on both motors).
+#[test]
+fn state_keeps_the_root_of_the_measured_motors() {
+    fn run<S: Scalar>(tol: f64) {
+        let p = params();
+        let cfg = WristStepConfig::<S>::new(&p);
+        let kin = WristConfig::<f64>::new(&p.settings().kinematics);
+        for (d, g) in [(0.2, -0.1), (0.01, 0.02), (-0.3, 0.25)] {
+            let m = kin
+                .inverse_other_branch(PitchYaw { delta: d, gamma: g })
+                .motors;
+            assert!(kin.forward(m).theta4 < 0.0);
+            let st = cfg.state(MotorAngles {
+                theta1: S::from_f64(m.theta1),
+                theta3: S::from_f64(m.theta3),
+            });
+            let r = st.motor_reference();
+            let e = (r.theta1.to_f64() - m.theta1)
+                .abs()
+                .max((r.theta3.to_f64() - m.theta3).abs());
+            assert!(e < tol, "{} ({d}, {g}): {e}", S::NAME);
+        }
+    }
+    run::<f64>(1e-9);
+    run::<f32>(1e-4);
+    run::<I16F16>(1e-2);
+}
