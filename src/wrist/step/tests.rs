@@ -1374,3 +1374,73 @@ fn state_keeps_the_root_of_the_measured_motors() {
     run::<f32>(1e-4);
     run::<I16F16>(1e-2);
 }
+
+/// Through the straight pose onto the root `θ4 < 0`, under a constant
+/// wrench: the step agrees with the composition of the components (whose
+/// `IkState` takes the same root and whose force mapping differentiates
+/// the forward kinematics at the motors, whichever root they are on), and
+/// its joint torques are `−Jᵀτ` of that Jacobian, the `θ3` component
+/// carried through eq. (5.3).
+#[test]
+fn matches_the_composition_through_the_straight_pose() {
+    let p = params();
+    let cfg = WristStepConfig::<f64>::new(&p);
+    let kin = WristConfig::<f64>::new(&p.settings().kinematics);
+    let (sa, ca) = libm::sincos(35f64.to_radians());
+    let start = kin
+        .inverse(PitchYaw {
+            delta: -0.2 * ca,
+            gamma: -0.2 * sa,
+        })
+        .motors;
+    let mut st = cfg.state(start);
+    let mut c = Composition::new(&p, start);
+    let w = [0.2, -0.1, 0.0, 0.05, -0.3, 0.1];
+    let sg = p.settings().sensor.decoupling().gauge_signals(&w);
+    let mut m = [start.theta1, start.theta3];
+    let (mut on_other, mut worst) = (0, [0.0f64; 4]);
+    for k in 0..300 {
+        let s = -0.2 + 0.002 * k as f64;
+        let x = if s < 0.2 {
+            [s * ca, s * sa, 0.5 * ca, 0.5 * sa]
+        } else {
+            [0.2 * ca, 0.2 * sa, 0.0, 0.0]
+        };
+        let out = cfg.update(
+            &mut st,
+            &WristReadings::from_si(sg, m, [0.0; 2]),
+            &target(x),
+        );
+        let (tau, _, motors, _, _, mode) = c.step(sg, m, [0.0; 2], x);
+        assert_eq!((out.mode, mode), (WristMode::Active, WristMode::Active));
+        let mr = out.motor_reference_si();
+        let tq = out.motor_torque_si();
+        let at = MotorAngles {
+            theta1: motors[0],
+            theta3: motors[1],
+        };
+        let tm = c.fm.motor_torques(at, out.interaction_si()).torque;
+        let pose = kin.forward(at);
+        let bend = (pose.pose.delta.cos() * pose.pose.gamma.cos())
+            .clamp(-1.0, 1.0)
+            .acos();
+        let shaft = transmit(bend, motors[1], 0.0, -tm[1]).torque;
+        let jt = out.joint_torque_si();
+        on_other += (pose.theta4 < 0.0) as usize;
+        for i in 0..2 {
+            worst[0] = worst[0].max((mr[i] - motors[i]).abs());
+            worst[1] = worst[1].max((tq[i] - tau[i]).abs());
+        }
+        worst[2] = worst[2]
+            .max((jt[0] + tm[0]).abs())
+            .max((jt[1] - shaft).abs());
+        worst[3] = worst[3].max(jt[0].abs().min(jt[1].abs()));
+        m = [motors[0] + 0.001, motors[1] - 0.001];
+    }
+    assert!(on_other > 100, "{on_other} ticks on the root θ4 < 0");
+    assert!(worst[3] > 0.01, "the wrench loads both joints: {worst:?}");
+    assert!(
+        worst[0] < 1e-9 && worst[1] < 1e-6 && worst[2] < 1e-9,
+        "{worst:?}"
+    );
+}
