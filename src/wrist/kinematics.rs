@@ -124,10 +124,10 @@
 //! than half of it picks the same root for both; and where the roots
 //! are `π` apart, near the straight pose (held there at `θ3 = −θ1`),
 //! `B = (Sδ, Cδ Sγ)` is nearly `(A_x, −A_y)` and `θ3` nearly `−θ1`, so
-//! `θ3`'s own test, `B·(cos θ3_prev, sin θ3_prev) > 0`, agrees. Away from the straight pose and
-//! the boundary this is the root already in use; on the boundary the
-//! choice is void (the roots coincide). The motors then cross the straight
-//! pose with speeds bounded by the path's
+//! `θ3`'s own test, `B·(cos θ3_prev, sin θ3_prev) > 0`, agrees. Away
+//! from the straight pose and the boundary this is the root already in
+//! use; on the boundary the choice is void (the roots coincide). The
+//! motors then cross the straight pose with speeds bounded by the path's
 //! (`tests::tracker_crosses_the_straight_pose_continuously`).
 //! [`WristConfig::inverse`], which has no previous sample, keeps `θ4 ≥ 0`.
 
