@@ -242,16 +242,16 @@ pub fn continuity_step_of<S: Scalar>(
     Verdict::bounded(m1.max(m3) / bound, 1.0)
 }
 
-/// The root [`WristConfig::update`] took for `target` from the previous
-/// motors `prev`: its motors are one root's (mod 2π), and its `θ1` is no
-/// farther from `prev.θ1` than either root's (within `8 q`).
+/// The root [`WristConfig::update`] took (`taken`) from the previous
+/// motors `prev`, given both roots of the target (`plus`, `minus`): its
+/// motors are one root's (mod 2π), and its `θ1` is no farther from
+/// `prev.θ1` than either root's (within `8 q`).
 pub fn nearest_root_of<S: Scalar>(
-    cfg: &WristConfig<S>,
-    target: PitchYaw<S>,
     prev: &MotorAngles<S>,
+    plus: &Inverse<S>,
+    minus: &Inverse<S>,
     taken: &Inverse<S>,
 ) -> Verdict {
-    let (plus, minus) = cfg.inverse_branches(target);
     let q = angle_unit::<S>();
     let p1 = prev.theta1.to_f64();
     let t = taken.motors;
@@ -285,12 +285,13 @@ pub fn continuity_step<S: Scalar>(
         delta: b.0,
         gamma: b.1,
     };
+    let (plus_b, minus_b) = cfg.inverse_branches(tb);
     let mut v = Verdict::logical(true);
     for start in [plus, minus] {
         let mut st = IkState::new(start.motors);
         let rb = cfg.update(&mut st, tb);
         v = v
-            .and(nearest_root_of(cfg, tb, &start.motors, &rb))
+            .and(nearest_root_of(&start.motors, &plus_b, &minus_b, &rb))
             .and(continuity_step_of(p, a, &start, b, &rb));
     }
     v
@@ -708,11 +709,10 @@ mod tests {
         };
         assert!(!branch_and_round_trip_of(&cfg, &p, d, g, &r).holds);
         // The root farther from the previous θ1 is rejected.
-        let target = PitchYaw { delta: d, gamma: g };
-        let plus = cfg.inverse(target);
-        assert!(nearest_root_of(&cfg, target, &plus.motors, &plus).holds);
-        assert!(!nearest_root_of(&cfg, target, &plus.motors, &other).holds);
-        assert!(nearest_root_of(&cfg, target, &other.motors, &other).holds);
+        let plus = cfg.inverse(PitchYaw { delta: d, gamma: g });
+        assert!(nearest_root_of(&plus.motors, &plus, &other, &plus).holds);
+        assert!(!nearest_root_of(&plus.motors, &plus, &other, &other).holds);
+        assert!(nearest_root_of(&other.motors, &plus, &other, &other).holds);
         // A jump of 0.5 rad in θ1 between neighbours is caught.
         let a = (0.2, 0.1);
         let b = (0.2, 0.1 + 2.0 * p.max_bend() / 255.0);
