@@ -263,7 +263,7 @@ pub fn nearest_root_of<S: Scalar>(
         <= ang_dist(plus.motors.theta1.to_f64(), p1)
             .min(ang_dist(minus.motors.theta1.to_f64(), p1))
             + 8.0 * q;
-    Verdict::logical((on(&plus) || on(&minus)) && nearest)
+    Verdict::logical((on(plus) || on(minus)) && nearest)
 }
 
 /// Continuity of [`WristConfig::update`] from `a` to `b`, started at each
