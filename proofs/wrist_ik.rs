@@ -4,8 +4,14 @@
 //!
 //! | property | I16F16 | f32 | f64 |
 //! |---|---|---|---|
-//! | `branch_and_round_trip` — at a reachable `(δ, γ)`: not flagged, no NaN, the selected branch (`θ4 ≥ 0`, `θ1 + θ3 ∈ [−π − ε, ε]`) and `FK(IK(δ, γ)) = (δ, γ)` within [`round_trip_bound`] | Kani entry (not run here); exhaustive (256 × 256 grid, and every code within 64 LSB of the straight pose) | exhaustive (same grid); random | random |
-//! | `continuity_step` — for two reachable poses `Δ = |Δδ| + |Δγ|` apart with bends `≥ β_min`, each motor angle moves (mod 2π) by at most [`continuity_modulus`] | exhaustive (grid neighbours) | exhaustive; random | random |
+//! | `branch_and_round_trip` — at a reachable `(δ, γ)`, for both roots of eq. (5.13): not flagged, no NaN, on its root (`θ4 ≥ 0`, `θ1 + θ3 ∈ [−π − ε, ε]`; `θ4 ≤ 0`, `θ1 + θ3 ∈ [−ε, π + ε]`) and `FK(IK(δ, γ)) = (δ, γ)` within [`round_trip_bound`] | Kani entry (not run here); exhaustive (256 × 256 grid, and every code within 64 LSB of the straight pose) | exhaustive (same grid); random | random |
+//! | `continuity_step` — `update` from either root of one reachable pose to another `Δ = |Δδ| + |Δγ|` away (bends `≥ β_min`): it takes the root whose `θ1` is nearest ([`nearest_root_of`]), and each motor angle moves (mod 2π) by at most [`continuity_modulus`] | Kani entry (not run here); exhaustive (grid neighbours) | exhaustive; random | random |
+//! | `branch_logic_of`, `other_branch_logic_of` — both roots' ranges (`θ4`, `θ1`, `θ1 + θ3`), zero motors at the straight pose, the flag, for every target, kernels by contracts | Kani entry (not run here); random targets | — | — |
+//!
+//! Both roots are checked because [`WristConfig::update`] and the wrist
+//! step take either (the one whose `θ1` is nearer the previous one, module
+//! docs of [`crate::wrist::kinematics`]); [`WristConfig::inverse`] alone
+//! keeps `θ4 ≥ 0`.
 //!
 //! **The grid.** Code `c = 256 i + j` (16 bits) is the pose
 //! `δ = −2φ + i·h`, `γ = −2φ + j·h`, `h = 4φ/255`: the bounding square of
@@ -13,7 +19,9 @@
 //! reachable. Measured (release, `cargo test --release --lib -- --ignored
 //! exhaustive_wrist --nocapture`): round trip ≤ 0.25 of the bound on
 //! I16F16 (24 LSB = 3.7e-4 rad), 0.016 on f32 (1.5 units = 3.6e-7 rad);
-//! continuity ≤ 0.57 (I16F16) and 0.64 (f32) of the modulus.
+//! continuity ≤ 0.57 (I16F16) and 0.64 (f32) of the modulus. (Measured
+//! on the root `θ4 ≥ 0` alone, before both roots and `update`'s choice
+//! were part of the properties; not yet rerun.)
 //!
 //! **The round-trip bound** is a first-order error budget in units `q` of
 //! the backend's absolute angle resolution (`I16F16`: `2⁻¹⁶`; `f32`:
@@ -39,7 +47,7 @@
 
 use super::engine::Verdict;
 use crate::scalar::Scalar;
-use crate::wrist::{Inverse, PitchYaw, WristConfig, WristParams};
+use crate::wrist::{IkState, Inverse, MotorAngles, PitchYaw, WristConfig, WristParams};
 use core::f64::consts::PI;
 
 /// Grid points per axis (the code is 16 bits: 256 × 256).
@@ -103,13 +111,39 @@ pub fn branch_slack(p: &WristParams) -> f64 {
     libm::atan(s * s / libm::cos(2.0 * p.phi()))
 }
 
-/// The property at one pose, for the computed inverse `r`.
+/// The property at one pose, for the computed inverse `r` on the root
+/// `θ4 ≥ 0` ([`WristConfig::inverse`]).
 pub fn branch_and_round_trip_of<S: Scalar>(
     cfg: &WristConfig<S>,
     p: &WristParams,
     d: S,
     g: S,
     r: &Inverse<S>,
+) -> Verdict {
+    root_and_round_trip_of(cfg, p, d, g, r, false)
+}
+
+/// The property at one pose for the other root, `θ4 ≤ 0`
+/// ([`WristConfig::inverse_other_branch`]): `θ4 ≤ 0` (by the forward map),
+/// `θ1 ∈ (−π, π]`, `θ1 + θ3 ∈ [−ε, π + ε]` and the same round trip.
+pub fn other_branch_and_round_trip_of<S: Scalar>(
+    cfg: &WristConfig<S>,
+    p: &WristParams,
+    d: S,
+    g: S,
+    r: &Inverse<S>,
+) -> Verdict {
+    root_and_round_trip_of(cfg, p, d, g, r, true)
+}
+
+/// The root property: `negative` selects the root `θ4 ≤ 0`.
+fn root_and_round_trip_of<S: Scalar>(
+    cfg: &WristConfig<S>,
+    p: &WristParams,
+    d: S,
+    g: S,
+    r: &Inverse<S>,
+    negative: bool,
 ) -> Verdict {
     if !in_domain(p, d, g) {
         // Outside: only no NaN.
@@ -119,14 +153,20 @@ pub fn branch_and_round_trip_of<S: Scalar>(
     let (t1, t3) = (r.motors.theta1.to_f64(), r.motors.theta3.to_f64());
     let no_nan = !t1.is_nan() && !t3.is_nan();
     let not_flagged = !r.saturated;
-    // The selected branch: θ4 ≥ 0 (re-evaluated by the forward map), and
-    // the continuous representative of θ1 + θ3.
+    // The root (its θ4 re-evaluated by the forward map), and the
+    // continuous representative of θ1 + θ3 on it: [−π − ε, ε] for
+    // θ4 ≥ 0, mirrored to [−ε, π + ε] for θ4 ≤ 0.
     let f = cfg.forward(r.motors);
     let eps = branch_slack(p);
     let u = t1 + t3;
-    let branch = f.theta4.to_f64() >= -ROUND_TRIP_UNITS * q
-        && u >= -PI - eps - 8.0 * q
-        && u <= eps + 8.0 * q
+    let (theta4, lo, hi) = if negative {
+        (-f.theta4.to_f64(), -eps, PI + eps)
+    } else {
+        (f.theta4.to_f64(), -PI - eps, eps)
+    };
+    let branch = theta4 >= -ROUND_TRIP_UNITS * q
+        && u >= lo - 8.0 * q
+        && u <= hi + 8.0 * q
         && t1.abs() <= PI + 2.0 * q;
     let err = (f.pose.delta.to_f64() - d.to_f64())
         .abs()
@@ -135,15 +175,18 @@ pub fn branch_and_round_trip_of<S: Scalar>(
         .and(Verdict::logical(no_nan && not_flagged && branch))
 }
 
-/// [`branch_and_round_trip_of`] with the inverse computed here.
+/// [`branch_and_round_trip_of`] and [`other_branch_and_round_trip_of`]
+/// with both roots computed here: each motor position of the pose is on
+/// its root and reaches the pose.
 pub fn branch_and_round_trip<S: Scalar>(
     cfg: &WristConfig<S>,
     p: &WristParams,
     d: S,
     g: S,
 ) -> Verdict {
-    let r = cfg.inverse(PitchYaw { delta: d, gamma: g });
-    branch_and_round_trip_of(cfg, p, d, g, &r)
+    let (plus, minus) = cfg.inverse_branches(PitchYaw { delta: d, gamma: g });
+    branch_and_round_trip_of(cfg, p, d, g, &plus)
+        .and(other_branch_and_round_trip_of(cfg, p, d, g, &minus))
 }
 
 /// The derived bound on the motion of each motor angle (rad, mod 2π)
@@ -199,22 +242,59 @@ pub fn continuity_step_of<S: Scalar>(
     Verdict::bounded(m1.max(m3) / bound, 1.0)
 }
 
-/// [`continuity_step_of`] with both inverses computed here.
+/// The root [`WristConfig::update`] took (`taken`) from the previous
+/// motors `prev`, given both roots of the target (`plus`, `minus`): its
+/// motors are one root's (mod 2π), and its `θ1` is no farther from
+/// `prev.θ1` than either root's (within `8 q`).
+pub fn nearest_root_of<S: Scalar>(
+    prev: &MotorAngles<S>,
+    plus: &Inverse<S>,
+    minus: &Inverse<S>,
+    taken: &Inverse<S>,
+) -> Verdict {
+    let q = angle_unit::<S>();
+    let p1 = prev.theta1.to_f64();
+    let t = taken.motors;
+    let on = |r: &Inverse<S>| {
+        ang_dist(t.theta1.to_f64(), r.motors.theta1.to_f64()) <= 8.0 * q
+            && ang_dist(t.theta3.to_f64(), r.motors.theta3.to_f64()) <= 8.0 * q
+    };
+    let nearest = ang_dist(t.theta1.to_f64(), p1)
+        <= ang_dist(plus.motors.theta1.to_f64(), p1)
+            .min(ang_dist(minus.motors.theta1.to_f64(), p1))
+            + 8.0 * q;
+    Verdict::logical((on(plus) || on(minus)) && nearest)
+}
+
+/// Continuity of [`WristConfig::update`] from `a` to `b`, started at each
+/// root of `a` in turn: it takes the root nearest in `θ1`
+/// ([`nearest_root_of`]) and moves each motor by at most the modulus
+/// ([`continuity_step_of`]; never more than staying on the root it
+/// started on would).
 pub fn continuity_step<S: Scalar>(
     cfg: &WristConfig<S>,
     p: &WristParams,
     a: (S, S),
     b: (S, S),
 ) -> Verdict {
-    let ra = cfg.inverse(PitchYaw {
+    let (plus, minus) = cfg.inverse_branches(PitchYaw {
         delta: a.0,
         gamma: a.1,
     });
-    let rb = cfg.inverse(PitchYaw {
+    let tb = PitchYaw {
         delta: b.0,
         gamma: b.1,
-    });
-    continuity_step_of(p, a, &ra, b, &rb)
+    };
+    let (plus_b, minus_b) = cfg.inverse_branches(tb);
+    let mut v = Verdict::logical(true);
+    for start in [plus, minus] {
+        let mut st = IkState::new(start.motors);
+        let rb = cfg.update(&mut st, tb);
+        v = v
+            .and(nearest_root_of(&start.motors, &plus_b, &minus_b, &rb))
+            .and(continuity_step_of(p, a, &start, b, &rb));
+    }
+    v
 }
 
 /// The branch selection of the inverse (eq. 5.13–5.15) as logic, for
@@ -242,6 +322,32 @@ pub fn branch_logic_of(d: i32, g: i32, r: &Inverse<crate::scalar::I16F16>) -> Ve
             && t1 > -pi - 1
             && t1 <= pi + 1
             && (r.straight || (-3 * pi / 2 - 4..=pi / 2 + 4).contains(&u))
+            && straight_ok
+            && (!clamped || r.saturated),
+    )
+}
+
+/// [`branch_logic_of`] for the other root (`inverse_branches(..).1`):
+/// `θ4 ∈ [−π, 0]`, `θ1 ∈ (−π, π]`, `θ1 + θ3 = ε + 2ψ ∈ [−π/2, 3π/2]`, motors
+/// zero exactly at the straight pose, and the flag set for a clamped
+/// target. Values in `2⁻¹⁶` (I16F16 bits).
+pub fn other_branch_logic_of(d: i32, g: i32, r: &Inverse<crate::scalar::I16F16>) -> Verdict {
+    const HALF_PI: i32 = 102_944; // I16F16::FRAC_PI_2 (bits)
+    const PI_B: i32 = 205_887; // I16F16::PI (bits)
+    let (t1, t3, t4) = (
+        r.motors.theta1.to_bits() as i64,
+        r.motors.theta3.to_bits() as i64,
+        r.theta4.to_bits() as i64,
+    );
+    let pi = PI_B as i64;
+    let u = t1 + t3;
+    let clamped = d.unsigned_abs() > HALF_PI as u32 || g.unsigned_abs() > HALF_PI as u32;
+    let straight_ok = !r.straight || (t1 == 0 && t3 == 0 && t4 == 0);
+    Verdict::logical(
+        (-pi - 1..=0).contains(&t4)
+            && t1 > -pi - 1
+            && t1 <= pi + 1
+            && (r.straight || (-pi / 2 - 4..=3 * pi / 2 + 4).contains(&u))
             && straight_ok
             && (!clamped || r.saturated),
     )
@@ -383,7 +489,8 @@ mod kani_entries {
         ));
     }
 
-    /// The branch logic of the inverse for every I16F16 target (all 2⁶⁴
+    /// The branch logic of both roots of the inverse (`θ4 ≥ 0` and
+    /// `θ4 ≤ 0`) for every I16F16 target (all 2⁶⁴
     /// pairs), the kernels and the division replaced by their contracts
     /// (above; the division's precondition, a boundary-layer quotient, is
     /// asserted at each of the inverse's divisions). The sums, clamps,
@@ -398,7 +505,7 @@ mod kani_entries {
     fn kani_wrist_ik_branch_logic_i16f16() {
         let cfg = WristConfig::<I16F16>::new(&wrist());
         let (d, g): (i32, i32) = (kani::any(), kani::any());
-        let r = cfg.inverse(PitchYaw {
+        let (r, other) = cfg.inverse_branches(PitchYaw {
             delta: I16F16::from_bits(d),
             gamma: I16F16::from_bits(g),
         });
@@ -416,9 +523,34 @@ mod kani_entries {
         assert!(r.straight || t1 + t3 >= -3 * PI_B as i64 / 2 - 4, "u low");
         assert!(r.straight || t1 + t3 <= PI_B as i64 / 2 + 4, "u high");
         assert!(branch_logic_of(d, g, &r).holds);
+        // The other root, θ4 ≤ 0, which `update` and the wrist step may
+        // take.
+        let (o1, o3, o4) = (
+            other.motors.theta1.to_bits() as i64,
+            other.motors.theta3.to_bits() as i64,
+            other.theta4.to_bits() as i64,
+        );
+        assert!(
+            o4 <= 0 && o4 >= -(PI_B as i64) - 1,
+            "other theta4 in [-pi, 0]"
+        );
+        assert!(
+            o1 > -(PI_B as i64) - 1 && o1 <= PI_B as i64 + 1,
+            "other theta1 in (-pi, pi]"
+        );
+        assert!(
+            other.straight || o1 + o3 >= -(PI_B as i64) / 2 - 4,
+            "other u low"
+        );
+        assert!(
+            other.straight || o1 + o3 <= 3 * PI_B as i64 / 2 + 4,
+            "other u high"
+        );
+        assert!(other_branch_logic_of(d, g, &other).holds);
     }
 
-    /// The branch property at every point of the 16-bit grid, I16F16.
+    /// The branch property of both roots at every point of the 16-bit
+    /// grid, I16F16.
     #[kani::proof]
     fn kani_wrist_ik_branch_i16f16() {
         let p = wrist();
@@ -430,7 +562,9 @@ mod kani_entries {
         assert!(branch_and_round_trip(&cfg, &p, d, g).holds);
     }
 
-    /// Continuity between a grid point and its `γ` neighbour, I16F16.
+    /// Continuity of `update` between a grid point and its `γ` neighbour,
+    /// started at each root of the first, I16F16: the nearest root in
+    /// `θ1` is taken and each motor moves by at most the modulus.
     #[kani::proof]
     fn kani_wrist_ik_continuity_i16f16() {
         let p = wrist();
@@ -478,13 +612,8 @@ mod tests {
             r.max_error, r.argmax, r.checked
         );
         assert_eq!(r.failures, 0, "first failure at code {:?}", r.first_failure);
-        // Continuity between grid neighbours along δ and γ.
-        let inv: Vec<_> = (0..GRID * GRID)
-            .map(|c| {
-                let (d, g) = pose(c);
-                cfg.inverse(PitchYaw { delta: d, gamma: g })
-            })
-            .collect();
+        // Continuity of `update` between grid neighbours along δ and γ,
+        // started at each root of the first.
         let mut worst = Verdict::logical(true);
         let mut pairs = 0u32;
         for c in 0..GRID * GRID {
@@ -492,8 +621,7 @@ mod tests {
                 if n >= GRID * GRID || (n == c + 1 && c % GRID == GRID - 1) {
                     continue;
                 }
-                let v =
-                    continuity_step_of(&p, pose(c), &inv[c as usize], pose(n), &inv[n as usize]);
+                let v = continuity_step(&cfg, &p, pose(c), pose(n));
                 assert!(
                     v.holds,
                     "continuity fails between codes {c} and {n}: {}",
@@ -566,11 +694,25 @@ mod tests {
             }
         }
         assert!(best.0 < 0.05);
+        // It is the library's other root (to the search's resolution),
+        // which passes its own check and fails the first root's, and
+        // conversely.
+        let other = cfg.inverse_other_branch(PitchYaw { delta: d, gamma: g });
+        assert!(ang_dist(other.motors.theta1, best.1) < 0.05);
+        assert!(ang_dist(other.motors.theta3, best.2) < 0.05);
+        assert!(other_branch_and_round_trip_of(&cfg, &p, d, g, &other).holds);
+        assert!(!other_branch_and_round_trip_of(&cfg, &p, d, g, &r).holds);
+        assert!(!branch_and_round_trip_of(&cfg, &p, d, g, &other).holds);
         r.motors = crate::wrist::MotorAngles {
             theta1: best.1,
             theta3: best.2,
         };
         assert!(!branch_and_round_trip_of(&cfg, &p, d, g, &r).holds);
+        // The root farther from the previous θ1 is rejected.
+        let plus = cfg.inverse(PitchYaw { delta: d, gamma: g });
+        assert!(nearest_root_of(&plus.motors, &plus, &other, &plus).holds);
+        assert!(!nearest_root_of(&plus.motors, &plus, &other, &other).holds);
+        assert!(nearest_root_of(&other.motors, &plus, &other, &other).holds);
         // A jump of 0.5 rad in θ1 between neighbours is caught.
         let a = (0.2, 0.1);
         let b = (0.2, 0.1 + 2.0 * p.max_bend() / 255.0);
@@ -773,6 +915,19 @@ mod tests {
         let mut bad = good;
         bad.motors.theta3 = f(100_000);
         assert!(!branch_logic_of(1000, 2000, &bad).holds);
+        // The other root: θ4 ≤ 0 and θ1 + θ3 ∈ [−π/2, 3π/2].
+        let mut other = good;
+        other.theta4 = f(-30_000);
+        other.motors.theta3 = f(150_000);
+        assert!(other_branch_logic_of(1000, 2000, &other).holds);
+        assert!(!other_branch_logic_of(1000, 2000, &good).holds);
+        let mut bad = other;
+        bad.motors.theta3 = f(-250_000); // u = −150,000 bits < −π/2
+        assert!(!other_branch_logic_of(1000, 2000, &bad).holds);
+        let mut bad = other;
+        bad.motors.theta1 = f(-205_889);
+        assert!(!other_branch_logic_of(1000, 2000, &bad).holds);
+        assert!(!other_branch_logic_of(200_000, 2000, &other).holds);
     }
 
     /// The shipped inverse meets the branch logic with its real kernels,
@@ -792,11 +947,12 @@ mod tests {
             } else {
                 (d, g)
             };
-            let r = cfg.inverse(PitchYaw {
+            let (r, o) = cfg.inverse_branches(PitchYaw {
                 delta: I16F16::from_bits(d),
                 gamma: I16F16::from_bits(g),
             });
             assert!(branch_logic_of(d, g, &r).holds, "{d} {g}: {r:?}");
+            assert!(other_branch_logic_of(d, g, &o).holds, "{d} {g}: {o:?}");
         }
     }
 

@@ -61,7 +61,8 @@
 //! library evaluates it in that half-angle form, with
 //! `sin²(β/2) = sin²(δ/2) + cos δ sin²(γ/2)`, which has no cancellation
 //! near the straight pose (the printed `acos((CδCγ − Cφ²)/Sφ²)` loses half
-//! the digits there). The branch `θ4 ≥ 0` of eq. (5.14) is taken. From the
+//! the digits there). [`WristConfig::inverse`] takes the root `θ4 ≥ 0` of
+//! eq. (5.14) (see "Two roots" below for the other). From the
 //! third column and row of `R` (derivation in
 //! `docs/derivations/wrist_fk.py`), with `ψ = atan2(Cφ sin(θ4/2), cos(θ4/2))`:
 //!
@@ -85,6 +86,50 @@
 //! branch lives (errata E5.5). `θ1` itself must jump by `2π` somewhere: it
 //! winds once around the straight pose. [`IkState`] unwraps both motors
 //! to the nearest multiple of `2π` of their previous value.
+//!
+//! # Two roots, and the one taken in time
+//!
+//! Eq. (5.13) fixes `sin(θ4/2) = sin(β/2)/sin φ ≥ 0` only; `cos(θ4/2)` is
+//! either square root. The axis of the output before `R_z(θ1)` has the
+//! horizontal part `−2 sin φ sin(θ4/2) · P` with `P = (cos(θ4/2),
+//! cos φ sin(θ4/2))` (as a complex number, `ψ = arg P`), which `R_z(θ1)`
+//! must turn onto `A = (Cγ Sδ, −Sγ)`. The root `cos(θ4/2) ≥ 0` (`θ4 ≥ 0`)
+//! gives the formulas above; the root `cos(θ4/2) ≤ 0` (`θ4 ≤ 0`, the same
+//! joint as `2π − θ4`) replaces `P` by `(−cos(θ4/2), cos φ sin(θ4/2))`,
+//! i.e. `ψ` by `π − ψ`:
+//!
+//! ```text
+//! θ1' = atan2(−Sγ, Cγ Sδ) + ψ = θ1 + 2ψ + π,
+//! θ3' = atan2(Cδ Sγ, Sδ) + ψ  = θ3 + 2ψ + π   (mod 2π),
+//! ```
+//!
+//! with `θ1' + θ3' = ε(δ, γ) + 2ψ ∈ [−ε, π + ε]`, the mirror image of
+//! eq. (5.15)'s interval ([`WristConfig::inverse_other_branch`]; checked
+//! against the rotation matrices in `tests::both_branches_reach_the_pose`).
+//! The two roots are the two motor positions of each pose; they are
+//! `π − 2ψ` apart on both motors: about `π` near the straight pose and `0`
+//! on the boundary `β = 2φ`, where they meet (`θ4 = ±π`).
+//!
+//! A path through the straight pose reverses `A`: on one root the motors
+//! turn by `π` there in no time, while on the path `θ1 = arg A + π − ψ`
+//! passes continuously into `θ1' = arg A' + ψ` of the other root (`A' = −A`,
+//! `ψ → 0`). [`WristConfig::update`] (and the wrist step,
+//! [`super::step`]) therefore takes, on every sample, **the root whose `θ1`
+//! is nearer the previous `θ1`**; `θ4 ≥ 0` on a tie. The two candidates
+//! `arg A + ψ` and `arg A + π − ψ` are mirror images about
+//! `arg A ± π/2`, so the nearer one is `θ4 ≤ 0` exactly when
+//! `A·(cos θ1_prev, sin θ1_prev) > 0`: two products, no root and no
+//! `atan2` more. `θ1` alone decides because the roots are the same angle
+//! `π − 2ψ` apart on both motors: a sample that moves the motors by less
+//! than half of it picks the same root for both; and where the roots
+//! are `π` apart, near the straight pose (held there at `θ3 = −θ1`),
+//! `B = (Sδ, Cδ Sγ)` is nearly `(A_x, −A_y)` and `θ3` nearly `−θ1`, so
+//! `θ3`'s own test, `B·(cos θ3_prev, sin θ3_prev) > 0`, agrees. Away
+//! from the straight pose and the boundary this is the root already in
+//! use; on the boundary the choice is void (the roots coincide). The
+//! motors then cross the straight pose with speeds bounded by the path's
+//! (`tests::tracker_crosses_the_straight_pose_continuously`).
+//! [`WristConfig::inverse`], which has no previous sample, keeps `θ4 ≥ 0`.
 
 use crate::error::{finite, ParamError};
 use crate::scalar::Scalar;
@@ -189,9 +234,13 @@ pub struct Forward<S> {
 pub struct Inverse<S> {
     /// The motor angles: `θ1 ∈ (−π, π]`, `θ1 + θ3 ∈ [−π − ε, ε]` with
     /// `ε = atan(sin²φ/cos 2φ)`, 0.09 for `φ = 16°` (rad, up to
-    /// rounding).
+    /// rounding) on the root `θ4 ≥ 0`, `[−ε, π + ε]` on the other;
+    /// continuous (turns accumulated) from [`WristConfig::update`].
     pub motors: MotorAngles<S>,
-    /// The oblique joint angle `θ4 ∈ [0, π]` (rad), eq. (5.13).
+    /// The oblique joint angle (rad), eq. (5.13): `θ4 ∈ [0, π]` from
+    /// [`WristConfig::inverse`], `[−π, 0]` from
+    /// [`WristConfig::inverse_other_branch`]; [`WristConfig::update`]
+    /// returns the root it took.
     pub theta4: S,
     /// The pose the motors reach: the input, or its projection onto the
     /// workspace boundary when `saturated`.
@@ -402,8 +451,39 @@ impl<S: Scalar> WristConfig<S> {
 
     /// Inverse kinematics, eq. (5.13)–(5.15), saturating: a pose outside
     /// the workspace is replaced by the reachable pose of the same bend
-    /// direction on its boundary, and flagged. Never NaN.
+    /// direction on its boundary, and flagged. Never NaN. The root
+    /// `θ4 ≥ 0` (`cos(θ4/2) ≥ 0`); [`inverse_other_branch`](Self::inverse_other_branch)
+    /// gives the other preimage and [`update`](Self::update) chooses
+    /// between them (module docs).
     pub fn inverse(&self, target: PitchYaw<S>) -> Inverse<S> {
+        self.inverse_branches(target).0
+    }
+
+    /// The other preimage of [`inverse`](Self::inverse): the same pose
+    /// (and the same projection and flags) reached with the oblique joint
+    /// at `−θ4 ∈ [−π, 0]`, i.e. `cos(θ4/2) ≤ 0` in eq. (5.13). Its motor
+    /// angles are `θ1' = θ1 + 2ψ + π`, `θ3' = θ3 + 2ψ + π` (mod `2π`),
+    /// returned as `θ1' ∈ (−π, π]` and `θ1' + θ3' ∈ [−ε, π + ε]` (module
+    /// docs). At the straight pose it is [`inverse`](Self::inverse)'s
+    /// representative; on the workspace boundary (`θ4 = π`) the two
+    /// preimages are the same motor angles (`θ3'` may differ by `2π`).
+    ///
+    /// ```
+    /// use mrr_control::wrist::{PitchYaw, WristConfig, WristParams};
+    /// let cfg = WristConfig::<f64>::new(&WristParams::thesis());
+    /// let pose = PitchYaw { delta: 0.2, gamma: -0.1 };
+    /// let other = cfg.inverse_other_branch(pose);
+    /// assert!(other.theta4 < 0.0);
+    /// let back = cfg.forward(other.motors);
+    /// assert!((back.pose.delta - 0.2).abs() < 1e-12 && (back.pose.gamma + 0.1).abs() < 1e-12);
+    /// assert!((back.theta4 - other.theta4).abs() < 1e-12);
+    /// ```
+    pub fn inverse_other_branch(&self, target: PitchYaw<S>) -> Inverse<S> {
+        self.inverse_branches(target).1
+    }
+
+    /// Both preimages of `target`: `(θ4 ≥ 0, θ4 ≤ 0)`.
+    pub(crate) fn inverse_branches(&self, target: PitchYaw<S>) -> (Inverse<S>, Inverse<S>) {
         let half_pi = S::FRAC_PI_2;
         let d0 = denan(target.delta);
         let g0 = denan(target.gamma);
@@ -450,13 +530,14 @@ impl<S: Scalar> WristConfig<S> {
         let ch = S::ONE.sub(sq(sh)).sqrt();
         let theta4 = two.mul(sh.atan2(ch));
         if sh == S::ZERO {
-            return Inverse {
+            let r = Inverse {
                 motors: MotorAngles::default(),
                 theta4: S::ZERO,
                 pose,
                 saturated,
                 straight: true,
             };
+            return (r, r);
         }
         let psi = self.cos_phi.mul(sh).atan2(ch);
         // Eq. (5.14), divided by 2 sin(θ4/2) sin φ.
@@ -470,7 +551,7 @@ impl<S: Scalar> WristConfig<S> {
             .neg()
             .atan2(cg.mul(sq(sd)).add(cd.mul(sq(sg))));
         let u = eps.sub(two.mul(psi));
-        Inverse {
+        let plus = Inverse {
             motors: MotorAngles {
                 theta1,
                 theta3: u.sub(theta1),
@@ -479,7 +560,19 @@ impl<S: Scalar> WristConfig<S> {
             pose,
             saturated,
             straight: false,
-        }
+        };
+        // The root cos(θ4/2) ≤ 0 of eq. (5.13): ψ → π − ψ, so θ1 = az + ψ
+        // and u = ε + 2ψ (module docs).
+        let theta1 = wrap(az_z.add(psi));
+        let minus = Inverse {
+            motors: MotorAngles {
+                theta1,
+                theta3: eps.add(two.mul(psi)).sub(theta1),
+            },
+            theta4: theta4.neg(),
+            ..plus
+        };
+        (plus, minus)
     }
 
     /// Inverse kinematics that rejects an unreachable pose with a typed
@@ -511,9 +604,10 @@ impl<S: Scalar> WristConfig<S> {
 }
 
 /// The motor positions of the previous sample, for an inverse kinematics
-/// that is continuous in time (eq. 5.15 generalized): each motor is
-/// unwrapped to the multiple of `2π` nearest its previous value, and at the
-/// straight pose the motors stay where they are on the circle
+/// that is continuous in time (eq. 5.15 generalized): the root of eq.
+/// (5.13) whose `θ1` is nearer the previous one (module docs), each motor
+/// unwrapped to the multiple of `2π` nearest its previous value, and at
+/// the straight pose the motors stay where they are on the circle
 /// `θ1 + θ3 = 0`.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct IkState<S> {
@@ -529,16 +623,32 @@ impl<S: Scalar> IkState<S> {
 }
 
 impl<S: Scalar> WristConfig<S> {
-    /// Inverse kinematics continuous in time: [`WristConfig::inverse`],
-    /// then each motor angle moved by a multiple of `2π` to the nearest of
-    /// the previous sample's (`state`), which it updates. At the straight
-    /// pose `θ1` keeps its previous value and `θ3 = −θ1` (mod `2π`).
+    /// Inverse kinematics continuous in time: of the two roots
+    /// ([`WristConfig::inverse`], `θ4 ≥ 0`, and
+    /// [`WristConfig::inverse_other_branch`], `θ4 ≤ 0`) the one whose `θ1`
+    /// is nearer the previous sample's (`state`; `θ4 ≥ 0` on a tie; module
+    /// docs), then each motor angle moved by a multiple of `2π` to the
+    /// nearest of the previous sample's, which it updates. At the straight
+    /// pose `θ1` keeps its previous value and `θ3 = −θ1` (mod `2π`). A
+    /// state started at measured motors picks their root on the first
+    /// sample.
     /// Motor angles accumulate turns; on `I16F16` they saturate after
     /// about 5,000 turns.
     pub fn update(&self, state: &mut IkState<S>, target: PitchYaw<S>) -> Inverse<S> {
-        let mut r = self.inverse(target);
+        let (plus, minus) = self.inverse_branches(target);
         let prev = state.motors;
         let (p1, p3) = (denan(prev.theta1), denan(prev.theta3));
+        // The branch whose θ1 is nearer the previous θ1 (`θ4 ≥ 0` on a
+        // tie); module docs.
+        let off = |n: S| {
+            let d = n.to_f64() - p1.to_f64();
+            libm::fabs(d - libm::round(d / core::f64::consts::TAU) * core::f64::consts::TAU)
+        };
+        let mut r = if off(minus.motors.theta1) < off(plus.motors.theta1) {
+            minus
+        } else {
+            plus
+        };
         let (n1, n3) = if r.straight {
             (p1, p1.neg())
         } else {
@@ -1409,6 +1519,154 @@ pub(crate) mod tests {
         check::<f64>();
         check::<f32>();
         check::<I16F16>();
+    }
+
+    /// `dψ/dβ` at bend `beta` (rad), with `ψ = atan(cos φ tan(θ4/2))` and
+    /// `sin(θ4/2) = sin(β/2)/sin φ` (eq. 5.13): the product of
+    /// `dψ/dθ4 = (cos φ/2)/(cos²(θ4/2) + cos²φ sin²(θ4/2))` and
+    /// `dθ4/dβ = cos(β/2)/(sin φ cos(θ4/2))`, both increasing in `β` on
+    /// `[0, 2φ)`.
+    pub(crate) fn psi_rate(phi: f64, beta: f64) -> f64 {
+        let (sp, cp) = libm::sincos(phi);
+        let sh = libm::sin(beta / 2.0) / sp;
+        let ch = libm::sqrt(1.0 - sh * sh);
+        let dpsi_dt4 = 0.5 * cp / (ch * ch + cp * cp * sh * sh);
+        let dt4_db = libm::cos(beta / 2.0) / (sp * ch);
+        dpsi_dt4 * dt4_db
+    }
+
+    /// Both roots of eq. (5.13) reach the pose, checked against the
+    /// rotation matrices built from their definitions (eq. 5.4 = eq. 5.6),
+    /// with opposite `θ4`; their motor angles differ by `2ψ + π` on both
+    /// motors, `ψ = atan2(cos φ sin(θ4/2), cos(θ4/2))` (module docs).
+    #[test]
+    fn both_branches_reach_the_pose() {
+        let p = WristParams::thesis();
+        let phi = p.phi();
+        let cfg = WristConfig::<f64>::new(&p);
+        let mut worst: f64 = 0.0;
+        let n = 41;
+        for i in 0..n {
+            for j in 0..n {
+                let d = -0.6 + 1.2 * i as f64 / (n - 1) as f64;
+                let g = -0.6 + 1.2 * j as f64 / (n - 1) as f64 + 1e-3;
+                let target = PitchYaw { delta: d, gamma: g };
+                let plus = cfg.inverse(target);
+                let minus = cfg.inverse_other_branch(target);
+                assert_eq!(
+                    (plus.pose, plus.saturated, plus.straight),
+                    (minus.pose, minus.saturated, minus.straight)
+                );
+                let want = pitch_yaw(plus.pose.delta, plus.pose.gamma);
+                for r in [plus, minus] {
+                    let m = chain(phi, r.motors.theta1, r.theta4, r.motors.theta3);
+                    worst = worst.max(dist(&m, &want));
+                    let f = cfg.forward(r.motors);
+                    worst = worst
+                        .max((f.pose.delta - r.pose.delta).abs())
+                        .max((f.pose.gamma - r.pose.gamma).abs());
+                    if !r.saturated {
+                        worst = worst.max((f.theta4 - r.theta4).abs());
+                    }
+                }
+                assert!(plus.theta4 >= 0.0 && minus.theta4 == -plus.theta4);
+                let h = plus.theta4 / 2.0;
+                let psi = (phi.cos() * h.sin()).atan2(h.cos());
+                for (a, b) in [
+                    (plus.motors.theta1, minus.motors.theta1),
+                    (plus.motors.theta3, minus.motors.theta3),
+                ] {
+                    worst = worst.max(ang_dist(b, a + 2.0 * psi + PI));
+                }
+                // The other branch's continuity interval, mirrored.
+                let (u, eps) = (
+                    minus.motors.theta1 + minus.motors.theta3,
+                    (phi.sin().powi(2) / (2.0 * phi).cos()).atan(),
+                );
+                assert!(minus.motors.theta1.abs() <= PI);
+                assert!((-eps - 1e-12..=PI + eps + 1e-12).contains(&u), "{u}");
+            }
+        }
+        assert!(worst < 1e-12, "{worst}");
+    }
+
+    /// [`IkState`] along the line `(δ, γ) = s (cos a, sin a)`, `s` from
+    /// −10° to +10° in steps `Δs = 2 mrad` (0.5 rad/s at 4 ms), through
+    /// the straight pose, on every backend: each motor moves by at most
+    /// `(psi_rate(φ, 10°) + s_max/2)·Δs` a sample (derivation at the step's
+    /// test `crossing`) plus both ends' rounding (`tol` away from the
+    /// straight pose, and the bend direction `A` rounded, `4√2 q/s_min` at
+    /// the smallest bend `s_min` of the path, `q` the resolution); the
+    /// forward kinematics of the motors reaches the pose within the
+    /// round-trip bound of `proofs::wrist_ik`. On the branch `θ4 ≥ 0`
+    /// alone the motors turn by about π at the crossing.
+    #[test]
+    fn tracker_crosses_the_straight_pose_continuously() {
+        fn run<S: Scalar>(a_deg: f64, tol: f64) -> (f64, f64) {
+            let p = WristParams::thesis();
+            let cfg = WristConfig::<S>::new(&p);
+            let c64 = WristConfig::<f64>::new(&p);
+            let (sa, ca) = libm::sincos(a_deg.to_radians());
+            let (ds, s_max) = (0.002, 10f64.to_radians());
+            let n = libm::ceil(2.0 * s_max / ds) as usize;
+            let s = |k: usize| -s_max + k as f64 * ds;
+            let s_min = (0..=n).map(|k| s(k).abs()).fold(f64::MAX, f64::min);
+            let q = S::RESOLUTION.to_f64();
+            let bound = (psi_rate(p.phi(), s_max) + s_max / 2.0) * ds
+                + 2.0 * (tol + 4.0 * core::f64::consts::SQRT_2 * q / s_min);
+            let pose_bound = crate::proofs::wrist_ik::round_trip_bound::<S>();
+            let at = |k: usize| PitchYaw {
+                delta: S::from_f64(s(k) * ca),
+                gamma: S::from_f64(s(k) * sa),
+            };
+            let m0 = c64
+                .inverse(PitchYaw {
+                    delta: s(0) * ca,
+                    gamma: s(0) * sa,
+                })
+                .motors;
+            let mut st = IkState::new(MotorAngles {
+                theta1: S::from_f64(m0.theta1),
+                theta3: S::from_f64(m0.theta3),
+            });
+            let (mut worst_step, mut worst_pose) = (0.0f64, 0.0f64);
+            for k in 1..=n {
+                let before = st.motors;
+                let r = cfg.update(&mut st, at(k));
+                for (now, was) in [
+                    (r.motors.theta1, before.theta1),
+                    (r.motors.theta3, before.theta3),
+                ] {
+                    worst_step = worst_step.max((now.to_f64() - was.to_f64()).abs() / bound);
+                }
+                let f = c64.forward(MotorAngles {
+                    theta1: r.motors.theta1.to_f64(),
+                    theta3: r.motors.theta3.to_f64(),
+                });
+                let e = (f.pose.delta - at(k).delta.to_f64())
+                    .abs()
+                    .max((f.pose.gamma - at(k).gamma.to_f64()).abs());
+                worst_pose = worst_pose.max(e / pose_bound);
+            }
+            (worst_step, worst_pose)
+        }
+        for a in [0.0, 35.0, 90.0, 200.0] {
+            for (name, (step, pose)) in [
+                ("f64", run::<f64>(a, 1e-12)),
+                ("f32", run::<f32>(a, 2e-5)),
+                ("I16F16", run::<I16F16>(a, 5e-3)),
+            ] {
+                std::eprintln!("{name} a = {a}°: step {step:.3}, pose {pose:.3} of the bounds");
+                assert!(
+                    step <= 1.0,
+                    "{name} a = {a}°: motor step {step} of the bound"
+                );
+                assert!(
+                    pose <= 1.0,
+                    "{name} a = {a}°: pose error {pose} of the bound"
+                );
+            }
+        }
     }
 
     #[test]

@@ -36,8 +36,17 @@
 //!    shared with steps 5 and 1 (two `atan2`, no half-angle sines; see
 //!    `ik` in the source; `tests::vector_inverse_kinematics_matches_the_library_inverse`
 //!    compares the two on every backend), then made continuous in time
-//!    like [`IkState`](super::kinematics::IkState): each motor moves by the
-//!    multiple of `2π` nearest its previous value. A reference outside the
+//!    like [`IkState`](super::kinematics::IkState): of the two roots of
+//!    eq. (5.13) (`θ4 ≥ 0` and `θ4 ≤ 0`, the two motor positions of a
+//!    pose) the one whose `θ1` is nearer the previous `θ1_r` (the sign of
+//!    two products, [`super::kinematics`] "Two roots"), and each motor
+//!    moves by the multiple of `2π` nearest its previous value. A path
+//!    through the straight pose reverses the direction of the bend: the
+//!    root `θ4 ≥ 0` alone would turn both motor references by about `π`
+//!    in one tick there, while the nearer root carries them on
+//!    continuously (`tests::motor_references_are_continuous_through_the_straight_pose`).
+//!    The first tick after [`WristStepConfig::state`] takes the root of
+//!    the measured motors it starts from. A reference outside the
 //!    reachable cone (bend above `2φ`; the mode manager's box
 //!    `|δ|, |γ| ≤ 30°` contains poses bent up to 42°) is projected onto its
 //!    boundary along its azimuth and flagged
@@ -48,10 +57,11 @@
 //!    at the straight pose and on the boundary (see [`super::jacobian`]);
 //!    the difference is bounded everywhere, costs two subtractions, and
 //!    lags the exact rate by half a tick. Near the straight pose the motor
-//!    angles turn fast for a small pose motion (the direction of the bend
-//!    is undefined there): a target through the straight pose gives large
-//!    reference rates, and on `I16F16` the stored acceleration saturates
-//!    at ±32 768 rad/s².
+//!    angles turn fast for a small pose motion that passes beside it (the
+//!    direction of the bend is undefined there): such a target gives large
+//!    reference rates (up to `π/2` in a tick, where the choice of root
+//!    halves the turn), and on `I16F16` the stored acceleration saturates
+//!    at ±32 768 rad/s². A target straight through it does not (step 3).
 //! 5. **Force mapping**, eq. (6.1): the load torque of each motor law,
 //!    `τ_t = −Jᵀ τ` (the torque the joint applies to the environment
 //!    side, the ch. 4 sign of eq. 4.1/6.4; `τ` is the environment's torque
@@ -524,8 +534,8 @@ struct Ik<S> {
     cd: S,
     sg: S,
     cg: S,
-    /// `θ1`, `θ3` reduced to `(−π, π]` and `(sin θ1, cos θ1)`; `None` at
-    /// the straight pose.
+    /// `θ1`, `θ3` reduced to `(−π, π]` and `(sin θ1, cos θ1)` on the root
+    /// taken; `None` at the straight pose.
     reduced: Option<([S; 2], (S, S))>,
     saturated: bool,
     /// `dθ3/dθ2` of the inner universal joint at this pose, eq. (5.3):
@@ -592,7 +602,8 @@ impl<S: Scalar> WristStepConfig<S> {
     /// A state for a wrist at rest at the measured joint coordinates
     /// `motors` (rad): the reference starts at the pose they reach (forward
     /// kinematics, once), the motor references at `motors` (the inverse
-    /// kinematics of that pose, unwrapped to them), in the settings'
+    /// kinematics of that pose on the root nearest them, unwrapped to
+    /// them), in the settings'
     /// initial mode, every rate 0.
     pub fn state(&self, motors: MotorAngles<S>) -> WristStepState<S> {
         let pose = self.kinematics.forward(motors).pose;
@@ -613,7 +624,7 @@ impl<S: Scalar> WristStepConfig<S> {
             theta1_sin_cos: m[0].sin_cos(),
             rate: [S::ZERO; 2],
         };
-        let ik = self.ik(pose);
+        let ik = self.ik(pose, Some(st.theta1_sin_cos));
         self.advance(&mut st, &ik);
         st.rate = [S::ZERO; 2];
         st
@@ -671,8 +682,15 @@ impl<S: Scalar> WristStepConfig<S> {
     /// 121 × 121 grid: motor angles, `(sin θ1, cos θ1)` and the projected
     /// pose within `2e-5` (`f32`) and `5e-3` (`I16F16`, dominated by bends
     /// of a few resolution steps) of [`WristConfig::inverse`].
+    ///
+    /// The root: with `prev_theta1 = (sin θ1_r, cos θ1_r)` of the previous
+    /// reference, the root whose `θ1` is nearer `θ1_r` (`θ4 ≤ 0` when
+    /// `A·(cos θ1_r, sin θ1_r) > 0`; module docs of
+    /// [`super::kinematics`]), by negating `P`'s first component; without
+    /// one, `θ4 ≥ 0` (as [`WristConfig::inverse`]). On the cone both roots
+    /// are `θ4 = ±π` (`P = (0, cos φ)`): nothing to choose.
     #[inline(always)]
-    fn ik(&self, r: PitchYaw<S>) -> Ik<S> {
+    fn ik(&self, r: PitchYaw<S>, prev_theta1: Option<(S, S)>) -> Ik<S> {
         // Fixed point (folded at compile time): through the binary angle,
         // a table lookup instead of a reduction modulo π/2 and polynomials
         // (the same 1-LSB bound: `Scalar::to_turn`).
@@ -765,6 +783,20 @@ impl<S: Scalar> WristStepConfig<S> {
                     .sqrt_small()
                     .mul_coef(&self.inv_2_sin_phi);
                 let py = n.mul_coef(&self.cot_phi_half);
+                // The branch: the root cos(θ4/2) ≤ 0 of eq. (5.13) is P
+                // with px negated (θ1 = arg A + ψ instead of arg A + π − ψ,
+                // mirror images about arg A ± π/2), so the θ1 nearer the
+                // previous θ1_r is that root's exactly when
+                // A·(cos θ1_r, sin θ1_r) > 0. Without a previous
+                // reference, θ4 ≥ 0.
+                let px = match prev_theta1 {
+                    Some((s1, c1))
+                        if ax.mul_unit_range(c1).add(ay.mul_unit_range(s1)) > S::ZERO =>
+                    {
+                        px.neg()
+                    }
+                    _ => px,
+                };
                 let v1 = rot(ax, ay, px, py);
                 let v3 = rot(sd, cd.mul_unit_range(sg), px, py);
                 // (sin θ1, cos θ1) = V1/|V1| (|V1| = |A|·|P'| = sin β (1 +
@@ -794,7 +826,8 @@ impl<S: Scalar> WristStepConfig<S> {
         }
     }
 
-    /// Move the motor references to the inverse kinematics `ik`, each by
+    /// Move the motor references to the inverse kinematics `ik` (on the
+    /// root `ik` took, nearest the previous `θ1_r`), each by
     /// the multiple of `2π` nearest its previous value (at the straight
     /// pose `θ1` stays and `θ3 → −θ1`, as [`IkState`](super::kinematics::IkState) does); returns the
     /// steps `Δθ` (stored angle units) and `(sin θ1, cos θ1)`.
@@ -848,10 +881,13 @@ impl<S: Scalar> WristStepConfig<S> {
             false,
         );
         // 3. Inverse kinematics, continuous in time.
-        let ik = self.ik(PitchYaw {
-            delta: m.reference[0],
-            gamma: m.reference[1],
-        });
+        let ik = self.ik(
+            PitchYaw {
+                delta: m.reference[0],
+                gamma: m.reference[1],
+            },
+            Some(st.theta1_sin_cos),
+        );
         let (step, (s1, c1)) = self.advance(st, &ik);
         // 4. Reference rates and accelerations by difference.
         let mut rate = [S::ZERO; 2];

@@ -9,6 +9,7 @@
 use super::*;
 use crate::scalar::I16F16;
 use crate::wrist::jacobian::{ForceMapping, JacobianKind};
+use crate::wrist::kinematics::tests::psi_rate;
 use crate::wrist::kinematics::IkState;
 use crate::wrist::ujoint::transmit;
 use core::f64::consts::{PI, TAU};
@@ -382,7 +383,7 @@ fn vector_inverse_kinematics_matches_the_library_inverse() {
                     delta: S::from_f64(d),
                     gamma: S::from_f64(g),
                 };
-                let mine = cfg.ik(r);
+                let mine = cfg.ik(r, None);
                 let lib = kin.inverse(r);
                 assert_eq!(mine.saturated, lib.saturated, "({d}, {g})");
                 let dp = (mine.pose.delta.to_f64() - lib.pose.delta.to_f64()).abs()
@@ -591,8 +592,10 @@ fn joint_torque_overflow_is_flagged_and_outputs_stay_finite() {
         let cfg = WristStepConfig::<S>::new(&p);
         // At a bent reference, where ‖J‖ is largest (the first ticks from
         // the straight pose are rate-limited and nearly singular).
+        // On the root θ4 ≥ 0, where ‖Jᵀ‖ > 1 along the channels below (the
+        // step keeps the root nearest the motors it starts from).
         let bent = WristTarget::<S>::from_si(0.25, -0.2, 0.0, 0.0);
-        let mut warm = cfg.state(MotorAngles::default());
+        let mut warm = cfg.state(cfg.kinematics().inverse(bent.pose).motors);
         let quiet = WristReadings::<S>::from_si([0.0; 6], [0.0; 2], [0.0; 2]);
         for _ in 0..2000 {
             cfg.update(&mut warm, &quiet, &bent);
@@ -1059,10 +1062,13 @@ fn ik_boundaries_are_strict() {
             .map(|k| next(d0, k))
             .find(|&d| d > z && cb(d) == cfg.cos_2phi)
             .expect("a pose exactly on the cone");
-        let ik = cfg.ik(PitchYaw {
-            delta: on,
-            gamma: z,
-        });
+        let ik = cfg.ik(
+            PitchYaw {
+                delta: on,
+                gamma: z,
+            },
+            None,
+        );
         assert!(!ik.saturated && ik.reduced.is_some(), "{} on", S::NAME);
         assert_eq!((ik.pose.delta, ik.pose.gamma), (on, z));
         let mut out = on;
@@ -1070,10 +1076,13 @@ fn ik_boundaries_are_strict() {
             out = next(out, 1);
         }
         assert!(
-            cfg.ik(PitchYaw {
-                delta: out,
-                gamma: z
-            })
+            cfg.ik(
+                PitchYaw {
+                    delta: out,
+                    gamma: z
+                },
+                None
+            )
             .saturated,
             "{} out",
             S::NAME
@@ -1086,10 +1095,13 @@ fn ik_boundaries_are_strict() {
             .find(|&d| d > z && n(d) == cfg.min_bend)
             .expect("a bend of exactly min_bend");
         assert!(
-            cfg.ik(PitchYaw {
-                delta: at,
-                gamma: z
-            })
+            cfg.ik(
+                PitchYaw {
+                    delta: at,
+                    gamma: z
+                },
+                None
+            )
             .reduced
             .is_some(),
             "{} at",
@@ -1100,10 +1112,13 @@ fn ik_boundaries_are_strict() {
             inside = next(inside, -1);
         }
         assert!(
-            cfg.ik(PitchYaw {
-                delta: inside,
-                gamma: z
-            })
+            cfg.ik(
+                PitchYaw {
+                    delta: inside,
+                    gamma: z
+                },
+                None
+            )
             .reduced
             .is_none(),
             "{} in: δ {inside:?} sin β {:?} < {:?}, at {at:?}",
@@ -1139,7 +1154,7 @@ fn singular_is_strict_at_the_threshold() {
     let cfg = WristStepConfig::<I16F16>::new(&params());
     let z = I16F16::ZERO;
     let parts = |d: I16F16| {
-        let ik = cfg.ik(PitchYaw { delta: d, gamma: z });
+        let ik = cfg.ik(PitchYaw { delta: d, gamma: z }, None);
         let (_, (s1, c1)) = ik.reduced?;
         let (sp_s1, sp_c1) = (
             s1.mul_unit_range(cfg.sin_phi),
@@ -1216,4 +1231,216 @@ fn reference_saturated_is_either_limit_alone() {
             assert!(out.saturated);
         }
     }
+}
+
+/// The step driven along the line `(δ, γ) = s (cos a, sin a)` from
+/// `s = −10°` to `+10°` at `v = 0.5 rad/s` (`Δs = vT = 2 mrad` a tick),
+/// through the straight pose, the measured motors following the
+/// references. Returns the largest motor-reference step over its bound
+/// and the largest pose error of the forward kinematics of the
+/// references over its bound.
+///
+/// The step bound. On the branch that crosses continuously,
+/// `θ1 = π + arg A − ψ` and `θ3 = −π + arg B − ψ` (`θ4 ≥ 0`) become
+/// `arg A + ψ`, `arg B + ψ` (`θ4 ≤ 0`) where `A = (cγ sδ, −sγ)` and
+/// `B = (sδ, cδ sγ)` reverse, so each motor angle is
+/// `arg(A/s) + sgn(s) ψ` (resp. `B/s`), a smooth function of `s`, and
+/// `|dθ/ds| ≤ |d arg(A/s)/ds| + dψ/dβ · |dβ/ds|`:
+/// * `|dβ/ds| ≤ 1` (the output axis `(sδ cγ, −sγ, cδ cγ)` has orthogonal
+///   partial derivatives of length `cγ ≤ 1` and `1`), and `β ≤ |s|`, so
+///   `dψ/dβ ≤ psi_rate(φ, 10°)` (increasing in `β`);
+/// * by the series of `sin` and `cos`, `A/s` turns from `(cos a, −sin a)`
+///   by `sin a cos a · s² (sin²a/3 + cos²a/6) + O(s⁴)` and `B/s` from
+///   `(cos a, sin a)` by `sin a cos a · s² (cos²a/3 + sin²a/6) + O(s⁴)`,
+///   whose rates are at most `|s|/3`; `|s|/2` covers the `O(s³)` terms.
+///
+/// So a tick moves each motor by at most `(psi_rate + s_max/2)·Δs`, plus
+/// the backend's error at both ends: the inverse kinematics' documented
+/// `tol` (step `ik`), the direction of the bend rounded at the smallest
+/// bend the step resolves (`√2 q / min_bend`, `q` the resolution), and
+/// the straight-pose hold (`θ3 = −θ1` while the branch has
+/// `θ1 + θ3 = ∓2ψ + O(β²)`, at most `2 psi_rate · min_bend` apart).
+/// The pose error bound: motor errors of `tol` reach the pose through
+/// `|J_ij| ≤ 1.4` (`super::jacobian`), at most `2.8 tol`, plus the
+/// rounding of the target (`q`).
+fn crossing<S: Scalar>(a_deg: f64, tol: f64) -> (f64, f64) {
+    let p = params();
+    let cfg = WristStepConfig::<S>::new(&p);
+    let phi = p.settings().kinematics.phi();
+    let kin = WristConfig::<f64>::new(&p.settings().kinematics);
+    let (sa, ca) = libm::sincos(a_deg.to_radians());
+    let (v, t) = (0.5, p.sample_period());
+    let ds = v * t;
+    let s_max = 10f64.to_radians();
+    let n = libm::ceil(2.0 * s_max / ds) as usize;
+    let q = S::RESOLUTION.to_f64();
+    let min_bend = cfg.min_bend.to_f64();
+    let slack = 2.0 * tol
+        + 2.0 * core::f64::consts::SQRT_2 * q / min_bend
+        + 2.0 * psi_rate(phi, min_bend) * min_bend;
+    let bound = (psi_rate(phi, s_max) + s_max / 2.0) * ds + slack;
+    let pose_bound = 2.8 * tol + 2.0 * q;
+    let pose = |k: usize| {
+        let s = -s_max + k as f64 * ds;
+        (s * ca, s * sa)
+    };
+    let (d0, g0) = pose(0);
+    let m0 = kin.inverse(PitchYaw {
+        delta: d0,
+        gamma: g0,
+    });
+    let mut st = cfg.state(MotorAngles {
+        theta1: S::from_f64(m0.motors.theta1),
+        theta3: S::from_f64(m0.motors.theta3),
+    });
+    let mut prev = [st.theta[0].to_f64(), st.theta[1].to_f64()];
+    let (mut worst_step, mut worst_pose) = (0.0f64, 0.0f64);
+    for k in 1..=n {
+        let (d, g) = pose(k);
+        let readings = WristReadings::<S>::from_si([0.0; 6], prev, [0.0; 2]);
+        let out = cfg.update(&mut st, &readings, &target::<S>([d, g, v * ca, v * sa]));
+        assert!(
+            out.mode == WristMode::Active && !out.reference_saturated,
+            "{} tick {k}",
+            S::NAME
+        );
+        let m = out.motor_reference_si();
+        for i in 0..2 {
+            worst_step = worst_step.max((m[i] - prev[i]).abs() / bound);
+        }
+        let f = kin.forward(MotorAngles {
+            theta1: m[0],
+            theta3: m[1],
+        });
+        let e = (f.pose.delta - d).abs().max((f.pose.gamma - g).abs());
+        worst_pose = worst_pose.max(e / pose_bound);
+        prev = m;
+    }
+    (worst_step, worst_pose)
+}
+
+/// A path through the straight pose, along `δ` and obliquely, on every
+/// backend: the motor references move by at most the bound derived in
+/// [`crossing`] on every tick (on the branch `θ4 ≥ 0` alone they turn by
+/// about π in one tick at the crossing: the bend direction reverses), and
+/// the forward kinematics of the references reaches the requested pose.
+#[test]
+fn motor_references_are_continuous_through_the_straight_pose() {
+    for a in [0.0, 35.0, 90.0, 200.0] {
+        for (name, (step, pose)) in [
+            ("f64", crossing::<f64>(a, 1e-12)),
+            ("f32", crossing::<f32>(a, 2e-5)),
+            ("I16F16", crossing::<I16F16>(a, 5e-3)),
+        ] {
+            std::eprintln!("{name} a = {a}°: step {step:.3}, pose {pose:.3} of the bounds");
+            assert!(
+                step <= 1.0,
+                "{name} a = {a}°: motor step {step} of the bound"
+            );
+            assert!(
+                pose <= 1.0,
+                "{name} a = {a}°: pose error {pose} of the bound"
+            );
+        }
+    }
+}
+
+/// A state started at motors on the root `θ4 < 0` keeps them: its
+/// references are those motors (the root nearest them), not the other
+/// motor position of the same pose (about `π − 2ψ` away on both motors).
+#[test]
+fn state_keeps_the_root_of_the_measured_motors() {
+    fn run<S: Scalar>(tol: f64) {
+        let p = params();
+        let cfg = WristStepConfig::<S>::new(&p);
+        let kin = WristConfig::<f64>::new(&p.settings().kinematics);
+        for (d, g) in [(0.2, -0.1), (0.01, 0.02), (-0.3, 0.25)] {
+            let m = kin
+                .inverse_other_branch(PitchYaw { delta: d, gamma: g })
+                .motors;
+            assert!(kin.forward(m).theta4 < 0.0);
+            let st = cfg.state(MotorAngles {
+                theta1: S::from_f64(m.theta1),
+                theta3: S::from_f64(m.theta3),
+            });
+            let r = st.motor_reference();
+            let e = (r.theta1.to_f64() - m.theta1)
+                .abs()
+                .max((r.theta3.to_f64() - m.theta3).abs());
+            assert!(e < tol, "{} ({d}, {g}): {e}", S::NAME);
+        }
+    }
+    run::<f64>(1e-9);
+    run::<f32>(1e-4);
+    run::<I16F16>(1e-2);
+}
+
+/// Through the straight pose onto the root `θ4 < 0`, under a constant
+/// wrench: the step agrees with the composition of the components (whose
+/// `IkState` takes the same root and whose force mapping differentiates
+/// the forward kinematics at the motors, whichever root they are on), and
+/// its joint torques are `−Jᵀτ` of that Jacobian, the `θ3` component
+/// carried through eq. (5.3).
+#[test]
+fn matches_the_composition_through_the_straight_pose() {
+    let p = params();
+    let cfg = WristStepConfig::<f64>::new(&p);
+    let kin = WristConfig::<f64>::new(&p.settings().kinematics);
+    let (sa, ca) = libm::sincos(35f64.to_radians());
+    let start = kin
+        .inverse(PitchYaw {
+            delta: -0.2 * ca,
+            gamma: -0.2 * sa,
+        })
+        .motors;
+    let mut st = cfg.state(start);
+    let mut c = Composition::new(&p, start);
+    let w = [0.2, -0.1, 0.0, 0.05, -0.3, 0.1];
+    let sg = p.settings().sensor.decoupling().gauge_signals(&w);
+    let mut m = [start.theta1, start.theta3];
+    let (mut on_other, mut worst) = (0, [0.0f64; 4]);
+    for k in 0..300 {
+        let s = -0.2 + 0.002 * k as f64;
+        let x = if s < 0.2 {
+            [s * ca, s * sa, 0.5 * ca, 0.5 * sa]
+        } else {
+            [0.2 * ca, 0.2 * sa, 0.0, 0.0]
+        };
+        let out = cfg.update(
+            &mut st,
+            &WristReadings::from_si(sg, m, [0.0; 2]),
+            &target(x),
+        );
+        let (tau, _, motors, _, _, mode) = c.step(sg, m, [0.0; 2], x);
+        assert_eq!((out.mode, mode), (WristMode::Active, WristMode::Active));
+        let mr = out.motor_reference_si();
+        let tq = out.motor_torque_si();
+        let at = MotorAngles {
+            theta1: motors[0],
+            theta3: motors[1],
+        };
+        let tm = c.fm.motor_torques(at, out.interaction_si()).torque;
+        let pose = kin.forward(at);
+        let bend = (pose.pose.delta.cos() * pose.pose.gamma.cos())
+            .clamp(-1.0, 1.0)
+            .acos();
+        let shaft = transmit(bend, motors[1], 0.0, -tm[1]).torque;
+        let jt = out.joint_torque_si();
+        on_other += (pose.theta4 < 0.0) as usize;
+        for i in 0..2 {
+            worst[0] = worst[0].max((mr[i] - motors[i]).abs());
+            worst[1] = worst[1].max((tq[i] - tau[i]).abs());
+        }
+        worst[2] = worst[2]
+            .max((jt[0] + tm[0]).abs())
+            .max((jt[1] - shaft).abs());
+        worst[3] = worst[3].max(jt[0].abs().min(jt[1].abs()));
+        m = [motors[0] + 0.001, motors[1] - 0.001];
+    }
+    assert!(on_other > 100, "{on_other} ticks on the root θ4 < 0");
+    assert!(worst[3] > 0.01, "the wrench loads both joints: {worst:?}");
+    assert!(
+        worst[0] < 1e-9 && worst[1] < 1e-6 && worst[2] < 1e-9,
+        "{worst:?}"
+    );
 }
