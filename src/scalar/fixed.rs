@@ -620,6 +620,17 @@ impl Scalar for I16F16 {
         I16F16::from_bits(mul_bits_unit(self.to_bits(), u.to_bits()))
     }
     #[inline(always)]
+    fn dot_direction_positive(self, u: Self, c: Self, v: Self) -> bool {
+        // Products of 2⁻³² units over 4: |self|, |c| ≤ 2¹⁶ and |u >> 2|,
+        // |v >> 2| ≤ 2¹⁴, so each is within 2³⁰ and, by Cauchy–Schwarz
+        // (|self·u + c·v| ≤ √2·√(u² + v²)), their sum within 1.52·2³⁰ <
+        // 2³¹. Flooring `u`, `v` errs by less than 4 units each: at most
+        // 3·(|self| + |c|) in the sum, i.e. 3·2⁻¹⁶(|self| + |c|).
+        let p = self.to_bits().wrapping_mul(u.to_bits() >> 2);
+        let q = c.to_bits().wrapping_mul(v.to_bits() >> 2);
+        p.wrapping_add(q) > 0
+    }
+    #[inline(always)]
     fn div(self, rhs: Self) -> Self {
         I16F16::from_bits(div_bits(self.to_bits(), rhs.to_bits()))
     }

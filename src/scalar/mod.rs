@@ -185,6 +185,16 @@ pub trait Scalar:
     fn mul_unit_range(self, u: Self) -> Self {
         self.mul(u)
     }
+    /// Whether `self·u + c·v > 0`, for `self`, `c` in `[−1, 1]` and
+    /// `(u, v)` a unit vector (as stored: `u² + v² ≤ 1 + 2⁻¹⁴`): the sign
+    /// of the dot product of a vector of the unit disc with a direction.
+    /// Floats multiply; fixed point forms the two products with `u`, `v`
+    /// short by two bits, one 32-bit multiply each, and misjudges the
+    /// sign only where `|self·u + c·v| ≤ 3·2⁻¹⁶(|self| + |c|)`.
+    #[inline]
+    fn dot_direction_positive(self, u: Self, c: Self, v: Self) -> bool {
+        self.mul(u).add(c.mul(v)) > Self::ZERO
+    }
     /// `self / rhs`; division by zero gives `±MAX` with the sign of `self`,
     /// and `0 / 0 = 0` (fixed: saturating).
     fn div(self, rhs: Self) -> Self;

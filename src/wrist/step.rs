@@ -790,11 +790,7 @@ impl<S: Scalar> WristStepConfig<S> {
                 // A·(cos θ1_r, sin θ1_r) > 0. Without a previous
                 // reference, θ4 ≥ 0.
                 let px = match prev_theta1 {
-                    Some((s1, c1))
-                        if ax.mul_unit_range(c1).add(ay.mul_unit_range(s1)) > S::ZERO =>
-                    {
-                        px.neg()
-                    }
+                    Some((s1, c1)) if ax.dot_direction_positive(c1, ay, s1) => px.neg(),
                     _ => px,
                 };
                 let v1 = rot(ax, ay, px, py);

@@ -450,3 +450,52 @@ fn conversions_round_trip_and_saturate() {
     assert_eq!(<I16F16 as Scalar>::from_i32(40_000), I16F16::MAX);
     assert_eq!(<I16F16 as Scalar>::from_i32(-7).to_f64(), -7.0);
 }
+
+/// `dot_direction_positive` on `I16F16`: for directions `(u, v)` at 4,096
+/// angles (the stored sine and cosine, both signs of every quadrant and
+/// the axes) and vectors `(a, c)` of the unit disc on a polar grid down to
+/// a few LSB, the sign is that of the exact dot product of the stored
+/// values (in `f64`) wherever that product exceeds the documented margin
+/// `3·2⁻¹⁶(|a| + |c|)`, and the test never overflows (the extreme words
+/// `±2¹⁶` included).
+#[test]
+fn dot_direction_sign_is_exact_beyond_its_margin() {
+    use crate::scalar::Scalar;
+    let lsb = 1.0 / 65536.0;
+    let mut checked = 0usize;
+    let mut undecided = 0usize;
+    for k in 0..4096 {
+        let t = k as f64 * core::f64::consts::TAU / 4096.0;
+        let (v, u) = (I16F16::from_num(t.sin()), I16F16::from_num(t.cos()));
+        for r in [1.0, 0.7, 0.1, 1e-2, 1e-3, 2e-4, 4.0 * lsb] {
+            for j in 0..64 {
+                let w = j as f64 * core::f64::consts::TAU / 64.0 + 0.013;
+                let a = I16F16::from_num(r * w.cos());
+                let c = I16F16::from_num(r * w.sin());
+                let exact = a.to_f64() * u.to_f64() + c.to_f64() * v.to_f64();
+                let margin = 3.0 * lsb * (a.to_f64().abs() + c.to_f64().abs());
+                let got = a.dot_direction_positive(u, c, v);
+                if exact.abs() > margin {
+                    assert_eq!(got, exact > 0.0, "a {a} u {u} c {c} v {v}: {exact}");
+                    checked += 1;
+                } else {
+                    undecided += 1;
+                }
+            }
+        }
+    }
+    // The margin leaves only a thin band near the perpendicular undecided.
+    assert!(undecided * 50 < checked, "{undecided} of {checked}");
+    // The extremes: (±1, ±1) against (±1, 0), (0, ±1).
+    let one = I16F16::ONE;
+    for (a, c) in [(one, one), (-one, one), (one, -one), (-one, -one)] {
+        for (u, v) in [
+            (one, I16F16::ZERO),
+            (I16F16::ZERO, one),
+            (-one, I16F16::ZERO),
+        ] {
+            let exact = a.to_f64() * u.to_f64() + c.to_f64() * v.to_f64();
+            assert_eq!(a.dot_direction_positive(u, c, v), exact > 0.0);
+        }
+    }
+}
