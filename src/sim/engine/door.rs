@@ -89,12 +89,14 @@
 //! roots of eq. 5.10); the library's kinematics describe one, and the two
 //! meet at the straight pose, where the mechanism is singular. Grasped at
 //! the straight pose (`start_pitch = 0`), the passive wrist leaves it as
-//! the knob pulls, its motors turn the bend's direction at once (the
-//! inverse kinematics there jump by up to π), and in the engine the
-//! mechanism can come out in the other assembly mode, where the pose the
-//! motors reach is not the one the step assumes: the admittance loop then
-//! pushes against the knob. On seeds 1–3 that gave passive peaks of 113,
-//! 87 and 13 N·m (held active: 6.5 N·m) —
+//! the knob pulls. The wrist step's motor references stay continuous
+//! there (it takes the root of eq. 5.13 nearest the previous motor angle,
+//! errata E5.5), yet in the engine the mechanism can still come out in
+//! the other assembly mode, where the pose the motors reach is not the
+//! one the step assumes, and the admittance loop then pushes against the
+//! knob. On seeds 1–3 that gives passive peaks of 46, 12 and 13 N·m (held
+//! active: 6.5 N·m; with the root `θ4 ≥ 0` always taken, whose references
+//! jumped by up to π there, it was 113, 87 and 13 N·m) —
 //! `cargo run --release --features sim --example door_opening -- --straight`.
 //! Grasped with the wrist bent (5°–15° of pitch, kept by the knob), the
 //! path stays away from the straight pose and the runs are regular: that

@@ -82,12 +82,13 @@
 //! A push through the straight pose is a separate study
 //! ([`engine_finger_push_from`]; `--straight` of the `wrist_bench`
 //! example): from 3° of pitch, the nominal push toward negative pitch
-//! (`ψ = 180°`) peaks at 12.9 N·m in Case 2 (13.4 N·m true), against
-//! 2.07 N·m for the same push away from it (`ψ = 0`), the wrist runs
-//! 22.8° from its start under a 12° push (12.2° away from it), and the
-//! loop-closure error rises from 1e-5 to 4e-3 rad: as in the door scene, the library's
-//! inverse kinematics keep one branch, and the motors must turn the bend's
-//! direction at once where the two meet.
+//! (`ψ = 180°`) peaks at 2.15 N·m in Case 2, against 2.07 N·m for the same
+//! push away from it (`ψ = 0`), with travels of 12.1° and 12.2° and a
+//! loop-closure error of 1.6e-5 rad. Before the wrist step took the root
+//! of eq. (5.13) nearest the previous motor angle (errata E5.5), its
+//! references turned by about π where the path crossed the straight pose,
+//! and the same push peaked at 12.9 N·m (22.8° of travel, loop error
+//! 4e-3 rad).
 //!
 //! # The engine step
 //! `dt = 0.25 ms`, one solver substep ([`super::door::door_engine_settings`]):
