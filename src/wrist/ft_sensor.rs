@@ -535,6 +535,39 @@ mod tests {
         assert!((v - 2.62).abs() < 1e-12);
         let sg = GaugeAmplifier::gauge_signal(v, 2.5);
         assert!((a.bridge_voltage(sg) - 1.2e-3).abs() < 1e-15);
+        // The reader returns the validated gain, the ends of its range
+        // included; beyond them the gain is rejected by name.
+        for g in [1.0, 100.0, 1e4] {
+            assert_eq!(GaugeAmplifier::try_new(g).unwrap().gain(), g);
+        }
+        for g in [1.0 - 1e-12, 1e4 * (1.0 + 1e-12), f64::NAN] {
+            assert!(matches!(
+                GaugeAmplifier::try_new(g),
+                Err(ParamError::OutOfRange { name: "gain", .. }
+                    | ParamError::NotFinite { name: "gain", .. })
+            ));
+        }
+    }
+
+    /// A matrix whose diagonal is zero needs the row exchanges of partial
+    /// pivoting: a cyclic permutation with scaled entries (force rows 80,
+    /// torque rows 2.5) is valid, its inverse is the transposed
+    /// permutation with the reciprocal scales, and `κ₁ = 80/2.5 = 32`.
+    #[test]
+    fn zero_diagonal_is_inverted_by_row_exchanges() {
+        let d = [80.0, 80.0, 80.0, 2.5, 2.5, 2.5];
+        let mut m = [[0.0; 6]; 6];
+        for i in 0..6 {
+            m[i][(i + 1) % 6] = d[i];
+        }
+        let dm = DecouplingMatrix::try_new(m, DEFAULT_MAX_CONDITION).unwrap();
+        for i in 0..6 {
+            for j in 0..6 {
+                let expected = if i == (j + 1) % 6 { 1.0 / d[j] } else { 0.0 };
+                assert_eq!(dm.inverse()[i][j], expected, "[{i}][{j}]");
+            }
+        }
+        assert_eq!(dm.condition(), 32.0);
     }
 
     /// Errata E6.1. A force whose line of action passes through the wrist
