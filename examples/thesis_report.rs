@@ -2458,3 +2458,166 @@ fn main() -> Result<(), Error> {
     );
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use mrr_control::sim::engine::door::{DoorBody, EngineDoorSample};
+
+    fn door_sample(door_deg: f64, measured: [f64; 2]) -> EngineDoorSample {
+        EngineDoorSample {
+            time: 0.0,
+            door: door_deg.to_radians(),
+            turret: 0.0,
+            wrist: [0.0; 2],
+            reference: [0.0; 2],
+            measured,
+            interaction: measured,
+            base: [0.0; 3],
+            motors: [0.0; 2],
+            motor_reference: [0.0; 2],
+        }
+    }
+
+    fn door_run(samples: Vec<EngineDoorSample>) -> EngineDoorRun {
+        EngineDoorRun {
+            samples,
+            peak_measured: [0.0; 2],
+            peak_interaction: [0.0; 2],
+            peak_force: 0.0,
+            door_angle: 0.0,
+            wrist_range: [0.0; 2],
+            loop_error: 0.0,
+            off_mode_ticks: 0,
+            saturated_ticks: 0,
+            door: DoorBody::nominal(),
+        }
+    }
+
+    fn seed(seed: u64, passive: Vec<EngineDoorSample>) -> (DoorRunMetrics, [EngineDoorRun; 3]) {
+        let m = DoorRunMetrics {
+            seed,
+            start_pitch: 0.1,
+            nominal: 0.0,
+            heading: 0.0,
+            hold: 0.0,
+            true_peaks: [0.0; 3],
+            door_angle: [0.0; 3],
+        };
+        (
+            m,
+            [
+                door_run(passive),
+                door_run(vec![door_sample(0.5, [9.0, 9.0])]),
+                door_run(vec![]),
+            ],
+        )
+    }
+
+    /// Per 1° bin, each seed contributes the largest `max(|τ_δ|, |τ_γ|)`
+    /// of its own samples there; the band is the median, min and max of
+    /// those (worked by hand below). Only the requested run counts.
+    #[test]
+    fn door_band_takes_each_seeds_bin_peak_then_median_and_range() {
+        let runs = vec![
+            // Seed 1: bin 0 peaks at |−3| = 3 (two samples), bin 1 at 1.
+            seed(
+                1,
+                vec![
+                    door_sample(0.2, [1.0, -3.0]),
+                    door_sample(0.7, [2.0, 0.5]),
+                    door_sample(1.5, [1.0, 0.0]),
+                ],
+            ),
+            // Seed 2: bin 0 peaks at 5, no sample in bin 1.
+            seed(2, vec![door_sample(0.9, [-5.0, 4.0])]),
+            // Seed 3: bin 0 peaks at 1, bin 1 at 2.
+            seed(
+                3,
+                vec![door_sample(0.1, [0.0, 1.0]), door_sample(1.2, [2.0, -1.0])],
+            ),
+        ];
+        let band = door_peak_band(&runs, 0);
+        assert_eq!(band.len(), 2);
+        // Bin 0: seed peaks {3, 5, 1} -> median 3, min 1, max 5.
+        assert_eq!(band[0], (0.5, 3.0, 1.0, 5.0));
+        // Bin 1: seed peaks {1, 2} -> median 1.5, min 1, max 2.
+        assert_eq!(band[1], (1.5, 1.5, 1.0, 2.0));
+        // The heading-error run (kind 1) has its own samples only.
+        assert_eq!(door_peak_band(&runs, 1), vec![(0.5, 9.0, 9.0, 9.0)]);
+    }
+
+    /// The rate errors by central differences are exact for quadratics:
+    /// desired `(t², 3t)`, reached `(t² + 0.01 t, 3t − 0.02 t²)` give an
+    /// error `(0.01, −0.04 t)` and desired rates `(2t, 3)`.
+    #[test]
+    fn tracking_rate_errors_are_central_differences() {
+        let samples: Vec<(f64, [f64; 2], [f64; 2])> = (0..6)
+            .map(|k| {
+                let t = 0.004 * k as f64;
+                (
+                    t,
+                    [t * t, 3.0 * t],
+                    [t * t + 0.01 * t, 3.0 * t - 0.02 * t * t],
+                )
+            })
+            .collect();
+        let run = EngineTrackingRun {
+            samples,
+            max_error: [0.0; 2],
+            rms_error: [0.0; 2],
+            loop_error: 0.0,
+            off_mode_ticks: 0,
+        };
+        let rates = tracking_rate_errors(&run);
+        assert_eq!(rates.len(), 4);
+        for (k, (t, err, desired)) in rates.iter().enumerate() {
+            let expected_t = 0.004 * (k + 1) as f64;
+            assert!((t - expected_t).abs() < 1e-15);
+            assert!((err[0] - 0.01).abs() < 1e-9, "{err:?}");
+            assert!((err[1] + 0.04 * expected_t).abs() < 1e-9, "{err:?}");
+            assert!((desired[0] - 2.0 * expected_t).abs() < 1e-9, "{desired:?}");
+            assert!((desired[1] - 3.0).abs() < 1e-9, "{desired:?}");
+        }
+    }
+
+    /// A verdict's text names the claim, the verdict, the seeds and the
+    /// median and range of the values it was judged on; an id not judged
+    /// says so.
+    #[test]
+    fn verdict_text_reports_the_claims_spread() {
+        let claims = door_claims().expect("door claims");
+        let metrics: Vec<DoorRunMetrics> = [1.0, 1.5, 4.0]
+            .iter()
+            .enumerate()
+            .map(|(i, &nominal)| DoorRunMetrics {
+                seed: i as u64 + 1,
+                start_pitch: 0.1,
+                nominal,
+                heading: 2.0,
+                hold: 6.0,
+                true_peaks: [0.0; 3],
+                door_angle: [1.57; 3],
+            })
+            .collect();
+        let verdicts = evaluate(
+            &claims,
+            &Runs {
+                door: &metrics,
+                ..Runs::default()
+            },
+        )
+        .expect("verdicts");
+        // 2 of 3 seeds at or below 2 N·m (67 % < 80 %), 1 of 3 at or above
+        // 3 N·m (33 % < 50 %): undecided; median 1.5, range 1.0–4.0.
+        assert_eq!(
+            verdict_text(&verdicts, "6.20-passive"),
+            "6.20-passive undecided over seeds 1–3: median 1.50 N·m (min 1.00, max 4.00)"
+        );
+        assert_eq!(
+            verdict_text(&verdicts, "6.16-case2"),
+            "6.16-case2: not judged"
+        );
+        assert_eq!(seeds_text(1), "seed 1");
+    }
+}
