@@ -2010,7 +2010,7 @@ fn fig6_15(r: &mut Report) -> Result<Figure, Error> {
             "{}; {}: held {:.2} N·m measured with no gear slipped (peak measured {:.2}, true \
              {:.2} N·m), wrist travel {:.3}°. {} (drawn pushes; 20 seeds: `{RERUN} \
              {CLAIMS_RERUN_BENCH}`). Comparison, home-made bench (sim::wrist_bench, library \
-             kinematics): peak |τ_δ| {:.2} N·m",
+             kinematics, {:.0}° pitch push): peak |τ_δ| {:.2} N·m",
             engine_source(),
             nominal_push_text(),
             run.held,
@@ -2018,6 +2018,7 @@ fn fig6_15(r: &mut Report) -> Result<Figure, Error> {
             run.peak_interaction,
             run.travel.to_degrees(),
             verdict_text(&b.verdicts, "6.15-case1"),
+            FINGER_TRAVEL.to_degrees(),
             home.peak_interaction[0]
         ),
     )
@@ -2042,7 +2043,7 @@ fn fig6_16(r: &mut Report) -> Result<Figure, Error> {
              {} ticks out of Passive; the admittance moves the wrist at K_c τ, so a finger at \
              speed v meets v/K_c. {}; {} (drawn pushes; 20 seeds: `{RERUN} \
              {CLAIMS_RERUN_BENCH}`). Comparison, home-made bench (sim::wrist_bench, library \
-             kinematics): peak |τ_δ| {:.2} N·m",
+             kinematics, {:.0}° pitch push): peak |τ_δ| {:.2} N·m",
             engine_source(),
             nominal_push_text(),
             run.peak_measured,
@@ -2051,6 +2052,7 @@ fn fig6_16(r: &mut Report) -> Result<Figure, Error> {
             run.off_mode_ticks,
             verdict_text(&b.verdicts, "6.16-case2"),
             verdict_text(&b.verdicts, "6.16-reduction"),
+            FINGER_TRAVEL.to_degrees(),
             home.peak_interaction[0]
         ),
     )
