@@ -4,9 +4,10 @@
 //! gets (numbers computed here).
 //!
 //! ```sh
-//! cargo run --release --features sim --example thesis_report            # full runs (~20 s)
+//! cargo run --release --features sim --example thesis_report            # full runs (~25 s)
 //! cargo run --release --features sim --example thesis_report -- --quick # shorter runs (CI)
 //! cargo run --release --features sim --example thesis_report -- --out DIR
+//! cargo run --release --features sim --example thesis_report -- --chapter 6 # one chapter
 //! ```
 //!
 //! Output: `DIR`, else `$CARGO_TARGET_DIR/figures`, else `target/figures`.
@@ -16,25 +17,46 @@
 //! experiments of [`mrr_control::sim`]); this file only runs them and
 //! draws.
 //!
+//! Chapter 6's tracking (Fig. 6.7, 6.10–6.11), finger push (Fig.
+//! 6.14–6.17) and door (Fig. 6.19–6.20) come from the rigid-body engine
+//! ([`mrr_control::sim::engine`], step 0.25 ms) with the library's wrist
+//! step at 4 ms on `f32`; the finger push and the door carry the verdicts
+//! of their claims ([`mrr_control::sim::claims::ch6`]) over
+//! [`ENGINE_SEEDS`] seeds (one in `--quick`; the claims' own sweep is 20
+//! seeds: see each figure's text for the command). Fig. 6.8–6.9
+//! are the library's inverse kinematics of the desired trajectory (no
+//! plant). The home-made benches ([`mrr_control::sim::wrist_bench`],
+//! [`mrr_control::sim::door`]) appear only as labelled comparison numbers.
+//!
 //! To add a figure, write a `fn(&mut Report) -> Result<Figure, Error>` and
 //! list it in [`CHAPTERS`].
 
 use mrr_control::harmonic_drive::kinematic_error::KinematicErrorModel;
 use mrr_control::harmonic_drive::CatalogueData;
+use mrr_control::sim::claims::ch6::{
+    bench_claims, claims as door_claims, run_bench, run_door, DoorRunMetrics,
+};
+use mrr_control::sim::claims::{evaluate, ClaimResult, Runs, RERUN};
 use mrr_control::sim::closed_loop::{
     active_tracking, back_drive, interaction_scenario, payload_drop, BackDriveConfig,
     BackDriveMode, BackDriveResult, JointTorqueFeedback, ModeScenarioConfig, PayloadDropConfig,
     TrackingConfig, TrackingResult,
 };
 use mrr_control::sim::door::{door_opening, DoorConfig, DoorControl, DoorRun};
+use mrr_control::sim::engine::door::{door_engine_settings, EngineDoorRun, CONTROL_PERIOD};
+use mrr_control::sim::engine::wrist_bench::{
+    engine_finger_push, engine_wrist_tracking, EngineTrackingRun, EngineWristBenchRun,
+    FingerCase as EngineCase, FingerPush, WristBenchSample as EngineBenchSample, CASE1_TRAVEL,
+};
+use mrr_control::sim::engine::EngineSettings;
 use mrr_control::sim::experiments::{
     back_driven, locked_output, torque_estimation, width_at_zero, BackDrivenConfig,
     BackDrivenResult, ComplianceResult, ComplianceSample, ErrorStats, LockedOutputConfig, Models,
     TorqueEstimationConfig, TorqueEstimationResult, ESTIMATORS,
 };
 use mrr_control::sim::wrist_bench::{
-    bench_axis, tracking_trajectory, wrist_finger_push, wrist_tracking, FingerCase, WristBenchRun,
-    WristBenchSample, BENCH_PERIOD, FINGER_START, FINGER_STIFFNESS, FINGER_TRAVEL,
+    tracking_trajectory, wrist_finger_push, wrist_tracking, FingerCase, WristBenchRun,
+    BENCH_PERIOD, FINGER_TRAVEL,
 };
 use mrr_control::wrist::figures::{
     alpha_beta_comparison, workspace_mapping, MappingRule, WorkspaceSample,
@@ -134,6 +156,95 @@ pub struct Report {
     wrist_tracking: Option<WristBenchRun>,
     finger: Option<Vec<WristBenchRun>>,
     door: Option<Vec<DoorRun>>,
+    engine_tracking: Option<EngineTrackingRun>,
+    engine_bench: Option<EngineBench>,
+    engine_door: Option<EngineDoor>,
+}
+
+/// Seeds of the chapter-6 engine sweeps in the report (the claims' own
+/// sweep runs 20: [`CLAIMS_RERUN_BENCH`], [`CLAIMS_RERUN_DOOR`]).
+pub const ENGINE_SEEDS: u64 = 3;
+
+/// Seeds of the engine sweeps in quick mode (CI): one seed, so the verdicts
+/// there are a smoke test, not evidence.
+pub const ENGINE_SEEDS_QUICK: u64 = 1;
+
+/// `"seed 1"` or `"seeds 1–n"`.
+fn seeds_text(n: usize) -> String {
+    if n == 1 {
+        "seed 1".into()
+    } else {
+        format!("seeds 1–{n}")
+    }
+}
+
+/// The command that judges the bench claims on their 20 seeds.
+pub const CLAIMS_RERUN_BENCH: &str = "6.15-case1 6.16-case2 6.16-reduction";
+
+/// The command that judges the door claims on their 20 seeds.
+pub const CLAIMS_RERUN_DOOR: &str = "6.20-passive 6.20-heading 6.20-relief";
+
+/// The wrist bench of §6.4.3 on the engine: the time series of the
+/// nominal push ([`FingerPush::nominal`], seed 1: pure pitch, 12° over
+/// 1.5 s, a 12 N·m break-away), and the claims' drawn pushes over
+/// [`ENGINE_SEEDS`] seeds with their verdicts.
+struct EngineBench {
+    /// Case 1 (motors off) and Case 2 (admittance-passive), nominal push.
+    off: EngineWristBenchRun,
+    on: EngineWristBenchRun,
+    /// The verdicts of [`bench_claims`] over the seeds.
+    verdicts: Vec<ClaimResult>,
+}
+
+/// The door opening of §6.4.4 on the engine over [`ENGINE_SEEDS`] seeds:
+/// per seed the metrics and the passive, 3° heading-error and held-active
+/// runs, and the verdicts of the door claims.
+struct EngineDoor {
+    runs: Vec<(DoorRunMetrics, [EngineDoorRun; 3])>,
+    verdicts: Vec<ClaimResult>,
+}
+
+/// The engine settings of every chapter-6 engine run (0.25 ms step).
+fn engine_settings() -> EngineSettings {
+    door_engine_settings()
+}
+
+/// What produced a chapter-6 engine figure, for its text.
+fn engine_source() -> String {
+    format!(
+        "rapier3d engine, step {} ms, DAUJ built from its parts; the library's wrist step at \
+         {} ms on f32",
+        engine_settings().dt() * 1e3,
+        CONTROL_PERIOD * 1e3
+    )
+}
+
+/// One claim's verdict with median and spread, for a figure's text.
+fn verdict_text(verdicts: &[ClaimResult], id: &str) -> String {
+    match verdicts.iter().find(|v| v.claim.id == id) {
+        Some(v) => {
+            let s = v.spread;
+            let unit = if v.claim.unit.is_empty() {
+                String::new()
+            } else {
+                format!(" {}", v.claim.unit)
+            };
+            format!(
+                "{id} {} over {}: median {:.2}{unit} (min {:.2}, max {:.2})",
+                v.verdict,
+                seeds_text(v.runs),
+                s.median,
+                s.min,
+                s.max
+            )
+        }
+        None => format!("{id}: not judged"),
+    }
+}
+
+/// The worker threads of the seed sweeps.
+fn threads() -> usize {
+    std::thread::available_parallelism().map_or(1, |n| n.get())
 }
 
 impl Report {
@@ -149,7 +260,77 @@ impl Report {
             wrist_tracking: None,
             finger: None,
             door: None,
+            engine_tracking: None,
+            engine_bench: None,
+            engine_door: None,
         }
+    }
+
+    /// Seeds of the engine sweeps: [`ENGINE_SEEDS`], or
+    /// [`ENGINE_SEEDS_QUICK`] in quick mode.
+    fn engine_seeds(&self) -> u64 {
+        if self.opts.quick {
+            ENGINE_SEEDS_QUICK
+        } else {
+            ENGINE_SEEDS
+        }
+    }
+
+    /// §6.4.2 on the engine: the library's wrist step, held Active,
+    /// tracking the task trajectory (errors counted after 1 s).
+    fn engine_tracking(&mut self) -> Result<&EngineTrackingRun, Error> {
+        if self.engine_tracking.is_none() {
+            let duration = if self.opts.quick { 6.0 } else { 12.0 };
+            self.engine_tracking = Some(engine_wrist_tracking(duration, 1.0, &engine_settings())?);
+        }
+        self.engine_tracking
+            .as_ref()
+            .ok_or_else(|| "engine tracking run missing".into())
+    }
+
+    /// §6.4.3 on the engine: the nominal push in both cases, and the
+    /// bench claims over [`ENGINE_SEEDS`] drawn pushes.
+    fn engine_bench(&mut self) -> Result<&EngineBench, Error> {
+        if self.engine_bench.is_none() {
+            let n = self.engine_seeds();
+            let engine = engine_settings();
+            let push = FingerPush::nominal(1);
+            let off = engine_finger_push(EngineCase::MotorsOff, &push, &engine)?;
+            let on = engine_finger_push(EngineCase::Admittance, &push, &engine)?;
+            let seeds = run_bench(n, &engine, threads())?;
+            let verdicts = evaluate(
+                &bench_claims()?,
+                &Runs {
+                    bench: &seeds,
+                    ..Runs::default()
+                },
+            )?;
+            self.engine_bench = Some(EngineBench { off, on, verdicts });
+        }
+        self.engine_bench
+            .as_ref()
+            .ok_or_else(|| "engine bench runs missing".into())
+    }
+
+    /// §6.4.4 on the engine: [`ENGINE_SEEDS`] seeds of the three door runs
+    /// and the door claims' verdicts over them.
+    fn engine_door(&mut self) -> Result<&EngineDoor, Error> {
+        if self.engine_door.is_none() {
+            let n = self.engine_seeds();
+            let runs = run_door(n, None, &engine_settings(), threads())?;
+            let metrics: Vec<DoorRunMetrics> = runs.iter().map(|(m, _)| *m).collect();
+            let verdicts = evaluate(
+                &door_claims()?,
+                &Runs {
+                    door: &metrics,
+                    ..Runs::default()
+                },
+            )?;
+            self.engine_door = Some(EngineDoor { runs, verdicts });
+        }
+        self.engine_door
+            .as_ref()
+            .ok_or_else(|| "engine door runs missing".into())
     }
 
     /// §6.4.2: the wrist tracking a task trajectory in active mode.
@@ -322,6 +503,7 @@ const ORANGE: RGBColor = RGBColor(255, 127, 14);
 const GREEN_: RGBColor = RGBColor(44, 160, 44);
 const RED_: RGBColor = RGBColor(214, 39, 40);
 const GREY: RGBColor = RGBColor(120, 120, 120);
+const BLACK_: RGBColor = RGBColor(0, 0, 0);
 
 /// A chart: title, axis labels, series, and vertical markers `(x, text)`
 /// (area labels A/B/C).
@@ -1387,11 +1569,6 @@ fn fig5_11(r: &mut Report) -> Result<Figure, Error> {
 
 // ---------------------------------------------------------------- chapter 6
 
-/// `(t, f(sample))` over a bench run.
-fn series(run: &WristBenchRun, f: impl Fn(&WristBenchSample) -> f64) -> Vec<(f64, f64)> {
-    run.samples.iter().map(|s| (s.time, f(s))).collect()
-}
-
 /// The task trajectory of §6.4.2 and its joint-space image through the
 /// continuous inverse kinematics (eq. 5.14–5.15), sampled every 4 ms:
 /// `(t, [δ_d, γ_d], [θ1, θ3], [θ̇1, θ̇3], |FK(θ) − x_d|)`, rates by central
@@ -1432,12 +1609,21 @@ fn wrist_joint_trajectory(quick: bool) -> Vec<(f64, [f64; 2], [f64; 2], [f64; 2]
         .collect()
 }
 
+/// `(t, f(sample))` over the engine's tracking run.
+fn tracking_series(
+    run: &EngineTrackingRun,
+    f: impl Fn(&(f64, [f64; 2], [f64; 2])) -> f64,
+) -> Vec<(f64, f64)> {
+    run.samples.iter().map(|s| (s.0, f(s))).collect()
+}
+
 fn fig6_7(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
-    let tr = wrist_joint_trajectory(r.opts.quick);
+    let run = r.engine_tracking()?;
     let peak = |i: usize| {
-        tr.iter()
-            .map(|p| p.1[i].abs())
+        run.samples
+            .iter()
+            .map(|s| s.1[i].abs())
             .fold(0.0, f64::max)
             .to_degrees()
     };
@@ -1446,19 +1632,21 @@ fn fig6_7(r: &mut Report) -> Result<Figure, Error> {
         "fig6_7_wrist_task_trajectory.svg",
         "Fig. 6.7: desired task-space trajectory, active mode",
         Chart {
-            title: "Fig. 6.7  desired pitch δ_d and yaw γ_d (sim::wrist_bench)",
+            title: "Fig. 6.7  desired δ_d, γ_d and reached δ, γ (engine, step 0.25 ms)",
             x: "time (s)",
             y: "angle (deg)",
             series: vec![
+                line("δ_d", BLUE_, tracking_series(run, |s| s.1[0].to_degrees())),
+                line("γ_d", ORANGE, tracking_series(run, |s| s.1[1].to_degrees())),
                 line(
-                    "δ_d",
-                    BLUE_,
-                    tr.iter().map(|p| (p.0, p.1[0].to_degrees())).collect(),
+                    "δ (engine)",
+                    GREEN_,
+                    tracking_series(run, |s| s.2[0].to_degrees()),
                 ),
                 line(
-                    "γ_d",
-                    ORANGE,
-                    tr.iter().map(|p| (p.0, p.1[1].to_degrees())).collect(),
+                    "γ (engine)",
+                    RED_,
+                    tracking_series(run, |s| s.2[1].to_degrees()),
                 ),
             ],
             markers: vec![],
@@ -1467,11 +1655,15 @@ fn fig6_7(r: &mut Report) -> Result<Figure, Error> {
          given)"
             .into(),
         format!(
-            "the thesis's trajectory is not given in numbers; this one (tracking_trajectory) \
-             bends the output 12–24° and swings it from pitch through yaw: peak |δ_d| {:.1}°, \
-             |γ_d| {:.1}°",
+            "{}; the thesis's trajectory is not given in numbers; this one \
+             (sim::wrist_bench::tracking_trajectory) bends the output 12–24° and swings it from \
+             pitch through yaw: peak |δ_d| {:.1}°, |γ_d| {:.1}°; the mechanism's universal joint \
+             follows it within {:.3}° (δ), {:.3}° (γ) after 1 s",
+            engine_source(),
             peak(0),
-            peak(1)
+            peak(1),
+            run.max_error[0].to_degrees(),
+            run.max_error[1].to_degrees()
         ),
     )
 }
@@ -1520,7 +1712,8 @@ fn fig6_8(r: &mut Report) -> Result<Figure, Error> {
         "the joint trajectory the inverse kinematics derives from Fig. 6.7 (no number given)"
             .into(),
         format!(
-            "θ1 over {:.1}…{:.1}°, θ3 over {:.1}…{:.1}°; largest change between 4 ms \
+            "no plant: the library's inverse kinematics (f64) of the desired trajectory of \
+             Fig. 6.7 (the engine run does not return its motor references); θ1 over {:.1}…{:.1}°, θ3 over {:.1}…{:.1}°; largest change between 4 ms \
              samples {:.2}° (no branch jump); the forward kinematics of each sample returns \
              the task point within {:.1e} rad",
             a.0,
@@ -1565,38 +1758,38 @@ fn fig6_9(r: &mut Report) -> Result<Figure, Error> {
             markers: vec![],
         },
         "the joint velocities from the differential kinematics (no number given)".into(),
-        format!("peak |θ̇1| {:.1}°/s, |θ̇3| {:.1}°/s", peak(0), peak(1)),
+        format!(
+            "no plant: central differences of the library's inverse kinematics (f64) of the \
+             desired trajectory of Fig. 6.7; peak |θ̇1| {:.1}°/s, |θ̇3| {:.1}°/s",
+            peak(0),
+            peak(1)
+        ),
     )
 }
 
 fn fig6_10(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
-    let run = r.wrist_tracking().clone();
-    let e = |i: usize| max_abs(&run.position_error[i]).to_degrees();
-    let reach = |i: usize| {
-        run.samples
-            .iter()
-            .map(|s| s.desired[i].to_degrees())
-            .fold(0.0f64, |a, x| if x.abs() > a.abs() { x } else { a })
-    };
+    let home = r.wrist_tracking().clone();
+    let home_max = |i: usize| max_abs(&home.position_error[i]).to_degrees();
+    let run = r.engine_tracking()?;
     figure(
         &dir,
         "fig6_10_wrist_position_error.svg",
         "Fig. 6.10: wrist position tracking errors, active mode",
         Chart {
-            title: "Fig. 6.10  task-space position error, eq. (6.15), T = 4 ms",
+            title: "Fig. 6.10  task-space position error on the engine, T = 4 ms (f32)",
             x: "time (s)",
             y: "error (deg)",
             series: vec![
                 line(
                     "δ − δ_d",
                     BLUE_,
-                    series(&run, |s| (s.pose[0] - s.desired[0]).to_degrees()),
+                    tracking_series(run, |s| (s.2[0] - s.1[0]).to_degrees()),
                 ),
                 line(
                     "γ − γ_d",
                     ORANGE,
-                    series(&run, |s| (s.pose[1] - s.desired[1]).to_degrees()),
+                    tracking_series(run, |s| (s.2[1] - s.1[1]).to_degrees()),
                 ),
             ],
             markers: vec![],
@@ -1605,205 +1798,390 @@ fn fig6_10(r: &mut Report) -> Result<Figure, Error> {
          no number given)"
             .into(),
         format!(
-            "DAUJ wrist on the bench (sim::wrist_bench: IK to joint space, FK back), \
-             δ_d to {:.1}°, γ_d to {:.1}°: max |error| after 1 s δ {:.3}°, γ {:.3}°; \
-             command at its limit in {} samples",
-            reach(0),
-            reach(1),
-            e(0),
-            e(1),
-            run.saturated_samples
+            "{}; after 1 s max |error| δ {:.3}°, γ {:.3}° (RMS {:.3}°, {:.3}°), loop-closure \
+             error ≤ {:.1e} rad, {} ticks out of Active. Comparison, home-made bench \
+             (sim::wrist_bench, library kinematics): max |error| δ {:.3}°, γ {:.3}°",
+            engine_source(),
+            run.max_error[0].to_degrees(),
+            run.max_error[1].to_degrees(),
+            run.rms_error[0].to_degrees(),
+            run.rms_error[1].to_degrees(),
+            run.loop_error,
+            run.off_mode_ticks,
+            home_max(0),
+            home_max(1)
         ),
     )
 }
 
+/// Rates of the engine's tracking run by central differences of its 4 ms
+/// samples: `(t, [δ̇ − δ̇_d, γ̇ − γ̇_d], [δ̇_d, γ̇_d])`, rad/s.
+fn tracking_rate_errors(run: &EngineTrackingRun) -> Vec<(f64, [f64; 2], [f64; 2])> {
+    run.samples
+        .windows(3)
+        .map(|w| {
+            let h = w[2].0 - w[0].0;
+            let rate = |i: usize| (w[2].2[i] - w[0].2[i]) / h;
+            let desired = |i: usize| (w[2].1[i] - w[0].1[i]) / h;
+            (
+                w[1].0,
+                [rate(0) - desired(0), rate(1) - desired(1)],
+                [desired(0), desired(1)],
+            )
+        })
+        .collect()
+}
+
 fn fig6_11(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
-    let run = r.wrist_tracking().clone();
-    let e = |i: usize| run.velocity_error[i].rms.to_degrees();
+    let home = r.wrist_tracking().clone();
+    let home_rms = |i: usize| home.velocity_error[i].rms.to_degrees();
+    let run = r.engine_tracking()?;
+    let rates = tracking_rate_errors(run);
+    let after: Vec<&(f64, [f64; 2], [f64; 2])> = rates.iter().filter(|p| p.0 >= 1.0).collect();
+    let rms = |i: usize| {
+        let n = after.len().max(1) as f64;
+        (after.iter().map(|p| p.1[i] * p.1[i]).sum::<f64>() / n)
+            .sqrt()
+            .to_degrees()
+    };
     let peak = |i: usize| {
-        run.samples
+        rates
             .iter()
-            .map(|s| s.desired_rate[i].abs().to_degrees())
+            .map(|p| p.2[i].abs())
             .fold(0.0, f64::max)
+            .to_degrees()
     };
     figure(
         &dir,
         "fig6_11_wrist_velocity_error.svg",
         "Fig. 6.11: wrist velocity tracking errors, active mode",
         Chart {
-            title: "Fig. 6.11  task-space velocity error (true rates), T = 4 ms",
+            title: "Fig. 6.11  task-space velocity error on the engine (central differences, 4 ms)",
             x: "time (s)",
             y: "error (deg/s)",
             series: vec![
                 line(
                     "δ̇ − δ̇_d",
                     BLUE_,
-                    series(&run, |s| (s.rate[0] - s.desired_rate[0]).to_degrees()),
+                    rates.iter().map(|p| (p.0, p.1[0].to_degrees())).collect(),
                 ),
                 line(
                     "γ̇ − γ̇_d",
                     ORANGE,
-                    series(&run, |s| (s.rate[1] - s.desired_rate[1]).to_degrees()),
+                    rates.iter().map(|p| (p.0, p.1[1].to_degrees())).collect(),
                 ),
             ],
             markers: vec![],
         },
         "velocity tracking errors of the active mode (no number given)".into(),
         format!(
-            "RMS after 1 s: δ̇ {:.3}°/s, γ̇ {:.3}°/s (peak desired rates {:.1} and {:.1}°/s)",
-            e(0),
-            e(1),
+            "{}; rates by central differences of the engine's 4 ms poses (the run returns \
+             poses only): RMS after 1 s δ̇ {:.3}°/s, γ̇ {:.3}°/s (peak desired rates {:.1} and \
+             {:.1}°/s). Comparison, home-made bench (sim::wrist_bench, library kinematics, \
+             true rates): RMS {:.3}°/s, {:.3}°/s",
+            engine_source(),
+            rms(0),
+            rms(1),
             peak(0),
-            peak(1)
+            peak(1),
+            home_rms(0),
+            home_rms(1)
         ),
+    )
+}
+
+/// `(t, f(sample))` over an engine bench run.
+fn bench_series(
+    run: &EngineWristBenchRun,
+    f: impl Fn(&EngineBenchSample) -> f64,
+) -> Vec<(f64, f64)> {
+    run.samples.iter().map(|s| (s.time, f(s))).collect()
+}
+
+/// The push the bench figures show, for their text.
+fn nominal_push_text() -> String {
+    let p = FingerPush::nominal(1);
+    format!(
+        "nominal push, seed 1 (pure pitch, {:.0}° at the tool over {:.1} s in Case 2, {:.0}° in \
+         Case 1; gear break-away {:.0} N·m)",
+        p.travel.to_degrees(),
+        p.rise,
+        CASE1_TRAVEL.to_degrees(),
+        p.breakaway
     )
 }
 
 fn fig6_14(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
-    let runs = r.finger().to_vec();
-    let (off, on) = (&runs[0], &runs[1]);
+    let home = r.finger().to_vec();
+    let b = r.engine_bench()?;
+    let (off, on) = (&b.off, &b.on);
     figure(
         &dir,
         "fig6_14_passive_motion.svg",
         "Fig. 6.13–6.14: interactive motions, motors off (Case 1) and admittance (Case 2)",
         Chart {
-            title: "Fig. 6.13–6.14  wrist pose while a finger pushes pitch, then yaw",
-            x: "time (s)",
+            title: "Fig. 6.13–6.14  wrist pose while a finger pushes pitch (engine, 0.25 ms)",
+            x: "time from the touch (s)",
             y: "angle (deg)",
             series: vec![
-                line("δ, Case 2", BLUE_, series(on, |s| s.pose[0].to_degrees())),
-                line("γ, Case 2", ORANGE, series(on, |s| s.pose[1].to_degrees())),
-                line("δ, Case 1", GREEN_, series(off, |s| s.pose[0].to_degrees())),
-                line("γ, Case 1", RED_, series(off, |s| s.pose[1].to_degrees())),
+                line(
+                    "δ, Case 2",
+                    BLUE_,
+                    bench_series(on, |s| s.pose[0].to_degrees()),
+                ),
+                line(
+                    "γ, Case 2",
+                    ORANGE,
+                    bench_series(on, |s| s.pose[1].to_degrees()),
+                ),
+                line(
+                    "δ, Case 1",
+                    GREEN_,
+                    bench_series(off, |s| s.pose[0].to_degrees()),
+                ),
+                line(
+                    "γ, Case 1",
+                    RED_,
+                    bench_series(off, |s| s.pose[1].to_degrees()),
+                ),
             ],
             markers: vec![],
         },
         "Case 1: the wrist does not move; Case 2: it moves freely with a small finger force".into(),
         format!(
-            "finger travel {:.0}° per push from δ = {:.0}°; wrist travel of δ, γ: Case 1 \
-             {:.2}°, {:.2}°; Case 2 {:.1}°, {:.1}°",
+            "{}; {}: wrist travel Case 1 {:.3}° (rotor slip {:.1e} rad), Case 2 {:.2}°. \
+             Comparison, home-made bench (sim::wrist_bench, library kinematics, pitch then \
+             yaw, {:.0}° per push): travel of δ, γ Case 1 {:.2}°, {:.2}°; Case 2 {:.1}°, {:.1}°",
+            engine_source(),
+            nominal_push_text(),
+            off.travel.to_degrees(),
+            off.slip,
+            on.travel.to_degrees(),
             FINGER_TRAVEL.to_degrees(),
-            FINGER_START[0].to_degrees(),
-            off.travel[0].to_degrees(),
-            off.travel[1].to_degrees(),
-            on.travel[0].to_degrees(),
-            on.travel[1].to_degrees()
+            home[0].travel[0].to_degrees(),
+            home[0].travel[1].to_degrees(),
+            home[1].travel[0].to_degrees(),
+            home[1].travel[1].to_degrees()
         ),
     )
 }
 
-/// The finger's torques over a bench run, and their peaks as text.
-fn finger_torques(run: &WristBenchRun, title: &'static str) -> (Chart<'static>, String) {
-    (
-        Chart {
-            title,
-            x: "time (s)",
-            y: "torque (N·m)",
-            series: vec![
-                line("τ_δ", BLUE_, series(run, |s| s.interaction[0])),
-                line("τ_γ", ORANGE, series(run, |s| s.interaction[1])),
-            ],
-            markers: vec![],
-        },
-        format!(
-            "peak |τ_δ| {:.2} N·m, |τ_γ| {:.2} N·m",
-            run.peak_interaction[0], run.peak_interaction[1]
-        ),
-    )
+/// The measured (F/T chain) and true (engine) torques of a bench run.
+fn engine_finger_torques(run: &EngineWristBenchRun, title: &'static str) -> Chart<'static> {
+    Chart {
+        title,
+        x: "time from the touch (s)",
+        y: "torque (N·m)",
+        series: vec![
+            line("τ_δ measured", BLUE_, bench_series(run, |s| s.measured[0])),
+            line("τ_γ measured", ORANGE, bench_series(run, |s| s.measured[1])),
+            line(
+                "τ_δ true (engine)",
+                GREEN_,
+                bench_series(run, |s| s.interaction[0]),
+            ),
+            line(
+                "τ_γ true (engine)",
+                RED_,
+                bench_series(run, |s| s.interaction[1]),
+            ),
+        ],
+        markers: vec![],
+    }
 }
 
 fn fig6_15(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
-    let run = r.finger()[0].clone();
-    let (chart, peaks) =
-        finger_torques(&run, "Fig. 6.15  interaction torques, motors off (Case 1)");
+    let home = r.finger()[0].clone();
+    let b = r.engine_bench()?;
+    let run = &b.off;
     figure(
         &dir,
         "fig6_15_internal_case1.svg",
         "Fig. 6.15: internal torques, motors off (Case 1)",
-        chart,
+        engine_finger_torques(
+            run,
+            "Fig. 6.15  interaction torques, motors off (Case 1), engine",
+        ),
         "more than 10 N·m of pitch torque without the wrist moving".into(),
         format!(
-            "{peaks} (the finger's spring fully stretched) with the wrist moving {:.2}°; each \
-             motor axis breaks away at {:.1} N·m on its side of Jᵀ (the bench's assumption: the \
-             thesis's 10 N·m plus 20 %; Table 6.1 gives no friction)",
-            run.travel[0].max(run.travel[1]).to_degrees(),
-            {
-                let a = bench_axis(0.0);
-                a.coulomb + a.static_excess
-            }
+            "{}; {}: held {:.2} N·m measured with no gear slipped (peak measured {:.2}, true \
+             {:.2} N·m), wrist travel {:.3}°. {} (drawn pushes; 20 seeds: `{RERUN} \
+             {CLAIMS_RERUN_BENCH}`). Comparison, home-made bench (sim::wrist_bench, library \
+             kinematics, {:.0}° pitch push): peak |τ_δ| {:.2} N·m",
+            engine_source(),
+            nominal_push_text(),
+            run.held,
+            run.peak_measured,
+            run.peak_interaction,
+            run.travel.to_degrees(),
+            verdict_text(&b.verdicts, "6.15-case1"),
+            FINGER_TRAVEL.to_degrees(),
+            home.peak_interaction[0]
         ),
     )
 }
 
 fn fig6_16(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
-    let run = r.finger()[1].clone();
-    let (chart, peaks) = finger_torques(
-        &run,
-        "Fig. 6.16  interaction torques, admittance mode K_c = 0.1 (Case 2)",
-    );
+    let home = r.finger()[1].clone();
+    let b = r.engine_bench()?;
+    let run = &b.on;
     figure(
         &dir,
         "fig6_16_internal_case2.svg",
         "Fig. 6.16: internal torques, admittance-passive mode (Case 2)",
-        chart,
+        engine_finger_torques(
+            run,
+            "Fig. 6.16  interaction torques, admittance K_c = 0.1 (Case 2), engine",
+        ),
         "residual internal torques less than 2 N·m".into(),
         format!(
-            "{peaks} (finger {FINGER_STIFFNESS:.0} N·m/rad moving {:.0}° in 1.5 s; the \
-             admittance moves the wrist at K_c τ, so a finger at speed v meets v/K_c)",
-            FINGER_TRAVEL.to_degrees()
+            "{}; {}: peak measured |(τ_δ, τ_γ)| {:.2} N·m (true {:.2}), wrist travel {:.2}°, \
+             {} ticks out of Passive; the admittance moves the wrist at K_c τ, so a finger at \
+             speed v meets v/K_c. {}; {} (drawn pushes; 20 seeds: `{RERUN} \
+             {CLAIMS_RERUN_BENCH}`). Comparison, home-made bench (sim::wrist_bench, library \
+             kinematics, {:.0}° pitch push): peak |τ_δ| {:.2} N·m",
+            engine_source(),
+            nominal_push_text(),
+            run.peak_measured,
+            run.peak_interaction,
+            run.travel.to_degrees(),
+            run.off_mode_ticks,
+            verdict_text(&b.verdicts, "6.16-case2"),
+            verdict_text(&b.verdicts, "6.16-reduction"),
+            FINGER_TRAVEL.to_degrees(),
+            home.peak_interaction[0]
         ),
     )
 }
 
 fn fig6_17(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
-    let run = r.finger()[1].clone();
+    let home = r.finger()[1].clone();
+    let b = r.engine_bench()?;
+    let run = &b.on;
+    let peak = |i: usize| {
+        run.samples
+            .iter()
+            .map(|s| s.motor_torque[i].abs())
+            .fold(0.0, f64::max)
+    };
     figure(
         &dir,
         "fig6_17_compensation.svg",
         "Fig. 6.17: compensation torques of the motors (Case 2)",
         Chart {
-            title: "Fig. 6.17  motor torques in admittance-passive mode",
-            x: "time (s)",
+            title: "Fig. 6.17  motor torques in admittance-passive mode (engine)",
+            x: "time from the touch (s)",
             y: "motor torque (N·m)",
             series: vec![
-                line("τ_m1 (pitch)", BLUE_, series(&run, |s| s.motor_torque[0])),
-                line("τ_m2 (yaw)", ORANGE, series(&run, |s| s.motor_torque[1])),
+                line("τ_m1 (θ1)", BLUE_, bench_series(run, |s| s.motor_torque[0])),
+                line(
+                    "τ_m3 (θ3)",
+                    ORANGE,
+                    bench_series(run, |s| s.motor_torque[1]),
+                ),
             ],
             markers: vec![],
         },
         "the motors generate the torques that compensate the friction (no number given)".into(),
         format!(
-            "peak |τ_m| {:.3} and {:.3} N·m (limit 0.6 N·m), at the limit in {} samples",
-            run.peak_motor_torque[0], run.peak_motor_torque[1], run.saturated_samples
+            "{}; {}: peak commanded |τ_m| {:.3} and {:.3} N·m (motor side). Comparison, \
+             home-made bench (sim::wrist_bench, library kinematics): {:.3} and {:.3} N·m",
+            engine_source(),
+            nominal_push_text(),
+            peak(0),
+            peak(1),
+            home.peak_motor_torque[0],
+            home.peak_motor_torque[1]
         ),
     )
 }
 
+/// The measured `(door angle in deg, τ_i)` of a door run.
+fn door_torque(run: &EngineDoorRun, i: usize) -> Vec<(f64, f64)> {
+    run.samples
+        .iter()
+        .map(|s| (s.door.to_degrees(), s.measured[i]))
+        .collect()
+}
+
+/// Over the seeds, per 1° bin of door angle: the largest measured
+/// `max(|τ_δ|, |τ_γ|)` of each seed's run `kind` (0 passive, 1 heading
+/// error, 2 held) in the bin, then `(bin centre in deg, median, min, max)`
+/// over the seeds that reach the bin.
+fn door_peak_band(
+    runs: &[(DoorRunMetrics, [EngineDoorRun; 3])],
+    kind: usize,
+) -> Vec<(f64, f64, f64, f64)> {
+    let mut bins: std::collections::BTreeMap<i64, Vec<f64>> = Default::default();
+    for (_, three) in runs {
+        let mut own: std::collections::BTreeMap<i64, f64> = Default::default();
+        for s in &three[kind].samples {
+            let v = s.measured[0].abs().max(s.measured[1].abs());
+            if !(v.is_finite() && s.door.is_finite()) {
+                continue;
+            }
+            let cell = own.entry(s.door.to_degrees().floor() as i64).or_insert(v);
+            *cell = cell.max(v);
+        }
+        for (b, v) in own {
+            bins.entry(b).or_default().push(v);
+        }
+    }
+    bins.into_iter()
+        .map(|(b, mut v)| {
+            v.sort_by(f64::total_cmp);
+            let n = v.len();
+            let median = if n % 2 == 1 {
+                v[n / 2]
+            } else {
+                0.5 * (v[n / 2 - 1] + v[n / 2])
+            };
+            (b as f64 + 0.5, median, v[0], v[n - 1])
+        })
+        .collect()
+}
+
 fn fig6_19(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
-    let runs = r.door().to_vec();
-    let pts = |run: &DoorRun, i: usize| -> Vec<(f64, f64)> {
+    let home = r.door()[0].clone();
+    let d = r.engine_door()?;
+    let (m, three) = d.runs.first().ok_or("no door seed")?;
+    let pts = |run: &EngineDoorRun, i: usize| -> Vec<(f64, f64)> {
         run.samples
             .iter()
             .map(|s| (s.door.to_degrees(), s.wrist[i].to_degrees()))
             .collect()
     };
+    let angles: Vec<String> = d
+        .runs
+        .iter()
+        .map(|(m, three)| {
+            format!(
+                "{:.1}° (grasp δ {:.1}°, door {:.1} kg)",
+                m.door_angle[0].to_degrees(),
+                m.start_pitch.to_degrees(),
+                three[0].door.mass
+            )
+        })
+        .collect();
     figure(
         &dir,
         "fig6_19_door_motion.svg",
         "Fig. 6.19: wrist motion during door opening",
         Chart {
-            title: "Fig. 6.19  wrist pitch δ and yaw γ over the door angle (passive run)",
+            title: "Fig. 6.19  wrist pitch δ and yaw γ over the door angle (engine, seed 1)",
             x: "door angle (deg)",
             y: "wrist angle (deg)",
             series: vec![
-                line("δ", BLUE_, pts(&runs[0], 0)),
-                line("γ", ORANGE, pts(&runs[0], 1)),
+                line("δ, passive", BLUE_, pts(&three[0], 0)),
+                line("γ, passive", ORANGE, pts(&three[0], 1)),
+                line("δ, 3° heading error", GREEN_, pts(&three[1], 0)),
+                line("γ, 3° heading error", RED_, pts(&three[1], 1)),
             ],
             markers: vec![],
         },
@@ -1811,51 +2189,97 @@ fn fig6_19(r: &mut Report) -> Result<Figure, Error> {
          given)"
             .into(),
         format!(
-            "door opened to {:.1}°; wrist range |δ| {:.2}°, |γ| {:.2}° (sim::door, seed 7)",
-            runs[0].door_angle.to_degrees(),
-            runs[0].wrist_range[0].to_degrees(),
-            runs[0].wrist_range[1].to_degrees()
+            "{}, base and turret on the engine too; seed {} shown: the passive run opened the \
+             door to {:.1}°, wrist range |δ| {:.2}°, |γ| {:.2}°; final door angle of the passive \
+             run over {}: {}. Comparison, home-made \
+             integrator (sim::door, seed 7): door to {:.1}°, |δ| {:.2}°, |γ| {:.2}°",
+            engine_source(),
+            m.seed,
+            three[0].door_angle.to_degrees(),
+            three[0].wrist_range[0].to_degrees(),
+            three[0].wrist_range[1].to_degrees(),
+            seeds_text(d.runs.len()),
+            angles.join(", "),
+            home.door_angle.to_degrees(),
+            home.wrist_range[0].to_degrees(),
+            home.wrist_range[1].to_degrees()
         ),
     )
 }
 
 fn fig6_20(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
-    let runs = r.door().to_vec();
-    let pts = |run: &DoorRun, i: usize| -> Vec<(f64, f64)> {
-        run.samples
+    let home = r.door().to_vec();
+    let d = r.engine_door()?;
+    let (m, three) = d.runs.first().ok_or("no door seed")?;
+    let band = door_peak_band(&d.runs, 0);
+    let n = d.runs.len();
+    let peaks = |k: usize| -> String {
+        d.runs
             .iter()
-            .map(|s| (s.door.to_degrees(), s.measured[i]))
-            .collect()
+            .map(|(m, _)| {
+                format!(
+                    "{:.2}",
+                    match k {
+                        0 => m.nominal,
+                        1 => m.heading,
+                        _ => m.hold,
+                    }
+                )
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
     };
-    let pk = |k: usize| {
-        format!(
-            "{:.2} / {:.2}",
-            runs[k].peak_measured[0], runs[k].peak_measured[1]
-        )
-    };
+    let home_peak = |k: usize| home[k].peak_measured[0].max(home[k].peak_measured[1]);
     figure(
         &dir,
         "fig6_20_door_torques.svg",
         "Fig. 6.20: wrist–knob interaction torques during door opening",
         Chart {
-            title: "Fig. 6.20  measured τ_δ, τ_γ over the door angle",
+            title:
+                "Fig. 6.20  measured τ_δ, τ_γ over the door angle (engine, seed 1; band of seeds)",
             x: "door angle (deg)",
             y: "torque (N·m)",
             series: vec![
-                line("τ_δ, passive", BLUE_, pts(&runs[0], 0)),
-                line("τ_γ, passive", ORANGE, pts(&runs[0], 1)),
-                line("τ_γ, passive, 3° heading error", GREEN_, pts(&runs[1], 1)),
+                line("τ_δ, passive, seed 1", BLUE_, door_torque(&three[0], 0)),
+                line("τ_γ, passive, seed 1", ORANGE, door_torque(&three[0], 1)),
+                line(
+                    "τ_γ, 3° heading error, seed 1",
+                    GREEN_,
+                    door_torque(&three[1], 1),
+                ),
+                line(
+                    &format!("passive max|τ| per 1°: median, {}", seeds_text(n)),
+                    BLACK_,
+                    band.iter().map(|p| (p.0, p.1)).collect(),
+                ),
+                line(
+                    &format!("passive max|τ| per 1°: max, {}", seeds_text(n)),
+                    GREY,
+                    band.iter().map(|p| (p.0, p.3)).collect(),
+                ),
             ],
             markers: vec![],
         },
         "internal torques below 2 N·m; a maximum of 3 N·m with a 3° initial heading error".into(),
         format!(
-            "peak measured |τ_δ| / |τ_γ| (N·m): passive {}, 3° heading error {}, \
-             active hold (contrast) {}",
-            pk(0),
-            pk(1),
-            pk(2)
+            "{}; peak measured max(|τ_δ|, |τ_γ|) over {} (N·m): passive {}; 3° \
+             heading error {}; held active (contrast) {}. {}; {}; {} (20 seeds: `{RERUN} \
+             {CLAIMS_RERUN_DOOR}`). Seed {} drawn: grasp at δ = {:.1}°. Comparison, home-made \
+             integrator (sim::door, seed 7): passive {:.2}, heading {:.2}, held {:.2} N·m",
+            engine_source(),
+            seeds_text(n),
+            peaks(0),
+            peaks(1),
+            peaks(2),
+            verdict_text(&d.verdicts, "6.20-passive"),
+            verdict_text(&d.verdicts, "6.20-heading"),
+            verdict_text(&d.verdicts, "6.20-relief"),
+            m.seed,
+            m.start_pitch.to_degrees(),
+            home_peak(0),
+            home_peak(1),
+            home_peak(2)
         ),
     )
 }
@@ -1958,10 +2382,28 @@ fn summary_md(chapters: &[(&str, Vec<Figure>)], quick: bool) -> String {
 /// Render every figure of [`CHAPTERS`] and the index into `opts.out`;
 /// returns the figures in order.
 pub fn run(opts: &Options) -> Result<Vec<Figure>, Error> {
+    run_chapters(opts, None)
+}
+
+/// [`run`] for the chapter numbered `only` (2–6) if given, else for all.
+/// Errors: a chapter number outside 2–6, I/O or drawing.
+pub fn run_chapters(opts: &Options, only: Option<usize>) -> Result<Vec<Figure>, Error> {
+    if let Some(c) = only {
+        if !(2..2 + CHAPTERS.len()).contains(&c) {
+            return Err(format!(
+                "--chapter {c}: the report has chapters 2 to {}",
+                1 + CHAPTERS.len()
+            )
+            .into());
+        }
+    }
     std::fs::create_dir_all(&opts.out)?;
     let mut report = Report::new(opts.clone());
     let mut chapters = Vec::new();
-    for (name, figs) in CHAPTERS {
+    for (k, (name, figs)) in CHAPTERS.iter().enumerate() {
+        if only.is_some_and(|c| c != k + 2) {
+            continue;
+        }
         let mut done = Vec::new();
         for f in figs.iter() {
             done.push(f(&mut report)?);
@@ -1986,15 +2428,27 @@ fn main() -> Result<(), Error> {
         quick: false,
         out: default_figures_dir(),
     };
+    let mut only = None;
     while let Some(a) = args.next() {
         match a.as_str() {
             "--quick" => opts.quick = true,
             "--out" => opts.out = PathBuf::from(args.next().ok_or("--out needs a directory")?),
-            other => return Err(format!("unknown argument {other:?} (--quick, --out DIR)").into()),
+            "--chapter" => {
+                only = Some(
+                    args.next()
+                        .and_then(|c| c.parse::<usize>().ok())
+                        .ok_or("--chapter needs a chapter number (2 to 6)")?,
+                )
+            }
+            other => {
+                return Err(
+                    format!("unknown argument {other:?} (--quick, --out DIR, --chapter N)").into(),
+                )
+            }
         }
     }
     let start = std::time::Instant::now();
-    let figures = run(&opts)?;
+    let figures = run_chapters(&opts, only)?;
     for f in &figures {
         println!("{}\n  thesis: {}\n  here:   {}", f.title, f.thesis, f.ours);
     }
@@ -2005,4 +2459,167 @@ fn main() -> Result<(), Error> {
         opts.out.join("index.html").display()
     );
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use mrr_control::sim::engine::door::{DoorBody, EngineDoorSample};
+
+    fn door_sample(door_deg: f64, measured: [f64; 2]) -> EngineDoorSample {
+        EngineDoorSample {
+            time: 0.0,
+            door: door_deg.to_radians(),
+            turret: 0.0,
+            wrist: [0.0; 2],
+            reference: [0.0; 2],
+            measured,
+            interaction: measured,
+            base: [0.0; 3],
+            motors: [0.0; 2],
+            motor_reference: [0.0; 2],
+        }
+    }
+
+    fn door_run(samples: Vec<EngineDoorSample>) -> EngineDoorRun {
+        EngineDoorRun {
+            samples,
+            peak_measured: [0.0; 2],
+            peak_interaction: [0.0; 2],
+            peak_force: 0.0,
+            door_angle: 0.0,
+            wrist_range: [0.0; 2],
+            loop_error: 0.0,
+            off_mode_ticks: 0,
+            saturated_ticks: 0,
+            door: DoorBody::nominal(),
+        }
+    }
+
+    fn seed(seed: u64, passive: Vec<EngineDoorSample>) -> (DoorRunMetrics, [EngineDoorRun; 3]) {
+        let m = DoorRunMetrics {
+            seed,
+            start_pitch: 0.1,
+            nominal: 0.0,
+            heading: 0.0,
+            hold: 0.0,
+            true_peaks: [0.0; 3],
+            door_angle: [0.0; 3],
+        };
+        (
+            m,
+            [
+                door_run(passive),
+                door_run(vec![door_sample(0.5, [9.0, 9.0])]),
+                door_run(vec![]),
+            ],
+        )
+    }
+
+    /// Per 1° bin, each seed contributes the largest `max(|τ_δ|, |τ_γ|)`
+    /// of its own samples there; the band is the median, min and max of
+    /// those (worked by hand below). Only the requested run counts.
+    #[test]
+    fn door_band_takes_each_seeds_bin_peak_then_median_and_range() {
+        let runs = vec![
+            // Seed 1: bin 0 peaks at |−3| = 3 (two samples), bin 1 at 1.
+            seed(
+                1,
+                vec![
+                    door_sample(0.2, [1.0, -3.0]),
+                    door_sample(0.7, [2.0, 0.5]),
+                    door_sample(1.5, [1.0, 0.0]),
+                ],
+            ),
+            // Seed 2: bin 0 peaks at 5, no sample in bin 1.
+            seed(2, vec![door_sample(0.9, [-5.0, 4.0])]),
+            // Seed 3: bin 0 peaks at 1, bin 1 at 2.
+            seed(
+                3,
+                vec![door_sample(0.1, [0.0, 1.0]), door_sample(1.2, [2.0, -1.0])],
+            ),
+        ];
+        let band = door_peak_band(&runs, 0);
+        assert_eq!(band.len(), 2);
+        // Bin 0: seed peaks {3, 5, 1} -> median 3, min 1, max 5.
+        assert_eq!(band[0], (0.5, 3.0, 1.0, 5.0));
+        // Bin 1: seed peaks {1, 2} -> median 1.5, min 1, max 2.
+        assert_eq!(band[1], (1.5, 1.5, 1.0, 2.0));
+        // The heading-error run (kind 1) has its own samples only.
+        assert_eq!(door_peak_band(&runs, 1), vec![(0.5, 9.0, 9.0, 9.0)]);
+    }
+
+    /// The rate errors by central differences are exact for quadratics:
+    /// desired `(t², 3t)`, reached `(t² + 0.01 t, 3t − 0.02 t²)` give an
+    /// error `(0.01, −0.04 t)` and desired rates `(2t, 3)`.
+    #[test]
+    fn tracking_rate_errors_are_central_differences() {
+        let samples: Vec<(f64, [f64; 2], [f64; 2])> = (0..6)
+            .map(|k| {
+                let t = 0.004 * k as f64;
+                (
+                    t,
+                    [t * t, 3.0 * t],
+                    [t * t + 0.01 * t, 3.0 * t - 0.02 * t * t],
+                )
+            })
+            .collect();
+        let run = EngineTrackingRun {
+            samples,
+            max_error: [0.0; 2],
+            rms_error: [0.0; 2],
+            loop_error: 0.0,
+            off_mode_ticks: 0,
+        };
+        let rates = tracking_rate_errors(&run);
+        assert_eq!(rates.len(), 4);
+        for (k, (t, err, desired)) in rates.iter().enumerate() {
+            let expected_t = 0.004 * (k + 1) as f64;
+            assert!((t - expected_t).abs() < 1e-15);
+            assert!((err[0] - 0.01).abs() < 1e-9, "{err:?}");
+            assert!((err[1] + 0.04 * expected_t).abs() < 1e-9, "{err:?}");
+            assert!((desired[0] - 2.0 * expected_t).abs() < 1e-9, "{desired:?}");
+            assert!((desired[1] - 3.0).abs() < 1e-9, "{desired:?}");
+        }
+    }
+
+    /// A verdict's text names the claim, the verdict, the seeds and the
+    /// median and range of the values it was judged on; an id not judged
+    /// says so.
+    #[test]
+    fn verdict_text_reports_the_claims_spread() {
+        let claims = door_claims().expect("door claims");
+        let metrics: Vec<DoorRunMetrics> = [1.0, 1.5, 4.0]
+            .iter()
+            .enumerate()
+            .map(|(i, &nominal)| DoorRunMetrics {
+                seed: i as u64 + 1,
+                start_pitch: 0.1,
+                nominal,
+                heading: 2.0,
+                hold: 6.0,
+                true_peaks: [0.0; 3],
+                door_angle: [1.57; 3],
+            })
+            .collect();
+        let verdicts = evaluate(
+            &claims,
+            &Runs {
+                door: &metrics,
+                ..Runs::default()
+            },
+        )
+        .expect("verdicts");
+        // 2 of 3 seeds at or below 2 N·m (67 % < 80 %), 1 of 3 at or above
+        // 3 N·m (33 % < 50 %): undecided; median 1.5, range 1.0–4.0.
+        assert_eq!(
+            verdict_text(&verdicts, "6.20-passive"),
+            "6.20-passive undecided over seeds 1–3: median 1.50 N·m (min 1.00, max 4.00)"
+        );
+        assert_eq!(
+            verdict_text(&verdicts, "6.16-case2"),
+            "6.16-case2: not judged"
+        );
+        assert_eq!(seeds_text(1), "seed 1");
+    }
 }
