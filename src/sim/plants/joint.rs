@@ -303,6 +303,18 @@ impl JointPlant {
         self.node(st, x).1
     }
 
+    /// The load the drive puts on the rotor, expressed at the link as
+    /// `N` times its motor-side torque (N·m): `T_w + N T_f ∂e_k/∂θ_m`, the
+    /// wave-generator bearing torque plus the kinematic error's share of
+    /// the flexspline torque (the rotor equation of the module docs is
+    /// `I_m θ̈_m = τ_m − F_m − motor_load/N`). It differs from
+    /// [`transmitted`](Self::transmitted) by the mesh friction at the node
+    /// and the kinematic-error term; eq. (4.1) has one `τ_t` for both.
+    pub fn motor_load(&self, st: &JointPlantState, x: &[f64; 4]) -> f64 {
+        let (_, t_f, t_w, de_m, _) = self.node(st, x);
+        t_w + RATIO * t_f * de_m
+    }
+
     fn derivative(
         &self,
         st: &JointPlantState,
