@@ -34,8 +34,8 @@
 //!   back-driving torque, 2.0 N·m); the kinematic error's gradient is at most
 //!   `Σ_h h a_h + 2(N + 1) a_r` over the draw's largest amplitudes
 //!   (`a_h = 6.45e-5, 9e-5, 1.5e-5, 2e-5`, ripple `a_r = 4e-5`):
-//!   `3.695e-4 + 202·4e-5 = 8.45e-3` rad/rad; `|T_f| ≤ 5 N·m` (checked per
-//!   run; the trajectory alone needs about 2.3 N·m — payload
+//!   `3.695e-4 + 202·4e-5 = 8.45e-3` rad/rad; `|T_f| ≤ 5 N·m` (an
+//!   allowance; the trajectory alone needs about 2.3 N·m — payload
 //!   `4 sin(0.4) = 1.56`, link inertia `0.1·0.2·(2π/1.5)² = 0.35`, link
 //!   friction `0.3 + 0.05·0.84` — but at the 4 ms tick the link rings
 //!   against the drive's spring and `T_f` swings by up to 2.5 N·m within
@@ -52,8 +52,10 @@
 //! Every other number (λ, the layers, the friction box with `f_τ` known,
 //! `K_I = 0`, the limits, `T = 4 ms`) is the preset's. Premises checked in
 //! each run, not assumed: the E4.4 step ratio at the trajectory's peak speed
-//! below 1, no sample at the torque limit, `|F_ms| ≤ ρ_fq`,
-//! `|T_f| ≤ 5 N·m`, and `|fed back − L| ≤ ρ_τt` at every integration step.
+//! below 1, no sample at the torque limit, `|F_ms| ≤ ρ_fq`, and eq. (4.14)
+//! itself, `|T_f(t) + n_k − L(t)| ≤ ρ_τt` at the sample instants and after
+//! every integration step (the `|T_f| ≤ 5 N·m` allowance is how `ρ_τt` was
+//! sized, not a premise: the error it bounds is checked directly).
 #![cfg(feature = "sim")]
 
 use core::f64::consts::TAU;
@@ -273,9 +275,12 @@ fn run(case: &Case) -> Run {
             out.max_hold_change = out
                 .max_hold_change
                 .max((flexspline - sampled_flexspline).abs());
-            out.max_friction = out
-                .max_friction
-                .max(plant.motor_friction.torque(&st.motor, st.x[0], st.x[1]).abs());
+            out.max_friction = out.max_friction.max(
+                plant
+                    .motor_friction
+                    .torque(&st.motor, st.x[0], st.x[1])
+                    .abs(),
+            );
             out.max_flexspline = out.max_flexspline.max(flexspline.abs());
             if tt >= reaching_time {
                 out.max_sliding = out
@@ -322,20 +327,25 @@ fn derived_bounds_cover_the_family() {
 }
 
 fn case() -> impl Strategy<Value = Case> {
-    (0..24usize, any::<u64>(), 0.02..0.2f64, 1.5..3.0f64, 0.0..1.0f64).prop_map(
-        |(plant, seed, amplitude, period, noise)| Case {
+    (
+        0..24usize,
+        any::<u64>(),
+        0.02..0.2f64,
+        1.5..3.0f64,
+        0.0..1.0f64,
+    )
+        .prop_map(|(plant, seed, amplitude, period, noise)| Case {
             plant,
             seed,
             amplitude,
             period,
             noise,
             friction_scale: 1.0,
-        },
-    )
+        })
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(24))]
+    #![proptest_config(ProptestConfig::with_cases(96))]
 
     /// Theorem 1 on the family at 4 ms: after the reaching time of
     /// eq. (4.31), the true `|r|` (plant state at the sample instants and
@@ -345,7 +355,16 @@ proptest! {
     /// plants, any seed (kinematic-error draw, encoder and feedback noise),
     /// a link trajectory of amplitude 0.02–0.2 rad over 1.5–3 s (peak motor
     /// speed at most 84 rad/s, within the preset's 100 rad/s), one full
-    /// period, feedback noise up to 0.5 N·m. 24 cases.
+    /// period, feedback noise up to 0.5 N·m.
+    ///
+    /// 96 cases (about 15 s under the test profile). Seen on one run of 96:
+    /// `|r|` 33–56 rad/s against `r̄(δ)` 256–284 rad/s (at most 0.20 of
+    /// it; `r_S` = 253 rad/s), `δ` 0.003–0.038 N·m, the feedback error
+    /// 2.1–5.4 N·m against `ρ_τt` = 6.72 N·m, `|T_f|` up to 4.7 N·m, the
+    /// step ratio 0.30–0.37. The bound is loose at 4 ms: with `ε_r` =
+    /// 525 rad/s the robust term's slope `K_r/ε_r` is about an eighth of the
+    /// damping `2 I_m λ`, and a law with that term's sign flipped still
+    /// passes this test: at this design the check cannot tell that sign.
     #[test]
     fn sliding_variable_stays_within_the_bound_on_family_plants(c in case()) {
         let r = run(&c);
@@ -353,7 +372,6 @@ proptest! {
         prop_assert!(r.reaching_time < 0.5 * c.period, "{c:?} {r:?}");
         prop_assert_eq!(r.saturated, 0, "{:?} {:?}", c, r);
         prop_assert!(r.max_friction <= friction_gap() + 1e-12, "{c:?} {r:?}");
-        prop_assert!(r.max_flexspline <= FLEXSPLINE_TORQUE_MAX, "{c:?} {r:?}");
         prop_assert!(r.max_feedback_error <= torque_error_bound(), "{c:?} {r:?}");
         prop_assert!(r.max_sliding <= r.radius, "{c:?} {r:?}");
     }
@@ -388,7 +406,8 @@ fn friction_outside_the_bound_exceeds_the_ultimate_bound() {
     assert!(bad.max_friction > 10.0 * friction_gap(), "{bad:?}");
     let lambda = design().lambda;
     let expected = 0.9 * 2.0 * lambda * RATIO * c.amplitude;
+    // r̄(δ) ≥ r_S: the widening only adds.
+    assert!(bad.radius >= bad.bound.sliding_radius, "{bad:?}");
     assert!(expected > 2.0 * bad.radius, "{expected} vs {bad:?}");
     assert!(bad.max_sliding >= expected, "{expected} vs {bad:?}");
 }
-
