@@ -597,6 +597,29 @@ mod tests {
         assert!(p[0] > 0.29);
     }
 
+    /// The printed eq. (6.3) differs from the corrected map in the `τ_x`
+    /// coefficient alone (errata E6.1): for any wrench, printed − corrected
+    /// = `(τ_x (1 − cos γ), 0)`. Every wrench component is nonzero here,
+    /// so each term of the printed form is checked.
+    #[test]
+    fn printed_form_differs_only_in_the_tau_x_coefficient() {
+        let l = 0.05;
+        for w in [
+            [3.0, -7.0, 2.0, 0.4, -0.3, 0.25],
+            [-20.0, 15.0, -4.0, -1.1, 0.7, -0.9],
+            [0.5, 40.0, 9.0, 2.2, 1.3, 0.6],
+        ] {
+            for k in -6..=6 {
+                let g = k as f64 * 0.1;
+                let c = interaction_torques(&w, g, l);
+                let p = interaction_torques_as_printed(&w, g, l);
+                let d0 = w[3] * (1.0 - libm::cos(g));
+                assert!((p[0] - c[0] - d0).abs() < 1e-12, "{w:?} {g}: {p:?} {c:?}");
+                assert!((p[1] - c[1]).abs() < 1e-12, "{w:?} {g}: {p:?} {c:?}");
+            }
+        }
+    }
+
     /// The corrected map is the projection of the moment about the wrist
     /// centre on the pitch axis `(cos γ, 0, −sin γ)` and the yaw axis
     /// `−ŷ`: checked against the moment computed from a force applied at a
