@@ -63,7 +63,7 @@ use mrr_control::control::{
     ControlInput, RobustAdaptiveConfig, RobustAdaptiveDesign, RobustAdaptiveParams, UltimateBound,
 };
 use mrr_control::joint::JointParams;
-use mrr_control::sim::closed_loop::sampled_sliding_radius;
+use mrr_control::sim::closed_loop::{raised_cosine, sampled_sliding_radius};
 use mrr_control::sim::plants::drive::{BACKDRIVE_TORQUE, RATIO};
 use mrr_control::sim::plants::joint::{
     joint_family, JointPlant, MOTOR_ASYMMETRY, MOTOR_BREAKAWAYS, MOTOR_COUNTS, MOTOR_VISCOUS, STEP,
@@ -114,13 +114,6 @@ fn design() -> RobustAdaptiveDesign {
 fn family() -> &'static [JointPlant] {
     static F: OnceLock<Vec<JointPlant>> = OnceLock::new();
     F.get_or_init(joint_family)
-}
-
-/// Link trajectory `A (1 − cos(2π t/P))`: position, speed, acceleration.
-fn raised_cosine(a: f64, p: f64, t: f64) -> (f64, f64, f64) {
-    let w = TAU / p;
-    let (s, c) = (w * t).sin_cos();
-    (a * (1.0 - c), a * w * s, a * w * w * c)
 }
 
 /// One closed-loop case.
