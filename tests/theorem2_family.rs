@@ -86,22 +86,38 @@
 //! * **Torque feedback, `ρ_τt`.** `|τ_t + n − L| ≤ |n| + |T_g − τ_t| +
 //!   N |T_g| |∂e_k/∂θ_m|`, and from the output equation
 //!   `T_g − τ_t = I_o (θ̈_o + a_b) + F_o + T_g ∂e_k/∂θ_o`. With an
-//!   allowance `α = 250 rad/s²` on `|θ̈_o + a_b|` (the trajectory needs
-//!   5.3, the arm 42; the rest is for the distal body ringing on the gear
-//!   at `√(k_g/I_o)` = 158–1000 rad/s, which the 4 ms law cannot damp),
+//!   allowance `α` on `|θ̈_o + a_b|` (the trajectory needs 5.3 rad/s², the
+//!   arm 42; the rest is for the distal body ringing on the gear at
+//!   `√(k_g/I_o)` = 158–1000 rad/s, which the 4 ms law cannot damp),
 //!   `|∂e_k/∂θ_o| ≤ o = 7.5e-5` (the output term) and
 //!   `|∂e_k/∂θ_m| ≤ g = Σ h a_h + 1064·5e-6 = 3.695e-4 + 5.32e-3 =
-//!   5.6895e-3`: `|T_g| ≤ T̄ = (2 + 2e-3·250 + 0.05)/(1 − o) = 2.5502 N·m`
-//!   and `ρ_τt = 0.2 + 0.5 + 0.05 + T̄ (o + N g) = 8.455 N·m`
-//!   (`ρ_τt/N = 0.0159 N·m` at the motor).
+//!   5.6895e-3`: `|T_g| ≤ T̄ = (2 + 2e-3·α + 0.05)/(1 − o)` and
+//!   `ρ_τt = 0.2 + 2e-3·α + 0.05 + T̄ (o + N g)`.
 //!
-//! The resulting robust gain is `K_r = 0 + 0.0115 + 5.25e-5 + 0.0159 =
-//! 0.0275 N·m` and the step ratio `T (K_r/ε_r + I_m N λ)/(I_m N) = 0.47`.
+//!   *As first written (before the first run):* `α = 250 rad/s²`,
+//!   `T̄ = 2.5502 N·m`, `ρ_τt = 8.455 N·m` (`ρ_τt/N = 0.0159 N·m` at the
+//!   motor), `K_r = 0 + 0.0115 + 5.25e-5 + 0.0159 = 0.0275 N·m`, step
+//!   ratio `T (K_r/ε_r + I_m N λ)/(I_m N) = 0.47`.
+//!
+//!   *Revised after the first run:* 64 cases saw `|θ̈_o + a_b|` up to
+//!   330 rad/s² (the stiff gear with the light body ringing), above the
+//!   250 allowed. Eq. (6.11), checked directly, still held (error at most
+//!   6.2 N·m against 8.455), but an input of the derivation did not, so
+//!   `α` is now 500 rad/s² and `|θ̈_o + a_b| ≤ α` is checked in every run
+//!   with the other premises: `T̄ = (2 + 1.0 + 0.05)/(1 − o) = 3.0502 N·m`,
+//!   `ρ_τt = 0.2 + 1.0 + 0.05 + 3.0502·(7.5e-5 + 531·5.6895e-3) =
+//!   10.4653 N·m` (`ρ_τt/N = 0.01971 N·m`).
+//!
+//! The resulting robust gain is `K_r = 0 + 0.0115 + 5.25e-5 + 0.01971 =
+//! 0.03126 N·m` and the step ratio
+//! `T (K_r/ε_r + I_m N λ)/(I_m N) = 0.004 (0.06252 + 0.011151)/5.5755e-4 =
+//! 0.53`.
 //!
 //! # Criteria (written before the first run)
 //! Per case, both motors, over one trajectory period: the premises hold —
 //! the step ratio at the peak speed below 1, no sample at the torque
-//! limit, `|F_ms| ≤ ρ_fq`, `|a_b| ≤ ρ_base`, and eq. (6.11) itself,
+//! limit, `|F_ms| ≤ ρ_fq`, `|a_b| ≤ ρ_base` (after the first run also
+//! `|θ̈_o + a_b| ≤ α`, see above), and eq. (6.11) itself,
 //! `|τ_t(t) + n_k − L(t)| ≤ ρ_τt` at every sample and integration step
 //! (the `α` allowance is how `ρ_τt` was sized, not a premise: the error
 //! it bounds is checked directly) — and after the reaching time of
@@ -169,7 +185,7 @@ const INTERACTION_MAX: f64 = 2.0;
 /// Largest F/T noise on the fed-back torque, N·m.
 const NOISE: f64 = 0.2;
 /// Allowance on `|θ̈_o + a_b|` in the derivation of `ρ_τt`, rad/s².
-const OUTPUT_ACCELERATION: f64 = 250.0;
+const OUTPUT_ACCELERATION: f64 = 500.0;
 /// `ρ_base` of the design, rad/s².
 const RHO_BASE: f64 = 50.0;
 
@@ -606,15 +622,15 @@ fn derived_bounds_cover_the_family() {
     assert!((friction_gap() - 0.0115).abs() < 1e-12);
     let g = kinematic_gradient_max();
     assert!((g - 5.6895e-3).abs() < 1e-9, "{g}");
-    let tbar = (2.0 + 2e-3 * 250.0 + 0.05) / (1.0 - 7.5e-5);
+    let tbar = (2.0 + 2e-3 * 500.0 + 0.05) / (1.0 - 7.5e-5);
     assert!((gear_torque_max() - tbar).abs() < 1e-12);
-    let rho = 0.2 + 0.5 + 0.05 + tbar * (7.5e-5 + 531.0 * 5.6895e-3);
+    let rho = 0.2 + 1.0 + 0.05 + tbar * (7.5e-5 + 531.0 * 5.6895e-3);
     assert!(
         (torque_error_bound() - rho).abs() < 1e-9,
         "{}",
         torque_error_bound()
     );
-    assert!((rho - 8.455).abs() < 1e-3, "{rho}");
+    assert!((rho - 10.4653).abs() < 1e-4, "{rho}");
     for p in family() {
         assert!(p.motor_friction.breakaway_forward() <= friction_gap() + 1e-15);
         assert!(p.motor_friction.breakaway_backward() <= friction_gap());
@@ -667,7 +683,18 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(24))]
 
     /// Theorem 2 on the wrist family at 4 ms, both motors (criteria in
-    /// the module docs).
+    /// the module docs). Cases: any two of the 8 plants, any seed
+    /// (kinematic-error draws, encoder and F/T noise), trajectories of
+    /// 0.02–0.2 rad over 1.5–3 s, arm motion and interaction as above.
+    ///
+    /// 24 cases, about 6 s of the file's 8 s under the test profile. Seen
+    /// on one run of 256 cases (`PROPTEST_CASES=256`): `|r|` 0.09–0.22
+    /// rad/s against `r̄(δ)` 1.18–1.61 rad/s (at most 0.14 of it; `r_S` =
+    /// 0.91 rad/s), `δ` 0.005–0.012 N·m, the feedback error 0.6–6.1 N·m
+    /// against `ρ_τt` = 10.47 N·m, `|θ̈_o + a_b|` up to 315 rad/s², `|T_g|`
+    /// up to 2.15 N·m. The bound is loose at 4 ms, as Theorem 1's is: the
+    /// same check with the applied motor torque scaled by 0.8 (a 20 %
+    /// torque-constant error, outside the law's model) still passed.
     #[test]
     fn wrist_sliding_variables_stay_within_theorem_2_bound_on_family_plants(c in case()) {
         let r = run(&c);
@@ -675,6 +702,7 @@ proptest! {
         prop_assert_eq!(r.saturated, 0, "{:?} {:?}", c, r);
         prop_assert!(r.max_slip_friction <= friction_gap() + 1e-12, "{c:?} {r:?}");
         prop_assert!(r.max_arm <= RHO_BASE, "{c:?} {r:?}");
+        prop_assert!(r.max_output_acceleration <= OUTPUT_ACCELERATION, "{c:?} {r:?}");
         prop_assert!(r.max_feedback_error <= torque_error_bound(), "{c:?} {r:?}");
         for i in 0..2 {
             prop_assert!(r.reaching_time[i] < 0.5 * r.duration, "{c:?} {r:?}");
@@ -690,7 +718,7 @@ proptest! {
 /// start, within `N·2.2e-4` motor rad of 0 (the kinematic error). The law
 /// cannot push through: at the turning point `t = P/2` its linear part
 /// `I_m N λ² e = 5.5755e-4·400·0.4 = 0.089 N·m` plus the robust gain
-/// 0.0275 N·m, the integral's 0.02 N·m, the friction estimate's at most
+/// 0.0313 N·m, the integral's 0.02 N·m, the friction estimate's at most
 /// 0.02 + 0.01·2 and `τ_t/N ≤ 4e-3` stay below the 0.2125 N·m break-away.
 /// There `q_d = 2A`, `q̇_d = 0`, so `|r| ≥ λ (2A − 1e-4) − |q̇|`: with
 /// `A = 0.2` rad, `λ = 20`, about 8 rad/s; the test asks for 0.9 of
