@@ -340,7 +340,7 @@ impl WristMotorPlant {
     /// At rest with the output at 0 and no twist (`θ_m = −N e_k`, by
     /// fixed-point iteration), the kinematic error drawn from `seed`.
     fn rest(&self, seed: u64) -> WristMotorState {
-        let mut rng = SplitMix64::new(seed ^ 0x5EED_0F_2A11);
+        let mut rng = SplitMix64::new(seed ^ 0x005E_ED0F_2A11);
         let kinematic_error = KinematicErrorPlant::draw(&mut rng, RIPPLE, RATIO);
         let mut m = 0.0;
         for _ in 0..60 {

@@ -424,9 +424,13 @@ impl ErrorStats {
 ///
 /// ```
 /// use mrr_control::sim::closed_loop::raised_cosine;
-/// let (q, v, a) = raised_cosine(0.1, 2.0, 0.5); // a quarter period
 /// let w = core::f64::consts::PI; // 2π/2 s
+/// // A quarter period: halfway up, at the peak speed.
+/// let (q, v, a) = raised_cosine(0.1, 2.0, 0.5);
 /// assert!((q - 0.1).abs() < 1e-15 && (v - 0.1 * w).abs() < 1e-15 && a.abs() < 1e-15);
+/// // Half a period: at the top `2A`, at rest, decelerating by `A ω²`.
+/// let (q, v, a) = raised_cosine(0.1, 2.0, 1.0);
+/// assert!((q - 0.2).abs() < 1e-15 && v.abs() < 1e-15 && (a + 0.1 * w * w).abs() < 1e-14);
 /// ```
 pub fn raised_cosine(amplitude: f64, period: f64, t: f64) -> (f64, f64, f64) {
     let a = amplitude;
