@@ -56,14 +56,38 @@
 //! itself, `|T_f(t) + n_k − L(t)| ≤ ρ_τt` at the sample instants and after
 //! every integration step (the `|T_f| ≤ 5 N·m` allowance is how `ρ_τt` was
 //! sized, not a premise: the error it bounds is checked directly).
+//!
+//! # Estimate feedback (a measured allowance, not a derived bound)
+//! A second check feeds the law the 4 ms preset joint's own estimate
+//! `τ̂_t` ([`JointConfig::measure`] of `JointParams::table_4_1_at(0.004)`:
+//! eq. 3.8–3.10 from the quantized link and motor encoders, the previous
+//! command as `τ_w`) in place of `T_f + n`. Its error at a sample,
+//! `ε_k = τ̂_t,k − T_f(t_k)`, is held over the tick as the noise is (the
+//! continuous law is fed `T_f(t) + ε_k`), so eq. (4.14) reads
+//! `|T_f(t) + ε_k − L(t)| ≤ |M| + N|T_f||∂e_k/∂θ_m| + |ε_k|` and
+//! `ρ_τt = 2.0 + 4.22 + ε̄`. The first two terms are derived above; `ε̄`
+//! is **not**: the estimator's model (the catalogue spring of eq. 2.11,
+//! Table 3.2's kinematic error, its hysteresis) differs from each plant
+//! of the family in shape and in the kinematic error's draw, and no bound
+//! of that difference over the family is derived here. `ε̄ = 6.0 N·m` was
+//! set before measuring and then measured: over 48 runs on seeds 0–47
+//! (two per plant) the largest `|ε_k|` was 5.09 N·m
+//! (`estimator_error_observation`, which asserts `≤ ε̄` and prints it;
+//! those runs use the design with this `ε̄`, so the allowance and the
+//! loop it shapes are not independent). The check
+//! (`estimate_feedback_stays_within_the_bound_under_a_measured_allowance`)
+//! draws its seeds from `[2³², 2⁶⁴)`, disjoint from those, and checks
+//! eq. (4.14) directly in each run as above. Its verdict is therefore
+//! conditional: Theorem 1's bound holds on these cases *given* an
+//! estimator error within an allowance that was observed, not proven.
 #![cfg(feature = "sim")]
 
 use core::f64::consts::TAU;
 use mrr_control::control::{
     ControlInput, RobustAdaptiveConfig, RobustAdaptiveDesign, RobustAdaptiveParams, UltimateBound,
 };
-use mrr_control::joint::JointParams;
-use mrr_control::sim::closed_loop::sampled_sliding_radius;
+use mrr_control::joint::{JointConfig, JointParams, JointReadings};
+use mrr_control::sim::closed_loop::{raised_cosine, sampled_sliding_radius};
 use mrr_control::sim::plants::drive::{BACKDRIVE_TORQUE, RATIO};
 use mrr_control::sim::plants::joint::{
     joint_family, JointPlant, MOTOR_ASYMMETRY, MOTOR_BREAKAWAYS, MOTOR_COUNTS, MOTOR_VISCOUS, STEP,
@@ -95,32 +119,53 @@ fn friction_gap() -> f64 {
     MOTOR_BREAKAWAYS.iter().fold(0.0f64, |m, &f| m.max(f)) * (1.0 + MOTOR_ASYMMETRY)
 }
 
-/// `ρ_τt` (module docs), N·m.
-fn torque_error_bound() -> f64 {
-    BACKDRIVE_TORQUE + RATIO * FLEXSPLINE_TORQUE_MAX * kinematic_gradient_max() + NOISE
+/// Which torque the law is fed back.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Feedback {
+    /// The flexspline torque `T_f(t_k)` plus noise within [`NOISE`].
+    Sensor,
+    /// The 4 ms preset joint's own estimate `τ̂_t` from the quantized
+    /// encoders ([`JointConfig::measure`]).
+    Estimate,
 }
 
-/// The 4 ms preset's law with the family's derived uncertainty bounds.
-fn design() -> RobustAdaptiveDesign {
+/// The estimator's error allowance `ε̄`, N·m: **measured, not derived**
+/// (module docs, "Estimate feedback"); see
+/// [`estimator_error_observation`].
+const ESTIMATE_ERROR_ALLOWANCE: f64 = 6.0;
+
+/// `ρ_τt` (module docs), N·m: the derived part (mesh friction and the
+/// kinematic error's share) plus the feedback's own error, the noise bound
+/// for [`Feedback::Sensor`] (derived) or the measured allowance for
+/// [`Feedback::Estimate`].
+fn torque_error_bound(feedback: Feedback) -> f64 {
+    let own = match feedback {
+        Feedback::Sensor => NOISE,
+        Feedback::Estimate => ESTIMATE_ERROR_ALLOWANCE,
+    };
+    BACKDRIVE_TORQUE + RATIO * FLEXSPLINE_TORQUE_MAX * kinematic_gradient_max() + own
+}
+
+/// The 4 ms preset's law with the family's uncertainty bounds.
+fn design(feedback: Feedback) -> RobustAdaptiveDesign {
     let preset = JointParams::table_4_1_at(PERIOD).expect("the 4 ms preset");
     let mut d = *preset.settings().mode.settings().active.design();
     d.uncertainty.boundary_layer = 0.0;
     d.uncertainty.nonparametric_friction = friction_gap();
     d.uncertainty.base_acceleration = 0.0;
-    d.uncertainty.torque_estimate = torque_error_bound();
+    d.uncertainty.torque_estimate = torque_error_bound(feedback);
     d
+}
+
+/// The 4 ms preset joint whose estimator [`Feedback::Estimate`] uses.
+fn preset_joint() -> &'static JointConfig<f64> {
+    static J: OnceLock<JointConfig<f64>> = OnceLock::new();
+    J.get_or_init(|| JointConfig::new(&JointParams::table_4_1_at(PERIOD).expect("the 4 ms preset")))
 }
 
 fn family() -> &'static [JointPlant] {
     static F: OnceLock<Vec<JointPlant>> = OnceLock::new();
     F.get_or_init(joint_family)
-}
-
-/// Link trajectory `A (1 − cos(2π t/P))`: position, speed, acceleration.
-fn raised_cosine(a: f64, p: f64, t: f64) -> (f64, f64, f64) {
-    let w = TAU / p;
-    let (s, c) = (w * t).sin_cos();
-    (a * (1.0 - c), a * w * s, a * w * w * c)
 }
 
 /// One closed-loop case.
@@ -136,6 +181,8 @@ struct Case {
     noise: f64,
     /// Factor on the motor friction's levels (1: the family's plant).
     friction_scale: f64,
+    /// The torque fed back.
+    feedback: Feedback,
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -159,6 +206,9 @@ struct Run {
     max_friction: f64,
     /// Largest `|T_f|`, N·m.
     max_flexspline: f64,
+    /// Largest error of the fed-back torque at a sample instant against
+    /// the flexspline torque then, `|τ_fb,k − T_f(t_k)|`, N·m.
+    max_sample_error: f64,
     saturated: usize,
     step_ratio: f64,
 }
@@ -169,7 +219,7 @@ fn sliding(lambda: f64, x: &[f64; 4], qd: f64, vd: f64) -> f64 {
 }
 
 fn run(case: &Case) -> Run {
-    let design = design();
+    let design = design(case.feedback);
     let params = RobustAdaptiveParams::try_new(design).expect("valid derived design");
     let law = RobustAdaptiveConfig::<f64>::new(&params);
     let bound = UltimateBound::new(&design);
@@ -195,8 +245,12 @@ fn run(case: &Case) -> Run {
     let peak_speed = n * case.amplitude * TAU / case.period;
     let step_ratio = UltimateBound::step_ratio_at_speed(&design, peak_speed);
     let mut ls = law.initial_state();
-    let first = plant.read(&st, &mut rng).motor_counter;
+    let first_reading = plant.read(&st, &mut rng);
+    let first = first_reading.motor_counter;
     let (mut counter, mut count) = (first, first as i32 as i64);
+    let joint = preset_joint();
+    let mut joint_state = joint.state(first_reading.link_count, first);
+    let mut last_command = 0.0;
     let mut out = Run {
         bound,
         delta: 0.0,
@@ -207,6 +261,7 @@ fn run(case: &Case) -> Run {
         max_hold_change: 0.0,
         max_friction: 0.0,
         max_flexspline: 0.0,
+        max_sample_error: 0.0,
         saturated: 0,
         step_ratio,
     };
@@ -225,8 +280,21 @@ fn run(case: &Case) -> Run {
         } else {
             (count - previous) as f64 * rad / PERIOD
         };
-        let noise = case.noise * NOISE * (2.0 * rng.uniform() - 1.0);
+        let sensor_noise = case.noise * NOISE * (2.0 * rng.uniform() - 1.0);
         let sampled_flexspline = plant.transmitted(&st, &st.x);
+        // The fed-back torque's error at the sample, held over the tick.
+        let noise = match case.feedback {
+            Feedback::Sensor => sensor_noise,
+            Feedback::Estimate => {
+                let readings = JointReadings {
+                    link_count: sens.link_count,
+                    motor_counter: sens.motor_counter,
+                    motor_torque: Some(last_command),
+                };
+                joint.measure(&mut joint_state, &readings).joint_torque_si() - sampled_flexspline
+            }
+        };
+        out.max_sample_error = out.max_sample_error.max(noise.abs());
         let fb = sampled_flexspline + noise;
         let (qd, vd, ad) = raised_cosine(case.amplitude, case.period, t);
         let x = ControlInput {
@@ -240,6 +308,7 @@ fn run(case: &Case) -> Run {
         };
         let held = ls;
         let o = law.update(&mut ls, &x);
+        last_command = o.torque;
         out.saturated += o.saturated as usize;
         // The hold interval [t_k, t_k + T]: the sample instant, then the
         // end of every integration step.
@@ -321,9 +390,19 @@ fn derived_bounds_cover_the_family() {
             assert!(d.abs() <= g * (1.0 + 1e-6), "seed {seed} at {m}: {d} > {g}");
         }
     }
-    let d = design();
+    let d = design(Feedback::Sensor);
     assert!(RobustAdaptiveParams::try_new(d).is_ok());
     assert!(d.robust_gain() < d.torque_limit, "{}", d.robust_gain());
+    // With the estimate fed back: ρ_τt = 2.0 + 100·5·8.4495e-3 + 6.0.
+    let e = design(Feedback::Estimate);
+    let rho = torque_error_bound(Feedback::Estimate);
+    assert!(
+        (rho - (2.0 + 500.0 * 8.4495e-3 + 6.0)).abs() < 1e-4,
+        "{rho}"
+    );
+    assert!(RobustAdaptiveParams::try_new(e).is_ok());
+    assert!((e.robust_gain() - (0.0138 + rho / 100.0)).abs() < 1e-12);
+    assert!(e.robust_gain() < e.torque_limit, "{}", e.robust_gain());
 }
 
 fn case() -> impl Strategy<Value = Case> {
@@ -341,6 +420,7 @@ fn case() -> impl Strategy<Value = Case> {
             period,
             noise,
             friction_scale: 1.0,
+            feedback: Feedback::Sensor,
         })
 }
 
@@ -372,7 +452,7 @@ proptest! {
         prop_assert!(r.reaching_time < 0.5 * c.period, "{c:?} {r:?}");
         prop_assert_eq!(r.saturated, 0, "{:?} {:?}", c, r);
         prop_assert!(r.max_friction <= friction_gap() + 1e-12, "{c:?} {r:?}");
-        prop_assert!(r.max_feedback_error <= torque_error_bound(), "{c:?} {r:?}");
+        prop_assert!(r.max_feedback_error <= torque_error_bound(c.feedback), "{c:?} {r:?}");
         prop_assert!(r.max_sliding <= r.radius, "{c:?} {r:?}");
     }
 }
@@ -397,6 +477,7 @@ fn friction_outside_the_bound_exceeds_the_ultimate_bound() {
         period: 2.0,
         noise: 0.5,
         friction_scale: 1.0,
+        feedback: Feedback::Sensor,
     };
     let ok = run(&c);
     assert!(ok.max_sliding <= ok.radius, "{ok:?}");
@@ -404,10 +485,92 @@ fn friction_outside_the_bound_exceeds_the_ultimate_bound() {
     c.friction_scale = 25.0;
     let bad = run(&c);
     assert!(bad.max_friction > 10.0 * friction_gap(), "{bad:?}");
-    let lambda = design().lambda;
+    let lambda = design(Feedback::Sensor).lambda;
     let expected = 0.9 * 2.0 * lambda * RATIO * c.amplitude;
     // r̄(δ) ≥ r_S: the widening only adds.
     assert!(bad.radius >= bad.bound.sliding_radius, "{bad:?}");
     assert!(expected > 2.0 * bad.radius, "{expected} vs {bad:?}");
     assert!(bad.max_sliding >= expected, "{expected} vs {bad:?}");
+}
+
+/// The measurement behind [`ESTIMATE_ERROR_ALLOWANCE`]: the estimate's
+/// error at the sample instants, `|τ̂_t,k − T_f(t_k)|`, over 48 closed-loop
+/// runs on seeds 0–47 (two per plant, trajectories drawn from a fixed
+/// generator over the check's ranges), which the check's seeds (at least
+/// 2³²) never use. It asserts that the allowance covers what it saw, so
+/// the observation is rerun with the file.
+#[test]
+fn estimator_error_observation() {
+    let mut g = SplitMix64::new(0xE57_0B5);
+    let mut worst = 0.0f64;
+    for seed in 0..48u64 {
+        let c = Case {
+            plant: (seed % 24) as usize,
+            seed,
+            amplitude: 0.02 + 0.18 * g.uniform(),
+            period: 1.5 + 1.5 * g.uniform(),
+            noise: 0.0,
+            friction_scale: 1.0,
+            feedback: Feedback::Estimate,
+        };
+        let r = run(&c);
+        worst = worst.max(r.max_sample_error);
+    }
+    eprintln!("largest |estimate - T_f| at a sample over seeds 0-47: {worst:.3} N·m");
+    assert!(worst <= ESTIMATE_ERROR_ALLOWANCE, "{worst}");
+}
+
+fn estimate_case() -> impl Strategy<Value = Case> {
+    (
+        0..24usize,
+        (1u64 << 32)..u64::MAX,
+        0.02..0.2f64,
+        1.5..3.0f64,
+    )
+        .prop_map(|(plant, seed, amplitude, period)| Case {
+            plant,
+            seed,
+            amplitude,
+            period,
+            noise: 0.0,
+            friction_scale: 1.0,
+            feedback: Feedback::Estimate,
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// Theorem 1 on the family at 4 ms with the library's own joint-torque
+    /// estimate fed back, **under a measured allowance** `ε̄ = 6.0 N·m` for
+    /// the estimator's error (module docs, "Estimate feedback"): the same
+    /// premises and assertion as the sensor check, with
+    /// `ρ_τt = 2.0 + 4.22 + 6.0 = 12.22 N·m` (`K_r = 0.136 N·m`, below
+    /// the 0.188 N·m limit). Seeds disjoint from the measurement's.
+    ///
+    /// 48 cases (about 14 s under the test profile, as many again for
+    /// `estimator_error_observation`). Seen on one run of 48
+    /// (`PROPTEST_RNG_SEED=4242`): `|ε_k|` 1.2–5.43 N·m — above the 5.09
+    /// the measurement saw, within `ε̄` by 0.57 N·m, so other seeds may well
+    /// exceed it (such a case is rejected with `prop_assume!`: the
+    /// allowance is a premise of the conclusion, not a bound; proptest
+    /// fails the test if it rejects more than its global limit) — the
+    /// feedback error 3.1–9.0 N·m against `ρ_τt` = 12.22
+    /// N·m, `|r|` 33–79 rad/s against `r̄(δ)` 298–321 rad/s (at most 0.25
+    /// of it), `δ` 0.005–0.033 N·m, the step ratio 0.33–0.40.
+    #[test]
+    fn estimate_feedback_stays_within_the_bound_under_a_measured_allowance(c in estimate_case()) {
+        let r = run(&c);
+        prop_assert!(r.step_ratio < 1.0, "{c:?} {r:?}");
+        prop_assert!(r.reaching_time < 0.5 * c.period, "{c:?} {r:?}");
+        prop_assert_eq!(r.saturated, 0, "{:?} {:?}", c, r);
+        prop_assert!(r.max_friction <= friction_gap() + 1e-12, "{c:?} {r:?}");
+        // The allowance is the theorem's premise here, not a derived
+        // bound: a case whose estimator error exceeds it is outside what
+        // the check can conclude, and is rejected (proptest fails the
+        // test if too many are), not counted as a pass or a failure.
+        prop_assume!(r.max_sample_error <= ESTIMATE_ERROR_ALLOWANCE);
+        prop_assert!(r.max_feedback_error <= torque_error_bound(c.feedback), "{c:?} {r:?}");
+        prop_assert!(r.max_sliding <= r.radius, "{c:?} {r:?}");
+    }
 }

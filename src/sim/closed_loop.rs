@@ -409,8 +409,31 @@ impl ErrorStats {
     }
 }
 
-/// Desired link trajectory `A (1 − cos ω t)` and its two derivatives.
-fn raised_cosine(a: f64, period: f64, t: f64) -> (f64, f64, f64) {
+/// The raised-cosine trajectory of the closed-loop scenarios and the
+/// ultimate-bound tests: position, speed and acceleration at time `t` (s)
+/// of
+///
+/// `q(t) = A (1 − cos ω t)`, `q̇(t) = A ω sin ω t`, `q̈(t) = A ω² cos ω t`,
+/// `ω = 2π/P`,
+///
+/// for an amplitude `amplitude = A` (the path runs from 0 to `2A` and back
+/// over one period) and a period `period = P` (s, positive). Units follow
+/// `A`: rad, rad/s, rad/s² for an angle (link or joint side, whichever the
+/// caller's `A` is). The peak speed is `A ω`, at `t = P/4`; the peak
+/// acceleration `A ω²`, at `t = 0` and `t = P/2`.
+///
+/// ```
+/// use mrr_control::sim::closed_loop::raised_cosine;
+/// let w = core::f64::consts::PI; // 2π/2 s
+/// // A quarter period: halfway up, at the peak speed.
+/// let (q, v, a) = raised_cosine(0.1, 2.0, 0.5);
+/// assert!((q - 0.1).abs() < 1e-15 && (v - 0.1 * w).abs() < 1e-15 && a.abs() < 1e-15);
+/// // Half a period: at the top `2A`, at rest, decelerating by `A ω²`.
+/// let (q, v, a) = raised_cosine(0.1, 2.0, 1.0);
+/// assert!((q - 0.2).abs() < 1e-15 && v.abs() < 1e-15 && (a + 0.1 * w * w).abs() < 1e-14);
+/// ```
+pub fn raised_cosine(amplitude: f64, period: f64, t: f64) -> (f64, f64, f64) {
+    let a = amplitude;
     let w = TAU / period;
     let (s, c) = libm::sincos(w * t);
     (a * (1.0 - c), a * w * s, a * w * w * c)
@@ -1579,12 +1602,11 @@ pub fn collision_scenario(cfg: &ModeScenarioConfig) -> ModeScenarioResult {
         }
     };
     let desired = |t: f64| {
-        let w = core::f64::consts::PI / 4.0;
         if t >= 4.0 {
             (0.4, 0.0, 0.0)
         } else {
-            let (s, c) = libm::sincos(w * t);
-            (0.2 * (1.0 - c), 0.2 * w * s, 0.2 * w * w * c)
+            // `2π/8 s` is `π/4` exactly in floating point.
+            raised_cosine(0.2, 8.0, t)
         }
     };
     mode_scenario(cfg, 5.0, &desired, &wall, Some(WALL))
