@@ -401,6 +401,8 @@ pub struct EngineArm<D: DriveModel> {
     last_drive: Vec<DriveTorques>,
     drive: D,
     time: f64,
+    /// A ball on a link and the fixed wall it can hit ([`Self::add_wall`]).
+    obstacle: Option<contact::Obstacle>,
 }
 
 fn matrix(m: &[[f64; 3]; 3]) -> Matrix3<f64> {
@@ -635,6 +637,7 @@ impl<D: DriveModel> EngineArm<D> {
             last_drive: vec![DriveTorques::default(); n],
             drive,
             time: 0.0,
+            obstacle: None,
         };
         let zero = vec![0.0; n];
         arm.set_state(&zero, &zero, &zero, &zero);
@@ -954,6 +957,9 @@ impl<D: DriveModel> EngineArm<D> {
         e
     }
 }
+
+mod contact;
+pub use contact::{TipBall, Wall};
 
 #[cfg(test)]
 mod tests;
