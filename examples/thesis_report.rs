@@ -31,6 +31,7 @@
 //! To add a figure, write a `fn(&mut Report) -> Result<Figure, Error>` and
 //! list it in [`CHAPTERS`].
 
+use mrr_control::estimation::collision::CollisionReaction;
 use mrr_control::harmonic_drive::kinematic_error::KinematicErrorModel;
 use mrr_control::harmonic_drive::CatalogueData;
 use mrr_control::sim::claims::ch6::{
@@ -43,17 +44,16 @@ use mrr_control::sim::closed_loop::{
     TrackingConfig, TrackingResult,
 };
 use mrr_control::sim::door::{door_opening, DoorConfig, DoorControl, DoorRun};
+use mrr_control::sim::engine::arm_scenarios::{
+    back_driving as arm_back_driving, collision as arm_collision, fig4_3_tracking, hand_path,
+    CollisionObstacle, CONTROL_TICK as ARM_TICK, WALL_ANGLE,
+};
 use mrr_control::sim::engine::door::{door_engine_settings, EngineDoorRun, CONTROL_PERIOD};
 use mrr_control::sim::engine::wrist_bench::{
     engine_finger_push, engine_wrist_tracking, EngineTrackingRun, EngineWristBenchRun,
     FingerCase as EngineCase, FingerPush, WristBenchSample as EngineBenchSample, CASE1_TRAVEL,
 };
-use mrr_control::sim::engine::arm_scenarios::{
-    back_driving as arm_back_driving, collision as arm_collision, fig4_3_tracking, hand_path,
-    CollisionObstacle, CONTROL_TICK as ARM_TICK, WALL_ANGLE,
-};
 use mrr_control::sim::engine::{arm_settings, ArmPlant, ArmTrackingRun, EngineSettings, JointRun};
-use mrr_control::estimation::collision::CollisionReaction;
 use mrr_control::sim::experiments::{
     back_driven, locked_output, torque_estimation, width_at_zero, BackDrivenConfig,
     BackDrivenResult, ComplianceResult, ComplianceSample, ErrorStats, LockedOutputConfig, Models,
@@ -1610,7 +1610,11 @@ fn fig4_13_collision(r: &mut Report) -> Result<Figure, Error> {
         (Some(a), Some(b)) => format!("{:.1} ms", (b - a) * 1e3),
         _ => "none".into(),
     };
-    let peak = |x: &JointRun| x.environment_torque.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let peak = |x: &JointRun| {
+        x.environment_torque
+            .iter()
+            .fold(0.0f64, |m, v| m.max(v.abs()))
+    };
     let end = |x: &JointRun| x.environment_torque.last().copied().unwrap_or(f64::NAN);
     figure(
         &dir,
@@ -1622,7 +1626,11 @@ fn fig4_13_collision(r: &mut Report) -> Result<Figure, Error> {
             y: "torque on the link (N·m)",
             series: vec![
                 line("contact torque, Stop", BLUE_, window(&c.stop, &contact)),
-                line("contact torque, Passive", ORANGE, window(&c.passive, &contact)),
+                line(
+                    "contact torque, Passive",
+                    ORANGE,
+                    window(&c.passive, &contact),
+                ),
                 line("−τ̂_t (estimate), Stop", GREEN_, window(&c.stop, &estimate)),
             ],
             markers,

@@ -190,12 +190,17 @@
 //! * the engine at half its step: detection within 2 ticks of the run at
 //!   its step.
 //!
+//! # Runners
+//! The runs themselves are the library's (`sim::engine::arm_scenarios`:
+//! `back_driving`, `mode_switching`, `collision`, on a plant chosen by
+//! `ArmPlant`); this file holds the criteria.
+//!
 //! # Run time
 //! `cargo test --all-features --test engine_arm_modes` runs every
 //! experiment on f32 and I16F16, each on `Mrr` and on the engine at its
-//! step and half of it: 33.9 s for the six tests on 2 cores (the test
-//! profile of this crate is optimized); add `-- --nocapture` to print the
-//! measured values.
+//! step and half of it ((d) on the engine only): 35.7 s for the eight tests
+//! on 2 cores (the test profile of this crate is optimized); add
+//! `-- --nocapture` to print the measured values.
 #![cfg(feature = "engine")]
 
 use mrr_control::estimation::collision::CollisionReaction;
@@ -403,7 +408,10 @@ fn collision<S: Scalar>(name: &str, reaction: CollisionReaction) {
         let contact = r.contact.unwrap_or(f64::NAN);
         let detection = r.detection.unwrap_or(f64::NAN);
         let e = r.error_before_contact;
-        let (early, late) = (reference_passes(WALL_ANGLE - e), reference_passes(WALL_ANGLE + e));
+        let (early, late) = (
+            reference_passes(WALL_ANGLE - e),
+            reference_passes(WALL_ANGLE + e),
+        );
         let end = *r.link.last().unwrap();
         let at_detection = r.link[(detection / TICK).round() as usize];
         let end_torque = spring_wall(5.0, end, 0.0);
@@ -498,10 +506,7 @@ fn contact_collision<S: Scalar>(name: &str, reaction: CollisionReaction) {
             .environment_torque
             .iter()
             .fold(0.0f64, |m, x| m.max(x.abs()));
-        let most_positive = r
-            .environment_torque
-            .iter()
-            .fold(f64::MIN, |m, x| m.max(*x));
+        let most_positive = r.environment_torque.iter().fold(f64::MIN, |m, x| m.max(*x));
         let end = *r.link.last().unwrap();
         let at_detection = r.link[((detection / TICK).round() as usize).min(r.link.len() - 1)];
         let end_torque = *r.environment_torque.last().unwrap();

@@ -218,13 +218,8 @@ fn build(
                 })
                 .collect();
             let drive = PlantDrives::of(modules, true, &start);
-            let mut arm = EngineArm::try_new(
-                modules,
-                ARM_GRAVITY,
-                RotorBody::default(),
-                drive,
-                settings,
-            )?;
+            let mut arm =
+                EngineArm::try_new(modules, ARM_GRAVITY, RotorBody::default(), drive, settings)?;
             if let Some((ball, wall)) = contact {
                 arm.add_wall(ball, wall)?;
             }

@@ -97,13 +97,18 @@ impl Wall {
     /// `contact_angle` and `thickness` finite, `thickness > 0`, and the
     /// ball's centre farther than its radius (plus 0.01 m) from the axis
     /// (`ball_center`).
-    pub fn stop_for(ball: &TipBall, contact_angle: f64, thickness: f64) -> Result<Self, ParamError> {
+    pub fn stop_for(
+        ball: &TipBall,
+        contact_angle: f64,
+        thickness: f64,
+    ) -> Result<Self, ParamError> {
         let contact_angle = crate::error::finite("contact_angle", contact_angle)?;
         let thickness = crate::error::positive("thickness", thickness)?;
         let [cx, cy, cz] = ball.center;
         let reach = (cx * cx + cy * cy).sqrt();
         let r = ball.radius;
-        if !(reach > r + 0.01) {
+        // Finite: the centre and the radius are validated.
+        if reach <= r + 0.01 {
             return Err(ParamError::OutOfRange {
                 name: "ball_center",
                 value: reach,
