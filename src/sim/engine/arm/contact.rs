@@ -258,3 +258,134 @@ impl<D: DriveModel> EngineArm<D> {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Signed distance (m) from a ball centre `c` to the wall's face on the
+    /// ball's side: the face is the box's side at `−half_extents[1]` along
+    /// its own `y` axis.
+    fn gap(w: &Wall, c: [f64; 3]) -> f64 {
+        let n = [-w.yaw.sin(), w.yaw.cos()];
+        let h = w.half_extents[1];
+        let face = [w.center[0] - h * n[0], w.center[1] - h * n[1]];
+        (face[0] - c[0]) * n[0] + (face[1] - c[1]) * n[1]
+    }
+
+    #[test]
+    fn the_wall_meets_the_ball_at_the_contact_angle() {
+        let ball = TipBall::try_new(0, [0.45, 0.0, 0.0], 0.02).unwrap();
+        let wall = Wall::stop_for(&ball, 0.15, 0.05).unwrap();
+        let at = |q: f64| [0.45 * q.cos(), 0.45 * q.sin(), 0.0];
+        // Touching at 0.15 rad (distance = radius), clear before it,
+        // overlapping after it.
+        assert!((gap(&wall, at(0.15)) - 0.02).abs() < 1e-12);
+        assert!(gap(&wall, at(0.14)) > 0.02 + 4e-3);
+        assert!(gap(&wall, at(0.16)) < 0.02 - 4e-3);
+        // The ball's centre at contact lies along the face (within its
+        // half length of 0.1 m from the box's middle).
+        let along = [wall.yaw.cos(), wall.yaw.sin()];
+        let c = at(0.15);
+        let d = (c[0] - wall.center[0]) * along[0] + (c[1] - wall.center[1]) * along[1];
+        assert!(d.abs() < wall.half_extents[0], "{d}");
+    }
+
+    #[test]
+    fn bad_obstacles_are_typed_errors_naming_the_value() {
+        assert!(matches!(
+            TipBall::try_new(0, [f64::NAN, 0.0, 0.0], 0.02),
+            Err(ParamError::NotFinite {
+                name: "ball_center",
+                ..
+            })
+        ));
+        assert!(matches!(
+            TipBall::try_new(0, [0.45, 0.0, 0.0], 0.0),
+            Err(ParamError::NotPositive {
+                name: "ball_radius",
+                ..
+            })
+        ));
+        let near = TipBall::try_new(0, [0.02, 0.0, 0.0], 0.02).unwrap();
+        assert!(matches!(
+            Wall::stop_for(&near, 0.15, 0.05),
+            Err(ParamError::OutOfRange {
+                name: "ball_center",
+                ..
+            })
+        ));
+        let ball = TipBall::try_new(0, [0.45, 0.0, 0.0], 0.02).unwrap();
+        assert!(matches!(
+            Wall::stop_for(&ball, f64::INFINITY, 0.05),
+            Err(ParamError::NotFinite {
+                name: "contact_angle",
+                ..
+            })
+        ));
+        assert!(matches!(
+            Wall::stop_for(&ball, 0.15, -0.05),
+            Err(ParamError::NotPositive {
+                name: "thickness",
+                ..
+            })
+        ));
+        assert!(matches!(
+            Wall::try_new([0.1, 0.1, 0.1], [0.0; 3], f64::NAN),
+            Err(ParamError::NotFinite {
+                name: "wall_yaw",
+                ..
+            })
+        ));
+    }
+
+    #[test]
+    fn a_pressed_link_reads_the_contact_torque_that_holds_it() {
+        use crate::sim::engine::arm::{arm_settings, DriveState, DriveTorques, RotorBody};
+        use crate::sim::mrr::ModuleParams;
+        let m = [ModuleParams::thesis_joint()];
+        // No drive: the link is free on its joint (vertical axis, so no
+        // gravity torque), pushed towards the wall by 2 N·m.
+        let free = |_: usize, _: &DriveState| DriveTorques::default();
+        let mut arm = EngineArm::try_new(
+            &m,
+            [0.0, 0.0, -9.81],
+            RotorBody::default(),
+            free,
+            arm_settings(),
+        )
+        .unwrap();
+        let ball = TipBall::try_new(0, [0.45, 0.0, 0.0], 0.02).unwrap();
+        let wall = Wall::stop_for(&ball, 0.15, 0.05).unwrap();
+        assert!(matches!(
+            arm.add_wall(&TipBall::try_new(1, [0.45, 0.0, 0.0], 0.02).unwrap(), &wall),
+            Err(ParamError::OutOfRange {
+                name: "ball_module",
+                ..
+            })
+        ));
+        arm.add_wall(&ball, &wall).unwrap();
+        assert!(matches!(
+            arm.add_wall(&ball, &wall),
+            Err(ParamError::OutOfRange {
+                name: "obstacles",
+                ..
+            })
+        ));
+        arm.set_state(&[0.14], &[0.0], &[0.0], &[0.0]);
+        arm.set_external_torque(&[2.0]);
+        arm.step();
+        assert!(!arm.in_contact() && arm.contact_torque() == 0.0);
+        arm.run(0.5);
+        let q = arm.link_angles()[0];
+        // At rest on the wall: the contact holds the 2 N·m, no more.
+        assert!(arm.in_contact());
+        assert!(
+            (arm.contact_torque() + 2.0).abs() < 1e-3,
+            "{}",
+            arm.contact_torque()
+        );
+        assert!(arm.link_speeds()[0].abs() < 1e-3);
+        assert!((q - 0.15).abs() < 3e-3, "{q}");
+    }
+}
