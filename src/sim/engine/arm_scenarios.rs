@@ -493,11 +493,13 @@ pub fn scenario_joint(
     release: ReleaseRule,
     collision: Option<CollisionParams>,
 ) -> Result<JointParams, ParamError> {
+    // The preset is designed and checked at this tick (its docs); a
+    // design failure there is reported against the tick.
     let p = JointParams::table_4_1_at(CONTROL_TICK).map_err(|_| ParamError::OutOfRange {
         name: "sample_period",
         value: CONTROL_TICK,
-        min: 0.0,
-        max: 0.0,
+        min: CONTROL_TICK,
+        max: CONTROL_TICK,
     })?;
     let s = p.settings();
     let mode = ModeParams::try_new(ModeSettings {
@@ -626,8 +628,10 @@ impl JointRun {
 /// The thesis joint ([`ModuleParams::thesis_joint`]: vertical axis, its
 /// 0.64 kg, 0.45 m link only, full drive plant and friction) at rest at 0,
 /// drives relaxed, under `scenario` on `plant`, with the joint step on
-/// backend `S`. Errors: a [`Obstacle::Contact`] on [`ArmPlant::Mrr`]
-/// (`plant`), and what the plants' constructors report.
+/// backend `S`. Errors: an [`Obstacle::Contact`] on [`ArmPlant::Mrr`]
+/// (`ParamError::OutOfRange` naming `plant`, value 0 for `Mrr`, range
+/// [1, 1] for the engine: `Mrr` has no colliders), and what the plants'
+/// constructors report.
 pub fn joint_scenario<S: Scalar>(
     plant: ArmPlant,
     scenario: &JointScenario,
@@ -906,4 +910,72 @@ pub fn collision<S: Scalar>(
             obstacle,
         },
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Speed and acceleration of a trajectory against central differences
+    /// of its angle and speed.
+    fn consistent(f: Trajectory, times: &[f64]) {
+        let h = 1e-6;
+        for &t in times {
+            let (_, v, a) = f(t);
+            let dq = (f(t + h).0 - f(t - h).0) / (2.0 * h);
+            let dv = (f(t + h).1 - f(t - h).1) / (2.0 * h);
+            assert!((dq - v).abs() < 1e-6, "t {t}: {dq} vs {v}");
+            assert!((dv - a).abs() < 1e-5, "t {t}: {dv} vs {a}");
+        }
+    }
+
+    #[test]
+    fn trajectories_are_their_own_derivatives() {
+        consistent(raised_cosine_4s, &[0.3, 1.0, 2.7, 5.5]);
+        consistent(half_cosine_from_rest, &[0.1, 0.5, 1.3, 2.9]);
+        consistent(towards_wall, &[0.2, 1.7, 3.3]);
+        // Peaks: 0.5 rad at 2 s; 0.2 rad at 1.2 s; 0.4 rad from 4 s.
+        assert!((raised_cosine_4s(2.0).0 - 0.5).abs() < 1e-12);
+        assert!((half_cosine_from_rest(1.2).0 - 0.2).abs() < 1e-12);
+        assert_eq!(towards_wall(4.5), (0.4, 0.0, 0.0));
+    }
+
+    #[test]
+    fn reference_passes_inverts_the_collision_reference() {
+        for q in [0.01, 0.15, 0.3, 0.39] {
+            let t = reference_passes(q);
+            assert!((towards_wall(t).0 - q).abs() < 1e-12, "{q}");
+        }
+        // The obstacle's nominal contact: (4/π) acos(0.25).
+        let nominal = 4.0 / PI * 0.25f64.acos();
+        assert!((reference_passes(WALL_ANGLE) - nominal).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_contact_on_the_model_is_a_typed_error() {
+        let r = collision::<f32>(
+            ArmPlant::Mrr,
+            CollisionObstacle::Contact,
+            CollisionReaction::Stop,
+        );
+        assert!(matches!(
+            r,
+            Err(ParamError::OutOfRange { name: "plant", .. })
+        ));
+    }
+
+    #[test]
+    fn the_environments_push_as_documented() {
+        // The spring obstacle: nothing before 0.15 rad, 300 N·m/rad and
+        // 2 N·m·s/rad beyond, never pulling.
+        assert_eq!(spring_wall(0.0, 0.149, 1.0), 0.0);
+        assert!((spring_wall(0.0, 0.16, 0.1) + (3.0 + 0.2)).abs() < 1e-12);
+        assert!((spring_wall(0.0, 0.16, -0.1) + 3.0).abs() < 1e-12);
+        // The back-driving hand at t = 1 s (q_h = 0.5, q̇_h = 0) on a link
+        // at rest at 0: 200 × 0.5 N·m.
+        assert!((back_driving_hand(1.0, 0.0, 0.0) - 100.0).abs() < 1e-9);
+        // The leading hand lets go at 3 s.
+        assert_eq!(leading_hand(3.0, 0.1, 0.0), 0.0);
+        assert!((leading_hand(2.75, 0.3, 0.0) - 20.0).abs() < 1e-9);
+    }
 }
