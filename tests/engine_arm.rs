@@ -77,8 +77,10 @@
 //! carrying link, by 1.6e-5 to 1.3e-4 rad after extrapolation, which only
 //! (a′) catches.
 //!
-//! Run with `cargo test --all-features --test engine_arm -- --nocapture`
-//! to print the measured maxima.
+//! The active-tracking loop below runs through the library's runner
+//! (`sim::engine::arm_scenarios::arm_tracking`); this file holds the
+//! criteria. Run with `cargo test --all-features --test engine_arm --
+//! --nocapture` to print the measured maxima (26 s on 2 cores).
 #![cfg(feature = "engine")]
 
 use mrr_control::sim::closed_loop::payload_joint;
@@ -439,13 +441,13 @@ fn engine_arm_agrees_with_eq_4_1_to_4_6() {
 // ---------------------------------------------------------------------------
 
 use mrr_control::control::{ModeParams, ModeSettings};
-use mrr_control::joint::{JointConfig, JointParams, JointReadings, JointSettings, JointTarget};
-use mrr_control::prelude::JointMode;
+use mrr_control::joint::{JointParams, JointSettings};
+use mrr_control::sim::closed_loop::JointTorqueFeedback;
+use mrr_control::sim::engine::arm_scenarios::{
+    arm_tracking, half_cosine_from_rest, ArmTrackingConfig, CONTROL_TICK as TICK,
+};
+use mrr_control::sim::engine::{ArmPlant, ArmTrackingRun as Tracking};
 use mrr_control::{Scalar, I16F16};
-use std::f64::consts::TAU;
-
-const TICK: f64 = 4e-3;
-const PLANT_STEPS: usize = 40;
 
 /// The two-module arm of the tracking run.
 fn tracking_arm() -> Vec<ModuleParams> {
@@ -457,68 +459,6 @@ fn tracking_arm() -> Vec<ModuleParams> {
     vec![turret, second]
 }
 
-fn reference(t: f64) -> (f64, f64, f64) {
-    let (a, w) = (0.2, std::f64::consts::PI);
-    let s = (t - 0.2).max(0.0);
-    let on = if t >= 0.2 { 1.0 } else { 0.0 };
-    (
-        a * (1.0 - (w * s).cos()) / 2.0,
-        a * w * (w * s).sin() / 2.0,
-        a * w * w * (w * s).cos() / 2.0 * on,
-    )
-}
-
-/// A plant the loop can drive: true angles, held torques, one tick.
-trait Plant {
-    fn angles(&self) -> (Vec<f64>, Vec<f64>);
-    fn hold(&mut self, torque: &[f64]);
-    fn tick(&mut self);
-}
-
-impl Plant for Mrr {
-    fn angles(&self) -> (Vec<f64>, Vec<f64>) {
-        (self.link_angles().to_vec(), self.motor_angles().to_vec())
-    }
-    fn hold(&mut self, torque: &[f64]) {
-        self.set_motor_torque(torque);
-    }
-    fn tick(&mut self) {
-        for _ in 0..PLANT_STEPS {
-            self.step();
-        }
-    }
-}
-
-impl Plant for EngineArm<PlantDrives> {
-    fn angles(&self) -> (Vec<f64>, Vec<f64>) {
-        (self.link_angles(), self.motor_angles())
-    }
-    fn hold(&mut self, torque: &[f64]) {
-        self.set_motor_torque(torque);
-    }
-    fn tick(&mut self) {
-        let steps = (TICK / self.settings().dt()).round() as usize;
-        for _ in 0..steps {
-            self.step();
-        }
-    }
-}
-
-#[derive(Debug)]
-struct Tracking {
-    /// Ticks per mode (Active, Hold, Passive) per joint.
-    modes: Vec<[usize; 3]>,
-    /// Largest |q_l − q_d| after 0.2 s per joint, rad.
-    max_error: Vec<f64>,
-    /// Link angles every tick.
-    link: Vec<Vec<f64>>,
-    /// First tick out of Active, per joint.
-    left_active: Vec<Option<usize>>,
-    /// Largest |τ̂_t| the joint estimated, per joint, N·m.
-    max_torque: Vec<f64>,
-}
-
-/// Joint 1 tracks [`reference`], the others hold 0.
 /// `JointParams::table_4_1_at(4 ms)` with the mode manager's passive entry
 /// at 20 N·m and exit at 10 N·m (by name, through the public settings):
 /// §4.4.1 runs in active mode throughout, and the preset's example
@@ -535,58 +475,21 @@ fn active_joint() -> JointParams {
     JointParams::try_new(JointSettings { mode, ..settings }).unwrap()
 }
 
-fn track<S: Scalar>(plant: &mut dyn Plant, duration: f64) -> Tracking {
-    let p = active_joint();
-    let cfg = JointConfig::<S>::new(&p);
-    let lc = p.settings().estimator.link_counts_per_rev() as f64;
-    let mc = p.settings().estimator.motor_counts_per_rev() as f64;
-    let link_count = |q: f64| (q / TAU * lc).floor().rem_euclid(lc) as u32;
-    let motor_counter = |q: f64| ((q / TAU * mc).floor() as i64) as u32;
-    let (ql, qm) = plant.angles();
-    let n = ql.len();
-    let mut states: Vec<_> = (0..n)
-        .map(|i| cfg.state(link_count(ql[i]), motor_counter(qm[i])))
-        .collect();
-    let mut out = Tracking {
-        modes: vec![[0; 3]; n],
-        max_error: vec![0.0; n],
-        link: Vec::new(),
-        left_active: vec![None; n],
-        max_torque: vec![0.0; n],
-    };
-    let ticks = (duration / TICK).round() as usize;
-    for k in 0..ticks {
-        let t = k as f64 * TICK;
-        let (ql, qm) = plant.angles();
-        out.link.push(ql.clone());
-        let mut torque = vec![0.0; n];
-        for i in 0..n {
-            let (q, v, a) = if i == 0 {
-                reference(t)
-            } else {
-                (0.0, 0.0, 0.0)
-            };
-            let r = JointReadings::counts(link_count(ql[i]), motor_counter(qm[i]));
-            let o = cfg.update(&mut states[i], &r, &JointTarget::from_si(q, v, a));
-            let m = match o.mode {
-                JointMode::Active => 0,
-                JointMode::Hold => 1,
-                JointMode::Passive => 2,
-            };
-            out.modes[i][m] += 1;
-            if m != 0 && out.left_active[i].is_none() {
-                out.left_active[i] = Some(k);
-            }
-            out.max_torque[i] = out.max_torque[i].max(o.joint_torque_si().abs());
-            if t >= 0.2 {
-                out.max_error[i] = out.max_error[i].max((ql[i] - q).abs());
-            }
-            torque[i] = o.motor_torque_si();
-        }
-        plant.hold(&torque);
-        plant.tick();
-    }
-    out
+/// Joint 1 tracks `half_cosine_from_rest`, the others hold 0, through the
+/// joint step (`arm_scenarios::arm_tracking`, feedback C), on `plant`.
+fn track<S: Scalar>(plant: ArmPlant, modules: &[ModuleParams], duration: f64) -> Tracking {
+    arm_tracking::<S>(
+        plant,
+        &ArmTrackingConfig {
+            modules: modules.to_vec(),
+            joint: active_joint(),
+            feedback: JointTorqueFeedback::Estimated,
+            desired: half_cosine_from_rest,
+            duration,
+            settle: 0.2,
+        },
+    )
+    .unwrap()
 }
 
 /// Criteria (d)–(f) between two runs.
@@ -619,31 +522,15 @@ fn agree(name: &str, a: &Tracking, b: &Tracking) {
 /// the gravity torque there (motor angles from `Mrr`'s inversion of the
 /// drive plant, the same start for both).
 fn tracking_on_both<S: Scalar>(name: &str, modules: &[ModuleParams]) {
-    let n = modules.len();
     let duration = 3.0;
-    let mut model = Mrr::try_new(modules.to_vec(), GRAVITY, TICK, PLANT_STEPS, 1).unwrap();
-    let zero = vec![0.0; n];
-    let g0 = model.gravity_torques();
-    let qm0 = model.motor_angles_for_torque(&zero, &g0);
-    model.set_state(&zero, &qm0, &zero, &zero);
-    let on_model = track::<S>(&mut model, duration);
-    let start: Vec<DriveState> = qm0
-        .iter()
-        .map(|&q| DriveState {
-            motor_angle: q,
-            ..Default::default()
-        })
-        .collect();
-    let engine_run = |settings: EngineSettings| {
-        let drive = PlantDrives::of(modules, true, &start);
-        let mut engine =
-            EngineArm::try_new(modules, GRAVITY, RotorBody::default(), drive, settings).unwrap();
-        engine.set_state(&zero, &qm0, &zero, &zero);
-        track::<S>(&mut engine, duration)
-    };
+    let on_model = track::<S>(ArmPlant::Mrr, modules, duration);
     let settings = arm_settings();
-    let on_engine = engine_run(settings);
-    let on_engine_fine = engine_run(settings.with_half_step());
+    let on_engine = track::<S>(ArmPlant::Engine(settings), modules, duration);
+    let on_engine_fine = track::<S>(
+        ArmPlant::Engine(settings.with_half_step()),
+        modules,
+        duration,
+    );
     for (plant, r) in [
         ("Mrr", &on_model),
         ("engine", &on_engine),

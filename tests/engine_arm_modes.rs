@@ -155,258 +155,77 @@
 //!   estimate to read a torque change at 0.4–1.0 of its size (errata
 //!   E2.9), a factor that also covers a threshold off by two.
 //!
+//! # (d) Collision on an engine contact (added later; criteria written before its first run)
+//! The obstacle of (c) as the engine's contact instead of a spring torque:
+//! a frictionless ball of 2 cm radius at the link's tip (centre at 0.45 m on
+//! the link's axis) and a fixed box whose face the ball touches when the
+//! link reaches 0.15 rad (`arm_scenarios::tip_contact`,
+//! `Wall::stop_for`). The contact force is the rapier solver's, read back
+//! as a torque on `q_l`; `Mrr` has no colliders, so (d) runs on the engine
+//! only, at its step and at half of it; (c) stays the comparison of the
+//! two plants on the same obstacle torque. Same joint, reference,
+//! detector and reactions as (c); `S = f32` and `I16F16`. Expected:
+//! * first contact (first step with a contact force): the link, read at
+//!   the start of that step, within 1 mrad of 0.15 rad (the ball closes at
+//!   most `q̇ dt ≈ 2e-5 rad` in a step), and at a time inside (c)'s window
+//!   from the tracking error before contact;
+//! * detection after first contact: at least two ticks (the debounce of 3
+//!   ticks starts at the first tick after contact; 8 ms) and at most (c)'s
+//!   170 ms (the contact is stiffer than (c)'s 300 N·m/rad spring, so its
+//!   torque reaches the thresholds no later);
+//! * the wall only pushes: the contact torque on `q_l` is never positive;
+//! * peak contact torque, per-tick mean (the impact of one 0.1 ms step is
+//!   an impulse, its tick mean the impulse over 4 ms): at most the
+//!   saturated motor through the gear `N τ_max = 100 × 0.188 = 18.8 N·m`,
+//!   plus the kinetic energy at contact stored in the drive's stiffest
+//!   segment, `√(2 E K₃)` with `E = ½ (N² I_m + J_l) v²` (`N² I_m =
+//!   0.114`, `J_l = 0.0432 kg·m²` about the joint, `K₃ = 1.3e4
+//!   N·m/rad`, `v` the largest link speed before contact from the tick
+//!   trace), plus the link's momentum stopped within a tick, `J_l v / T`;
+//! * reactions as in (c): one switch, bumpless; `Stop` goes to Hold,
+//!   moves less than 0.01 rad after detection and keeps pressing (tick-mean
+//!   contact torque below −1 N·m at the end); `Passive` goes to Passive
+//!   and yields down to the static friction at rest (contact torque at the
+//!   end ≥ −2.0 N·m);
+//! * the engine at half its step: detection within 2 ticks of the run at
+//!   its step.
+//!
+//! # Runners
+//! The runs themselves are the library's (`sim::engine::arm_scenarios`:
+//! `back_driving`, `mode_switching`, `collision`, on a plant chosen by
+//! `ArmPlant`); this file holds the criteria.
+//!
 //! # Run time
 //! `cargo test --all-features --test engine_arm_modes` runs every
 //! experiment on f32 and I16F16, each on `Mrr` and on the engine at its
-//! step and half of it: 33.9 s for the six tests on 2 cores (the test
-//! profile of this crate is optimized); add `-- --nocapture` to print the
-//! measured values.
+//! step and half of it ((d) on the engine only): 35.7 s for the eight tests
+//! on 2 cores (the test profile of this crate is optimized); add
+//! `-- --nocapture` to print the measured values.
 #![cfg(feature = "engine")]
 
-use mrr_control::control::{ModeParams, ModeSettings, ReleaseRule};
-use mrr_control::estimation::collision::{CollisionParams, CollisionReaction, CollisionSettings};
-use mrr_control::joint::{JointConfig, JointParams, JointReadings, JointSettings, JointTarget};
+use mrr_control::estimation::collision::CollisionReaction;
 use mrr_control::prelude::JointMode;
-use mrr_control::sim::engine::{
-    arm_settings, DriveState, EngineArm, EngineSettings, PlantDrives, RotorBody,
+use mrr_control::sim::engine::arm_scenarios::{
+    back_driving as back_driving_run, collision as collision_run, mode_switching as switching_run,
+    reference_passes, spring_wall, CollisionObstacle, WALL_ANGLE,
 };
-use mrr_control::sim::{ModuleParams, Mrr};
+use mrr_control::sim::engine::{arm_settings, ArmPlant, JointRun};
 use mrr_control::{Scalar, I16F16};
-use std::f64::consts::{PI, TAU};
 
-const GRAVITY: [f64; 3] = [0.0, 0.0, -9.81];
 const TICK: f64 = 4e-3;
-/// `Mrr`'s RK4 steps per tick (0.1 ms).
-const MRR_STEPS: usize = 40;
-
-/// The hand's or obstacle's torque on the link (N·m) at `(t, q_l, q̇_l)`.
-type Env<'a> = &'a dyn Fn(f64, f64, f64) -> f64;
-/// Desired link angle, speed, acceleration at `t`.
-type Desired<'a> = &'a dyn Fn(f64) -> (f64, f64, f64);
-
-/// A plant the joint step drives.
-trait Plant {
-    /// Link and motor angle (rad), link speed (rad/s).
-    fn read(&self) -> (f64, f64, f64);
-    fn set_motor(&mut self, torque: f64);
-    fn set_external(&mut self, torque: f64);
-    /// One plant step; returns its length, s.
-    fn step(&mut self) -> f64;
-    fn steps_per_tick(&self) -> usize;
-}
-
-impl Plant for Mrr {
-    fn read(&self) -> (f64, f64, f64) {
-        (
-            self.link_angles()[0],
-            self.motor_angles()[0],
-            self.link_speeds()[0],
-        )
-    }
-    fn set_motor(&mut self, torque: f64) {
-        self.set_motor_torque(&[torque]);
-    }
-    fn set_external(&mut self, torque: f64) {
-        self.external_torque[0] = torque;
-    }
-    fn step(&mut self) -> f64 {
-        Mrr::step(self);
-        self.step_size()
-    }
-    fn steps_per_tick(&self) -> usize {
-        MRR_STEPS
-    }
-}
-
-impl Plant for EngineArm<PlantDrives> {
-    fn read(&self) -> (f64, f64, f64) {
-        let s = self.drive_states()[0];
-        (s.link_angle, s.motor_angle, s.link_speed)
-    }
-    fn set_motor(&mut self, torque: f64) {
-        self.set_motor_torque(&[torque]);
-    }
-    fn set_external(&mut self, torque: f64) {
-        self.set_external_torque(&[torque]);
-    }
-    fn step(&mut self) -> f64 {
-        EngineArm::step(self);
-        self.settings().dt()
-    }
-    fn steps_per_tick(&self) -> usize {
-        (TICK / self.settings().dt()).round() as usize
-    }
-}
-
-/// The thesis joint at rest at 0, drives relaxed, on `Mrr`.
-fn mrr() -> Mrr {
-    let m = ModuleParams::thesis_joint();
-    let mut r = Mrr::try_new(vec![m], GRAVITY, TICK, MRR_STEPS, 1).unwrap();
-    r.set_state(&[0.0], &[0.0], &[0.0], &[0.0]);
-    r
-}
-
-/// The same on the engine with `settings`.
-fn engine(settings: EngineSettings) -> EngineArm<PlantDrives> {
-    let m = [ModuleParams::thesis_joint()];
-    let drive = PlantDrives::of(&m, true, &[DriveState::default()]);
-    let mut a = EngineArm::try_new(&m, GRAVITY, RotorBody::default(), drive, settings).unwrap();
-    a.set_state(&[0.0], &[0.0], &[0.0], &[0.0]);
-    a
-}
 
 /// The three plants of every experiment: `Mrr`, the engine at its step,
 /// the engine at half of it.
 const PLANTS: [&str; 3] = ["Mrr", "engine", "engine dt/2"];
 
-/// A fresh plant `PLANTS[i]`.
-fn plant(i: usize) -> Box<dyn Plant> {
+/// The plant `PLANTS[i]` (the runners build it fresh at rest).
+fn plant(i: usize) -> ArmPlant {
     let s = arm_settings();
     match i {
-        0 => Box::new(mrr()),
-        1 => Box::new(engine(s)),
-        _ => Box::new(engine(s.with_half_step())),
+        0 => ArmPlant::Mrr,
+        1 => ArmPlant::Engine(s),
+        _ => ArmPlant::Engine(s.with_half_step()),
     }
-}
-
-/// `JointParams::table_4_1_at(4 ms)` with the mode manager's thresholds,
-/// release rule and collision detector changed by name.
-fn joint(
-    enter: f64,
-    exit: f64,
-    release: ReleaseRule,
-    collision: Option<CollisionParams>,
-) -> JointParams {
-    let p = JointParams::table_4_1_at(TICK).unwrap();
-    let s = p.settings();
-    let mode = ModeParams::try_new(ModeSettings {
-        enter_passive: enter,
-        exit_passive: exit,
-        collision,
-        ..s.mode.settings()
-    })
-    .unwrap()
-    .with_release(release)
-    .unwrap();
-    JointParams::try_new(JointSettings { mode, ..s }).unwrap()
-}
-
-/// `|q̇_m| ≤ 10 rad/s` for 1 s (250 ticks).
-const REST_1S: ReleaseRule = ReleaseRule {
-    speed: 10.0,
-    samples: 250,
-};
-
-#[derive(Debug, Clone, Copy)]
-struct Switch {
-    time: f64,
-    from: JointMode,
-    to: JointMode,
-    jump: f64,
-}
-
-#[derive(Debug, Default)]
-struct Run {
-    switches: Vec<Switch>,
-    /// Link angle at every tick, rad.
-    link: Vec<f64>,
-    /// Mode at every tick.
-    modes: Vec<Option<JointMode>>,
-    /// RMS external torque over the plant steps after `settle`, N·m.
-    env_rms: f64,
-    /// RMS of `N τ_m` applied over the ticks after `settle`, N·m.
-    reflected_motor_rms: f64,
-    /// Adapted Coulomb estimate `f̂_c` at the first switch (N·m).
-    coulomb_at_switch: Option<f64>,
-    /// First tick the detector flagged, s.
-    detection: Option<f64>,
-    /// First plant step with `q_l` above the obstacle, s.
-    contact: Option<f64>,
-    /// Largest `|q_l − q_d|` before contact, rad.
-    error_before_contact: f64,
-    jump_bound: f64,
-}
-
-/// The joint step `params` on `plant` for `duration` s (module docs).
-/// `powered = false` runs the step but applies no motor torque.
-#[allow(clippy::too_many_arguments)]
-fn run<S: Scalar>(
-    plant: &mut dyn Plant,
-    params: &JointParams,
-    duration: f64,
-    desired: Desired,
-    env: Env,
-    powered: bool,
-    settle: f64,
-    obstacle: Option<f64>,
-) -> Run {
-    let cfg = JointConfig::<S>::new(params);
-    let ratio = params.ratio();
-    let lc = params.settings().estimator.link_counts_per_rev() as f64;
-    let mc = params.settings().estimator.motor_counts_per_rev() as f64;
-    let link_count = |q: f64| (q / TAU * lc).floor().rem_euclid(lc) as u32;
-    let motor_counter = |q: f64| ((q / TAU * mc).floor() as i64) as u32;
-    let (ql, qm, _) = plant.read();
-    let mut st = cfg.state(link_count(ql), motor_counter(qm));
-    let mut out = Run {
-        jump_bound: cfg.mode().switch_jump_bound().to_f64() / S::UNITS.motor_torque,
-        ..Default::default()
-    };
-    let (mut env_sq, mut env_n, mut mot_sq, mut mot_n) = (0.0, 0usize, 0.0, 0usize);
-    let mut time = 0.0;
-    let ticks = (duration / TICK).round() as usize;
-    for k in 0..ticks {
-        let t = k as f64 * TICK;
-        let (ql, qm, _) = plant.read();
-        let (qd, vd, ad) = desired(t);
-        if out.contact.is_none() {
-            out.error_before_contact = out.error_before_contact.max((ql - qd).abs());
-        }
-        let from = st.mode();
-        let before = st.last_command_si();
-        let r = JointReadings::counts(link_count(ql), motor_counter(qm));
-        let o = cfg.update(&mut st, &r, &JointTarget::from_si(qd, vd, ad));
-        if o.control.switched {
-            if out.switches.is_empty() {
-                out.coulomb_at_switch = Some(st.mode_state().active_state().friction_si().coulomb);
-            }
-            out.switches.push(Switch {
-                time: t,
-                from,
-                to: o.mode,
-                jump: (o.motor_torque_si() - before).abs(),
-            });
-        }
-        if o.control.collision && out.detection.is_none() {
-            out.detection = Some(t);
-        }
-        out.link.push(ql);
-        out.modes.push(Some(o.mode));
-        let torque = if powered { o.motor_torque_si() } else { 0.0 };
-        if t >= settle {
-            mot_sq += (ratio * torque).powi(2);
-            mot_n += 1;
-        }
-        plant.set_motor(torque);
-        for _ in 0..plant.steps_per_tick() {
-            let (ql, _, vl) = plant.read();
-            let h = env(time, ql, vl);
-            if let Some(wall) = obstacle {
-                if ql > wall && out.contact.is_none() {
-                    out.contact = Some(time);
-                }
-            }
-            if time >= settle {
-                env_sq += h * h;
-                env_n += 1;
-            }
-            plant.set_external(h);
-            time += plant.step();
-        }
-    }
-    out.env_rms = (env_sq / env_n.max(1) as f64).sqrt();
-    out.reflected_motor_rms = (mot_sq / mot_n.max(1) as f64).sqrt();
-    out
 }
 
 /// `x` (from `Mrr`) and `y` (engine) agree within three times the
@@ -435,7 +254,7 @@ fn apart(a: &[f64], b: &[f64]) -> f64 {
 /// 2e-3 rad, plus what a switch `shift` s earlier or later moves a trace
 /// by: the largest link speed (tick differences of the engine's trace)
 /// times `shift` (revised after the first run, module docs).
-fn traces_agree(name: &str, runs: &[Run], shift: f64) {
+fn traces_agree(name: &str, runs: &[JointRun], shift: f64) {
     let d = apart(&runs[0].link, &runs[1].link);
     let h = apart(&runs[1].link, &runs[2].link);
     let v = runs[1]
@@ -453,7 +272,7 @@ fn traces_agree(name: &str, runs: &[Run], shift: f64) {
 
 /// The difference of the first switch's time between `Mrr` and the
 /// engine at its step, s (0 when either has none).
-fn switch_shift(runs: &[Run]) -> f64 {
+fn switch_shift(runs: &[JointRun]) -> f64 {
     match (runs[0].switches.first(), runs[1].switches.first()) {
         (Some(a), Some(b)) => (a.time - b.time).abs(),
         _ => 0.0,
@@ -463,41 +282,16 @@ fn switch_shift(runs: &[Run]) -> f64 {
 // ---------------------------------------------------------------------------
 // (a) Back-driving.
 
-fn hand(t: f64, ql: f64, vl: f64) -> f64 {
-    let w = TAU / 4.0;
-    200.0 * (0.5 * (w * t).sin() - ql) + 5.0 * (0.5 * w * (w * t).cos() - vl)
-}
-
 fn back_driving<S: Scalar>(name: &str) {
-    let params = joint(1.0, 0.5, REST_1S, None);
-    let hold = |_| (0.0, 0.0, 0.0);
     let mut a_runs = Vec::new();
     let mut b_runs = Vec::new();
     for (i, pname) in PLANTS.iter().enumerate() {
-        let a = run::<S>(
-            plant(i).as_mut(),
-            &params,
-            6.0,
-            &hold,
-            &hand,
-            false,
-            2.0,
-            None,
-        );
-        let b = run::<S>(
-            plant(i).as_mut(),
-            &params,
-            6.0,
-            &hold,
-            &hand,
-            true,
-            2.0,
-            None,
-        );
+        let a = back_driving_run::<S>(plant(i), false).unwrap();
+        let b = back_driving_run::<S>(plant(i), true).unwrap();
         let fc = b.coulomb_at_switch.unwrap_or(f64::NAN);
         let passive_ticks = b.modes[500..]
             .iter()
-            .filter(|m| **m == Some(JointMode::Passive))
+            .filter(|m| **m == JointMode::Passive)
             .count();
         println!(
             "{name} {pname:<12} hand RMS (A) {:.4} N·m, (B) {:.4} N·m, reduction {:.4}; \
@@ -558,37 +352,10 @@ fn passive_law_reduces_the_back_driving_torque_i16f16() {
 // ---------------------------------------------------------------------------
 // (b) Mode switching.
 
-fn leading_hand(t: f64, ql: f64, vl: f64) -> f64 {
-    if !(0.5..3.0).contains(&t) {
-        return 0.0;
-    }
-    let u = ((t - 0.5) / 2.0).min(1.0);
-    let (qh, vh) = if u < 1.0 {
-        (
-            0.2 * (1.0 - (PI * u).cos()),
-            0.2 * PI * (PI * u).sin() / 2.0,
-        )
-    } else {
-        (0.4, 0.0)
-    };
-    200.0 * (qh - ql) + 5.0 * (vh - vl)
-}
-
 fn mode_switching<S: Scalar>(name: &str) {
-    let params = joint(4.0, 2.0, REST_1S, None);
-    let hold = |_| (0.0, 0.0, 0.0);
     let mut runs = Vec::new();
     for (i, pname) in PLANTS.iter().enumerate() {
-        let r = run::<S>(
-            plant(i).as_mut(),
-            &params,
-            6.0,
-            &hold,
-            &leading_hand,
-            true,
-            6.0,
-            None,
-        );
+        let r = switching_run::<S>(plant(i)).unwrap();
         let end = *r.link.last().unwrap();
         println!(
             "{name} {pname:<12} switches {:?}; link at 6 s {end:.4} rad; jump bound {:.2e}",
@@ -634,63 +401,20 @@ fn manager_switches_to_passive_and_back_i16f16() {
 // ---------------------------------------------------------------------------
 // (c) Collision.
 
-const WALL: f64 = 0.15;
-
-fn wall(_t: f64, ql: f64, vl: f64) -> f64 {
-    if ql > WALL {
-        -(300.0 * (ql - WALL) + 2.0 * vl.max(0.0))
-    } else {
-        0.0
-    }
-}
-
-fn towards_wall(t: f64) -> (f64, f64, f64) {
-    let w = PI / 4.0;
-    if t >= 4.0 {
-        (0.4, 0.0, 0.0)
-    } else {
-        (
-            0.2 * (1.0 - (w * t).cos()),
-            0.2 * w * (w * t).sin(),
-            0.2 * w * w * (w * t).cos(),
-        )
-    }
-}
-
-/// The time the reference `0.2 (1 − cos(π t/4))` passes `q`, s.
-fn reference_passes(q: f64) -> f64 {
-    4.0 / PI * (1.0 - q / 0.2).clamp(-1.0, 1.0).acos()
-}
-
 fn collision<S: Scalar>(name: &str, reaction: CollisionReaction) {
-    let detector = CollisionParams::try_new(CollisionSettings {
-        threshold: 3.0,
-        release_threshold: 1.5,
-        debounce: 3,
-        release: 50,
-        reaction,
-    })
-    .unwrap();
-    let params = joint(1000.0, 500.0, REST_1S, Some(detector));
     let mut runs = Vec::new();
     for (i, pname) in PLANTS.iter().enumerate() {
-        let r = run::<S>(
-            plant(i).as_mut(),
-            &params,
-            5.0,
-            &towards_wall,
-            &wall,
-            true,
-            5.0,
-            Some(WALL),
-        );
+        let r = collision_run::<S>(plant(i), CollisionObstacle::Spring, reaction).unwrap();
         let contact = r.contact.unwrap_or(f64::NAN);
         let detection = r.detection.unwrap_or(f64::NAN);
         let e = r.error_before_contact;
-        let (early, late) = (reference_passes(WALL - e), reference_passes(WALL + e));
+        let (early, late) = (
+            reference_passes(WALL_ANGLE - e),
+            reference_passes(WALL_ANGLE + e),
+        );
         let end = *r.link.last().unwrap();
         let at_detection = r.link[(detection / TICK).round() as usize];
-        let end_torque = wall(5.0, end, 0.0);
+        let end_torque = spring_wall(5.0, end, 0.0);
         println!(
             "{name} {reaction:?} {pname:<12} contact {contact:.4} s (window [{early:.4}, {late:.4}], \
              tracking error before {e:.2e} rad), detection {detection:.3} s (latency {:.1} ms), \
@@ -727,7 +451,7 @@ fn collision<S: Scalar>(name: &str, reaction: CollisionReaction) {
         }
         runs.push(r);
     }
-    let t = |f: &dyn Fn(&Run) -> f64| -> Vec<f64> { runs.iter().map(f).collect() };
+    let t = |f: &dyn Fn(&JointRun) -> f64| -> Vec<f64> { runs.iter().map(f).collect() };
     let c = t(&|r| r.contact.unwrap_or(f64::NAN));
     within("contact time (s)", c[0], c[1], c[2], 2.0 * TICK);
     let d = t(&|r| r.detection.unwrap_or(f64::NAN));
@@ -745,4 +469,106 @@ fn collision_is_detected_and_stops_or_yields_f32() {
 fn collision_is_detected_and_stops_or_yields_i16f16() {
     collision::<I16F16>("I16F16", CollisionReaction::Stop);
     collision::<I16F16>("I16F16", CollisionReaction::Passive);
+}
+
+// ---------------------------------------------------------------------------
+// (d) Collision on an engine contact.
+
+/// `N τ_max` of the thesis joint (N·m), its rotor reflected `N² I_m` and
+/// its link about the joint `J_l` (kg·m²), the drive's stiffest segment
+/// `K₃` (N·m/rad): from `ModuleParams::thesis_joint` and Table 2.2's
+/// SHD-17-100 (module docs (d)).
+const STALL: f64 = 18.8;
+const ROTOR_REFLECTED: f64 = 0.114;
+const LINK_INERTIA: f64 = 0.0432;
+const K3: f64 = 1.3e4;
+
+fn contact_collision<S: Scalar>(name: &str, reaction: CollisionReaction) {
+    let mut detections = Vec::new();
+    for i in [1, 2] {
+        let pname = PLANTS[i];
+        let r = collision_run::<S>(plant(i), CollisionObstacle::Contact, reaction).unwrap();
+        let contact = r.contact.unwrap_or(f64::NAN);
+        let detection = r.detection.unwrap_or(f64::NAN);
+        let e = r.error_before_contact;
+        let (early, late) = (
+            reference_passes(WALL_ANGLE - e),
+            reference_passes(WALL_ANGLE + e),
+        );
+        let k_contact = ((contact / TICK).floor() as usize).min(r.link.len() - 1);
+        let speed = r.link[..=k_contact]
+            .windows(2)
+            .map(|w| (w[1] - w[0]).abs() / TICK)
+            .fold(0.0, f64::max);
+        let energy = 0.5 * (ROTOR_REFLECTED + LINK_INERTIA) * speed * speed;
+        let bound = STALL + (2.0 * energy * K3).sqrt() + LINK_INERTIA * speed / TICK;
+        let peak = r
+            .environment_torque
+            .iter()
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+        let most_positive = r.environment_torque.iter().fold(f64::MIN, |m, x| m.max(*x));
+        let end = *r.link.last().unwrap();
+        let at_detection = r.link[((detection / TICK).round() as usize).min(r.link.len() - 1)];
+        let end_torque = *r.environment_torque.last().unwrap();
+        println!(
+            "{name} {reaction:?} {pname:<12} contact {contact:.4} s (window [{early:.4}, \
+             {late:.4}]), link at contact {:.5} rad, detection {detection:.3} s (latency \
+             {:.1} ms), peak tick-mean contact torque {peak:.3} N·m (bound {bound:.2}, speed \
+             {speed:.4} rad/s), peak step torque {:.2} N·m, switches {:?}, link at detection \
+             {at_detection:.4}, at end {end:.4} rad, contact torque at end {end_torque:.3} N·m",
+            r.link_at_contact.unwrap_or(f64::NAN),
+            1e3 * (detection - contact),
+            r.env_peak,
+            r.switches
+                .iter()
+                .map(|s| (s.time, s.to, s.jump))
+                .collect::<Vec<_>>()
+        );
+        let at_contact = r.link_at_contact.unwrap_or(f64::NAN);
+        assert!(
+            (at_contact - WALL_ANGLE).abs() <= 1e-3,
+            "{name} {pname}: link at contact {at_contact}"
+        );
+        assert!(
+            (early..=late).contains(&contact),
+            "{name} {pname}: contact {contact}"
+        );
+        let latency = detection - contact;
+        assert!(
+            (2.0 * TICK..=0.170).contains(&latency),
+            "{name} {pname}: latency {latency}"
+        );
+        assert!(most_positive <= 0.0, "{name} {pname}: {most_positive}");
+        assert!(peak <= bound, "{name} {pname}: peak {peak} > {bound}");
+        assert_eq!(r.switches.len(), 1, "{name} {pname}: {:?}", r.switches);
+        assert!(r.switches[0].jump <= r.jump_bound);
+        match reaction {
+            CollisionReaction::Stop => {
+                assert_eq!(r.switches[0].to, JointMode::Hold);
+                assert!((end - at_detection).abs() < 0.01, "{name} {pname}");
+                assert!(end_torque < -1.0, "{name} {pname}: {end_torque}");
+            }
+            CollisionReaction::Passive => {
+                assert_eq!(r.switches[0].to, JointMode::Passive);
+                assert!(end_torque >= -2.0, "{name} {pname}: {end_torque}");
+            }
+        }
+        detections.push(detection);
+    }
+    assert!(
+        (detections[0] - detections[1]).abs() <= 2.0 * TICK + 1e-9,
+        "{name}: detection at dt and dt/2 {detections:?}"
+    );
+}
+
+#[test]
+fn engine_contact_collision_is_detected_and_stops_or_yields_f32() {
+    contact_collision::<f32>("f32 contact", CollisionReaction::Stop);
+    contact_collision::<f32>("f32 contact", CollisionReaction::Passive);
+}
+
+#[test]
+fn engine_contact_collision_is_detected_and_stops_or_yields_i16f16() {
+    contact_collision::<I16F16>("I16F16 contact", CollisionReaction::Stop);
+    contact_collision::<I16F16>("I16F16 contact", CollisionReaction::Passive);
 }

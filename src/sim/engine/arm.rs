@@ -82,6 +82,17 @@
 //!
 //! Angles are read from the bodies' poses (unwrapped step to step), speeds
 //! from the engine's joint velocities.
+//!
+//! # Contacts
+//!
+//! The arm has no colliders unless one is added: [`EngineArm::add_wall`]
+//! puts a frictionless ball ([`TipBall`]) on a link and a fixed box
+//! ([`Wall`], e.g. [`Wall::stop_for`]) in the world, and the engine's
+//! contact force between them is read back as a force
+//! ([`EngineArm::contact_force`], N, base frame) and as a generalized force
+//! on the ball's link coordinate ([`EngineArm::contact_torque`], N·m). It is
+//! the collision obstacle of `sim::engine::arm_scenarios` that
+//! [`crate::sim::Mrr`] cannot have.
 
 use rapier3d_f64::na::{Matrix3, UnitQuaternion};
 use rapier3d_f64::prelude::*;
@@ -401,6 +412,8 @@ pub struct EngineArm<D: DriveModel> {
     last_drive: Vec<DriveTorques>,
     drive: D,
     time: f64,
+    /// A ball on a link and the fixed wall it can hit ([`Self::add_wall`]).
+    obstacle: Option<contact::Obstacle>,
 }
 
 fn matrix(m: &[[f64; 3]; 3]) -> Matrix3<f64> {
@@ -635,6 +648,7 @@ impl<D: DriveModel> EngineArm<D> {
             last_drive: vec![DriveTorques::default(); n],
             drive,
             time: 0.0,
+            obstacle: None,
         };
         let zero = vec![0.0; n];
         arm.set_state(&zero, &zero, &zero, &zero);
@@ -954,6 +968,9 @@ impl<D: DriveModel> EngineArm<D> {
         e
     }
 }
+
+mod contact;
+pub use contact::{TipBall, Wall};
 
 #[cfg(test)]
 mod tests;

@@ -19,7 +19,12 @@
 //!   certificate by a stated calibration error, with offsets and noise.
 //! * [`arm`] — the modular arm of ch. 4: links and rotors as bodies on
 //!   multibody revolute joints, coupled by the library's drive models; the
-//!   independent check of eq. (4.1)–(4.6) of [`crate::sim::Mrr`].
+//!   independent check of eq. (4.1)–(4.6) of [`crate::sim::Mrr`]; a ball
+//!   on a link can hit a fixed wall through the engine's contacts.
+//! * [`arm_scenarios`] — the chapter-4 experiments with the library's joint
+//!   step at 4 ms on that arm (or on [`crate::sim::Mrr`]): active tracking
+//!   (§4.4.1, Fig. 4.3), back-driving (§4.4.2, Fig. 4.11–4.12), mode
+//!   switching and collision detection, with their traces.
 //! * [`door`] — the door opening of §6.4.4: the mobile base, the turret on
 //!   a drive plant, the DAUJ and its F/T sensor on the arm, a hinged door,
 //!   with the library's wrist step and passive law in the loop at 4 ms.
@@ -34,6 +39,7 @@
 //! alone. The arm carries its gravity as a force on every body.
 
 pub mod arm;
+pub mod arm_scenarios;
 pub mod door;
 pub mod ft_sensor;
 pub mod universal_joint;
@@ -43,8 +49,9 @@ pub mod wrist_bench;
 
 pub use arm::{
     arm_settings, DriveModel, DriveState, DriveTorques, EngineArm, LinearDrives, PlantDrives,
-    RotorBody, ARM_DT,
+    RotorBody, TipBall, Wall, ARM_DT,
 };
+pub use arm_scenarios::{ArmPlant, ArmTrackingRun, JointRun};
 pub use door::{engine_door_opening, Backend, DoorBody, EngineDoorRun, EngineDoorSample};
 pub use ft_sensor::{GaugeErrors, SensedWrist, StrainGaugeSensor};
 pub use universal_joint::UniversalJointBench;

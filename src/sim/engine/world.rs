@@ -121,16 +121,16 @@ impl Default for EngineSettings {
     }
 }
 
-/// The rapier sets and pipeline of one mechanism (no colliders, no
-/// gravity).
+/// The rapier sets and pipeline of one mechanism (no gravity; colliders
+/// only where a mechanism adds them, e.g. the arm's wall).
 pub(crate) struct World {
     pipeline: PhysicsPipeline,
     params: IntegrationParameters,
     islands: IslandManager,
     broad_phase: DefaultBroadPhase,
-    narrow_phase: NarrowPhase,
+    pub(crate) narrow_phase: NarrowPhase,
     pub(crate) bodies: RigidBodySet,
-    colliders: ColliderSet,
+    pub(crate) colliders: ColliderSet,
     pub(crate) impulse_joints: ImpulseJointSet,
     pub(crate) multibody_joints: MultibodyJointSet,
     ccd: CCDSolver,
