@@ -437,8 +437,12 @@ pub mod reference {
         }
 
         /// Inverse kinematics as in the library (half-angle form, eq.
-        /// 5.13–5.15, projection onto the cone), reduced angles.
-        fn inverse<K: Kernels<S>>(&self, d0: S, g0: S) -> (S, S, PitchYaw<S>, bool, bool) {
+        /// 5.13–5.15, projection onto the cone), reduced angles, on the
+        /// root of eq. (5.13) whose `θ1` is nearer `prev1` (the previous
+        /// `θ1` reference): `θ1 = arg A + π − ψ` (`θ4 ≥ 0`) or its mirror
+        /// `arg A + ψ` (`θ4 ≤ 0`, `θ1 + θ3 = ε + 2ψ`), the latter when
+        /// `cos(arg A − prev1) > 0`; `θ4 ≥ 0` on a tie, as the library.
+        fn inverse<K: Kernels<S>>(&self, d0: S, g0: S, prev1: S) -> (S, S, PitchYaw<S>, bool, bool) {
             let two = S::ONE.add(S::ONE);
             let half = S::ONE.div(two);
             let hp = S::FRAC_PI_2;
@@ -477,6 +481,11 @@ pub mod reference {
                 two.mul(sd).mul(sg).mul(hb.mul(hb)).neg(),
                 cg.mul(sd.mul(sd)).add(cd.mul(sg.mul(sg))),
             );
+            if K::sin_cos(az.sub(prev1)).1 > S::ZERO {
+                let t1 = wrap(az.add(psi));
+                let u = eps.add(two.mul(psi));
+                return (t1, u.sub(t1), pose, sat, false);
+            }
             let u = eps.sub(two.mul(psi));
             (t1, u.sub(t1), pose, sat, false)
         }
@@ -566,9 +575,10 @@ pub mod reference {
                     request: t.request,
                 },
             );
-            let (n1, n3, pose, sat, straight) = self.inverse::<K>(m.reference[0], m.reference[1]);
-            st.gamma = pose.gamma;
             let p = st.motors;
+            let (n1, n3, pose, sat, straight) =
+                self.inverse::<K>(m.reference[0], m.reference[1], p[0]);
+            st.gamma = pose.gamma;
             let (n1, n3) = if straight {
                 (p[0], p[0].neg())
             } else {
