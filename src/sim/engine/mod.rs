@@ -34,6 +34,7 @@
 //! alone. The arm carries its gravity as a force on every body.
 
 pub mod arm;
+mod dauj;
 pub mod door;
 pub mod ft_sensor;
 pub mod universal_joint;

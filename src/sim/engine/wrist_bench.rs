@@ -99,9 +99,10 @@
 use rapier3d_f64::na::UnitQuaternion;
 use rapier3d_f64::prelude::*;
 
-use super::door::{body_at, hinge, Coord, CONTROL_PERIOD, WRIST_DRIVE, WRIST_RATIO, WRIST_ROTOR};
+use super::dauj::{insert_dauj, DaujJointAngles, DaujOptions, DaujRotors, DaujTool, WorldAxis};
+use super::door::{CONTROL_PERIOD, WRIST_DRIVE, WRIST_RATIO, WRIST_ROTOR};
 use super::ft_sensor::{GaugeErrors, StrainGaugeSensor, V_REF};
-use super::world::{unwrap_near, EngineSettings, World};
+use super::world::{Coord, EngineSettings, World};
 use crate::error::ParamError;
 use crate::sim::door::door_wrist_design;
 use crate::sim::{FrictionParams, SplitMix64};
@@ -112,7 +113,7 @@ use crate::wrist::modes::{WristMode, WristModeParams, WristModeSettings};
 use crate::wrist::step::{
     WristReadings, WristStepConfig, WristStepParams, WristStepSettings, WristTarget,
 };
-use crate::wrist::{PitchYaw, WristConfig, WristParams};
+use crate::wrist::{PitchYaw, WristParams};
 
 /// The start pose `[δ, γ]`, rad (10° of pitch).
 pub const START: [f64; 2] = [0.174_532_925_199_432_95, 0.0];
@@ -261,103 +262,44 @@ struct Scene {
 
 fn build(start: PitchYaw<f64>, settings: &EngineSettings) -> Result<Scene, ParamError> {
     let mut world = World::new(settings);
+    let ground = world.base();
+    // The wrist on the ground, its frame the world's; the start pose from
+    // the library's inverse kinematics (branch θ4 ≥ 0), the rotors at N
+    // times their joints; the engine closes the loop from there.
+    let wrist = insert_dauj(
+        &mut world,
+        ground,
+        Vector::zeros(),
+        (WorldAxis::X, WorldAxis::Y),
+        &DaujOptions {
+            kinematics: WristParams::thesis(),
+            rotors: Some(DaujRotors {
+                ratio: WRIST_RATIO,
+                mass: 0.05,
+                inertia: [1e-5, 1e-5, WRIST_ROTOR],
+            }),
+            tool: Some(DaujTool {
+                mount: SENSOR_OFFSET,
+                com: 0.5 * (FINGER_ARM - SENSOR_OFFSET),
+                mass: TOOL_MASS,
+                inertia: TOOL_INERTIA,
+            }),
+            start: Some(DaujJointAngles::from_pose(&WristParams::thesis(), start)),
+            undamped: true,
+        },
+    )?;
     let fail = |name| ParamError::NotFinite {
         name,
         value: f64::NAN,
     };
-    let (x, y, z) = (Vector::x(), Vector::y(), Vector::z());
-    let phi = WristParams::thesis().phi();
-    let oblique = z * phi.cos() - y * phi.sin();
-    let ground = world.base();
-    let o = Vector::zeros();
-    let rotor =
-        [0, 1].map(|_| body_at(&mut world, o, o, 0.05, Vector::new(1e-5, 1e-5, WRIST_ROTOR)));
-    let lower = body_at(&mut world, o, o, 0.1, Vector::repeat(1e-3));
-    let upper = body_at(&mut world, o, o, 0.1, Vector::repeat(1e-3));
-    let output = body_at(&mut world, o, z * 0.04, 0.2, Vector::repeat(1e-3));
-    let cross = body_at(&mut world, o, o, 0.02, Vector::repeat(2e-6));
-    let tool = body_at(
-        &mut world,
-        z * SENSOR_OFFSET,
-        z * (0.5 * (FINGER_ARM - SENSOR_OFFSET)),
-        TOOL_MASS,
-        Vector::repeat(TOOL_INERTIA),
-    );
-    let mb = &mut world.multibody_joints;
-    let mut rj = Vec::new();
-    for h in rotor {
-        rj.push(
-            mb.insert(ground, h, hinge(z, o, o), true)
-                .ok_or(fail("rotor joint"))?,
-        );
-    }
-    let j1 = mb
-        .insert(ground, lower, hinge(z, o, o), true)
-        .ok_or(fail("J1"))?;
-    let j4 = mb
-        .insert(lower, upper, hinge(oblique, o, o), true)
-        .ok_or(fail("J4"))?;
-    let j3 = mb
-        .insert(upper, output, hinge(z, o, o), true)
-        .ok_or(fail("J3"))?;
-    let jp = mb
-        .insert(ground, cross, hinge(y, o, o), true)
-        .ok_or(fail("pitch joint"))?;
-    // The start pose from the library's inverse kinematics (branch
-    // θ4 ≥ 0), the rotors at N times their joints; the engine closes the
-    // loop from there.
-    let inv = WristConfig::<f64>::new(&WristParams::thesis()).inverse(start);
-    let (t1, t3) = (
-        unwrap_near(inv.motors.theta1, 0.0),
-        unwrap_near(inv.motors.theta3, 0.0),
-    );
-    let set = [
-        (j1, t1),
-        (j4, inv.theta4),
-        (j3, t3),
-        (jp, start.delta),
-        (rj[0], WRIST_RATIO * t1),
-        (rj[1], WRIST_RATIO * t3),
-    ];
-    let ids = set.map(|(h, q)| (world.multibody_joints.get(h).map(|(_, id)| id), q));
-    let (m, _) = world
-        .multibody_joints
-        .get_mut(j1)
-        .ok_or(fail("start pose"))?;
-    let mut disp = vec![0.0; m.ndofs()];
-    for (id, q) in ids {
-        let id = id.ok_or(fail("start pose"))?;
-        let at: usize = (0..id)
-            .filter_map(|k| m.link(k).map(|l| l.joint().ndofs()))
-            .sum();
-        *disp.get_mut(at).ok_or(fail("start pose"))? = q;
-    }
-    m.apply_displacements(&disp);
-    m.forward_kinematics(&world.bodies, true);
-    m.update_rigid_bodies(&mut world.bodies, false);
-    m.damping_mut().fill(0.0);
-    let pose = *world.bodies[output].position() * Isometry::translation(0.0, 0.0, SENSOR_OFFSET);
-    world.bodies[tool].set_position(pose, true);
-    world
-        .impulse_joints
-        .insert(cross, output, hinge(x, o, o), true);
-    let mount = FixedJointBuilder::new()
-        .local_anchor1(Point::from(z * SENSOR_OFFSET))
-        .local_anchor2(Point::origin());
-    world.impulse_joints.insert(output, tool, mount, true);
-    let c = |parent, child, axis| Coord {
-        parent,
-        child,
-        axis,
-    };
     Ok(Scene {
         world,
-        output,
-        tool,
-        joint: [c(ground, lower, z), c(upper, output, z)],
-        motor: [c(ground, rotor[0], z), c(ground, rotor[1], z)],
-        pitch: c(ground, cross, y),
-        yaw: c(cross, output, x),
+        output: wrist.output,
+        tool: wrist.tool.ok_or(fail("tool"))?,
+        joint: wrist.joints(),
+        motor: wrist.motors().ok_or(fail("rotors"))?,
+        pitch: wrist.pitch(),
+        yaw: wrist.yaw(),
     })
 }
 
