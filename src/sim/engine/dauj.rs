@@ -387,3 +387,152 @@ fn validate(origin: Vector<Real>, options: &DaujOptions) -> Result<(), ParamErro
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::engine::world::EngineSettings;
+    use rapier3d_f64::na::UnitQuaternion;
+
+    fn options(start: Option<DaujJointAngles>) -> DaujOptions {
+        DaujOptions {
+            kinematics: WristParams::thesis(),
+            rotors: Some(DaujRotors {
+                ratio: 50.0,
+                mass: 0.05,
+                inertia: [1e-5, 2e-5, 3e-6],
+            }),
+            tool: Some(DaujTool {
+                mount: 0.05,
+                com: 0.02,
+                mass: 0.3,
+                inertia: 5e-4,
+            }),
+            start,
+            undamped: true,
+        }
+    }
+
+    /// A fixed parent away from the origin, so that the anchors are
+    /// checked too.
+    fn world_with_parent() -> (World, RigidBodyHandle) {
+        let mut world = World::new(&EngineSettings::default());
+        let parent = world.bodies.insert(
+            RigidBodyBuilder::fixed()
+                .translation(Vector::new(0.3, -0.2, 0.1))
+                .build(),
+        );
+        (world, parent)
+    }
+
+    #[test]
+    fn the_start_pose_puts_every_part_where_the_joint_angles_say() {
+        // A frame that is not the world's: x → world z, y → world x,
+        // z = x × y → world y (the door's).
+        let (mut world, parent) = world_with_parent();
+        let origin = Vector::new(0.5, 0.4, -0.1);
+        let (delta, gamma) = (0.2, -0.15);
+        let start = DaujJointAngles::from_pose(&WristParams::thesis(), PitchYaw { delta, gamma });
+        let opts = options(Some(start));
+        let w = insert_dauj(
+            &mut world,
+            parent,
+            origin,
+            (WorldAxis::Z, WorldAxis::X),
+            &opts,
+        )
+        .expect("valid wrist");
+        assert_eq!(w.axes, [Vector::z(), Vector::x(), Vector::y()]);
+        let b = &world.bodies;
+        // The chain's joints read the angles they were set to.
+        let [j1, j3] = w.joints();
+        assert!((j1.angle(b, 0.0) - start.theta1).abs() < 1e-9);
+        assert!((j3.angle(b, 0.0) - start.theta3).abs() < 1e-9);
+        assert!((w.pitch().angle(b, 0.0) - delta).abs() < 1e-9);
+        // The loop is closed where the library's pose says: L2's
+        // orientation through the chain is R_y(δ) R_x(γ) about the wrist's
+        // axes (world z for x, world x for y), so the yaw joint reads γ.
+        let uj = UnitQuaternion::from_axis_angle(&Vector::x_axis(), delta)
+            * UnitQuaternion::from_axis_angle(&Vector::z_axis(), gamma);
+        assert!(b[w.output].rotation().angle_to(&uj) < 1e-9);
+        assert!((w.yaw().angle(b, 0.0) - gamma).abs() < 1e-9);
+        // Every part turns about the wrist centre: their origins stay there.
+        for h in [w.lower, w.upper, w.output, w.cross] {
+            assert!((b[h].translation() - origin).norm() < 1e-12);
+        }
+        // The rotors at N times their joints.
+        let [m1, m3] = w.motors().expect("rotors");
+        assert!((m1.angle(b, 50.0 * start.theta1) - 50.0 * start.theta1).abs() < 1e-9);
+        assert!((m3.angle(b, 50.0 * start.theta3) - 50.0 * start.theta3).abs() < 1e-9);
+        // The tool 5 cm out along L2's axis.
+        let tool = b[w.tool.expect("tool")].translation();
+        let along = uj * Vector::y();
+        assert!((tool - (origin + along * 0.05)).norm() < 1e-12);
+    }
+
+    #[test]
+    fn rotor_inertia_is_given_in_the_wrist_frame() {
+        let (mut world, parent) = world_with_parent();
+        let w = insert_dauj(
+            &mut world,
+            parent,
+            Vector::zeros(),
+            (WorldAxis::Z, WorldAxis::X),
+            &options(None),
+        )
+        .expect("valid wrist");
+        // Wrist x, y, z are world z, x, y: the moments [1e-5, 2e-5, 3e-6]
+        // along the wrist's axes are [2e-5, 3e-6, 1e-5] along the world's.
+        // (The engine computes the bodies' mass properties in its step.)
+        world.step();
+        let r = w.rotors.expect("rotors")[0];
+        let m = world.bodies[r].mass_properties().local_mprops;
+        let want = Vector::new(2e-5, 3e-6, 1e-5);
+        let got = m.principal_inertia();
+        assert!((got - want).norm() < 1e-12 * want.norm(), "{got:?}");
+    }
+
+    #[test]
+    fn bad_inputs_are_named() {
+        let name = |origin: Vector<Real>, axes, opts: &DaujOptions| {
+            let (mut world, parent) = world_with_parent();
+            insert_dauj(&mut world, parent, origin, axes, opts)
+                .err()
+                .map(|e| e.name())
+        };
+        let o = Vector::zeros();
+        let xy = (WorldAxis::X, WorldAxis::Y);
+        assert_eq!(
+            name(o, (WorldAxis::Y, WorldAxis::Y), &options(None)),
+            Some("frame.x·frame.y")
+        );
+        assert_eq!(
+            name(Vector::new(0.0, f64::NAN, 0.0), xy, &options(None)),
+            Some("origin")
+        );
+        let mut bad = options(None);
+        bad.rotors = bad.rotors.map(|r| DaujRotors { ratio: 0.5, ..r });
+        assert_eq!(name(o, xy, &bad), Some("rotors.ratio"));
+        let mut bad = options(None);
+        bad.tool = bad.tool.map(|t| DaujTool { mass: -1.0, ..t });
+        assert_eq!(name(o, xy, &bad), Some("tool.mass"));
+        let mut bad = options(None);
+        bad.start = Some(DaujJointAngles {
+            theta1: 0.0,
+            theta4: f64::INFINITY,
+            theta3: 0.0,
+            delta: 0.0,
+        });
+        assert_eq!(name(o, xy, &bad), Some("start.theta4"));
+        // A turned parent.
+        let mut world = World::new(&EngineSettings::default());
+        let parent = world.bodies.insert(
+            RigidBodyBuilder::fixed()
+                .rotation(Vector::new(0.0, 0.0, 0.3))
+                .build(),
+        );
+        let e = insert_dauj(&mut world, parent, o, xy, &options(None)).err();
+        assert_eq!(e.map(|e| e.name()), Some("parent rotation angle"));
+        assert_eq!(name(o, xy, &options(None)), None);
+    }
+}
