@@ -50,7 +50,7 @@
 //!   measured torque `|(τ_δ, τ_γ)|` while both rotors are still within
 //!   [`HELD`] of their start (the gear has not slipped).
 //! * [`FingerCase::Admittance`] (Case 2): every 4 ms the library's public
-//!   wrist step on `f32` ([`WristStepConfig`]: gauges → `(τ_δ, τ_γ)`, the
+//!   wrist step ([`WristStepConfig`]: gauges → `(τ_δ, τ_γ)`, the
 //!   mode manager held Passive with the admittance law of eq. 6.32 at the
 //!   thesis's `K_c = 0.1`, the inverse kinematics, both motor laws of
 //!   eq. 6.15 with [`door_wrist_design`]). The metric is the peak measured
@@ -59,6 +59,17 @@
 //!   with `τ ≈ ẋ_f / K_c`: the thesis's "below 2 Nm" needs the finger
 //!   slower than about 0.2 rad/s; the seeds draw its speed
 //!   ([`FingerPush::peak_speed`]).
+//!
+//! # Backends
+//! The wrist step runs on the backend chosen ([`Backend`],
+//! [`engine_finger_push_on`], [`engine_wrist_tracking_on`]): `f32`, as the
+//! thesis's DSP would run it and the claims' operating point
+//! ([`engine_finger_push`] and [`engine_wrist_tracking`] are these), or
+//! `I16F16` fixed point as on a Cortex-M0+ (or `f64`). On the 20 seeds of
+//! the claims' sweep, `I16F16`'s Case 2 peaks are within 0.05 N·m of
+//! `f32`'s and its Case 1 held torques within 0.01 N·m (the `wrist_bench`
+//! example prints both; `tests/engine_wrist_bench.rs` checks the nominal
+//! push).
 //!
 //! # Active tracking
 //! [`engine_wrist_tracking`] (§6.4.2, Fig. 6.10): the same wrist step held
@@ -100,10 +111,11 @@ use rapier3d_f64::na::UnitQuaternion;
 use rapier3d_f64::prelude::*;
 
 use super::dauj::{insert_dauj, DaujJointAngles, DaujOptions, DaujRotors, DaujTool, WorldAxis};
-use super::door::{CONTROL_PERIOD, WRIST_DRIVE, WRIST_RATIO, WRIST_ROTOR};
+use super::door::{Backend, CONTROL_PERIOD, WRIST_DRIVE, WRIST_RATIO, WRIST_ROTOR};
 use super::ft_sensor::{GaugeErrors, StrainGaugeSensor, V_REF};
 use super::world::{Coord, EngineSettings, World};
 use crate::error::ParamError;
+use crate::scalar::{Scalar, I16F16};
 use crate::sim::door::door_wrist_design;
 use crate::sim::{FrictionParams, SplitMix64};
 use crate::wrist::active::WristActiveParams;
@@ -356,18 +368,31 @@ fn finger_path(push: &FingerPush, travel: f64, t: f64) -> (f64, f64) {
     }
 }
 
-/// Runs one push on the engine from [`START`]. Errors: a `push` field
-/// outside its range (named `finger.<field>`); an engine step that does not
-/// divide the 4 ms period (named `dt`) or under which the state diverges.
+/// Runs one push on the engine from [`START`] with the wrist step on
+/// `f32` (the thesis's DSP; the claims' operating point):
+/// [`engine_finger_push_on`] with [`Backend::F32`].
 pub fn engine_finger_push(
     case: FingerCase,
     push: &FingerPush,
     engine: &EngineSettings,
 ) -> Result<EngineWristBenchRun, ParamError> {
-    engine_finger_push_from(case, push, START[0], engine)
+    engine_finger_push_on(case, push, engine, Backend::F32)
 }
 
-/// [`engine_finger_push`] from the pose `(start_pitch, 0)` (rad, within
+/// Runs one push on the engine from [`START`] with the library's wrist
+/// step on `backend`. Errors: a `push` field outside its range (named
+/// `finger.<field>`); an engine step that does not divide the 4 ms period
+/// (named `dt`) or under which the state diverges.
+pub fn engine_finger_push_on(
+    case: FingerCase,
+    push: &FingerPush,
+    engine: &EngineSettings,
+    backend: Backend,
+) -> Result<EngineWristBenchRun, ParamError> {
+    engine_finger_push_from(case, push, START[0], engine, backend)
+}
+
+/// [`engine_finger_push_on`] from the pose `(start_pitch, 0)` (rad, within
 /// ±20°, named `start_pitch`): the study of a push through the straight
 /// pose (module docs, "Start pose"). A start of exactly 0 is not the
 /// straight pose's own assembly; use a few degrees.
@@ -376,11 +401,21 @@ pub fn engine_finger_push_from(
     push: &FingerPush,
     start_pitch: f64,
     engine: &EngineSettings,
+    backend: Backend,
 ) -> Result<EngineWristBenchRun, ParamError> {
     push.validate()?;
     let limit = 20f64.to_radians();
     let start_pitch = crate::error::in_range("start_pitch", start_pitch, -limit, limit)?;
-    let home = [start_pitch, 0.0];
+    match backend {
+        Backend::F32 => push_run::<f32>(case, push, start_pitch, engine),
+        Backend::F64 => push_run::<f64>(case, push, start_pitch, engine),
+        Backend::I16F16 => push_run::<I16F16>(case, push, start_pitch, engine),
+    }
+}
+
+/// Engine steps per 4 ms control tick; an error (named `dt`) if the engine
+/// step does not divide the tick.
+fn steps_per_tick(engine: &EngineSettings) -> Result<usize, ParamError> {
     let dt = engine.dt();
     let per_tick = (CONTROL_PERIOD / dt).round();
     if per_tick < 1.0 || (per_tick * dt - CONTROL_PERIOD).abs() > 1e-12 {
@@ -391,7 +426,42 @@ pub fn engine_finger_push_from(
             max: CONTROL_PERIOD,
         });
     }
-    let per_tick = per_tick as usize;
+    Ok(per_tick as usize)
+}
+
+/// The motor friction of a gear whose break-away at the joint is
+/// `breakaway` N·m: two thirds of it Coulomb, at the motor (`/N`), with
+/// presliding (module docs).
+fn gear_friction(breakaway: f64) -> FrictionParams {
+    let b = breakaway / WRIST_RATIO;
+    FrictionParams {
+        coulomb: b * 2.0 / 3.0,
+        static_excess: b / 3.0,
+        stribeck: 1e-3,
+        viscous: 2e-6,
+        presliding: 0.1,
+        presliding_damping: 0.0,
+    }
+}
+
+/// The strain gauges: off the certificate by ±2 % and 0.3 mV of noise,
+/// drawn from `seed`.
+fn bench_gauges(seed: u64) -> Result<StrainGaugeSensor, ParamError> {
+    StrainGaugeSensor::try_new(
+        DecouplingMatrix::example().matrix(),
+        GaugeErrors::try_new(0.02, 0.0, 3e-4, seed)?,
+    )
+}
+
+fn push_run<S: Scalar>(
+    case: FingerCase,
+    push: &FingerPush,
+    start_pitch: f64,
+    engine: &EngineSettings,
+) -> Result<EngineWristBenchRun, ParamError> {
+    let home = [start_pitch, 0.0];
+    let dt = engine.dt();
+    let per_tick = steps_per_tick(engine)?;
     let travel = match case {
         FingerCase::MotorsOff => CASE1_TRAVEL,
         FingerCase::Admittance => push.travel,
@@ -406,23 +476,12 @@ pub fn engine_finger_push_from(
         FINGER_STIFFNESS / (FINGER_ARM * FINGER_ARM),
         FINGER_DAMPING / (FINGER_ARM * FINGER_ARM),
     );
-    let b = push.breakaway / WRIST_RATIO;
-    let friction = FrictionParams {
-        coulomb: b * 2.0 / 3.0,
-        static_excess: b / 3.0,
-        stribeck: 1e-3,
-        viscous: 2e-6,
-        presliding: 0.1,
-        presliding_damping: 0.0,
-    };
-    let mut gauges = StrainGaugeSensor::try_new(
-        DecouplingMatrix::example().matrix(),
-        GaugeErrors::try_new(0.02, 0.0, 3e-4, push.seed ^ 0x5E45_0000)?,
-    )?;
+    let friction = gear_friction(push.breakaway);
+    let mut gauges = bench_gauges(push.seed ^ 0x5E45_0000)?;
     let params = bench_wrist_step()?;
-    let step = WristStepConfig::<f32>::new(&params);
+    let step = WristStepConfig::<S>::new(&params);
     let q0 = [0, 1].map(|i| sc.joint[i].angle(&sc.world.bodies, 0.0));
-    let mut state = step.state(WristReadings::<f32>::from_si([0.0; 6], q0, [0.0; 2]).motors);
+    let mut state = step.state(WristReadings::<S>::from_si([0.0; 6], q0, [0.0; 2]).motors);
     let count = core::f64::consts::TAU / 2000.0;
     let quant = |x: f64| (x / count).round() * count;
     // Joint and rotor angles (unwrapping memory), friction anchors.
@@ -458,10 +517,10 @@ pub fn engine_finger_push_from(
         } else {
             WristMode::Passive
         };
-        let target = WristTarget::<f32>::from_si(home[0], home[1], 0.0, 0.0).with_request(request);
+        let target = WristTarget::<S>::from_si(home[0], home[1], 0.0, 0.0).with_request(request);
         let o = step.update(
             &mut state,
-            &WristReadings::<f32>::from_si(sg, enc, enc_v),
+            &WristReadings::<S>::from_si(sg, enc, enc_v),
             &target,
         );
         let measured = o.interaction_si();
@@ -641,8 +700,18 @@ pub struct EngineTrackingRun {
     pub off_mode_ticks: usize,
 }
 
+/// §6.4.2 (Fig. 6.10–6.11) on the engine with the wrist step on `f32`:
+/// [`engine_wrist_tracking_on`] with [`Backend::F32`].
+pub fn engine_wrist_tracking(
+    duration: f64,
+    settle: f64,
+    engine: &EngineSettings,
+) -> Result<EngineTrackingRun, ParamError> {
+    engine_wrist_tracking_on(duration, settle, engine, Backend::F32)
+}
+
 /// §6.4.2 (Fig. 6.10–6.11) on the engine: the library's wrist step on
-/// `f32`, held Active, tracks [`crate::sim::wrist_bench::tracking_trajectory`]
+/// `backend`, held Active, tracks [`crate::sim::wrist_bench::tracking_trajectory`]
 /// (the home-made bench's: a bend of 12°–24° swinging from pitch through
 /// yaw; its rate by central differences, 1 ms) for `duration` s on the
 /// nominal gears (12 N·m break-away), starting at rest at its first pose;
@@ -650,25 +719,29 @@ pub struct EngineTrackingRun {
 /// `settle` s. Errors: `duration` or `settle` not finite or out of
 /// `[0, 60]` s (named), an engine step that does not divide 4 ms (`dt`) or
 /// under which the state diverges.
-pub fn engine_wrist_tracking(
+pub fn engine_wrist_tracking_on(
+    duration: f64,
+    settle: f64,
+    engine: &EngineSettings,
+    backend: Backend,
+) -> Result<EngineTrackingRun, ParamError> {
+    let duration = crate::error::in_range("duration", duration, 0.0, 60.0)?;
+    let settle = crate::error::in_range("settle", settle, 0.0, 60.0)?;
+    match backend {
+        Backend::F32 => tracking_run::<f32>(duration, settle, engine),
+        Backend::F64 => tracking_run::<f64>(duration, settle, engine),
+        Backend::I16F16 => tracking_run::<I16F16>(duration, settle, engine),
+    }
+}
+
+fn tracking_run<S: Scalar>(
     duration: f64,
     settle: f64,
     engine: &EngineSettings,
 ) -> Result<EngineTrackingRun, ParamError> {
     use crate::sim::wrist_bench::tracking_trajectory;
-    let duration = crate::error::in_range("duration", duration, 0.0, 60.0)?;
-    let settle = crate::error::in_range("settle", settle, 0.0, 60.0)?;
     let dt = engine.dt();
-    let per_tick = (CONTROL_PERIOD / dt).round();
-    if per_tick < 1.0 || (per_tick * dt - CONTROL_PERIOD).abs() > 1e-12 {
-        return Err(ParamError::OutOfRange {
-            name: "dt",
-            value: dt,
-            min: 1e-6,
-            max: CONTROL_PERIOD,
-        });
-    }
-    let per_tick = per_tick as usize;
+    let per_tick = steps_per_tick(engine)?;
     let x0 = tracking_trajectory(0.0);
     let mut sc = build(
         PitchYaw {
@@ -677,23 +750,12 @@ pub fn engine_wrist_tracking(
         },
         engine,
     )?;
-    let b = 12.0 / WRIST_RATIO;
-    let friction = FrictionParams {
-        coulomb: b * 2.0 / 3.0,
-        static_excess: b / 3.0,
-        stribeck: 1e-3,
-        viscous: 2e-6,
-        presliding: 0.1,
-        presliding_damping: 0.0,
-    };
-    let mut gauges = StrainGaugeSensor::try_new(
-        DecouplingMatrix::example().matrix(),
-        GaugeErrors::try_new(0.02, 0.0, 3e-4, 0x5E45_0001)?,
-    )?;
+    let friction = gear_friction(12.0);
+    let mut gauges = bench_gauges(0x5E45_0001)?;
     let params = bench_wrist_step()?;
-    let step = WristStepConfig::<f32>::new(&params);
+    let step = WristStepConfig::<S>::new(&params);
     let q0 = [0, 1].map(|i| sc.joint[i].angle(&sc.world.bodies, 0.0));
-    let mut state = step.state(WristReadings::<f32>::from_si([0.0; 6], q0, [0.0; 2]).motors);
+    let mut state = step.state(WristReadings::<S>::from_si([0.0; 6], q0, [0.0; 2]).motors);
     let count = core::f64::consts::TAU / 2000.0;
     let quant = |x: f64| (x / count).round() * count;
     let mut mem = q0.map(|q| [q, WRIST_RATIO * q]);
@@ -722,11 +784,11 @@ pub fn engine_wrist_tracking(
         let xd = tracking_trajectory(time);
         let (xp, xm) = (tracking_trajectory(time + h), tracking_trajectory(time - h));
         let rate = [0, 1].map(|i| (xp[i] - xm[i]) / (2.0 * h));
-        let target = WristTarget::<f32>::from_si(xd[0], xd[1], rate[0], rate[1])
+        let target = WristTarget::<S>::from_si(xd[0], xd[1], rate[0], rate[1])
             .with_request(WristMode::Active);
         let o = step.update(
             &mut state,
-            &WristReadings::<f32>::from_si(sg, enc, enc_v),
+            &WristReadings::<S>::from_si(sg, enc, enc_v),
             &target,
         );
         out.off_mode_ticks += (o.mode != WristMode::Active) as usize;
