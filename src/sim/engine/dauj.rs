@@ -44,6 +44,7 @@ use rapier3d_f64::prelude::*;
 
 use super::world::{body_at, hinge, unwrap_near, Coord, World};
 use crate::error::ParamError;
+use crate::sim::FrictionParams;
 use crate::wrist::{PitchYaw, WristConfig, WristParams};
 
 /// A world axis: the directions the wrist's `x` and `y` may take (module
@@ -386,6 +387,90 @@ fn validate(origin: Vector<Real>, options: &DaujOptions) -> Result<(), ParamErro
         }
     }
     Ok(())
+}
+
+/// The wrist's two drives, each motor's rotor to its joint (`J1`, and `J3`
+/// through the inner universal joint taken as 1 : 1), as the door scene
+/// and the bench model them: a stiff spring
+/// `τ_t = k_w (q_m/N − q) + c_w (q̇_m/N − q̇)` (N·m) between the rotor
+/// (angle `q_m`, rad) and the joint (`q`), and the motor friction with
+/// presliding on the rotor. Applied as torque pairs before each engine
+/// step ([`Self::push`]); its memory (unwrapping, presliding anchors) moves
+/// on after it ([`Self::advance`]).
+pub(super) struct WristDrives {
+    joint: [Coord; 2],
+    motor: [Coord; 2],
+    ratio: f64,
+    spring: (f64, f64),
+    friction: FrictionParams,
+    /// Joint and rotor angles after the last step, rad.
+    angles: [[f64; 2]; 2],
+    /// The motor friction's presliding anchors, rad (rotor side).
+    anchor: [f64; 2],
+}
+
+impl WristDrives {
+    /// The drives of `joint` (`J1`, `J3`) and `motor` (their rotors) with
+    /// gear ratio `ratio`, spring `(k_w, c_w)` (N·m/rad, N·m·s/rad) and
+    /// motor `friction`, at rest with the joints at `start` (rad) and the
+    /// rotors at `ratio` times them.
+    pub(super) fn new(
+        joint: [Coord; 2],
+        motor: [Coord; 2],
+        ratio: f64,
+        spring: (f64, f64),
+        friction: FrictionParams,
+        start: [f64; 2],
+    ) -> Self {
+        WristDrives {
+            joint,
+            motor,
+            ratio,
+            spring,
+            friction,
+            angles: start.map(|q| [q, ratio * q]),
+            anchor: start.map(|q| ratio * q),
+        }
+    }
+
+    /// Rotor `i`'s angle now, rad (motor side), unwrapped near the last.
+    pub(super) fn rotor_angle(&self, bodies: &RigidBodySet, i: usize) -> f64 {
+        self.motor[i].angle(bodies, self.angles[i][1])
+    }
+
+    /// The rotors' angles after the last step, rad (motor side).
+    pub(super) fn rotor_angles(&self) -> [f64; 2] {
+        [self.angles[0][1], self.angles[1][1]]
+    }
+
+    /// Applies the drives' torques, with `motor_torque` (N·m, motor side)
+    /// on the rotors.
+    pub(super) fn push(&self, bodies: &mut RigidBodySet, motor_torque: [f64; 2]) {
+        let ((kw, cw), n) = (self.spring, self.ratio);
+        for i in 0..2 {
+            let (j, m) = (self.joint[i], self.motor[i]);
+            let q = j.angle(bodies, self.angles[i][0]);
+            let qm = m.angle(bodies, self.angles[i][1]);
+            let (vq, vm) = (j.speed(bodies), m.speed(bodies));
+            let tt = kw * (qm / n - q) + cw * (vm / n - vq);
+            let fm = self.friction.torque(qm, vm, self.anchor[i]);
+            j.push(bodies, tt);
+            m.push(bodies, -tt / n + motor_torque[i] - fm);
+        }
+    }
+
+    /// Moves the memory on after an engine step.
+    pub(super) fn advance(&mut self, bodies: &RigidBodySet) {
+        for i in 0..2 {
+            let (j, m) = (self.joint[i], self.motor[i]);
+            self.angles[i] = [
+                j.angle(bodies, self.angles[i][0]),
+                m.angle(bodies, self.angles[i][1]),
+            ];
+            self.friction
+                .update_anchor(self.angles[i][1], m.speed(bodies), &mut self.anchor[i]);
+        }
+    }
 }
 
 #[cfg(test)]

@@ -114,7 +114,9 @@ use rapier3d_f64::na::UnitQuaternion;
 use rapier3d_f64::prelude::*;
 
 use super::arm::{DriveModel, DriveState, PlantDrives};
-use super::dauj::{insert_dauj, DaujJointAngles, DaujOptions, DaujRotors, DaujTool, WorldAxis};
+use super::dauj::{
+    insert_dauj, DaujJointAngles, DaujOptions, DaujRotors, DaujTool, WorldAxis, WristDrives,
+};
 use super::ft_sensor::{GaugeErrors, StrainGaugeSensor, V_REF};
 use super::world::{body_at, hinge, Coord, EngineSettings, World};
 use crate::control::{
@@ -495,8 +497,7 @@ struct MomentumBalance {
 /// The state of the run's plant-side elements that have memory.
 struct Memory {
     turret: [f64; 2],
-    wrist: [[f64; 2]; 2],
-    wrist_friction_anchor: [f64; 2],
+    wrist: WristDrives,
     hinge_anchor: f64,
     door_angle: f64,
 }
@@ -530,10 +531,24 @@ pub fn door_wrist_step(
     cfg: &DoorConfig,
     initial_mode: WristMode,
 ) -> Result<WristStepParams, ParamError> {
+    wrist_step_params(cfg.wrist_stiffness_bound(), cfg.sensor_offset, initial_mode)
+}
+
+/// The wrist step of the engine's wrist scenes (the door's, the bench's):
+/// the kinematics of the thesis, the F/T certificate
+/// [`DecouplingMatrix::example`] at `sensor_offset` (m), both motors by
+/// [`door_wrist_design`] at 4 ms, the mode manager of [`crate::sim::door`]
+/// with the admittance `K_c = 0.1` validated for an environment of
+/// `stiffness` (N·m/rad).
+pub(super) fn wrist_step_params(
+    stiffness: f64,
+    sensor_offset: f64,
+    initial_mode: WristMode,
+) -> Result<WristStepParams, ParamError> {
     let limit = 30f64.to_radians();
     let admittance = AdmittanceParams::try_new(AdmittanceSettings {
         gain: [0.1, 0.1],
-        stiffness: cfg.wrist_stiffness_bound(),
+        stiffness,
         sample_period: CONTROL_PERIOD,
         lag_samples: 1,
         limits: [limit, limit],
@@ -543,7 +558,7 @@ pub fn door_wrist_step(
     })?;
     WristStepParams::try_new(WristStepSettings {
         kinematics: WristParams::thesis(),
-        sensor: FtSensorParams::try_new(DecouplingMatrix::example(), cfg.sensor_offset)?,
+        sensor: FtSensorParams::try_new(DecouplingMatrix::example(), sensor_offset)?,
         active: WristActiveParams::try_new([door_wrist_design(CONTROL_PERIOD); 2])?,
         modes: WristModeParams::try_new(WristModeSettings {
             admittance,
@@ -639,8 +654,14 @@ fn run<S: Scalar>(
     // Memory and outputs.
     let mut mem = Memory {
         turret: [0.0; 2],
-        wrist: q0.map(|q| [q, WRIST_RATIO * q]),
-        wrist_friction_anchor: q0.map(|q| WRIST_RATIO * q),
+        wrist: WristDrives::new(
+            sc.wrist_joint,
+            sc.wrist_motor,
+            WRIST_RATIO,
+            WRIST_DRIVE,
+            wrist_friction,
+            q0,
+        ),
         hinge_anchor: 0.0,
         door_angle: 0.0,
     };
@@ -689,7 +710,7 @@ fn run<S: Scalar>(
         let turret_passive = !pre && cfg.control == DoorControl::Passive;
         // ---- sensors at the tick ----
         let b = &sc.world.bodies;
-        let m_angle = [0, 1].map(|i| sc.wrist_motor[i].angle(b, mem.wrist[i][1]));
+        let m_angle = [0, 1].map(|i| mem.wrist.rotor_angle(b, i));
         let enc = [0, 1].map(|i| quant(m_angle[i], wrist_count) / WRIST_RATIO);
         let enc_v = [0, 1].map(|i| (enc[i] - last_enc[i]) / CONTROL_PERIOD);
         last_enc = enc;
@@ -760,7 +781,7 @@ fn run<S: Scalar>(
             (kp, kd),
             (kg, kr),
             &mut turret_drive,
-            (&wrist_friction, &hinge, door),
+            (&hinge, door),
             (torque_motor, torque_turret),
             &mut transmission,
             &mut true_tau,
@@ -788,7 +809,7 @@ fn step_ticks(
     gains: (f64, f64),
     grasp: (f64, f64),
     turret_drive: &mut PlantDrives,
-    friction: (&FrictionParams, &FrictionParams, &DoorBody),
+    friction: (&FrictionParams, &DoorBody),
     torques: ([f64; 2], f64),
     transmission: &mut f64,
     true_tau: &mut [f64; 2],
@@ -849,25 +870,17 @@ fn step_engine(
     (kp, kd): (f64, f64),
     (kg, kr): (f64, f64),
     turret_drive: &mut PlantDrives,
-    (wrist_friction, hinge, door): (&FrictionParams, &FrictionParams, &DoorBody),
+    (hinge, door): (&FrictionParams, &DoorBody),
     (torque_motor, torque_turret): ([f64; 2], f64),
     transmission: &mut f64,
     true_tau: &mut [f64; 2],
     force_now: &mut f64,
 ) -> Option<[f64; 6]> {
-    let bodies = &mut sc.world.bodies;
-    let finite = bodies.iter().all(|(_, b)| {
-        b.translation().iter().all(|x| x.is_finite())
-            && b.linvel().iter().all(|x| x.is_finite())
-            && b.angvel().iter().all(|x| x.is_finite())
-    });
-    if !finite {
+    if !sc.world.is_finite() {
         return None;
     }
-    for (_, rb) in bodies.iter_mut() {
-        rb.reset_forces(false);
-        rb.reset_torques(false);
-    }
+    sc.world.clear_forces();
+    let bodies = &mut sc.world.bodies;
     // ---- base: track the planned pose ----
     let (v, w) = motion.velocity(t);
     let h = 1e-4;
@@ -909,17 +922,7 @@ fn step_engine(
     tl.push(bodies, d.on_link);
     tm.push(bodies, d.on_motor + torque_turret);
     // ---- wrist drives ----
-    let (kw, cw) = WRIST_DRIVE;
-    for i in 0..2 {
-        let (j, m) = (sc.wrist_joint[i], sc.wrist_motor[i]);
-        let q = j.angle(bodies, mem.wrist[i][0]);
-        let qm = m.angle(bodies, mem.wrist[i][1]);
-        let (vq, vm) = (j.speed(bodies), m.speed(bodies));
-        let tt = kw * (qm / WRIST_RATIO - q) + cw * (vm / WRIST_RATIO - vq);
-        let fm = wrist_friction.torque(qm, vm, mem.wrist_friction_anchor[i]);
-        j.push(bodies, tt);
-        m.push(bodies, -tt / WRIST_RATIO + torque_motor[i] - fm);
-    }
+    mem.wrist.push(bodies, torque_motor);
     // ---- door hinge and closer ----
     let dh = sc.door_hinge;
     let qd = dh.angle(bodies, -mem.door_angle);
@@ -990,18 +993,7 @@ fn step_engine(
     };
     turret_drive.advance(0, &ts);
     mem.turret = [ts.link_angle, ts.motor_angle];
-    for i in 0..2 {
-        let (j, m) = (sc.wrist_joint[i], sc.wrist_motor[i]);
-        mem.wrist[i] = [
-            j.angle(bodies, mem.wrist[i][0]),
-            m.angle(bodies, mem.wrist[i][1]),
-        ];
-        wrist_friction.update_anchor(
-            mem.wrist[i][1],
-            m.speed(bodies),
-            &mut mem.wrist_friction_anchor[i],
-        );
-    }
+    mem.wrist.advance(bodies);
     let qd = dh.angle(bodies, -mem.door_angle);
     hinge.update_anchor(qd, dh.speed(bodies), &mut mem.hinge_anchor);
     mem.door_angle = -qd;

@@ -197,6 +197,24 @@ impl World {
         );
     }
 
+    /// Whether every body's position and velocities are finite.
+    pub(crate) fn is_finite(&self) -> bool {
+        self.bodies.iter().all(|(_, b)| {
+            b.translation().iter().all(|x| x.is_finite())
+                && b.linvel().iter().all(|x| x.is_finite())
+                && b.angvel().iter().all(|x| x.is_finite())
+        })
+    }
+
+    /// Clears the forces and torques the last step's caller applied to
+    /// every body.
+    pub(crate) fn clear_forces(&mut self) {
+        for (_, rb) in self.bodies.iter_mut() {
+            rb.reset_forces(false);
+            rb.reset_torques(false);
+        }
+    }
+
     /// Largest angular speed (rad/s) of any body.
     pub(crate) fn max_angular_speed(&self) -> f64 {
         self.bodies

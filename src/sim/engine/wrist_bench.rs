@@ -53,7 +53,7 @@
 //!   wrist step ([`WristStepConfig`]: gauges → `(τ_δ, τ_γ)`, the
 //!   mode manager held Passive with the admittance law of eq. 6.32 at the
 //!   thesis's `K_c = 0.1`, the inverse kinematics, both motor laws of
-//!   eq. 6.15 with [`door_wrist_design`]). The metric is the peak measured
+//!   eq. 6.15 with [`door_wrist_design`](crate::sim::door::door_wrist_design)). The metric is the peak measured
 //!   `|(τ_δ, τ_γ)|`. In the steady push the admittance law moves the
 //!   reference at `K_c τ`, so a finger moving at `ẋ_f` rad/s is followed
 //!   with `τ ≈ ẋ_f / K_c`: the thesis's "below 2 Nm" needs the finger
@@ -110,21 +110,20 @@
 use rapier3d_f64::na::UnitQuaternion;
 use rapier3d_f64::prelude::*;
 
-use super::dauj::{insert_dauj, DaujJointAngles, DaujOptions, DaujRotors, DaujTool, WorldAxis};
-use super::door::{Backend, CONTROL_PERIOD, WRIST_DRIVE, WRIST_RATIO, WRIST_ROTOR};
+use super::dauj::{
+    insert_dauj, DaujJointAngles, DaujOptions, DaujRotors, DaujTool, WorldAxis, WristDrives,
+};
+use super::door::{
+    wrist_step_params, Backend, CONTROL_PERIOD, WRIST_DRIVE, WRIST_RATIO, WRIST_ROTOR,
+};
 use super::ft_sensor::{GaugeErrors, StrainGaugeSensor, V_REF};
 use super::world::{Coord, EngineSettings, World};
 use crate::error::ParamError;
 use crate::scalar::{Scalar, I16F16};
-use crate::sim::door::door_wrist_design;
 use crate::sim::{FrictionParams, SplitMix64};
-use crate::wrist::active::WristActiveParams;
-use crate::wrist::admittance::{AdmittanceParams, AdmittanceSettings};
-use crate::wrist::ft_sensor::{DecouplingMatrix, FtSensorParams};
-use crate::wrist::modes::{WristMode, WristModeParams, WristModeSettings};
-use crate::wrist::step::{
-    WristReadings, WristStepConfig, WristStepParams, WristStepSettings, WristTarget,
-};
+use crate::wrist::ft_sensor::DecouplingMatrix;
+use crate::wrist::modes::WristMode;
+use crate::wrist::step::{WristReadings, WristStepConfig, WristStepParams, WristTarget};
 use crate::wrist::{PitchYaw, WristParams};
 
 /// The start pose `[δ, γ]`, rad (10° of pitch).
@@ -319,32 +318,7 @@ fn build(start: PitchYaw<f64>, settings: &EngineSettings) -> Result<Scene, Param
 /// with the admittance validated for the finger's stiffness (the thesis's
 /// `K_c = 0.1`) and the sensor at [`SENSOR_OFFSET`].
 pub fn bench_wrist_step() -> Result<WristStepParams, ParamError> {
-    let limit = 30f64.to_radians();
-    let admittance = AdmittanceParams::try_new(AdmittanceSettings {
-        gain: [0.1, 0.1],
-        stiffness: 2.0 * FINGER_STIFFNESS,
-        sample_period: CONTROL_PERIOD,
-        lag_samples: 1,
-        limits: [limit, limit],
-        max_rate: 1.0,
-        deadband: 0.0,
-        desired_torque: [0.0; 2],
-    })?;
-    WristStepParams::try_new(WristStepSettings {
-        kinematics: WristParams::thesis(),
-        sensor: FtSensorParams::try_new(DecouplingMatrix::example(), SENSOR_OFFSET)?,
-        active: WristActiveParams::try_new([door_wrist_design(CONTROL_PERIOD); 2])?,
-        modes: WristModeParams::try_new(WristModeSettings {
-            admittance,
-            enter_passive: 1.0,
-            exit_passive: 0.5,
-            rest_speed: 0.01,
-            debounce: 5,
-            dwell: 250,
-            rejoin_bandwidth: 5.0,
-        })?,
-        initial_mode: WristMode::Active,
-    })
+    wrist_step_params(2.0 * FINGER_STIFFNESS, SENSOR_OFFSET, WristMode::Active)
 }
 
 /// The fingertip's position along `n` from its touch (m) and its speed
@@ -485,8 +459,7 @@ fn push_run<S: Scalar>(
     let count = core::f64::consts::TAU / 2000.0;
     let quant = |x: f64| (x / count).round() * count;
     // Joint and rotor angles (unwrapping memory), friction anchors.
-    let mut mem = q0.map(|q| [q, WRIST_RATIO * q]);
-    let mut anchor = q0.map(|q| WRIST_RATIO * q);
+    let mut drives = WristDrives::new(sc.joint, sc.motor, WRIST_RATIO, WRIST_DRIVE, friction, q0);
     let rotor0 = q0;
     let mut last_enc = q0;
     let mut wrench = [0.0f64; 6];
@@ -508,7 +481,7 @@ fn push_run<S: Scalar>(
     for k in 0..pre + ticks {
         let time = (k as f64 - pre as f64) * CONTROL_PERIOD;
         let b = &sc.world.bodies;
-        let enc = [0, 1].map(|i| quant(sc.motor[i].angle(b, mem[i][1])) / WRIST_RATIO);
+        let enc = [0, 1].map(|i| quant(drives.rotor_angle(b, i)) / WRIST_RATIO);
         let enc_v = [0, 1].map(|i| (enc[i] - last_enc[i]) / CONTROL_PERIOD);
         last_enc = enc;
         let sg = gauges.read(&wrench).map(|v| v - V_REF);
@@ -537,7 +510,7 @@ fn push_run<S: Scalar>(
             let b = &sc.world.bodies;
             let pose = [sc.pitch.angle(b, 0.0), sc.yaw.angle(b, 0.0)];
             let slip = [0, 1]
-                .map(|i| (mem[i][1] / WRIST_RATIO - rotor0[i]).abs())
+                .map(|i| (drives.rotor_angles()[i] / WRIST_RATIO - rotor0[i]).abs())
                 .into_iter()
                 .fold(0.0, f64::max);
             let m = measured[0].hypot(measured[1]);
@@ -559,37 +532,75 @@ fn push_run<S: Scalar>(
                 slip,
             });
         }
-        let mut sum = [0.0; 6];
-        for s in 0..per_tick {
-            let t = time + s as f64 * dt;
-            let finger = if t >= 0.0 {
-                let (p, v) = finger_path(push, travel, t);
-                Some((p, v, kf, cf, n, &mut touch))
-            } else {
-                None
-            };
-            let w = step_engine(
-                &mut sc,
-                dt,
-                &mut mem,
-                &mut anchor,
-                &friction,
-                motor,
-                finger,
-                &mut true_tau,
-            )
-            .ok_or(ParamError::NotFinite {
-                name:
-                    "dt (the engine state diverged: the step is too coarse for the drive springs)",
-                value: dt,
-            })?;
-            for (a, b) in sum.iter_mut().zip(w) {
-                *a += b;
-            }
-        }
-        wrench = sum.map(|x| x / per_tick as f64);
+        let finger = Finger {
+            push,
+            travel,
+            k: kf,
+            c: cf,
+            n,
+        };
+        let tick = Tick { time, dt, per_tick };
+        wrench = run_tick(
+            &mut sc,
+            &mut drives,
+            &tick,
+            motor,
+            Some((&finger, &mut touch)),
+            &mut true_tau,
+        )?;
     }
     Ok(out)
+}
+
+/// The finger of a push: its path's `push` and `travel` (rad at the tool),
+/// the contact's `k` (N/m) and `c` (N·s/m), and its direction `n` (world).
+struct Finger<'a> {
+    push: &'a FingerPush,
+    travel: f64,
+    k: f64,
+    c: f64,
+    n: Vector<Real>,
+}
+
+/// A control tick's engine steps: from `time` (s from the touch), `dt`
+/// (s) each, `per_tick` of them.
+struct Tick {
+    time: f64,
+    dt: f64,
+    per_tick: usize,
+}
+
+/// The engine steps of one control tick, with the finger (and the memory
+/// of its touch) if it pushes; returns the sensor wrench averaged over the
+/// tick (the gauge amplifiers' anti-aliasing filter, as in the door scene).
+fn run_tick(
+    sc: &mut Scene,
+    drives: &mut WristDrives,
+    tick: &Tick,
+    motor: [f64; 2],
+    mut finger: Option<(&Finger<'_>, &mut Option<f64>)>,
+    true_tau: &mut [f64; 2],
+) -> Result<[f64; 6], ParamError> {
+    let dt = tick.dt;
+    let mut sum = [0.0; 6];
+    for s in 0..tick.per_tick {
+        let t = tick.time + s as f64 * dt;
+        let now = match finger.as_mut() {
+            Some((f, touch)) if t >= 0.0 => {
+                let (p, v) = finger_path(f.push, f.travel, t);
+                Some((p, v, f.k, f.c, f.n, &mut **touch))
+            }
+            _ => None,
+        };
+        let w = step_engine(sc, dt, drives, motor, now, true_tau).ok_or(ParamError::NotFinite {
+            name: "dt (the engine state diverged: the step is too coarse for the drive springs)",
+            value: dt,
+        })?;
+        for (a, b) in sum.iter_mut().zip(w) {
+            *a += b;
+        }
+    }
+    Ok(sum.map(|x| x / tick.per_tick as f64))
 }
 
 /// The angle (rad) between `L2`'s orientation and the one the universal
@@ -610,37 +621,17 @@ type FingerNow<'a> = Option<(f64, f64, f64, f64, Vector<Real>, &'a mut Option<f6
 fn step_engine(
     sc: &mut Scene,
     dt: f64,
-    mem: &mut [[f64; 2]; 2],
-    anchor: &mut [f64; 2],
-    friction: &FrictionParams,
+    drives: &mut WristDrives,
     motor: [f64; 2],
     finger: FingerNow<'_>,
     true_tau: &mut [f64; 2],
 ) -> Option<[f64; 6]> {
-    let bodies = &mut sc.world.bodies;
-    let finite = bodies.iter().all(|(_, b)| {
-        b.translation().iter().all(|x| x.is_finite())
-            && b.linvel().iter().all(|x| x.is_finite())
-            && b.angvel().iter().all(|x| x.is_finite())
-    });
-    if !finite {
+    if !sc.world.is_finite() {
         return None;
     }
-    for (_, rb) in bodies.iter_mut() {
-        rb.reset_forces(false);
-        rb.reset_torques(false);
-    }
-    let (kw, cw) = WRIST_DRIVE;
-    for i in 0..2 {
-        let (j, m) = (sc.joint[i], sc.motor[i]);
-        let q = j.angle(bodies, mem[i][0]);
-        let qm = m.angle(bodies, mem[i][1]);
-        let (vq, vm) = (j.speed(bodies), m.speed(bodies));
-        let tt = kw * (qm / WRIST_RATIO - q) + cw * (vm / WRIST_RATIO - vq);
-        let fm = friction.torque(qm, vm, anchor[i]);
-        j.push(bodies, tt);
-        m.push(bodies, -tt / WRIST_RATIO + motor[i] - fm);
-    }
+    sc.world.clear_forces();
+    let bodies = &mut sc.world.bodies;
+    drives.push(bodies, motor);
     // The finger at the tool point.
     let t = &bodies[sc.tool];
     let tip = t.position() * Point::new(0.0, 0.0, FINGER_ARM - SENSOR_OFFSET);
@@ -667,11 +658,7 @@ fn step_engine(
     bodies[sc.tool].add_force_at_point(force, tip, true);
     sc.world.step();
     let bodies = &sc.world.bodies;
-    for i in 0..2 {
-        let (j, m) = (sc.joint[i], sc.motor[i]);
-        mem[i] = [j.angle(bodies, mem[i][0]), m.angle(bodies, mem[i][1])];
-        friction.update_anchor(mem[i][1], m.speed(bodies), &mut anchor[i]);
-    }
+    drives.advance(bodies);
     // Momentum balance of the tool (as the door scene's sensor).
     let t = &bodies[sc.tool];
     let alpha = (t.angvel() - w0) / dt;
@@ -758,8 +745,7 @@ fn tracking_run<S: Scalar>(
     let mut state = step.state(WristReadings::<S>::from_si([0.0; 6], q0, [0.0; 2]).motors);
     let count = core::f64::consts::TAU / 2000.0;
     let quant = |x: f64| (x / count).round() * count;
-    let mut mem = q0.map(|q| [q, WRIST_RATIO * q]);
-    let mut anchor = q0.map(|q| WRIST_RATIO * q);
+    let mut drives = WristDrives::new(sc.joint, sc.motor, WRIST_RATIO, WRIST_DRIVE, friction, q0);
     let mut last_enc = q0;
     let mut wrench = [0.0f64; 6];
     let mut true_tau = [0.0f64; 2];
@@ -776,7 +762,7 @@ fn tracking_run<S: Scalar>(
     for k in 0..(duration / CONTROL_PERIOD).round() as usize {
         let time = k as f64 * CONTROL_PERIOD;
         let b = &sc.world.bodies;
-        let enc = [0, 1].map(|i| quant(sc.motor[i].angle(b, mem[i][1])) / WRIST_RATIO);
+        let enc = [0, 1].map(|i| quant(drives.rotor_angle(b, i)) / WRIST_RATIO);
         let enc_v = [0, 1].map(|i| (enc[i] - last_enc[i]) / CONTROL_PERIOD);
         last_enc = enc;
         let pose = [sc.pitch.angle(b, 0.0), sc.yaw.angle(b, 0.0)];
@@ -803,28 +789,8 @@ fn tracking_run<S: Scalar>(
         }
         out.loop_error = out.loop_error.max(loop_error(&sc, pose));
         out.samples.push((time, xd, pose));
-        let mut sum = [0.0; 6];
-        for _ in 0..per_tick {
-            let w = step_engine(
-                &mut sc,
-                dt,
-                &mut mem,
-                &mut anchor,
-                &friction,
-                motor,
-                None,
-                &mut true_tau,
-            )
-            .ok_or(ParamError::NotFinite {
-                name:
-                    "dt (the engine state diverged: the step is too coarse for the drive springs)",
-                value: dt,
-            })?;
-            for (a, b) in sum.iter_mut().zip(w) {
-                *a += b;
-            }
-        }
-        wrench = sum.map(|x| x / per_tick as f64);
+        let tick = Tick { time, dt, per_tick };
+        wrench = run_tick(&mut sc, &mut drives, &tick, motor, None, &mut true_tau)?;
     }
     if counted > 0 {
         out.rms_error = sum_sq.map(|s| (s / counted as f64).sqrt());
