@@ -67,7 +67,7 @@
 //! ([`engine_finger_push`] and [`engine_wrist_tracking`] are these), or
 //! `I16F16` fixed point as on a Cortex-M0+ (or `f64`). On the 20 seeds of
 //! the claims' sweep, `I16F16`'s Case 2 peaks are within 0.05 N·m of
-//! `f32`'s and its Case 1 held torques within 0.01 N·m (the `wrist_bench`
+//! `f32`'s and its Case 1 held torques within 0.02 N·m (the `wrist_bench`
 //! example prints both; `tests/engine_wrist_bench.rs` checks the nominal
 //! push).
 //!
