@@ -2,10 +2,12 @@
 //! engine ([`mrr_control::sim::engine::wrist_bench`]): a finger pushes the
 //! output link of the DAUJ built from its parts, with the motors off
 //! (Case 1) and under the library's wrist step in the admittance-passive
-//! mode at 4 ms on `f32` (Case 2). Per seed the push (direction, travel,
+//! mode at 4 ms (Case 2), on `f32` (the claims' operating point) and on
+//! `I16F16` fixed point (beside it, same seeds). Per seed the push (direction, travel,
 //! speed) and the gear break-away are drawn ([`FingerPush::draw`]); the
 //! verdicts of the bench claims ([`mrr_control::sim::claims::ch6::bench_claims`])
-//! with median and spread, the comparison with the home-made bench
+//! with median and spread (on `f32`; the same criteria applied to the
+//! `I16F16` runs are printed as a study), the comparison with the home-made bench
 //! ([`mrr_control::sim::wrist_bench`]) on its nominal push, and the engine
 //! step's convergence by halving on seed 1.
 //!
@@ -17,11 +19,12 @@
 
 use std::time::Instant;
 
-use mrr_control::sim::claims::ch6::{bench_claims, bench_seed, run_bench};
+use mrr_control::sim::claims::ch6::{bench_claims, bench_seed, run_bench, run_bench_on};
 use mrr_control::sim::claims::{evaluate, Runs};
-use mrr_control::sim::engine::door::door_engine_settings;
+use mrr_control::sim::engine::door::{door_engine_settings, Backend};
 use mrr_control::sim::engine::wrist_bench::{
-    engine_finger_push, engine_finger_push_from, engine_wrist_tracking, FingerCase, FingerPush,
+    engine_finger_push_from, engine_finger_push_on, engine_wrist_tracking_on, FingerCase,
+    FingerPush,
 };
 use mrr_control::sim::wrist_bench::{self as home, wrist_finger_push};
 
@@ -41,19 +44,32 @@ fn main() -> Result<(), Error> {
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let start = Instant::now();
     let runs = run_bench(seeds, &engine, threads)?;
+    let runs_fx = run_bench_on(seeds, &engine, threads, Backend::I16F16)?;
     println!(
-        "wrist bench on the engine (dt = {} ms, wrist step at 4 ms on f32): {} seeds × 2 cases in {:.1} s on {threads} threads",
+        "wrist bench on the engine (dt = {} ms, wrist step at 4 ms on f32 and on I16F16): {} seeds × 2 cases × 2 backends in {:.1} s on {threads} threads",
         engine.dt() * 1e3,
         runs.len(),
         start.elapsed().as_secs_f64()
     );
     println!(
-        "{:>4} {:>6} {:>7} {:>6} | {:>9} {:>8} | {:>9} {:>8} {:>8} | {:>6}",
-        "seed", "ψ°", "ẋ_f", "B", "1: held", "travel°", "2: peak", "travel°", "finger°", "ẋ_f/K_c"
+        "{:>4} {:>6} {:>7} {:>6} | {:>9} {:>8} | {:>9} {:>8} {:>8} | {:>6} || {:>9} {:>9} {:>8}",
+        "seed",
+        "ψ°",
+        "ẋ_f",
+        "B",
+        "1: held",
+        "travel°",
+        "2: peak",
+        "travel°",
+        "finger°",
+        "ẋ_f/K_c",
+        "fx 1: held",
+        "fx 2: peak",
+        "travel°"
     );
-    for m in &runs {
+    for (m, x) in runs.iter().zip(&runs_fx) {
         println!(
-            "{:>4} {:>6.1} {:>7.3} {:>6.2} | {:>9.2} {:>8.2} | {:>9.2} {:>8.2} {:>8.2} | {:>6.2}",
+            "{:>4} {:>6.1} {:>7.3} {:>6.2} | {:>9.2} {:>8.2} | {:>9.2} {:>8.2} {:>8.2} | {:>6.2} || {:>10.2} {:>10.2} {:>8.2}",
             m.seed,
             m.direction.to_degrees(),
             m.finger_speed,
@@ -63,61 +79,73 @@ fn main() -> Result<(), Error> {
             m.case2_peak,
             m.case2_travel.to_degrees(),
             m.finger_travel.to_degrees(),
-            m.finger_speed / 0.1
+            m.finger_speed / 0.1,
+            x.case1_held,
+            x.case2_peak,
+            x.case2_travel.to_degrees()
         );
     }
-    println!("(ψ: push direction from pitch; ẋ_f: the fingertip's peak speed at the tool, rad/s; B: gear break-away, N·m at the joint; torques N·m)");
+    println!("(ψ: push direction from pitch; ẋ_f: the fingertip's peak speed at the tool, rad/s; B: gear break-away, N·m at the joint; torques N·m; the columns left of || on f32, fx: the same seeds on I16F16)");
     println!();
-    for r in evaluate(
-        &bench_claims()?,
-        &Runs {
-            bench: &runs,
-            ..Runs::default()
-        },
-    )? {
-        let s = r.spread;
-        println!(
-            "{:<15} {:<10} median {:.2} [q1 {:.2}, q3 {:.2}; min {:.2}, max {:.2}] {} over {} seeds; {}",
-            r.claim.id,
-            r.verdict.to_string(),
-            s.median,
-            s.q1,
-            s.q3,
-            s.min,
-            s.max,
-            r.claim.unit,
-            r.runs,
-            r.claim.criterion.describe(r.claim.unit)
-        );
-        println!(
-            "{:<15} thesis: \"{}\" ({})",
-            "", r.claim.quote, r.claim.figure
-        );
+    for (label, bench) in [("f32", &runs), ("I16F16", &runs_fx)] {
+        if label != "f32" {
+            println!("the same criteria on the I16F16 runs (a study beside the claims' f32 operating point):");
+        }
+        for r in evaluate(
+            &bench_claims()?,
+            &Runs {
+                bench,
+                ..Runs::default()
+            },
+        )? {
+            let s = r.spread;
+            println!(
+                "{:<15} {:<10} median {:.2} [q1 {:.2}, q3 {:.2}; min {:.2}, max {:.2}] {} over {} seeds ({label}); {}",
+                r.claim.id,
+                r.verdict.to_string(),
+                s.median,
+                s.q1,
+                s.q3,
+                s.min,
+                s.max,
+                r.claim.unit,
+                r.runs,
+                r.claim.criterion.describe(r.claim.unit)
+            );
+            if label == "f32" {
+                println!(
+                    "{:<15} thesis: \"{}\" ({})",
+                    "", r.claim.quote, r.claim.figure
+                );
+            }
+        }
     }
     // The home-made bench against the engine on the nominal push.
     println!();
     let nominal = FingerPush::nominal(1);
     let h_off = wrist_finger_push(home::FingerCase::MotorsOff, 8.0, 1);
     let h_on = wrist_finger_push(home::FingerCase::Admittance, 8.0, 1);
-    let e_off = engine_finger_push(FingerCase::MotorsOff, &nominal, &engine)?;
-    let e_on = engine_finger_push(FingerCase::Admittance, &nominal, &engine)?;
     println!("nominal push (pitch, 12° over 1.5 s, B = 12 N·m): home-made bench vs engine");
-    println!(
-        "  Case 2 peak |τ| (N·m): home pitch {:.2} | engine {:.2} (true {:.2}); travel: home {:.2}° | engine {:.2}°",
-        h_on.peak_interaction[0],
-        e_on.peak_measured,
-        e_on.peak_interaction,
-        h_on.travel[0].to_degrees(),
-        e_on.travel.to_degrees()
-    );
-    println!(
-        "  Case 1: home peak pitch {:.2} N·m (12° push), travel {:.3}° | engine held {:.2} N·m (25° push), travel {:.3}°, slip {:.2e} rad",
-        h_off.peak_interaction[0],
-        h_off.travel[0].to_degrees(),
-        e_off.held,
-        e_off.travel.to_degrees(),
-        e_off.slip
-    );
+    for (label, backend) in [("f32", Backend::F32), ("I16F16", Backend::I16F16)] {
+        let e_off = engine_finger_push_on(FingerCase::MotorsOff, &nominal, &engine, backend)?;
+        let e_on = engine_finger_push_on(FingerCase::Admittance, &nominal, &engine, backend)?;
+        println!(
+            "  Case 2 peak |τ| (N·m): home pitch {:.2} | engine on {label} {:.2} (true {:.2}); travel: home {:.2}° | engine {:.2}°",
+            h_on.peak_interaction[0],
+            e_on.peak_measured,
+            e_on.peak_interaction,
+            h_on.travel[0].to_degrees(),
+            e_on.travel.to_degrees()
+        );
+        println!(
+            "  Case 1: home peak pitch {:.2} N·m (12° push), travel {:.3}° | engine on {label} held {:.2} N·m (25° push), travel {:.3}°, slip {:.2e} rad",
+            h_off.peak_interaction[0],
+            h_off.travel[0].to_degrees(),
+            e_off.held,
+            e_off.travel.to_degrees(),
+            e_off.slip
+        );
+    }
     // Convergence by halving the engine step (seed 1's draw).
     let half = engine.with_half_step();
     let a = bench_seed(1, &engine)?;
@@ -138,37 +166,42 @@ fn main() -> Result<(), Error> {
         100.0 * rel(a.case2_travel, b.case2_travel)
     );
     // Active tracking (Fig. 6.10): engine against the home-made bench.
-    let t = engine_wrist_tracking(6.0, 1.0, &engine)?;
     let h = home::wrist_tracking(6.0, 1.0);
     let hmax = h
         .position_error
         .map(|e| e.max.abs().max(e.min.abs()).to_degrees());
-    println!(
-        "active tracking (6 s, after 1 s): max |δ−δ_d|, |γ−γ_d| engine {:.3}°, {:.3}° (RMS {:.3}°, {:.3}°) | home-made {:.3}°, {:.3}°",
-        t.max_error[0].to_degrees(),
-        t.max_error[1].to_degrees(),
-        t.rms_error[0].to_degrees(),
-        t.rms_error[1].to_degrees(),
-        hmax[0],
-        hmax[1]
-    );
+    for (label, backend) in [("f32", Backend::F32), ("I16F16", Backend::I16F16)] {
+        let t = engine_wrist_tracking_on(6.0, 1.0, &engine, backend)?;
+        println!(
+            "active tracking (6 s, after 1 s): max |δ−δ_d|, |γ−γ_d| engine on {label} {:.3}°, {:.3}° (RMS {:.3}°, {:.3}°) | home-made {:.3}°, {:.3}°",
+            t.max_error[0].to_degrees(),
+            t.max_error[1].to_degrees(),
+            t.rms_error[0].to_degrees(),
+            t.rms_error[1].to_degrees(),
+            hmax[0],
+            hmax[1]
+        );
+    }
     if args.iter().any(|a| a == "--straight") {
         // Study (not the claims' operating point): the nominal push from 3°
         // of pitch, away from the straight pose and through it.
-        for psi in [0.0f64, 180.0] {
-            let p = FingerPush {
-                direction: psi.to_radians(),
-                ..FingerPush::nominal(1)
-            };
-            let r =
-                engine_finger_push_from(FingerCase::Admittance, &p, 3f64.to_radians(), &engine)?;
-            println!(
-                "STUDY straight pose: from 3° of pitch, ψ = {psi}°: Case 2 peak {:.2} N·m (true {:.2}), travel {:.2}°, loop error {:.1e} rad",
-                r.peak_measured,
-                r.peak_interaction,
-                r.travel.to_degrees(),
-                r.loop_error
-            );
+        for (label, backend) in [("f32", Backend::F32), ("I16F16", Backend::I16F16)] {
+            for psi in [0.0f64, 180.0] {
+                let p = FingerPush {
+                    direction: psi.to_radians(),
+                    ..FingerPush::nominal(1)
+                };
+                let start = 3f64.to_radians();
+                let r =
+                    engine_finger_push_from(FingerCase::Admittance, &p, start, &engine, backend)?;
+                println!(
+                    "STUDY straight pose ({label}): from 3° of pitch, ψ = {psi}°: Case 2 peak {:.2} N·m (true {:.2}), travel {:.2}°, loop error {:.1e} rad",
+                    r.peak_measured,
+                    r.peak_interaction,
+                    r.travel.to_degrees(),
+                    r.loop_error
+                );
+            }
         }
     }
     println!("{:.1} s in all", start.elapsed().as_secs_f64());

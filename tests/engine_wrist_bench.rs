@@ -11,6 +11,10 @@
 //! * Active mode (§6.4.2): the library's step, its inverse kinematics and
 //!   its motor laws drive the mechanism along the task trajectory within
 //!   the home-made bench's 1° after the first second.
+//! * The same on the `I16F16` backend (the wrist step in fixed point, as on
+//!   a Cortex-M0+): its readings are on the fixed-point grid, it holds and
+//!   relieves as `f32` does, follows the finger at `ẋ_f / K_c` and tracks
+//!   within 1°.
 //! * Bad inputs are typed errors naming the field.
 //!
 //! The 20-seed sweep of the claims is the example:
@@ -18,10 +22,12 @@
 
 use std::sync::OnceLock;
 
-use mrr_control::sim::engine::door::door_engine_settings;
+use mrr_control::scalar::{Scalar, I16F16};
+use mrr_control::sim::engine::door::{door_engine_settings, Backend};
 use mrr_control::sim::engine::wrist_bench::{
-    engine_finger_push, engine_finger_push_from, engine_wrist_tracking, EngineWristBenchRun,
-    FingerCase, FingerPush, CASE1_TRAVEL, HELD, START,
+    engine_finger_push, engine_finger_push_from, engine_finger_push_on, engine_wrist_tracking,
+    engine_wrist_tracking_on, EngineWristBenchRun, FingerCase, FingerPush, CASE1_TRAVEL, HELD,
+    START,
 };
 use mrr_control::sim::engine::EngineSettings;
 use mrr_control::wrist::{ForceMapping, JacobianKind, PitchYaw, WristConfig, WristParams};
@@ -39,6 +45,23 @@ fn nominal() -> &'static (EngineWristBenchRun, EngineWristBenchRun) {
 fn both(push: &FingerPush, e: &EngineSettings) -> (EngineWristBenchRun, EngineWristBenchRun) {
     let run = |case| engine_finger_push(case, push, e).expect("valid bench");
     (run(FingerCase::MotorsOff), run(FingerCase::Admittance))
+}
+
+/// The nominal push in both cases with the wrist step on `I16F16`.
+fn nominal_fixed() -> &'static (EngineWristBenchRun, EngineWristBenchRun) {
+    static RUNS: OnceLock<(EngineWristBenchRun, EngineWristBenchRun)> = OnceLock::new();
+    RUNS.get_or_init(|| {
+        let (push, e) = (FingerPush::nominal(1), door_engine_settings());
+        let run = |case| engine_finger_push_on(case, &push, &e, Backend::I16F16).expect("valid");
+        (run(FingerCase::MotorsOff), run(FingerCase::Admittance))
+    })
+}
+
+/// Whether a torque (N·m) the wrist step returned is a whole number of
+/// `I16F16` steps (2⁻¹⁶) of the backend's stored torque unit.
+fn on_fixed_grid(tau: f64) -> bool {
+    let q = tau * <I16F16 as Scalar>::UNITS.link_torque * 65536.0;
+    (q - q.round()).abs() < 1e-6
 }
 
 #[test]
@@ -96,6 +119,40 @@ fn motors_off_give_where_the_library_force_mapping_says() {
     }
 }
 
+/// The bench on the `I16F16` backend: the step did run in fixed point (its
+/// readings lie on the fixed-point grid, the `f32` run's do not), and the
+/// checks of the `f32` run hold, its Case 2 peak within 10 % of `f32`'s.
+#[test]
+fn i16f16_holds_and_relieves_as_f32_does() {
+    let (off, on) = nominal_fixed();
+    let (_, on_f32) = nominal();
+    let all_on_grid = |r: &EngineWristBenchRun| {
+        r.samples
+            .iter()
+            .all(|s| s.measured.iter().all(|&m| on_fixed_grid(m)))
+    };
+    assert!(all_on_grid(on) && all_on_grid(off));
+    assert!(!all_on_grid(on_f32));
+    assert!(off.held > 10.0, "held {}", off.held);
+    assert!(off.slip < HELD, "slip {}", off.slip);
+    assert!(
+        on.peak_measured < 0.25 * off.held,
+        "{} vs {}",
+        on.peak_measured,
+        off.held
+    );
+    assert_eq!(on.off_mode_ticks, 0);
+    let push = FingerPush::nominal(1);
+    assert!(on.travel > 0.8 * push.travel, "{}", on.travel);
+    assert!(on.loop_error < 1e-3, "{}", on.loop_error);
+    assert!(
+        (on.peak_measured - on_f32.peak_measured).abs() < 0.1 * on_f32.peak_measured,
+        "{} vs {}",
+        on.peak_measured,
+        on_f32.peak_measured
+    );
+}
+
 #[test]
 fn the_wrist_yields_under_admittance_and_not_with_the_motors_off() {
     let (off, on) = nominal();
@@ -127,23 +184,27 @@ fn the_wrist_yields_under_admittance_and_not_with_the_motors_off() {
 /// The admittance law `ẋ_d = K_c τ` follows a finger moving at `ẋ_f` with
 /// `τ = ẋ_f / K_c`; at the finger's peak speed (`π·travel/(2·rise)`) the
 /// peak torque is that within 15 % (the lag of the loop and the gears'
-/// friction make the rest), for a fast and a slow push.
+/// friction make the rest), for a fast and a slow push, on `f32` and on
+/// `I16F16`.
 #[test]
 fn case2_peak_is_the_finger_speed_over_k_c() {
     let e = door_engine_settings();
-    for rise in [1.2, 3.0] {
-        let push = FingerPush {
-            rise,
-            ..FingerPush::nominal(2)
-        };
-        let expected = core::f64::consts::PI * push.travel / (2.0 * rise) / K_C;
-        let on = engine_finger_push(FingerCase::Admittance, &push, &e).expect("valid bench");
-        let r = on.peak_measured / expected;
-        assert!(
-            (0.85..1.15).contains(&r),
-            "rise {rise}: {} vs {expected}",
-            on.peak_measured
-        );
+    for backend in [Backend::F32, Backend::I16F16] {
+        for rise in [1.2, 3.0] {
+            let push = FingerPush {
+                rise,
+                ..FingerPush::nominal(2)
+            };
+            let expected = core::f64::consts::PI * push.travel / (2.0 * rise) / K_C;
+            let on = engine_finger_push_on(FingerCase::Admittance, &push, &e, backend)
+                .expect("valid bench");
+            let r = on.peak_measured / expected;
+            assert!(
+                (0.85..1.15).contains(&r),
+                "{backend:?}, rise {rise}: {} vs {expected}",
+                on.peak_measured
+            );
+        }
     }
 }
 
@@ -186,21 +247,24 @@ fn the_engine_step_converges_by_halving() {
 /// Fig. 6.10 on the engine: the pose of the mechanism's universal joint
 /// follows the desired 12°–24° bend within 1° (the bound of the home-made
 /// bench's test) after the first second, in Active mode throughout, with
-/// the DAUJ's loop closed.
+/// the DAUJ's loop closed, on `f32` and on `I16F16`.
 #[test]
 fn active_mode_tracks_the_task_trajectory_on_the_mechanism() {
-    let r = engine_wrist_tracking(6.0, 1.0, &door_engine_settings()).expect("valid run");
-    for e in r.max_error {
-        assert!(e < 1f64.to_radians(), "{:?}", r.max_error);
+    for backend in [Backend::F32, Backend::I16F16] {
+        let r = engine_wrist_tracking_on(6.0, 1.0, &door_engine_settings(), backend)
+            .expect("valid run");
+        for e in r.max_error {
+            assert!(e < 1f64.to_radians(), "{backend:?}: {:?}", r.max_error);
+        }
+        assert_eq!(r.off_mode_ticks, 0);
+        assert!(r.loop_error < 1e-3, "{backend:?}: {}", r.loop_error);
+        // The run covers the trajectory (a bend of 24° at t = 2 s).
+        let (_, xd, x) = r.samples[500];
+        assert!(
+            xd[0].hypot(xd[1]) > 0.4 && x[0].hypot(x[1]) > 0.4,
+            "{backend:?}: {xd:?} {x:?}"
+        );
     }
-    assert_eq!(r.off_mode_ticks, 0);
-    assert!(r.loop_error < 1e-3, "{}", r.loop_error);
-    // The run covers the trajectory (a bend of 24° at t = 2 s).
-    let (_, xd, x) = r.samples[500];
-    assert!(
-        xd[0].hypot(xd[1]) > 0.4 && x[0].hypot(x[1]) > 0.4,
-        "{xd:?} {x:?}"
-    );
 }
 
 #[test]
@@ -246,12 +310,19 @@ fn bad_inputs_are_named_errors() {
     let coarse = EngineSettings::try_new(3e-4, 1, 20.0, 0.4).expect("valid settings");
     assert_eq!(name(p, &coarse), Some("dt"));
     assert_eq!(
-        engine_finger_push_from(FingerCase::Admittance, &p, 0.5, &e)
+        engine_finger_push_from(FingerCase::Admittance, &p, 0.5, &e, Backend::I16F16)
             .err()
             .map(|x| x.name()),
         Some("start_pitch")
     );
     let tracking = |d: f64, s: f64| engine_wrist_tracking(d, s, &e).err().map(|x| x.name());
+    // The same names whatever the backend.
+    for backend in [Backend::F64, Backend::I16F16] {
+        let r = engine_finger_push_on(FingerCase::Admittance, &p, &coarse, backend);
+        assert_eq!(r.err().map(|x| x.name()), Some("dt"));
+        let r = engine_wrist_tracking_on(1.0, 2.0 * 60.0, &e, backend);
+        assert_eq!(r.err().map(|x| x.name()), Some("settle"));
+    }
     assert_eq!(tracking(f64::NAN, 0.0), Some("duration"));
     assert_eq!(tracking(1.0, -1.0), Some("settle"));
 }

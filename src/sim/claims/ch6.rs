@@ -23,7 +23,7 @@ use crate::sim::door::{DoorConfig, DoorControl};
 #[cfg(feature = "engine")]
 use crate::sim::engine::door::{engine_door_opening, Backend, DoorBody, EngineDoorRun};
 #[cfg(feature = "engine")]
-use crate::sim::engine::wrist_bench::{engine_finger_push, FingerCase, FingerPush};
+use crate::sim::engine::wrist_bench::{engine_finger_push_on, FingerCase, FingerPush};
 #[cfg(feature = "engine")]
 use crate::sim::engine::EngineSettings;
 #[cfg(feature = "engine")]
@@ -291,12 +291,23 @@ pub fn bench_claims() -> Result<Vec<Claim>, ParamError> {
     ])
 }
 
-/// Both cases of one seed on the engine ([`FingerPush::draw`]`(seed)`).
+/// Both cases of one seed on the engine ([`FingerPush::draw`]`(seed)`),
+/// the wrist step on `f32` (the claims' operating point).
 #[cfg(feature = "engine")]
 pub fn bench_seed(seed: u64, engine: &EngineSettings) -> Result<WristBenchMetrics, ParamError> {
+    bench_seed_on(seed, engine, Backend::F32)
+}
+
+/// [`bench_seed`] with the wrist step on `backend`.
+#[cfg(feature = "engine")]
+pub fn bench_seed_on(
+    seed: u64,
+    engine: &EngineSettings,
+    backend: Backend,
+) -> Result<WristBenchMetrics, ParamError> {
     let push = FingerPush::draw(seed);
-    let off = engine_finger_push(FingerCase::MotorsOff, &push, engine)?;
-    let on = engine_finger_push(FingerCase::Admittance, &push, engine)?;
+    let off = engine_finger_push_on(FingerCase::MotorsOff, &push, engine, backend)?;
+    let on = engine_finger_push_on(FingerCase::Admittance, &push, engine, backend)?;
     Ok(WristBenchMetrics {
         seed,
         direction: push.direction,
@@ -311,14 +322,26 @@ pub fn bench_seed(seed: u64, engine: &EngineSettings) -> Result<WristBenchMetric
 }
 
 /// [`bench_seed`] for seeds `1..=seeds` on `threads` threads (at least
-/// one), in seed order.
+/// one), in seed order: the runs the bench claims are judged on (`f32`).
 #[cfg(feature = "engine")]
 pub fn run_bench(
     seeds: u64,
     engine: &EngineSettings,
     threads: usize,
 ) -> Result<Vec<WristBenchMetrics>, ClaimError> {
-    par_seeds(seeds, threads, |s| bench_seed(s, engine))
+    run_bench_on(seeds, engine, threads, Backend::F32)
+}
+
+/// [`run_bench`] with the wrist step on `backend` (another backend than
+/// `f32` is a study beside the claims' operating point).
+#[cfg(feature = "engine")]
+pub fn run_bench_on(
+    seeds: u64,
+    engine: &EngineSettings,
+    threads: usize,
+    backend: Backend,
+) -> Result<Vec<WristBenchMetrics>, ClaimError> {
+    par_seeds(seeds, threads, |s| bench_seed_on(s, engine, backend))
 }
 
 #[cfg(test)]

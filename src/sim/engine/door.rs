@@ -114,8 +114,11 @@ use rapier3d_f64::na::UnitQuaternion;
 use rapier3d_f64::prelude::*;
 
 use super::arm::{DriveModel, DriveState, PlantDrives};
+use super::dauj::{
+    insert_dauj, DaujJointAngles, DaujOptions, DaujRotors, DaujTool, WorldAxis, WristDrives,
+};
 use super::ft_sensor::{GaugeErrors, StrainGaugeSensor, V_REF};
-use super::world::{angle_about, unwrap_near, EngineSettings, World};
+use super::world::{body_at, hinge, Coord, EngineSettings, World};
 use crate::control::{
     ControlInput, PassiveConfig, PassiveParams, RobustAdaptiveConfig, RobustAdaptiveParams,
 };
@@ -133,7 +136,7 @@ use crate::wrist::modes::{WristMode, WristModeParams, WristModeSettings};
 use crate::wrist::step::{
     WristReadings, WristStepConfig, WristStepParams, WristStepSettings, WristTarget,
 };
-use crate::wrist::{MotorAngles, PitchYaw, WristConfig, WristParams};
+use crate::wrist::{MotorAngles, PitchYaw, WristParams};
 
 /// The controllers' period, s (thesis §6.4.1: 4 ms on the TMS320F2812).
 pub const CONTROL_PERIOD: f64 = 0.004;
@@ -297,64 +300,6 @@ impl EngineDoorRun {
     }
 }
 
-/// A body at `origin` (m, world) whose frame is the world's at the start,
-/// with `mass` (kg), centre of mass `com` (m, body frame) and principal
-/// moments `inertia` (kg·m²) along the world axes.
-pub(super) fn body_at(
-    world: &mut World,
-    origin: Vector<Real>,
-    com: Vector<Real>,
-    mass: f64,
-    inertia: Vector<Real>,
-) -> RigidBodyHandle {
-    let rb = RigidBodyBuilder::dynamic()
-        .translation(origin)
-        .additional_mass_properties(MassProperties::new(com.into(), mass, inertia))
-        .can_sleep(false)
-        .build();
-    world.bodies.insert(rb)
-}
-
-/// A revolute joint about `axis` (world at the start) through the point
-/// `anchor1` of the parent and `anchor2` of the child (body frames).
-pub(super) fn hinge(
-    axis: Vector<Real>,
-    anchor1: Vector<Real>,
-    anchor2: Vector<Real>,
-) -> RevoluteJointBuilder {
-    RevoluteJointBuilder::new(UnitVector::new_normalize(axis))
-        .local_anchor1(Point::from(anchor1))
-        .local_anchor2(Point::from(anchor2))
-}
-
-/// A relative rotation coordinate: `child` about `axis` (fixed in
-/// `parent`'s frame, world at the start).
-#[derive(Clone, Copy)]
-pub(super) struct Coord {
-    pub(super) parent: RigidBodyHandle,
-    pub(super) child: RigidBodyHandle,
-    pub(super) axis: Vector<Real>,
-}
-
-impl Coord {
-    pub(super) fn angle(&self, b: &RigidBodySet, near: f64) -> f64 {
-        let q = b[self.parent].rotation().inverse() * b[self.child].rotation();
-        unwrap_near(angle_about(&q, &self.axis), near)
-    }
-    pub(super) fn world_axis(&self, b: &RigidBodySet) -> Vector<Real> {
-        b[self.parent].rotation() * self.axis
-    }
-    pub(super) fn speed(&self, b: &RigidBodySet) -> f64 {
-        (b[self.child].angvel() - b[self.parent].angvel()).dot(&self.world_axis(b))
-    }
-    /// A generalized force `tau` (N·m) on this coordinate: a torque pair.
-    pub(super) fn push(&self, b: &mut RigidBodySet, tau: f64) {
-        let t = self.world_axis(b) * tau;
-        b[self.child].add_torque(t, true);
-        b[self.parent].add_torque(-t, true);
-    }
-}
-
 /// The scene's bodies and the coordinates read from them.
 struct Scene {
     world: World,
@@ -412,11 +357,6 @@ fn build_scene(
     let z = Vector::z();
     let b0 = Vector::new(r, -lg - la, 0.0);
     let w0 = Vector::new(r, -lg, 0.0);
-    // The wrist's frame: z along the arm (+y), yaw axis x vertical, pitch
-    // axis y = z × x = +x.
-    let (xw, yw, zw) = (Vector::z(), Vector::x(), Vector::y());
-    let phi = WristParams::thesis().phi();
-    let oblique = zw * phi.cos() - yw * phi.sin();
     let fail = |name| ParamError::NotFinite {
         name,
         value: f64::NAN,
@@ -474,35 +414,8 @@ fn build_scene(
         0.3,
         Vector::new(1e-4, 1e-4, 1.14e-5),
     );
-    let rotor_inertia = |v: Vector<Real>| {
-        // Axial along the arm (+y), transverse 1e-5.
-        Vector::new(1e-5, 1e-5, 1e-5) + v
-    };
-    let w_rotor = [0, 1].map(|_| {
-        body_at(
-            &mut world,
-            w0,
-            Vector::zeros(),
-            0.05,
-            rotor_inertia(Vector::new(0.0, WRIST_ROTOR - 1e-5, 0.0)),
-        )
-    });
-    let lower = body_at(&mut world, w0, Vector::zeros(), 0.1, Vector::repeat(1e-3));
-    let upper = body_at(&mut world, w0, Vector::zeros(), 0.1, Vector::repeat(1e-3));
-    let output = body_at(&mut world, w0, zw * 0.04, 0.2, Vector::repeat(1e-3));
-    let cross = body_at(&mut world, w0, Vector::zeros(), 0.02, Vector::repeat(2e-6));
-    let s0 = w0 + zw * ls;
-    let gripper = body_at(
-        &mut world,
-        s0,
-        zw * (0.5 * (lg - ls)),
-        GRIPPER_MASS,
-        Vector::repeat(GRIPPER_INERTIA),
-    );
-    let at_wrist = w0 - b0;
     let mb = &mut world.multibody_joints;
-    let first = mb
-        .insert(base, link, hinge(z, Vector::zeros(), Vector::zeros()), true)
+    mb.insert(base, link, hinge(z, Vector::zeros(), Vector::zeros()), true)
         .ok_or(fail("turret joint"))?;
     mb.insert(
         base,
@@ -511,110 +424,52 @@ fn build_scene(
         true,
     )
     .ok_or(fail("turret rotor joint"))?;
-    let mut rotor_joints = Vec::new();
-    for h in w_rotor {
-        rotor_joints.push(
-            mb.insert(link, h, hinge(zw, at_wrist, Vector::zeros()), true)
-                .ok_or(fail("wrist rotor joint"))?,
-        );
-    }
-    let j1 = mb
-        .insert(link, lower, hinge(zw, at_wrist, Vector::zeros()), true)
-        .ok_or(fail("J1"))?;
-    let j4 = mb
-        .insert(
-            lower,
-            upper,
-            hinge(oblique, Vector::zeros(), Vector::zeros()),
-            true,
-        )
-        .ok_or(fail("J4"))?;
-    let j3 = mb
-        .insert(
-            upper,
-            output,
-            hinge(zw, Vector::zeros(), Vector::zeros()),
-            true,
-        )
-        .ok_or(fail("J3"))?;
-    let jp = mb
-        .insert(link, cross, hinge(yw, at_wrist, Vector::zeros()), true)
-        .ok_or(fail("pitch joint"))?;
-    // The start pose: the wrist's joints set to the configuration of the
-    // library's inverse kinematics (branch θ4 ≥ 0, the assembly mode its
-    // forward kinematics describes), the rotors to N times their joints.
-    // The engine closes the loop from there (its error is reported).
-    if start.delta != 0.0 || start.gamma != 0.0 {
-        let inv = WristConfig::<f64>::new(&WristParams::thesis()).inverse(start);
-        let (t1, t3) = (
-            unwrap_near(inv.motors.theta1, 0.0),
-            unwrap_near(inv.motors.theta3, 0.0),
-        );
-        let set = [
-            (j1, t1),
-            (j4, inv.theta4),
-            (j3, t3),
-            (jp, start.delta),
-            (rotor_joints[0], WRIST_RATIO * t1),
-            (rotor_joints[1], WRIST_RATIO * t3),
-        ];
-        let ids = set.map(|(h, q)| (world.multibody_joints.get(h).map(|(_, id)| id), q));
-        let (m, _) = world
-            .multibody_joints
-            .get_mut(first)
-            .ok_or(fail("start pose"))?;
-        let mut disp = vec![0.0; m.ndofs()];
-        for (id, q) in ids {
-            let id = id.ok_or(fail("start pose"))?;
-            let at: usize = (0..id)
-                .filter_map(|k| m.link(k).map(|l| l.joint().ndofs()))
-                .sum();
-            if let Some(d) = disp.get_mut(at) {
-                *d = q;
-            }
-        }
-        m.apply_displacements(&disp);
-        m.forward_kinematics(&world.bodies, true);
-        m.update_rigid_bodies(&mut world.bodies, false);
-        // The gripper to its place on L2.
-        let pose = *world.bodies[output].position()
-            * Isometry::translation(zw.x * ls, zw.y * ls, zw.z * ls);
-        world.bodies[gripper].set_position(pose, true);
-    }
-    let mb = &mut world.multibody_joints;
-    if let Some((m, _)) = mb.get_mut(first) {
-        m.damping_mut().fill(0.0);
-    }
-    world.impulse_joints.insert(
-        cross,
-        output,
-        hinge(xw, Vector::zeros(), Vector::zeros()),
-        true,
-    );
-    let mount = FixedJointBuilder::new()
-        .local_anchor1(Point::from(zw * ls))
-        .local_anchor2(Point::origin());
-    world.impulse_joints.insert(output, gripper, mount, true);
-    let c = |parent, child, axis| Coord {
-        parent,
-        child,
-        axis,
-    };
+    // The wrist on the arm at the reach: its z along the arm (+y), its yaw
+    // axis x vertical, its pitch axis y = z × x = +x. The start pose is
+    // the library's inverse kinematics for `start` (the only use of the
+    // library's kinematics in the scene); the engine closes the loop.
+    let straight = start.delta == 0.0 && start.gamma == 0.0;
+    let wrist = insert_dauj(
+        &mut world,
+        link,
+        w0,
+        (WorldAxis::Z, WorldAxis::X),
+        &DaujOptions {
+            kinematics: WristParams::thesis(),
+            rotors: Some(DaujRotors {
+                ratio: WRIST_RATIO,
+                mass: 0.05,
+                // Transverse 1e-5 kg·m², axial I_m (written as the excess
+                // over the transverse moment, as this scene always has).
+                inertia: [1e-5, 1e-5, 1e-5 + (WRIST_ROTOR - 1e-5)],
+            }),
+            tool: Some(DaujTool {
+                mount: ls,
+                com: 0.5 * (lg - ls),
+                mass: GRIPPER_MASS,
+                inertia: GRIPPER_INERTIA,
+            }),
+            start: (!straight).then(|| DaujJointAngles::from_pose(&WristParams::thesis(), start)),
+            undamped: true,
+        },
+    )?;
+    let zw = wrist.axes[2];
+    let c = Coord::new;
     Ok(Scene {
         world,
         base,
         link,
-        output,
-        gripper,
+        output: wrist.output,
+        gripper: wrist.tool.ok_or(fail("gripper"))?,
         door: door_h,
         turret_link: c(base, link, z),
         turret_motor: c(base, t_rotor, z),
-        wrist_joint: [c(link, lower, zw), c(upper, output, zw)],
-        wrist_motor: [c(link, w_rotor[0], zw), c(link, w_rotor[1], zw)],
-        pitch: c(link, cross, yw),
-        yaw: c(cross, output, xw),
+        wrist_joint: wrist.joints(),
+        wrist_motor: wrist.motors().ok_or(fail("wrist rotors"))?,
+        pitch: wrist.pitch(),
+        yaw: wrist.yaw(),
         door_hinge: c(ground, door_h, z),
-        wrist_centre: at_wrist,
+        wrist_centre: w0 - b0,
         grasp_local: zw * (lg - ls),
         knob: None,
         sensor_local: zw * ls,
@@ -642,8 +497,7 @@ struct MomentumBalance {
 /// The state of the run's plant-side elements that have memory.
 struct Memory {
     turret: [f64; 2],
-    wrist: [[f64; 2]; 2],
-    wrist_friction_anchor: [f64; 2],
+    wrist: WristDrives,
     hinge_anchor: f64,
     door_angle: f64,
 }
@@ -677,10 +531,24 @@ pub fn door_wrist_step(
     cfg: &DoorConfig,
     initial_mode: WristMode,
 ) -> Result<WristStepParams, ParamError> {
+    wrist_step_params(cfg.wrist_stiffness_bound(), cfg.sensor_offset, initial_mode)
+}
+
+/// The wrist step of the engine's wrist scenes (the door's, the bench's):
+/// the kinematics of the thesis, the F/T certificate
+/// [`DecouplingMatrix::example`] at `sensor_offset` (m), both motors by
+/// [`door_wrist_design`] at 4 ms, the mode manager of [`crate::sim::door`]
+/// with the admittance `K_c = 0.1` validated for an environment of
+/// `stiffness` (N·m/rad).
+pub(super) fn wrist_step_params(
+    stiffness: f64,
+    sensor_offset: f64,
+    initial_mode: WristMode,
+) -> Result<WristStepParams, ParamError> {
     let limit = 30f64.to_radians();
     let admittance = AdmittanceParams::try_new(AdmittanceSettings {
         gain: [0.1, 0.1],
-        stiffness: cfg.wrist_stiffness_bound(),
+        stiffness,
         sample_period: CONTROL_PERIOD,
         lag_samples: 1,
         limits: [limit, limit],
@@ -690,7 +558,7 @@ pub fn door_wrist_step(
     })?;
     WristStepParams::try_new(WristStepSettings {
         kinematics: WristParams::thesis(),
-        sensor: FtSensorParams::try_new(DecouplingMatrix::example(), cfg.sensor_offset)?,
+        sensor: FtSensorParams::try_new(DecouplingMatrix::example(), sensor_offset)?,
         active: WristActiveParams::try_new([door_wrist_design(CONTROL_PERIOD); 2])?,
         modes: WristModeParams::try_new(WristModeSettings {
             admittance,
@@ -786,8 +654,14 @@ fn run<S: Scalar>(
     // Memory and outputs.
     let mut mem = Memory {
         turret: [0.0; 2],
-        wrist: q0.map(|q| [q, WRIST_RATIO * q]),
-        wrist_friction_anchor: q0.map(|q| WRIST_RATIO * q),
+        wrist: WristDrives::new(
+            sc.wrist_joint,
+            sc.wrist_motor,
+            WRIST_RATIO,
+            WRIST_DRIVE,
+            wrist_friction,
+            q0,
+        ),
         hinge_anchor: 0.0,
         door_angle: 0.0,
     };
@@ -836,7 +710,7 @@ fn run<S: Scalar>(
         let turret_passive = !pre && cfg.control == DoorControl::Passive;
         // ---- sensors at the tick ----
         let b = &sc.world.bodies;
-        let m_angle = [0, 1].map(|i| sc.wrist_motor[i].angle(b, mem.wrist[i][1]));
+        let m_angle = [0, 1].map(|i| mem.wrist.rotor_angle(b, i));
         let enc = [0, 1].map(|i| quant(m_angle[i], wrist_count) / WRIST_RATIO);
         let enc_v = [0, 1].map(|i| (enc[i] - last_enc[i]) / CONTROL_PERIOD);
         last_enc = enc;
@@ -907,7 +781,7 @@ fn run<S: Scalar>(
             (kp, kd),
             (kg, kr),
             &mut turret_drive,
-            (&wrist_friction, &hinge, door),
+            (&hinge, door),
             (torque_motor, torque_turret),
             &mut transmission,
             &mut true_tau,
@@ -935,7 +809,7 @@ fn step_ticks(
     gains: (f64, f64),
     grasp: (f64, f64),
     turret_drive: &mut PlantDrives,
-    friction: (&FrictionParams, &FrictionParams, &DoorBody),
+    friction: (&FrictionParams, &DoorBody),
     torques: ([f64; 2], f64),
     transmission: &mut f64,
     true_tau: &mut [f64; 2],
@@ -996,25 +870,17 @@ fn step_engine(
     (kp, kd): (f64, f64),
     (kg, kr): (f64, f64),
     turret_drive: &mut PlantDrives,
-    (wrist_friction, hinge, door): (&FrictionParams, &FrictionParams, &DoorBody),
+    (hinge, door): (&FrictionParams, &DoorBody),
     (torque_motor, torque_turret): ([f64; 2], f64),
     transmission: &mut f64,
     true_tau: &mut [f64; 2],
     force_now: &mut f64,
 ) -> Option<[f64; 6]> {
-    let bodies = &mut sc.world.bodies;
-    let finite = bodies.iter().all(|(_, b)| {
-        b.translation().iter().all(|x| x.is_finite())
-            && b.linvel().iter().all(|x| x.is_finite())
-            && b.angvel().iter().all(|x| x.is_finite())
-    });
-    if !finite {
+    if !sc.world.is_finite() {
         return None;
     }
-    for (_, rb) in bodies.iter_mut() {
-        rb.reset_forces(false);
-        rb.reset_torques(false);
-    }
+    sc.world.clear_forces();
+    let bodies = &mut sc.world.bodies;
     // ---- base: track the planned pose ----
     let (v, w) = motion.velocity(t);
     let h = 1e-4;
@@ -1056,17 +922,7 @@ fn step_engine(
     tl.push(bodies, d.on_link);
     tm.push(bodies, d.on_motor + torque_turret);
     // ---- wrist drives ----
-    let (kw, cw) = WRIST_DRIVE;
-    for i in 0..2 {
-        let (j, m) = (sc.wrist_joint[i], sc.wrist_motor[i]);
-        let q = j.angle(bodies, mem.wrist[i][0]);
-        let qm = m.angle(bodies, mem.wrist[i][1]);
-        let (vq, vm) = (j.speed(bodies), m.speed(bodies));
-        let tt = kw * (qm / WRIST_RATIO - q) + cw * (vm / WRIST_RATIO - vq);
-        let fm = wrist_friction.torque(qm, vm, mem.wrist_friction_anchor[i]);
-        j.push(bodies, tt);
-        m.push(bodies, -tt / WRIST_RATIO + torque_motor[i] - fm);
-    }
+    mem.wrist.push(bodies, torque_motor);
     // ---- door hinge and closer ----
     let dh = sc.door_hinge;
     let qd = dh.angle(bodies, -mem.door_angle);
@@ -1137,18 +993,7 @@ fn step_engine(
     };
     turret_drive.advance(0, &ts);
     mem.turret = [ts.link_angle, ts.motor_angle];
-    for i in 0..2 {
-        let (j, m) = (sc.wrist_joint[i], sc.wrist_motor[i]);
-        mem.wrist[i] = [
-            j.angle(bodies, mem.wrist[i][0]),
-            m.angle(bodies, mem.wrist[i][1]),
-        ];
-        wrist_friction.update_anchor(
-            mem.wrist[i][1],
-            m.speed(bodies),
-            &mut mem.wrist_friction_anchor[i],
-        );
-    }
+    mem.wrist.advance(bodies);
     let qd = dh.angle(bodies, -mem.door_angle);
     hinge.update_anchor(qd, dh.speed(bodies), &mut mem.hinge_anchor);
     mem.door_angle = -qd;

@@ -40,6 +40,7 @@
 
 pub mod arm;
 pub mod arm_scenarios;
+mod dauj;
 pub mod door;
 pub mod ft_sensor;
 pub mod universal_joint;

@@ -197,6 +197,24 @@ impl World {
         );
     }
 
+    /// Whether every body's position and velocities are finite.
+    pub(crate) fn is_finite(&self) -> bool {
+        self.bodies.iter().all(|(_, b)| {
+            b.translation().iter().all(|x| x.is_finite())
+                && b.linvel().iter().all(|x| x.is_finite())
+                && b.angvel().iter().all(|x| x.is_finite())
+        })
+    }
+
+    /// Clears the forces and torques the last step's caller applied to
+    /// every body.
+    pub(crate) fn clear_forces(&mut self) {
+        for (_, rb) in self.bodies.iter_mut() {
+            rb.reset_forces(false);
+            rb.reset_torques(false);
+        }
+    }
+
     /// Largest angular speed (rad/s) of any body.
     pub(crate) fn max_angular_speed(&self) -> f64 {
         self.bodies
@@ -213,6 +231,75 @@ pub(crate) fn revolute(axis: Vector<Real>) -> RevoluteJointBuilder {
     RevoluteJointBuilder::new(UnitVector::new_normalize(axis))
         .local_anchor1(Point::origin())
         .local_anchor2(Point::origin())
+}
+
+/// A body at `origin` (m, world) whose frame is the world's at the start,
+/// with `mass` (kg), centre of mass `com` (m, body frame) and principal
+/// moments `inertia` (kg·m²) along the world axes; it never sleeps.
+pub(super) fn body_at(
+    world: &mut World,
+    origin: Vector<Real>,
+    com: Vector<Real>,
+    mass: f64,
+    inertia: Vector<Real>,
+) -> RigidBodyHandle {
+    let rb = RigidBodyBuilder::dynamic()
+        .translation(origin)
+        .additional_mass_properties(MassProperties::new(com.into(), mass, inertia))
+        .can_sleep(false)
+        .build();
+    world.bodies.insert(rb)
+}
+
+/// A revolute joint about `axis` (world at the start) through the point
+/// `anchor1` of the parent and `anchor2` of the child (body frames).
+pub(super) fn hinge(
+    axis: Vector<Real>,
+    anchor1: Vector<Real>,
+    anchor2: Vector<Real>,
+) -> RevoluteJointBuilder {
+    RevoluteJointBuilder::new(UnitVector::new_normalize(axis))
+        .local_anchor1(Point::from(anchor1))
+        .local_anchor2(Point::from(anchor2))
+}
+
+/// A relative rotation coordinate: `child` about `axis` (fixed in
+/// `parent`'s frame, world at the start).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Coord {
+    pub(super) parent: RigidBodyHandle,
+    pub(super) child: RigidBodyHandle,
+    pub(super) axis: Vector<Real>,
+}
+
+impl Coord {
+    pub(super) fn new(parent: RigidBodyHandle, child: RigidBodyHandle, axis: Vector<Real>) -> Self {
+        Coord {
+            parent,
+            child,
+            axis,
+        }
+    }
+    /// The angle (rad) of `child` about the axis relative to `parent`,
+    /// unwrapped to within `π` of `near`.
+    pub(super) fn angle(&self, b: &RigidBodySet, near: f64) -> f64 {
+        let q = b[self.parent].rotation().inverse() * b[self.child].rotation();
+        unwrap_near(angle_about(&q, &self.axis), near)
+    }
+    /// The axis in the world frame now.
+    pub(super) fn world_axis(&self, b: &RigidBodySet) -> Vector<Real> {
+        b[self.parent].rotation() * self.axis
+    }
+    /// The relative angular speed about the axis, rad/s.
+    pub(super) fn speed(&self, b: &RigidBodySet) -> f64 {
+        (b[self.child].angvel() - b[self.parent].angvel()).dot(&self.world_axis(b))
+    }
+    /// A generalized force `tau` (N·m) on this coordinate: a torque pair.
+    pub(super) fn push(&self, b: &mut RigidBodySet, tau: f64) {
+        let t = self.world_axis(b) * tau;
+        b[self.child].add_torque(t, true);
+        b[self.parent].add_torque(-t, true);
+    }
 }
 
 /// The signed angle (rad, in `(−π, π]`) of the rotation `q` about the unit

@@ -51,7 +51,8 @@
 use rapier3d_f64::na::UnitQuaternion;
 use rapier3d_f64::prelude::*;
 
-use super::world::{angle_about, revolute, unwrap_near, EngineSettings, World};
+use super::dauj::{insert_dauj, DaujOptions, WorldAxis};
+use super::world::{angle_about, unwrap_near, EngineSettings, World};
 use crate::error::ParamError;
 use crate::wrist::WristParams;
 
@@ -121,42 +122,27 @@ impl DaujMechanism {
         let phi = params.phi();
         let mut world = World::new(&settings);
         let base = world.base();
-        // Semi-spheres of 0.1 kg, L2 a 0.2 kg link with its centre of mass
-        // 4 cm out, a light cross. The moments of inertia (1e-3 kg·m², about
-        // the reflected inertia of a small geared motor) set the time scale
-        // of the explicit motor springs; a static check does not see them.
-        let lower = world.body(Vector::zeros(), 0.1, Vector::repeat(1e-3));
-        let upper = world.body(Vector::zeros(), 0.1, Vector::repeat(1e-3));
-        let output = world.body(Vector::new(0.0, 0.0, 0.04), 0.2, Vector::repeat(1e-3));
-        let cross = world.body(Vector::zeros(), 0.02, Vector::repeat(2e-6));
-        let z = Vector::z();
-        let oblique = Vector::new(0.0, -phi.sin(), phi.cos());
-        let mb = &mut world.multibody_joints;
-        mb.insert(base, lower, revolute(z), true)
-            .ok_or(ParamError::NotFinite {
-                name: "multibody",
-                value: f64::NAN,
-            })?;
-        mb.insert(lower, upper, revolute(oblique), true)
-            .ok_or(ParamError::NotFinite {
-                name: "multibody",
-                value: f64::NAN,
-            })?;
-        mb.insert(upper, output, revolute(z), true)
-            .ok_or(ParamError::NotFinite {
-                name: "multibody",
-                value: f64::NAN,
-            })?;
-        world
-            .multibody_joints
-            .insert(base, cross, revolute(Vector::y()), true)
-            .ok_or(ParamError::NotFinite {
-                name: "multibody",
-                value: f64::NAN,
-            })?;
-        world
-            .impulse_joints
-            .insert(cross, output, revolute(Vector::x()), true);
+        // The parts of [`super::dauj`]: semi-spheres of 0.1 kg, L2 a 0.2 kg
+        // link with its centre of mass 4 cm out, a light cross. The moments
+        // of inertia (1e-3 kg·m², about the reflected inertia of a small
+        // geared motor) set the time scale of the explicit motor springs; a
+        // static check does not see them. No rotors (the motors are the
+        // springs of `EngineSettings`), no tool until `attach_tool`, the
+        // engine's default joint damping.
+        let wrist = insert_dauj(
+            &mut world,
+            base,
+            Vector::zeros(),
+            (WorldAxis::X, WorldAxis::Y),
+            &DaujOptions {
+                kinematics: *params,
+                rotors: None,
+                tool: None,
+                start: None,
+                undamped: false,
+            },
+        )?;
+        let (lower, upper, output, cross) = (wrist.lower, wrist.upper, wrist.output, wrist.cross);
         Ok(Self {
             world,
             settings,

@@ -50,15 +50,26 @@
 //!   measured torque `|(τ_δ, τ_γ)|` while both rotors are still within
 //!   [`HELD`] of their start (the gear has not slipped).
 //! * [`FingerCase::Admittance`] (Case 2): every 4 ms the library's public
-//!   wrist step on `f32` ([`WristStepConfig`]: gauges → `(τ_δ, τ_γ)`, the
+//!   wrist step ([`WristStepConfig`]: gauges → `(τ_δ, τ_γ)`, the
 //!   mode manager held Passive with the admittance law of eq. 6.32 at the
 //!   thesis's `K_c = 0.1`, the inverse kinematics, both motor laws of
-//!   eq. 6.15 with [`door_wrist_design`]). The metric is the peak measured
+//!   eq. 6.15 with [`door_wrist_design`](crate::sim::door::door_wrist_design)). The metric is the peak measured
 //!   `|(τ_δ, τ_γ)|`. In the steady push the admittance law moves the
 //!   reference at `K_c τ`, so a finger moving at `ẋ_f` rad/s is followed
 //!   with `τ ≈ ẋ_f / K_c`: the thesis's "below 2 Nm" needs the finger
 //!   slower than about 0.2 rad/s; the seeds draw its speed
 //!   ([`FingerPush::peak_speed`]).
+//!
+//! # Backends
+//! The wrist step runs on the backend chosen ([`Backend`],
+//! [`engine_finger_push_on`], [`engine_wrist_tracking_on`]): `f32`, as the
+//! thesis's DSP would run it and the claims' operating point
+//! ([`engine_finger_push`] and [`engine_wrist_tracking`] are these), or
+//! `I16F16` fixed point as on a Cortex-M0+ (or `f64`). On the 20 seeds of
+//! the claims' sweep, `I16F16`'s Case 2 peaks are within 0.05 N·m of
+//! `f32`'s and its Case 1 held torques within 0.02 N·m (the `wrist_bench`
+//! example prints both; `tests/engine_wrist_bench.rs` checks the nominal
+//! push).
 //!
 //! # Active tracking
 //! [`engine_wrist_tracking`] (§6.4.2, Fig. 6.10): the same wrist step held
@@ -99,20 +110,21 @@
 use rapier3d_f64::na::UnitQuaternion;
 use rapier3d_f64::prelude::*;
 
-use super::door::{body_at, hinge, Coord, CONTROL_PERIOD, WRIST_DRIVE, WRIST_RATIO, WRIST_ROTOR};
-use super::ft_sensor::{GaugeErrors, StrainGaugeSensor, V_REF};
-use super::world::{unwrap_near, EngineSettings, World};
-use crate::error::ParamError;
-use crate::sim::door::door_wrist_design;
-use crate::sim::{FrictionParams, SplitMix64};
-use crate::wrist::active::WristActiveParams;
-use crate::wrist::admittance::{AdmittanceParams, AdmittanceSettings};
-use crate::wrist::ft_sensor::{DecouplingMatrix, FtSensorParams};
-use crate::wrist::modes::{WristMode, WristModeParams, WristModeSettings};
-use crate::wrist::step::{
-    WristReadings, WristStepConfig, WristStepParams, WristStepSettings, WristTarget,
+use super::dauj::{
+    insert_dauj, DaujJointAngles, DaujOptions, DaujRotors, DaujTool, WorldAxis, WristDrives,
 };
-use crate::wrist::{PitchYaw, WristConfig, WristParams};
+use super::door::{
+    wrist_step_params, Backend, CONTROL_PERIOD, WRIST_DRIVE, WRIST_RATIO, WRIST_ROTOR,
+};
+use super::ft_sensor::{GaugeErrors, StrainGaugeSensor, V_REF};
+use super::world::{Coord, EngineSettings, World};
+use crate::error::ParamError;
+use crate::scalar::{Scalar, I16F16};
+use crate::sim::{FrictionParams, SplitMix64};
+use crate::wrist::ft_sensor::DecouplingMatrix;
+use crate::wrist::modes::WristMode;
+use crate::wrist::step::{WristReadings, WristStepConfig, WristStepParams, WristTarget};
+use crate::wrist::{PitchYaw, WristParams};
 
 /// The start pose `[δ, γ]`, rad (10° of pitch).
 pub const START: [f64; 2] = [0.174_532_925_199_432_95, 0.0];
@@ -261,103 +273,44 @@ struct Scene {
 
 fn build(start: PitchYaw<f64>, settings: &EngineSettings) -> Result<Scene, ParamError> {
     let mut world = World::new(settings);
+    let ground = world.base();
+    // The wrist on the ground, its frame the world's; the start pose from
+    // the library's inverse kinematics (branch θ4 ≥ 0), the rotors at N
+    // times their joints; the engine closes the loop from there.
+    let wrist = insert_dauj(
+        &mut world,
+        ground,
+        Vector::zeros(),
+        (WorldAxis::X, WorldAxis::Y),
+        &DaujOptions {
+            kinematics: WristParams::thesis(),
+            rotors: Some(DaujRotors {
+                ratio: WRIST_RATIO,
+                mass: 0.05,
+                inertia: [1e-5, 1e-5, WRIST_ROTOR],
+            }),
+            tool: Some(DaujTool {
+                mount: SENSOR_OFFSET,
+                com: 0.5 * (FINGER_ARM - SENSOR_OFFSET),
+                mass: TOOL_MASS,
+                inertia: TOOL_INERTIA,
+            }),
+            start: Some(DaujJointAngles::from_pose(&WristParams::thesis(), start)),
+            undamped: true,
+        },
+    )?;
     let fail = |name| ParamError::NotFinite {
         name,
         value: f64::NAN,
     };
-    let (x, y, z) = (Vector::x(), Vector::y(), Vector::z());
-    let phi = WristParams::thesis().phi();
-    let oblique = z * phi.cos() - y * phi.sin();
-    let ground = world.base();
-    let o = Vector::zeros();
-    let rotor =
-        [0, 1].map(|_| body_at(&mut world, o, o, 0.05, Vector::new(1e-5, 1e-5, WRIST_ROTOR)));
-    let lower = body_at(&mut world, o, o, 0.1, Vector::repeat(1e-3));
-    let upper = body_at(&mut world, o, o, 0.1, Vector::repeat(1e-3));
-    let output = body_at(&mut world, o, z * 0.04, 0.2, Vector::repeat(1e-3));
-    let cross = body_at(&mut world, o, o, 0.02, Vector::repeat(2e-6));
-    let tool = body_at(
-        &mut world,
-        z * SENSOR_OFFSET,
-        z * (0.5 * (FINGER_ARM - SENSOR_OFFSET)),
-        TOOL_MASS,
-        Vector::repeat(TOOL_INERTIA),
-    );
-    let mb = &mut world.multibody_joints;
-    let mut rj = Vec::new();
-    for h in rotor {
-        rj.push(
-            mb.insert(ground, h, hinge(z, o, o), true)
-                .ok_or(fail("rotor joint"))?,
-        );
-    }
-    let j1 = mb
-        .insert(ground, lower, hinge(z, o, o), true)
-        .ok_or(fail("J1"))?;
-    let j4 = mb
-        .insert(lower, upper, hinge(oblique, o, o), true)
-        .ok_or(fail("J4"))?;
-    let j3 = mb
-        .insert(upper, output, hinge(z, o, o), true)
-        .ok_or(fail("J3"))?;
-    let jp = mb
-        .insert(ground, cross, hinge(y, o, o), true)
-        .ok_or(fail("pitch joint"))?;
-    // The start pose from the library's inverse kinematics (branch
-    // θ4 ≥ 0), the rotors at N times their joints; the engine closes the
-    // loop from there.
-    let inv = WristConfig::<f64>::new(&WristParams::thesis()).inverse(start);
-    let (t1, t3) = (
-        unwrap_near(inv.motors.theta1, 0.0),
-        unwrap_near(inv.motors.theta3, 0.0),
-    );
-    let set = [
-        (j1, t1),
-        (j4, inv.theta4),
-        (j3, t3),
-        (jp, start.delta),
-        (rj[0], WRIST_RATIO * t1),
-        (rj[1], WRIST_RATIO * t3),
-    ];
-    let ids = set.map(|(h, q)| (world.multibody_joints.get(h).map(|(_, id)| id), q));
-    let (m, _) = world
-        .multibody_joints
-        .get_mut(j1)
-        .ok_or(fail("start pose"))?;
-    let mut disp = vec![0.0; m.ndofs()];
-    for (id, q) in ids {
-        let id = id.ok_or(fail("start pose"))?;
-        let at: usize = (0..id)
-            .filter_map(|k| m.link(k).map(|l| l.joint().ndofs()))
-            .sum();
-        *disp.get_mut(at).ok_or(fail("start pose"))? = q;
-    }
-    m.apply_displacements(&disp);
-    m.forward_kinematics(&world.bodies, true);
-    m.update_rigid_bodies(&mut world.bodies, false);
-    m.damping_mut().fill(0.0);
-    let pose = *world.bodies[output].position() * Isometry::translation(0.0, 0.0, SENSOR_OFFSET);
-    world.bodies[tool].set_position(pose, true);
-    world
-        .impulse_joints
-        .insert(cross, output, hinge(x, o, o), true);
-    let mount = FixedJointBuilder::new()
-        .local_anchor1(Point::from(z * SENSOR_OFFSET))
-        .local_anchor2(Point::origin());
-    world.impulse_joints.insert(output, tool, mount, true);
-    let c = |parent, child, axis| Coord {
-        parent,
-        child,
-        axis,
-    };
     Ok(Scene {
         world,
-        output,
-        tool,
-        joint: [c(ground, lower, z), c(upper, output, z)],
-        motor: [c(ground, rotor[0], z), c(ground, rotor[1], z)],
-        pitch: c(ground, cross, y),
-        yaw: c(cross, output, x),
+        output: wrist.output,
+        tool: wrist.tool.ok_or(fail("tool"))?,
+        joint: wrist.joints(),
+        motor: wrist.motors().ok_or(fail("rotors"))?,
+        pitch: wrist.pitch(),
+        yaw: wrist.yaw(),
     })
 }
 
@@ -365,32 +318,7 @@ fn build(start: PitchYaw<f64>, settings: &EngineSettings) -> Result<Scene, Param
 /// with the admittance validated for the finger's stiffness (the thesis's
 /// `K_c = 0.1`) and the sensor at [`SENSOR_OFFSET`].
 pub fn bench_wrist_step() -> Result<WristStepParams, ParamError> {
-    let limit = 30f64.to_radians();
-    let admittance = AdmittanceParams::try_new(AdmittanceSettings {
-        gain: [0.1, 0.1],
-        stiffness: 2.0 * FINGER_STIFFNESS,
-        sample_period: CONTROL_PERIOD,
-        lag_samples: 1,
-        limits: [limit, limit],
-        max_rate: 1.0,
-        deadband: 0.0,
-        desired_torque: [0.0; 2],
-    })?;
-    WristStepParams::try_new(WristStepSettings {
-        kinematics: WristParams::thesis(),
-        sensor: FtSensorParams::try_new(DecouplingMatrix::example(), SENSOR_OFFSET)?,
-        active: WristActiveParams::try_new([door_wrist_design(CONTROL_PERIOD); 2])?,
-        modes: WristModeParams::try_new(WristModeSettings {
-            admittance,
-            enter_passive: 1.0,
-            exit_passive: 0.5,
-            rest_speed: 0.01,
-            debounce: 5,
-            dwell: 250,
-            rejoin_bandwidth: 5.0,
-        })?,
-        initial_mode: WristMode::Active,
-    })
+    wrist_step_params(2.0 * FINGER_STIFFNESS, SENSOR_OFFSET, WristMode::Active)
 }
 
 /// The fingertip's position along `n` from its touch (m) and its speed
@@ -414,18 +342,31 @@ fn finger_path(push: &FingerPush, travel: f64, t: f64) -> (f64, f64) {
     }
 }
 
-/// Runs one push on the engine from [`START`]. Errors: a `push` field
-/// outside its range (named `finger.<field>`); an engine step that does not
-/// divide the 4 ms period (named `dt`) or under which the state diverges.
+/// Runs one push on the engine from [`START`] with the wrist step on
+/// `f32` (the thesis's DSP; the claims' operating point):
+/// [`engine_finger_push_on`] with [`Backend::F32`].
 pub fn engine_finger_push(
     case: FingerCase,
     push: &FingerPush,
     engine: &EngineSettings,
 ) -> Result<EngineWristBenchRun, ParamError> {
-    engine_finger_push_from(case, push, START[0], engine)
+    engine_finger_push_on(case, push, engine, Backend::F32)
 }
 
-/// [`engine_finger_push`] from the pose `(start_pitch, 0)` (rad, within
+/// Runs one push on the engine from [`START`] with the library's wrist
+/// step on `backend`. Errors: a `push` field outside its range (named
+/// `finger.<field>`); an engine step that does not divide the 4 ms period
+/// (named `dt`) or under which the state diverges.
+pub fn engine_finger_push_on(
+    case: FingerCase,
+    push: &FingerPush,
+    engine: &EngineSettings,
+    backend: Backend,
+) -> Result<EngineWristBenchRun, ParamError> {
+    engine_finger_push_from(case, push, START[0], engine, backend)
+}
+
+/// [`engine_finger_push_on`] from the pose `(start_pitch, 0)` (rad, within
 /// ±20°, named `start_pitch`): the study of a push through the straight
 /// pose (module docs, "Start pose"). A start of exactly 0 is not the
 /// straight pose's own assembly; use a few degrees.
@@ -434,11 +375,21 @@ pub fn engine_finger_push_from(
     push: &FingerPush,
     start_pitch: f64,
     engine: &EngineSettings,
+    backend: Backend,
 ) -> Result<EngineWristBenchRun, ParamError> {
     push.validate()?;
     let limit = 20f64.to_radians();
     let start_pitch = crate::error::in_range("start_pitch", start_pitch, -limit, limit)?;
-    let home = [start_pitch, 0.0];
+    match backend {
+        Backend::F32 => push_run::<f32>(case, push, start_pitch, engine),
+        Backend::F64 => push_run::<f64>(case, push, start_pitch, engine),
+        Backend::I16F16 => push_run::<I16F16>(case, push, start_pitch, engine),
+    }
+}
+
+/// Engine steps per 4 ms control tick; an error (named `dt`) if the engine
+/// step does not divide the tick.
+fn steps_per_tick(engine: &EngineSettings) -> Result<usize, ParamError> {
     let dt = engine.dt();
     let per_tick = (CONTROL_PERIOD / dt).round();
     if per_tick < 1.0 || (per_tick * dt - CONTROL_PERIOD).abs() > 1e-12 {
@@ -449,7 +400,42 @@ pub fn engine_finger_push_from(
             max: CONTROL_PERIOD,
         });
     }
-    let per_tick = per_tick as usize;
+    Ok(per_tick as usize)
+}
+
+/// The motor friction of a gear whose break-away at the joint is
+/// `breakaway` N·m: two thirds of it Coulomb, at the motor (`/N`), with
+/// presliding (module docs).
+fn gear_friction(breakaway: f64) -> FrictionParams {
+    let b = breakaway / WRIST_RATIO;
+    FrictionParams {
+        coulomb: b * 2.0 / 3.0,
+        static_excess: b / 3.0,
+        stribeck: 1e-3,
+        viscous: 2e-6,
+        presliding: 0.1,
+        presliding_damping: 0.0,
+    }
+}
+
+/// The strain gauges: off the certificate by ±2 % and 0.3 mV of noise,
+/// drawn from `seed`.
+fn bench_gauges(seed: u64) -> Result<StrainGaugeSensor, ParamError> {
+    StrainGaugeSensor::try_new(
+        DecouplingMatrix::example().matrix(),
+        GaugeErrors::try_new(0.02, 0.0, 3e-4, seed)?,
+    )
+}
+
+fn push_run<S: Scalar>(
+    case: FingerCase,
+    push: &FingerPush,
+    start_pitch: f64,
+    engine: &EngineSettings,
+) -> Result<EngineWristBenchRun, ParamError> {
+    let home = [start_pitch, 0.0];
+    let dt = engine.dt();
+    let per_tick = steps_per_tick(engine)?;
     let travel = match case {
         FingerCase::MotorsOff => CASE1_TRAVEL,
         FingerCase::Admittance => push.travel,
@@ -464,28 +450,16 @@ pub fn engine_finger_push_from(
         FINGER_STIFFNESS / (FINGER_ARM * FINGER_ARM),
         FINGER_DAMPING / (FINGER_ARM * FINGER_ARM),
     );
-    let b = push.breakaway / WRIST_RATIO;
-    let friction = FrictionParams {
-        coulomb: b * 2.0 / 3.0,
-        static_excess: b / 3.0,
-        stribeck: 1e-3,
-        viscous: 2e-6,
-        presliding: 0.1,
-        presliding_damping: 0.0,
-    };
-    let mut gauges = StrainGaugeSensor::try_new(
-        DecouplingMatrix::example().matrix(),
-        GaugeErrors::try_new(0.02, 0.0, 3e-4, push.seed ^ 0x5E45_0000)?,
-    )?;
+    let friction = gear_friction(push.breakaway);
+    let mut gauges = bench_gauges(push.seed ^ 0x5E45_0000)?;
     let params = bench_wrist_step()?;
-    let step = WristStepConfig::<f32>::new(&params);
+    let step = WristStepConfig::<S>::new(&params);
     let q0 = [0, 1].map(|i| sc.joint[i].angle(&sc.world.bodies, 0.0));
-    let mut state = step.state(WristReadings::<f32>::from_si([0.0; 6], q0, [0.0; 2]).motors);
+    let mut state = step.state(WristReadings::<S>::from_si([0.0; 6], q0, [0.0; 2]).motors);
     let count = core::f64::consts::TAU / 2000.0;
     let quant = |x: f64| (x / count).round() * count;
     // Joint and rotor angles (unwrapping memory), friction anchors.
-    let mut mem = q0.map(|q| [q, WRIST_RATIO * q]);
-    let mut anchor = q0.map(|q| WRIST_RATIO * q);
+    let mut drives = WristDrives::new(sc.joint, sc.motor, WRIST_RATIO, WRIST_DRIVE, friction, q0);
     let rotor0 = q0;
     let mut last_enc = q0;
     let mut wrench = [0.0f64; 6];
@@ -507,7 +481,7 @@ pub fn engine_finger_push_from(
     for k in 0..pre + ticks {
         let time = (k as f64 - pre as f64) * CONTROL_PERIOD;
         let b = &sc.world.bodies;
-        let enc = [0, 1].map(|i| quant(sc.motor[i].angle(b, mem[i][1])) / WRIST_RATIO);
+        let enc = [0, 1].map(|i| quant(drives.rotor_angle(b, i)) / WRIST_RATIO);
         let enc_v = [0, 1].map(|i| (enc[i] - last_enc[i]) / CONTROL_PERIOD);
         last_enc = enc;
         let sg = gauges.read(&wrench).map(|v| v - V_REF);
@@ -516,10 +490,10 @@ pub fn engine_finger_push_from(
         } else {
             WristMode::Passive
         };
-        let target = WristTarget::<f32>::from_si(home[0], home[1], 0.0, 0.0).with_request(request);
+        let target = WristTarget::<S>::from_si(home[0], home[1], 0.0, 0.0).with_request(request);
         let o = step.update(
             &mut state,
-            &WristReadings::<f32>::from_si(sg, enc, enc_v),
+            &WristReadings::<S>::from_si(sg, enc, enc_v),
             &target,
         );
         let measured = o.interaction_si();
@@ -536,7 +510,7 @@ pub fn engine_finger_push_from(
             let b = &sc.world.bodies;
             let pose = [sc.pitch.angle(b, 0.0), sc.yaw.angle(b, 0.0)];
             let slip = [0, 1]
-                .map(|i| (mem[i][1] / WRIST_RATIO - rotor0[i]).abs())
+                .map(|i| (drives.rotor_angles()[i] / WRIST_RATIO - rotor0[i]).abs())
                 .into_iter()
                 .fold(0.0, f64::max);
             let m = measured[0].hypot(measured[1]);
@@ -558,37 +532,75 @@ pub fn engine_finger_push_from(
                 slip,
             });
         }
-        let mut sum = [0.0; 6];
-        for s in 0..per_tick {
-            let t = time + s as f64 * dt;
-            let finger = if t >= 0.0 {
-                let (p, v) = finger_path(push, travel, t);
-                Some((p, v, kf, cf, n, &mut touch))
-            } else {
-                None
-            };
-            let w = step_engine(
-                &mut sc,
-                dt,
-                &mut mem,
-                &mut anchor,
-                &friction,
-                motor,
-                finger,
-                &mut true_tau,
-            )
-            .ok_or(ParamError::NotFinite {
-                name:
-                    "dt (the engine state diverged: the step is too coarse for the drive springs)",
-                value: dt,
-            })?;
-            for (a, b) in sum.iter_mut().zip(w) {
-                *a += b;
-            }
-        }
-        wrench = sum.map(|x| x / per_tick as f64);
+        let finger = Finger {
+            push,
+            travel,
+            k: kf,
+            c: cf,
+            n,
+        };
+        let tick = Tick { time, dt, per_tick };
+        wrench = run_tick(
+            &mut sc,
+            &mut drives,
+            &tick,
+            motor,
+            Some((&finger, &mut touch)),
+            &mut true_tau,
+        )?;
     }
     Ok(out)
+}
+
+/// The finger of a push: its path's `push` and `travel` (rad at the tool),
+/// the contact's `k` (N/m) and `c` (N·s/m), and its direction `n` (world).
+struct Finger<'a> {
+    push: &'a FingerPush,
+    travel: f64,
+    k: f64,
+    c: f64,
+    n: Vector<Real>,
+}
+
+/// A control tick's engine steps: from `time` (s from the touch), `dt`
+/// (s) each, `per_tick` of them.
+struct Tick {
+    time: f64,
+    dt: f64,
+    per_tick: usize,
+}
+
+/// The engine steps of one control tick, with the finger (and the memory
+/// of its touch) if it pushes; returns the sensor wrench averaged over the
+/// tick (the gauge amplifiers' anti-aliasing filter, as in the door scene).
+fn run_tick(
+    sc: &mut Scene,
+    drives: &mut WristDrives,
+    tick: &Tick,
+    motor: [f64; 2],
+    mut finger: Option<(&Finger<'_>, &mut Option<f64>)>,
+    true_tau: &mut [f64; 2],
+) -> Result<[f64; 6], ParamError> {
+    let dt = tick.dt;
+    let mut sum = [0.0; 6];
+    for s in 0..tick.per_tick {
+        let t = tick.time + s as f64 * dt;
+        let now = match finger.as_mut() {
+            Some((f, touch)) if t >= 0.0 => {
+                let (p, v) = finger_path(f.push, f.travel, t);
+                Some((p, v, f.k, f.c, f.n, &mut **touch))
+            }
+            _ => None,
+        };
+        let w = step_engine(sc, dt, drives, motor, now, true_tau).ok_or(ParamError::NotFinite {
+            name: "dt (the engine state diverged: the step is too coarse for the drive springs)",
+            value: dt,
+        })?;
+        for (a, b) in sum.iter_mut().zip(w) {
+            *a += b;
+        }
+    }
+    Ok(sum.map(|x| x / tick.per_tick as f64))
 }
 
 /// The angle (rad) between `L2`'s orientation and the one the universal
@@ -609,37 +621,17 @@ type FingerNow<'a> = Option<(f64, f64, f64, f64, Vector<Real>, &'a mut Option<f6
 fn step_engine(
     sc: &mut Scene,
     dt: f64,
-    mem: &mut [[f64; 2]; 2],
-    anchor: &mut [f64; 2],
-    friction: &FrictionParams,
+    drives: &mut WristDrives,
     motor: [f64; 2],
     finger: FingerNow<'_>,
     true_tau: &mut [f64; 2],
 ) -> Option<[f64; 6]> {
-    let bodies = &mut sc.world.bodies;
-    let finite = bodies.iter().all(|(_, b)| {
-        b.translation().iter().all(|x| x.is_finite())
-            && b.linvel().iter().all(|x| x.is_finite())
-            && b.angvel().iter().all(|x| x.is_finite())
-    });
-    if !finite {
+    if !sc.world.is_finite() {
         return None;
     }
-    for (_, rb) in bodies.iter_mut() {
-        rb.reset_forces(false);
-        rb.reset_torques(false);
-    }
-    let (kw, cw) = WRIST_DRIVE;
-    for i in 0..2 {
-        let (j, m) = (sc.joint[i], sc.motor[i]);
-        let q = j.angle(bodies, mem[i][0]);
-        let qm = m.angle(bodies, mem[i][1]);
-        let (vq, vm) = (j.speed(bodies), m.speed(bodies));
-        let tt = kw * (qm / WRIST_RATIO - q) + cw * (vm / WRIST_RATIO - vq);
-        let fm = friction.torque(qm, vm, anchor[i]);
-        j.push(bodies, tt);
-        m.push(bodies, -tt / WRIST_RATIO + motor[i] - fm);
-    }
+    sc.world.clear_forces();
+    let bodies = &mut sc.world.bodies;
+    drives.push(bodies, motor);
     // The finger at the tool point.
     let t = &bodies[sc.tool];
     let tip = t.position() * Point::new(0.0, 0.0, FINGER_ARM - SENSOR_OFFSET);
@@ -666,11 +658,7 @@ fn step_engine(
     bodies[sc.tool].add_force_at_point(force, tip, true);
     sc.world.step();
     let bodies = &sc.world.bodies;
-    for i in 0..2 {
-        let (j, m) = (sc.joint[i], sc.motor[i]);
-        mem[i] = [j.angle(bodies, mem[i][0]), m.angle(bodies, mem[i][1])];
-        friction.update_anchor(mem[i][1], m.speed(bodies), &mut anchor[i]);
-    }
+    drives.advance(bodies);
     // Momentum balance of the tool (as the door scene's sensor).
     let t = &bodies[sc.tool];
     let alpha = (t.angvel() - w0) / dt;
@@ -699,8 +687,18 @@ pub struct EngineTrackingRun {
     pub off_mode_ticks: usize,
 }
 
+/// §6.4.2 (Fig. 6.10–6.11) on the engine with the wrist step on `f32`:
+/// [`engine_wrist_tracking_on`] with [`Backend::F32`].
+pub fn engine_wrist_tracking(
+    duration: f64,
+    settle: f64,
+    engine: &EngineSettings,
+) -> Result<EngineTrackingRun, ParamError> {
+    engine_wrist_tracking_on(duration, settle, engine, Backend::F32)
+}
+
 /// §6.4.2 (Fig. 6.10–6.11) on the engine: the library's wrist step on
-/// `f32`, held Active, tracks [`crate::sim::wrist_bench::tracking_trajectory`]
+/// `backend`, held Active, tracks [`crate::sim::wrist_bench::tracking_trajectory`]
 /// (the home-made bench's: a bend of 12°–24° swinging from pitch through
 /// yaw; its rate by central differences, 1 ms) for `duration` s on the
 /// nominal gears (12 N·m break-away), starting at rest at its first pose;
@@ -708,25 +706,29 @@ pub struct EngineTrackingRun {
 /// `settle` s. Errors: `duration` or `settle` not finite or out of
 /// `[0, 60]` s (named), an engine step that does not divide 4 ms (`dt`) or
 /// under which the state diverges.
-pub fn engine_wrist_tracking(
+pub fn engine_wrist_tracking_on(
+    duration: f64,
+    settle: f64,
+    engine: &EngineSettings,
+    backend: Backend,
+) -> Result<EngineTrackingRun, ParamError> {
+    let duration = crate::error::in_range("duration", duration, 0.0, 60.0)?;
+    let settle = crate::error::in_range("settle", settle, 0.0, 60.0)?;
+    match backend {
+        Backend::F32 => tracking_run::<f32>(duration, settle, engine),
+        Backend::F64 => tracking_run::<f64>(duration, settle, engine),
+        Backend::I16F16 => tracking_run::<I16F16>(duration, settle, engine),
+    }
+}
+
+fn tracking_run<S: Scalar>(
     duration: f64,
     settle: f64,
     engine: &EngineSettings,
 ) -> Result<EngineTrackingRun, ParamError> {
     use crate::sim::wrist_bench::tracking_trajectory;
-    let duration = crate::error::in_range("duration", duration, 0.0, 60.0)?;
-    let settle = crate::error::in_range("settle", settle, 0.0, 60.0)?;
     let dt = engine.dt();
-    let per_tick = (CONTROL_PERIOD / dt).round();
-    if per_tick < 1.0 || (per_tick * dt - CONTROL_PERIOD).abs() > 1e-12 {
-        return Err(ParamError::OutOfRange {
-            name: "dt",
-            value: dt,
-            min: 1e-6,
-            max: CONTROL_PERIOD,
-        });
-    }
-    let per_tick = per_tick as usize;
+    let per_tick = steps_per_tick(engine)?;
     let x0 = tracking_trajectory(0.0);
     let mut sc = build(
         PitchYaw {
@@ -735,27 +737,15 @@ pub fn engine_wrist_tracking(
         },
         engine,
     )?;
-    let b = 12.0 / WRIST_RATIO;
-    let friction = FrictionParams {
-        coulomb: b * 2.0 / 3.0,
-        static_excess: b / 3.0,
-        stribeck: 1e-3,
-        viscous: 2e-6,
-        presliding: 0.1,
-        presliding_damping: 0.0,
-    };
-    let mut gauges = StrainGaugeSensor::try_new(
-        DecouplingMatrix::example().matrix(),
-        GaugeErrors::try_new(0.02, 0.0, 3e-4, 0x5E45_0001)?,
-    )?;
+    let friction = gear_friction(12.0);
+    let mut gauges = bench_gauges(0x5E45_0001)?;
     let params = bench_wrist_step()?;
-    let step = WristStepConfig::<f32>::new(&params);
+    let step = WristStepConfig::<S>::new(&params);
     let q0 = [0, 1].map(|i| sc.joint[i].angle(&sc.world.bodies, 0.0));
-    let mut state = step.state(WristReadings::<f32>::from_si([0.0; 6], q0, [0.0; 2]).motors);
+    let mut state = step.state(WristReadings::<S>::from_si([0.0; 6], q0, [0.0; 2]).motors);
     let count = core::f64::consts::TAU / 2000.0;
     let quant = |x: f64| (x / count).round() * count;
-    let mut mem = q0.map(|q| [q, WRIST_RATIO * q]);
-    let mut anchor = q0.map(|q| WRIST_RATIO * q);
+    let mut drives = WristDrives::new(sc.joint, sc.motor, WRIST_RATIO, WRIST_DRIVE, friction, q0);
     let mut last_enc = q0;
     let mut wrench = [0.0f64; 6];
     let mut true_tau = [0.0f64; 2];
@@ -772,7 +762,7 @@ pub fn engine_wrist_tracking(
     for k in 0..(duration / CONTROL_PERIOD).round() as usize {
         let time = k as f64 * CONTROL_PERIOD;
         let b = &sc.world.bodies;
-        let enc = [0, 1].map(|i| quant(sc.motor[i].angle(b, mem[i][1])) / WRIST_RATIO);
+        let enc = [0, 1].map(|i| quant(drives.rotor_angle(b, i)) / WRIST_RATIO);
         let enc_v = [0, 1].map(|i| (enc[i] - last_enc[i]) / CONTROL_PERIOD);
         last_enc = enc;
         let pose = [sc.pitch.angle(b, 0.0), sc.yaw.angle(b, 0.0)];
@@ -780,11 +770,11 @@ pub fn engine_wrist_tracking(
         let xd = tracking_trajectory(time);
         let (xp, xm) = (tracking_trajectory(time + h), tracking_trajectory(time - h));
         let rate = [0, 1].map(|i| (xp[i] - xm[i]) / (2.0 * h));
-        let target = WristTarget::<f32>::from_si(xd[0], xd[1], rate[0], rate[1])
+        let target = WristTarget::<S>::from_si(xd[0], xd[1], rate[0], rate[1])
             .with_request(WristMode::Active);
         let o = step.update(
             &mut state,
-            &WristReadings::<f32>::from_si(sg, enc, enc_v),
+            &WristReadings::<S>::from_si(sg, enc, enc_v),
             &target,
         );
         out.off_mode_ticks += (o.mode != WristMode::Active) as usize;
@@ -799,28 +789,8 @@ pub fn engine_wrist_tracking(
         }
         out.loop_error = out.loop_error.max(loop_error(&sc, pose));
         out.samples.push((time, xd, pose));
-        let mut sum = [0.0; 6];
-        for _ in 0..per_tick {
-            let w = step_engine(
-                &mut sc,
-                dt,
-                &mut mem,
-                &mut anchor,
-                &friction,
-                motor,
-                None,
-                &mut true_tau,
-            )
-            .ok_or(ParamError::NotFinite {
-                name:
-                    "dt (the engine state diverged: the step is too coarse for the drive springs)",
-                value: dt,
-            })?;
-            for (a, b) in sum.iter_mut().zip(w) {
-                *a += b;
-            }
-        }
-        wrench = sum.map(|x| x / per_tick as f64);
+        let tick = Tick { time, dt, per_tick };
+        wrench = run_tick(&mut sc, &mut drives, &tick, motor, None, &mut true_tau)?;
     }
     if counted > 0 {
         out.rms_error = sum_sq.map(|s| (s / counted as f64).sqrt());
