@@ -1841,4 +1841,102 @@ pub(crate) mod tests {
             prop_assert!(ang_dist(r.motors.theta3, t3) < tol);
         }
     }
+
+    /// `update`'s tie rule, `θ4 ≥ 0` when both roots' `θ1` are equally far
+    /// from the previous `θ1` (module docs). On `f32` a previous `θ1`
+    /// exactly half-way between the two roots' `θ1` exists whenever their
+    /// mean, formed exactly in `f64`, is an `f32`: the distances `update`
+    /// forms in `f64` are then equal bit for bit. (On `I16F16` the two
+    /// `θ1` are `π − 2ψ` apart, `2·arg A + π` in sum, an odd number of
+    /// steps: no grid value is half-way.)
+    #[test]
+    fn update_takes_the_plus_root_on_an_exact_tie() {
+        let cfg = WristConfig::<f32>::new(&WristParams::thesis());
+        let mut ties = 0;
+        for k in 0..64 {
+            let pose = PitchYaw {
+                delta: 0.12f32,
+                gamma: 0.05 + 0.003 * k as f32,
+            };
+            let (a, b) = (cfg.inverse(pose), cfg.inverse_other_branch(pose));
+            assert!(a.theta4 > 0.0 && b.theta4 < 0.0);
+            let (a1, b1) = (f64::from(a.motors.theta1), f64::from(b.motors.theta1));
+            let mean = 0.5 * (a1 + b1);
+            let mid = mean as f32;
+            if f64::from(mid) != mean {
+                continue;
+            }
+            let (da, db) = ((a1 - mean).abs(), (b1 - mean).abs());
+            assert!(da == db && da < PI, "{da} {db}");
+            let mut st = IkState::new(MotorAngles {
+                theta1: mid,
+                theta3: -mid,
+            });
+            let r = cfg.update(&mut st, pose);
+            assert!(r.theta4 >= 0.0, "pose {pose:?}: {r:?}");
+            // Off the tie by one `f32` step towards the θ4 ≤ 0 root, that
+            // root.
+            let toward = if b1 > mean {
+                f32::from_bits(
+                    mid.to_bits()
+                        .wrapping_add(if mid > 0.0 { 1 } else { u32::MAX }),
+                )
+            } else {
+                f32::from_bits(
+                    mid.to_bits()
+                        .wrapping_add(if mid > 0.0 { u32::MAX } else { 1 }),
+                )
+            };
+            assert!((f64::from(toward) - b1).abs() < db, "{toward} {mid}");
+            let mut st = IkState::new(MotorAngles {
+                theta1: toward,
+                theta3: -toward,
+            });
+            assert!(cfg.update(&mut st, pose).theta4 < 0.0);
+            ties += 1;
+        }
+        assert!(ties >= 8, "{ties} exact ties");
+    }
+
+    /// `try_inverse` accepts a pose whose `sin²(β/2)` equals its limit
+    /// `sin²φ + 2 q sin 2φ` exactly, and rejects the next `f64` above it:
+    /// the comparison is strict. The pose is found by bisection on `δ` (at
+    /// `γ = 0`, where the tested quantity is `sin²(δ/2)`, computed here as
+    /// the method documents it) and a walk over neighbouring `f64` values
+    /// to the one that hits the limit bit for bit.
+    #[test]
+    fn try_inverse_accepts_its_limit_exactly() {
+        let p = WristParams::thesis();
+        let cfg = WristConfig::<f64>::new(&p);
+        let sp = libm::sin(p.phi());
+        let limit = sp * sp + 2.0 * f64::EPSILON * libm::sin(2.0 * p.phi());
+        let hb = |d: f64| {
+            let s = libm::sin(d / 2.0);
+            s * s + libm::cos(d) * 0.0 * 0.0
+        };
+        let (mut lo, mut hi) = (0.0, 2.0 * p.phi() + 0.1);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if hb(mid) > limit {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        let mut d = lo;
+        for _ in 0..64 {
+            if hb(d) == limit {
+                break;
+            }
+            d = f64::from_bits(d.to_bits() - 1);
+        }
+        assert!(hb(d) == limit, "no pose on the limit near {lo}");
+        let at = |delta| cfg.try_inverse(PitchYaw { delta, gamma: 0.0 });
+        assert!(at(d).is_ok(), "{d}");
+        let mut above = f64::from_bits(d.to_bits() + 1);
+        while hb(above) == limit {
+            above = f64::from_bits(above.to_bits() + 1);
+        }
+        assert!(at(above).is_err(), "{above}");
+    }
 }
