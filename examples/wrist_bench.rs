@@ -98,18 +98,10 @@ fn main() -> Result<(), Error> {
                 ..Runs::default()
             },
         )? {
-            let s = r.spread;
             println!(
-                "{:<15} {:<10} median {:.2} [q1 {:.2}, q3 {:.2}; min {:.2}, max {:.2}] {} over {} seeds ({label}); {}",
+                "{:<15} {} ({label}); {}",
                 r.claim.id,
-                r.verdict.to_string(),
-                s.median,
-                s.q1,
-                s.q3,
-                s.min,
-                s.max,
-                r.claim.unit,
-                r.runs,
+                r.verdict_line(),
                 r.claim.criterion.describe(r.claim.unit)
             );
             if label == "f32" {

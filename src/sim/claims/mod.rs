@@ -470,6 +470,24 @@ pub struct ClaimResult {
 }
 
 impl ClaimResult {
+    /// The verdict, the median and spread in the claim's unit and the
+    /// number of runs, as the examples print them, e.g.
+    /// `supported  median 24.14 [q1 23.97, q3 24.40; min 23.22, max 25.26] N·m over 20 seeds`.
+    pub fn verdict_line(&self) -> String {
+        let s = self.spread;
+        format!(
+            "{:<10} median {:.2} [q1 {:.2}, q3 {:.2}; min {:.2}, max {:.2}] {} over {} seeds",
+            self.verdict.to_string(),
+            s.median,
+            s.q1,
+            s.q3,
+            s.min,
+            s.max,
+            self.claim.unit,
+            self.runs
+        )
+    }
+
     /// `claim` judged on the metric's `values`, one per run: the verdict,
     /// the median and spread, the shares meeting each condition. Errors:
     /// no values ([`ClaimError::NoMetrics`]), a value that is not finite.
