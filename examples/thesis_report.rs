@@ -227,7 +227,10 @@ struct ArmCollision {
 fn arm_source() -> String {
     format!(
         "rapier3d engine, step {} ms (one substep), arm of bodies (thesis joint: link, rotor, \
-         full drive plant and friction); the library's joint step at {} ms on f32",
+         full drive plant and friction); the library's joint step at {} ms on f32. The drive \
+         plant is not from the independent family: its kinematic error is Table 3.2's eq. \
+         (3.7), the model the estimator subtracts, and its friction has eq. (4.8)'s form; the \
+         family's verdicts are the claims (`--example claims`)",
         arm_settings().dt() * 1e3,
         ARM_TICK * 1e3
     )
