@@ -624,6 +624,27 @@ mod tests {
     use crate::scalar::I16F16;
     use proptest::prelude::*;
 
+    /// The field paths that composite settings report for a friction
+    /// field: `<composite>.<field>` for each of the four fields (written
+    /// out here as the users' settings spell them), and any other name
+    /// unchanged.
+    #[test]
+    fn composite_paths_name_the_users_field() {
+        let fields = ["viscous", "coulomb", "stribeck", "stribeck_shape"];
+        let cases: [(fn(&'static str) -> &'static str, &str); 4] = [
+            (min_path, "min"),
+            (max_path, "max"),
+            (nominal_friction_path, "nominal_friction"),
+            (initial_friction_path, "initial_friction"),
+        ];
+        for (path, prefix) in cases {
+            for f in fields {
+                assert_eq!(path(f), std::format!("{prefix}.{f}"), "{prefix} {f}");
+            }
+            assert_eq!(path("sample_period"), "sample_period", "{prefix}");
+        }
+    }
+
     /// `validated` keeps the named fields as they are and names the field
     /// that breaks its rule.
     #[test]
