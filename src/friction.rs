@@ -631,7 +631,8 @@ mod tests {
     #[test]
     fn composite_paths_name_the_users_field() {
         let fields = ["viscous", "coulomb", "stribeck", "stribeck_shape"];
-        let cases: [(fn(&'static str) -> &'static str, &str); 4] = [
+        type Path = fn(&'static str) -> &'static str;
+        let cases: [(Path, &str); 4] = [
             (min_path, "min"),
             (max_path, "max"),
             (nominal_friction_path, "nominal_friction"),
