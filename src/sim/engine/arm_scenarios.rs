@@ -53,7 +53,7 @@ use crate::error::ParamError;
 use crate::estimation::collision::{CollisionParams, CollisionReaction, CollisionSettings};
 use crate::joint::{JointConfig, JointParams, JointReadings, JointSettings, JointTarget};
 use crate::scalar::units::quantize;
-use crate::sim::closed_loop::JointTorqueFeedback;
+use crate::sim::closed_loop::{raised_cosine, JointTorqueFeedback};
 use crate::sim::mrr::ModuleParams;
 use crate::sim::Mrr;
 use crate::Scalar;
@@ -282,25 +282,14 @@ pub struct ArmTrackingConfig {
 /// Joint 1's reference of the tests' arm runs: at rest until 0.2 s, then
 /// `0.2 (1 − cos(π (t − 0.2)))/2` rad.
 pub fn half_cosine_from_rest(t: f64) -> (f64, f64, f64) {
-    let (a, w) = (0.2, PI);
-    let s = (t - 0.2).max(0.0);
-    let on = if t >= 0.2 { 1.0 } else { 0.0 };
-    (
-        a * (1.0 - (w * s).cos()) / 2.0,
-        a * w * (w * s).sin() / 2.0,
-        a * w * w * (w * s).cos() / 2.0 * on,
-    )
+    let (q, v, a) = raised_cosine(0.1, 2.0, (t - 0.2).max(0.0));
+    (q, v, if t >= 0.2 { a } else { 0.0 })
 }
 
 /// Fig. 4.2's desired trajectory: `0.25 (1 − cos(2π t/4 s))` rad (the
 /// raised cosine of [`crate::sim::closed_loop::TrackingConfig::table_4_1`]).
 pub fn raised_cosine_4s(t: f64) -> (f64, f64, f64) {
-    let (a, w) = (0.25, TAU / 4.0);
-    (
-        a * (1.0 - (w * t).cos()),
-        a * w * (w * t).sin(),
-        a * w * w * (w * t).cos(),
-    )
+    raised_cosine(0.25, 4.0, t)
 }
 
 /// What [`arm_tracking`] measured. Per-tick traces are sampled at the
@@ -782,12 +771,9 @@ pub fn leading_hand(t: f64, ql: f64, vl: f64) -> f64 {
     if !(0.5..3.0).contains(&t) {
         return 0.0;
     }
-    let u = ((t - 0.5) / 2.0).min(1.0);
-    let (qh, vh) = if u < 1.0 {
-        (
-            0.2 * (1.0 - (PI * u).cos()),
-            0.2 * PI * (PI * u).sin() / 2.0,
-        )
+    let (qh, vh) = if t < 2.5 {
+        let (q, v, _) = raised_cosine(0.2, 4.0, t - 0.5);
+        (q, v)
     } else {
         (0.4, 0.0)
     };
