@@ -772,6 +772,27 @@ mod tests {
                 ..
             })
         ));
+        // The smallest accepted `min.stribeck_shape` is 1e-3 itself; the
+        // next `f64` below it is rejected by name.
+        let shape = |f_tau: f64| {
+            let lo = FrictionParams {
+                viscous: 0.0,
+                coulomb: 0.0,
+                stribeck: 0.0,
+                stribeck_shape: f_tau,
+            }
+            .validated()
+            .unwrap();
+            FrictionBounds::try_new(lo, hi, [0.0; 4])
+        };
+        assert!(shape(1e-3).is_ok());
+        assert!(matches!(
+            shape(f64::from_bits(1e-3f64.to_bits() - 1)),
+            Err(ParamError::OutOfRange {
+                name: "min.stribeck_shape",
+                ..
+            })
+        ));
     }
 
     /// Hand values: at q̇ = 0.5 rad/s with ε = 0.01 the layer is left,
