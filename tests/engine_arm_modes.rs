@@ -435,20 +435,14 @@ fn collision<S: Scalar>(name: &str, reaction: CollisionReaction) {
             (0.059..=0.170).contains(&latency),
             "{name} {pname}: latency {latency}"
         );
-        assert_eq!(r.switches.len(), 1, "{name} {pname}: {:?}", r.switches);
-        assert!(r.switches[0].jump <= r.jump_bound);
-        match reaction {
-            CollisionReaction::Stop => {
-                assert_eq!(r.switches[0].to, JointMode::Hold);
-                assert!((end - at_detection).abs() < 0.01, "{name} {pname}");
-                assert!(end_torque < -1.0, "{name} {pname}: {end_torque}");
-            }
-            CollisionReaction::Passive => {
-                assert_eq!(r.switches[0].to, JointMode::Passive);
-                // Yielded down to the static friction at rest (revised).
-                assert!(end_torque >= -2.0, "{name} {pname}: {end_torque}");
-            }
-        }
+        reacted(
+            &r,
+            reaction,
+            at_detection,
+            end,
+            end_torque,
+            &format!("{name} {pname}"),
+        );
         runs.push(r);
     }
     let t = |f: &dyn Fn(&JointRun) -> f64| -> Vec<f64> { runs.iter().map(f).collect() };
@@ -540,19 +534,14 @@ fn contact_collision<S: Scalar>(name: &str, reaction: CollisionReaction) {
         );
         assert!(most_positive <= 0.0, "{name} {pname}: {most_positive}");
         assert!(peak <= bound, "{name} {pname}: peak {peak} > {bound}");
-        assert_eq!(r.switches.len(), 1, "{name} {pname}: {:?}", r.switches);
-        assert!(r.switches[0].jump <= r.jump_bound);
-        match reaction {
-            CollisionReaction::Stop => {
-                assert_eq!(r.switches[0].to, JointMode::Hold);
-                assert!((end - at_detection).abs() < 0.01, "{name} {pname}");
-                assert!(end_torque < -1.0, "{name} {pname}: {end_torque}");
-            }
-            CollisionReaction::Passive => {
-                assert_eq!(r.switches[0].to, JointMode::Passive);
-                assert!(end_torque >= -2.0, "{name} {pname}: {end_torque}");
-            }
-        }
+        reacted(
+            &r,
+            reaction,
+            at_detection,
+            end,
+            end_torque,
+            &format!("{name} {pname}"),
+        );
         detections.push(detection);
     }
     assert!(
@@ -571,4 +560,32 @@ fn engine_contact_collision_is_detected_and_stops_or_yields_f32() {
 fn engine_contact_collision_is_detected_and_stops_or_yields_i16f16() {
     contact_collision::<I16F16>("I16F16 contact", CollisionReaction::Stop);
     contact_collision::<I16F16>("I16F16 contact", CollisionReaction::Passive);
+}
+
+/// The reaction after a detected collision, the same for the spring
+/// obstacle and the engine contact: one switch, bumpless; Stop holds where
+/// it detected (within 0.01 rad) and keeps pressing (below −1 N·m at the
+/// end); Passive yields down to the static friction at rest (revised:
+/// the contact torque at the end is at least −2 N·m).
+fn reacted(
+    r: &JointRun,
+    reaction: CollisionReaction,
+    at_detection: f64,
+    end: f64,
+    end_torque: f64,
+    what: &str,
+) {
+    assert_eq!(r.switches.len(), 1, "{what}: {:?}", r.switches);
+    assert!(r.switches[0].jump <= r.jump_bound, "{what}");
+    match reaction {
+        CollisionReaction::Stop => {
+            assert_eq!(r.switches[0].to, JointMode::Hold, "{what}");
+            assert!((end - at_detection).abs() < 0.01, "{what}");
+            assert!(end_torque < -1.0, "{what}: {end_torque}");
+        }
+        CollisionReaction::Passive => {
+            assert_eq!(r.switches[0].to, JointMode::Passive, "{what}");
+            assert!(end_torque >= -2.0, "{what}: {end_torque}");
+        }
+    }
 }
