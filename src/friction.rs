@@ -624,6 +624,37 @@ mod tests {
     use crate::scalar::I16F16;
     use proptest::prelude::*;
 
+    /// `contains`: the box is closed (both corners inside) and a point one
+    /// `f64` step outside any face, on either side, is not.
+    #[test]
+    fn contains_is_the_closed_box() {
+        let lo = [1e-5, 0.002, 0.004, 0.5];
+        let hi = [1e-4, 0.005, 0.01, 2.0];
+        let params = |a: [f64; 4]| FrictionParams {
+            viscous: a[0],
+            coulomb: a[1],
+            stribeck: a[2],
+            stribeck_shape: a[3],
+        };
+        let b = FrictionBounds::try_new(
+            params(lo).validated().unwrap(),
+            params(hi).validated().unwrap(),
+            [0.0; 4],
+        )
+        .unwrap();
+        assert!(b.contains(&params(lo)) && b.contains(&params(hi)));
+        let mid = [0, 1, 2, 3].map(|j| 0.5 * (lo[j] + hi[j]));
+        assert!(b.contains(&params(mid)));
+        for j in 0..4 {
+            let mut below = mid;
+            below[j] = f64::from_bits(lo[j].to_bits() - 1);
+            let mut above = mid;
+            above[j] = f64::from_bits(hi[j].to_bits() + 1);
+            assert!(!b.contains(&params(below)), "{j} below");
+            assert!(!b.contains(&params(above)), "{j} above");
+        }
+    }
+
     /// The field paths that composite settings report for a friction
     /// field: `<composite>.<field>` for each of the four fields (written
     /// out here as the users' settings spell them), and any other name
