@@ -328,11 +328,11 @@ pub(crate) fn regressor_scales<S: Scalar>() -> [f64; 4] {
     [u.speed, 1.0, 1.0, u.motor_torque * u.speed * u.speed]
 }
 
-/// `sat(x, ε)` of eq. (4.18) for `ε > 0` with a prepared reciprocal
-/// `inv_eps = 1/ε`: no division in the hot path. Equals
-/// [`Scalar::sat`] up to the rounding of the product (result clamped to
-/// `[−1, 1]`, non-decreasing; odd on floats, and on fixed point, whose
-/// product rounds ties up, odd but for one LSB at a tie); NaN gives 0.
+/// `sat(x, ε)` of eq. (4.18) with a prepared reciprocal `inv_eps = 1/ε`:
+/// no division in the hot path. For `ε > 0` equals [`Scalar::sat`] up to
+/// the rounding of the product (in `[−1, 1]`, non-decreasing; odd on
+/// floats, on fixed point odd but for one LSB at a product tie); `ε ≤ 0`
+/// is an empty layer, the sign function (0 at 0); NaN gives 0.
 #[inline]
 pub fn sat_with_reciprocal<S: Scalar>(x: S, eps: S, inv_eps: &Coef) -> S {
     sat_scaled(x, eps, |x| x.mul_coef(inv_eps))
@@ -507,8 +507,8 @@ impl<S: Scalar> FrictionConfig<S> {
 
     /// [`evaluate`](Self::evaluate) for a speed that is not NaN (the active
     /// law's checked sample): the same value for every such `qd`; a NaN
-    /// `qd` gives a NaN torque either way, with `Y_2 = −1` here instead
-    /// of 0.
+    /// `qd` gives a NaN torque either way, with `Y_2 = ±1` (the NaN's sign
+    /// bit) here instead of 0.
     #[inline(always)]
     pub(crate) fn evaluate_number(&self, theta: &[S; 4], qd: S) -> FrictionEval<S> {
         // Floats only (folded at compile time): fixed point has no NaN and
@@ -1054,5 +1054,137 @@ mod tests {
         .unwrap();
         let r = extreme.boundary_layer_residual(1e-9, 0.01);
         assert!(r < bx.boundary_layer_bound() && r > 0.0438 * 0.99);
+    }
+
+    /// Property 1 (eq. 4.10) is strict: a variable part of exactly `ρ_F`
+    /// (here 0.25, every value exact in `f64`) breaks it, half of it does
+    /// not, on either side of the box.
+    #[test]
+    fn split_rejects_a_variable_part_of_exactly_rho() {
+        let p = |a: [f64; 4]| FrictionParams::from_array(a).validated().unwrap();
+        let bx = FrictionBounds::try_new(p([0.5; 4]), p([1.0; 4]), [0.25; 4]).unwrap();
+        for j in 0..4 {
+            for (x, holds) in [(1.25, false), (1.125, true), (0.25, false), (0.375, true)] {
+                let mut a = [0.75; 4];
+                a[j] = x;
+                let (c, v, ok) = bx.split(&FrictionParams::from_array(a));
+                assert_eq!(ok, holds, "component {j} at {x}");
+                assert_eq!(c[j] + v[j], x);
+            }
+        }
+    }
+
+    /// The stored parameters are in the documented units (the table of
+    /// `scalar::units`): on `I16F16` `b` in mN·m·s/rad, `f_c` and `f_s`
+    /// in mN·m, `f_τ` in s²/rad² (speeds are stored in rad/s); floats
+    /// store SI. Each stored value is the SI value times that scale to
+    /// half an LSB, and back to SI to the same, and the `I16F16` torque
+    /// read in N·m agrees with the `f64` torque.
+    #[test]
+    fn quantize_stores_the_documented_units() {
+        let f = FrictionParams {
+            viscous: 1e-3,
+            coulomb: 0.012,
+            stribeck: 0.006,
+            stribeck_shape: 0.25,
+        };
+        let scale = [1e3, 1e3, 1e3, 1.0];
+        let q = I16F16::RESOLUTION.to_f64();
+        let stored = FrictionConfig::<I16F16>::quantize(&f);
+        let back = FrictionConfig::<I16F16>::dequantize(&stored).to_array();
+        for j in 0..4 {
+            let want = f.to_array()[j] * scale[j];
+            assert!(
+                (stored[j].to_f64() - want).abs() <= q / 2.0,
+                "component {j}"
+            );
+            let si = f.to_array()[j];
+            assert!((back[j] - si).abs() <= q / 2.0 / scale[j], "component {j}");
+        }
+        assert_eq!(FrictionConfig::<f64>::quantize(&f), f.to_array());
+        assert_eq!(FrictionConfig::<f64>::dequantize(&f.to_array()), f);
+        let s32 = FrictionConfig::<f32>::quantize(&f);
+        assert_eq!(s32, f.to_array().map(|x| x as f32));
+        // The torque at 2 rad/s (outside the layer), read in N·m.
+        let c = FrictionConfig::<I16F16>::new(0.01);
+        let t = c.evaluate(&stored, I16F16::from_f64(2.0)).torque.to_f64() / 1e3;
+        let want = FrictionConfig::<f64>::new(0.01)
+            .evaluate(&f.to_array(), 2.0)
+            .torque;
+        assert!((t - want).abs() < 1e-6, "{t} vs {want}");
+    }
+
+    /// On `I16F16` the layer's value is the `I16F16` product of `q̇` and
+    /// the stored slope `1/ε` when the slope is stored (the fast path the
+    /// field's docs promise), and the coefficient product otherwise; the
+    /// widths below include values where the two products differ by an
+    /// LSB, so taking the other path fails. `sat_number` and
+    /// `evaluate_number` give the same values. On floats the stored slope
+    /// and the coefficient are the same float, so the two paths are one
+    /// product there.
+    #[test]
+    fn layer_products_take_the_documented_path() {
+        let theta = FrictionConfig::<I16F16>::quantize(&example());
+        for eps in [2e-5, 0.0123, 0.3] {
+            let c = FrictionConfig::<I16F16>::new(eps);
+            let e = c.eps.to_bits();
+            let mut differ = 0;
+            for bits in -e - 3..=e + 3 {
+                let x = I16F16::from_bits(bits);
+                let by_coef = x.mul_coef(&c.inv_eps);
+                let inside = match c.inv_eps_value {
+                    Some(v) => {
+                        differ += usize::from(x.mul(v) != by_coef);
+                        x.mul(v)
+                    }
+                    None => by_coef,
+                };
+                let want = if bits.abs() <= e {
+                    inside
+                } else if bits > 0 {
+                    I16F16::ONE
+                } else {
+                    I16F16::ONE.neg()
+                };
+                assert_eq!(c.sat(x), want, "ε {eps}, q̇ bits {bits}");
+                assert_eq!(c.sat_number(x), want, "ε {eps}, q̇ bits {bits}");
+                assert_eq!(c.evaluate_number(&theta, x), c.evaluate(&theta, x));
+            }
+            assert_eq!(c.inv_eps_value.is_some(), eps > 1e-4, "ε {eps}");
+            if eps > 0.01 {
+                assert!(differ > 0, "ε {eps}: the two products never differ");
+            }
+        }
+        for eps in [1e-4, 0.0123, 0.3] {
+            let c = FrictionConfig::<f32>::new(eps);
+            assert_eq!(c.inv_eps_value, Some(1.0f32.mul_coef(&c.inv_eps)));
+            let c = FrictionConfig::<f64>::new(eps);
+            assert_eq!(c.inv_eps_value, Some(1.0f64.mul_coef(&c.inv_eps)));
+            let theta = example().to_array();
+            for k in -40..=40 {
+                let x = k as f64 * eps / 16.0;
+                assert_eq!(c.evaluate_number(&theta, x), c.evaluate(&theta, x));
+            }
+        }
+    }
+
+    /// `sat_with_reciprocal` with `ε ≤ 0` (an empty layer) is the sign
+    /// function, 0 at 0, on every backend.
+    #[test]
+    fn reciprocal_sat_with_an_empty_layer_is_the_sign() {
+        fn check<S: Scalar>() {
+            for eps in [0.0, -0.1] {
+                let inv = Coef::new(1.0 / eps);
+                let sat = |x: f64| sat_with_reciprocal(S::from_f64(x), S::from_f64(eps), &inv);
+                assert_eq!(sat(0.0), S::ZERO, "ε {eps}");
+                for x in [0.05, 2.0] {
+                    assert_eq!(sat(x), S::ONE, "ε {eps}, x {x}");
+                    assert_eq!(sat(-x), S::ONE.neg(), "ε {eps}, x {x}");
+                }
+            }
+        }
+        check::<f32>();
+        check::<f64>();
+        check::<I16F16>();
     }
 }
