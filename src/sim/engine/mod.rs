@@ -21,6 +21,9 @@
 //!   multibody revolute joints, coupled by the library's drive models; the
 //!   independent check of eq. (4.1)–(4.6) of [`crate::sim::Mrr`]; a ball
 //!   on a link can hit a fixed wall through the engine's contacts.
+//! * [`family_drives`] — the independent joint family's members
+//!   ([`crate::sim::plants::JointPlant`]) as the arm's drives, in place of
+//!   the library's drive and friction models.
 //! * [`arm_scenarios`] — the chapter-4 experiments with the library's joint
 //!   step at 4 ms on that arm (or on [`crate::sim::Mrr`]): active tracking
 //!   (§4.4.1, Fig. 4.3), back-driving (§4.4.2, Fig. 4.11–4.12), mode
@@ -42,6 +45,7 @@ pub mod arm;
 pub mod arm_scenarios;
 mod dauj;
 pub mod door;
+pub mod family_drives;
 pub mod ft_sensor;
 pub mod universal_joint;
 mod world;
@@ -54,6 +58,7 @@ pub use arm::{
 };
 pub use arm_scenarios::{ArmPlant, ArmTrackingRun, JointRun};
 pub use door::{engine_door_opening, Backend, DoorBody, EngineDoorRun, EngineDoorSample};
+pub use family_drives::FamilyDrives;
 pub use ft_sensor::{GaugeErrors, SensedWrist, StrainGaugeSensor};
 pub use universal_joint::UniversalJointBench;
 pub use world::EngineSettings;
