@@ -182,8 +182,8 @@ fn one_module_on_family_drives_converges_to_the_family_integrator() {
         );
         // (c)
         for w in diffs.windows(2) {
-            for j in 0..2 {
-                assert!(w[1][j] <= 0.7 * w[0][j], "member {which}: {diffs:?}");
+            for (finer, coarser) in w[1].iter().zip(&w[0]) {
+                assert!(*finer <= 0.7 * coarser, "member {which}: {diffs:?}");
             }
         }
         assert!(
@@ -201,8 +201,9 @@ fn one_module_on_family_drives_converges_to_the_family_integrator() {
 #[test]
 fn family_torques_oppose_the_twist_and_name_their_errors() {
     let m = ModuleParams::thesis_joint();
+    let one = std::slice::from_ref(&m);
     let p = quick_joint_family().remove(0);
-    let mut drives = FamilyDrives::try_new(&[m.clone()], vec![p.clone()], &[SEED], &[0.2]).unwrap();
+    let mut drives = FamilyDrives::try_new(one, vec![p.clone()], &[SEED], &[0.2]).unwrap();
     let rest = drives.motor_angles()[0];
     let at_rest = drives.torques(
         0,
@@ -239,14 +240,14 @@ fn family_torques_oppose_the_twist_and_name_their_errors() {
     assert!((l.transmission - 3.0).abs() < 3e-2, "{l:?}");
     // Typed errors.
     assert!(matches!(
-        FamilyDrives::try_new(&[m.clone()], vec![], &[SEED], &[]),
+        FamilyDrives::try_new(one, vec![], &[SEED], &[]),
         Err(ParamError::OutOfRange {
             name: "members",
             ..
         })
     ));
     assert!(matches!(
-        FamilyDrives::try_new(&[m.clone()], vec![p.clone()], &[], &[]),
+        FamilyDrives::try_new(one, vec![p.clone()], &[], &[]),
         Err(ParamError::OutOfRange { name: "seeds", .. })
     ));
     let mut other = m.clone();
@@ -256,7 +257,7 @@ fn family_torques_oppose_the_twist_and_name_their_errors() {
         Err(ParamError::OutOfRange { name: "ratio", .. })
     ));
     assert!(matches!(
-        FamilyDrives::try_new(&[m.clone()], vec![p], &[SEED], &[f64::NAN]),
+        FamilyDrives::try_new(one, vec![p], &[SEED], &[f64::NAN]),
         Err(ParamError::NotFinite {
             name: "link_angle",
             ..
