@@ -60,7 +60,7 @@ use std::f64::consts::{PI, TAU};
 use super::arm::{
     arm_settings, DriveModel, DriveState, EngineArm, PlantDrives, RotorBody, TipBall, Wall,
 };
-use super::family_drives::FamilyDrives;
+use super::family_drives::{family_member, FamilyDrives};
 use super::world::EngineSettings;
 use crate::control::{ControlInput, JointMode, ModeParams, ModeSettings, ReleaseRule};
 use crate::error::ParamError;
@@ -69,7 +69,6 @@ use crate::joint::{JointConfig, JointParams, JointReadings, JointSettings, Joint
 use crate::scalar::units::quantize;
 use crate::sim::closed_loop::{raised_cosine, JointTorqueFeedback};
 use crate::sim::mrr::ModuleParams;
-use crate::sim::plants::joint_family;
 use crate::sim::Mrr;
 use crate::Scalar;
 
@@ -93,12 +92,12 @@ pub enum ArmPlant {
     Engine(EngineSettings),
     /// The arm of bodies on the engine, at these settings, its drives
     /// members of the independent joint family ([`FamilyDrives`]): member
-    /// `member` of [`joint_family`] on every module, module `i`'s
+    /// `member` of [`joint_family`](crate::sim::plants::joint_family) on every module, module `i`'s
     /// kinematic error drawn from seed `seed + i`.
     Family {
         /// Engine settings.
         settings: EngineSettings,
-        /// Index into [`joint_family`] (0–23).
+        /// Index into [`joint_family`](crate::sim::plants::joint_family) (0–23).
         member: usize,
         /// Seed of module 0's kinematic-error draw (odd seeds draw the
         /// large tooth-pass ripple).
@@ -123,7 +122,7 @@ impl ArmPlant {
     }
 
     /// The engine at [`arm_settings`] on family member `member`
-    /// (index into [`joint_family`]) with seed `seed`.
+    /// (index into [`joint_family`](crate::sim::plants::joint_family)) with seed `seed`.
     pub fn family(member: usize, seed: u64) -> Self {
         ArmPlant::Family {
             settings: arm_settings(),
@@ -287,21 +286,9 @@ fn build(
             member,
             seed,
         } => {
-            // The family is calibrated once per process (its drives are
-            // fitted to the catalogue when built).
-            static FAMILY: std::sync::OnceLock<Vec<crate::sim::plants::JointPlant>> =
-                std::sync::OnceLock::new();
-            let family = FAMILY.get_or_init(joint_family);
-            let Some(plant) = family.get(member) else {
-                return Err(ParamError::OutOfRange {
-                    name: "member",
-                    value: member as f64,
-                    min: 0.0,
-                    max: family.len() as f64 - 1.0,
-                });
-            };
+            let plant = family_member(member)?;
             let seeds: Vec<u64> = (0..n as u64).map(|i| seed.wrapping_add(i)).collect();
-            let mut drive = FamilyDrives::try_new(modules, vec![plant.clone(); n], &seeds, &zero)?;
+            let mut drive = FamilyDrives::try_new(modules, vec![plant; n], &seeds, &zero)?;
             if hold_gravity {
                 let g0 = model.gravity_torques();
                 for (i, g) in g0.iter().enumerate() {

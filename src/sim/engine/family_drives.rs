@@ -42,7 +42,21 @@ use super::arm::{DriveModel, DriveState, DriveTorques};
 use crate::error::ParamError;
 use crate::sim::mrr::ModuleParams;
 use crate::sim::plants::drive::RATIO;
-use crate::sim::plants::joint::{JointPlant, JointPlantState};
+use crate::sim::plants::joint::{joint_family, JointPlant, JointPlantState};
+
+/// Member `index` of [`joint_family`] (0–23), the family calibrated once
+/// per process (its drives are fitted to the catalogue when built). An
+/// index past the family is `ParamError::OutOfRange` naming `member`.
+pub fn family_member(index: usize) -> Result<JointPlant, ParamError> {
+    static FAMILY: std::sync::OnceLock<Vec<JointPlant>> = std::sync::OnceLock::new();
+    let family = FAMILY.get_or_init(joint_family);
+    family.get(index).cloned().ok_or(ParamError::OutOfRange {
+        name: "member",
+        value: index as f64,
+        min: 0.0,
+        max: family.len() as f64 - 1.0,
+    })
+}
 
 /// Members of the joint family driving the modules of an arm (module docs).
 #[derive(Debug, Clone, PartialEq)]

@@ -29,7 +29,8 @@
 //!   (§4.4.1, Fig. 4.3), back-driving (§4.4.2, Fig. 4.11–4.12), mode
 //!   switching and collision detection, with their traces.
 //! * [`door`] — the door opening of §6.4.4: the mobile base, the turret on
-//!   a drive plant, the DAUJ and its F/T sensor on the arm, a hinged door,
+//!   a drive of the independent joint family ([`FamilyDrives`]), the DAUJ
+//!   and its F/T sensor on the arm, a hinged door,
 //!   with the library's wrist step and passive law in the loop at 4 ms.
 //! * [`universal_joint`] — the inner universal joint of eq. (5.1)–(5.3):
 //!   two shafts bent by `β` and the cross between them.
