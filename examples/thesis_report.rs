@@ -226,7 +226,7 @@ fn family_runs(
     })
 }
 
-/// `x` scaled, with `digits` decimals: the value for one run, else
+/// The values `v` times `scale`, with `digits` decimals: the value for one run, else
 /// `median m (min a, max b)` (the middle value of the sorted runs).
 fn spread(v: &[f64], scale: f64, digits: usize) -> String {
     let mut s: Vec<f64> = v.iter().map(|x| x * scale).collect();
