@@ -4,7 +4,7 @@
 //! gets (numbers computed here).
 //!
 //! ```sh
-//! cargo run --release --features sim --example thesis_report            # full runs (~25 s)
+//! cargo run --release --features sim --example thesis_report            # full runs (~40 s)
 //! cargo run --release --features sim --example thesis_report -- --quick # shorter runs (CI)
 //! cargo run --release --features sim --example thesis_report -- --out DIR
 //! cargo run --release --features sim --example thesis_report -- --chapter 6 # one chapter
@@ -16,6 +16,14 @@
 //! [`mrr_control::harmonic_drive`] and [`mrr_control::wrist`], the
 //! experiments of [`mrr_control::sim`]); this file only runs them and
 //! draws.
+//!
+//! Chapter 4's engine figures (Fig. 4.3, 4.11–4.12 and the collision
+//! extension) run on the arm of bodies on the engine with the drives of
+//! three members of the independent joint family
+//! ([`mrr_control::sim::engine::arm_scenarios::ARM_FAMILY`], one in
+//! `--quick`) and show their spread; the same arm on the library's own
+//! drive plant, `Mrr` and the home-made single joint are labelled
+//! comparison numbers.
 //!
 //! Chapter 6's tracking (Fig. 6.7, 6.10–6.11), finger push (Fig.
 //! 6.14–6.17) and door (Fig. 6.19–6.20) come from the rigid-body engine
@@ -46,7 +54,7 @@ use mrr_control::sim::closed_loop::{
 use mrr_control::sim::door::{door_opening, DoorConfig, DoorControl, DoorRun};
 use mrr_control::sim::engine::arm_scenarios::{
     back_driving as arm_back_driving, collision as arm_collision, fig4_3_tracking, hand_path,
-    CollisionObstacle, CONTROL_TICK as ARM_TICK, WALL_ANGLE,
+    CollisionObstacle, ARM_FAMILY, CONTROL_TICK as ARM_TICK, WALL_ANGLE,
 };
 use mrr_control::sim::engine::door::{door_engine_settings, EngineDoorRun, CONTROL_PERIOD};
 use mrr_control::sim::engine::wrist_bench::{
@@ -168,6 +176,74 @@ pub struct Report {
     arm_tracking: Option<Vec<ArmTrackingRun>>,
     arm_back_driving: Option<Vec<JointRun>>,
     arm_collision: Option<ArmCollision>,
+    /// The chapter-4 engine runs on the family members of [`ARM_FAMILY`].
+    arm_family: Option<Vec<ArmFamilyRuns>>,
+}
+
+/// The chapter-4 engine runs on one member of the independent joint family
+/// (f32): Fig. 4.3's A, B, C, Fig. 4.11–4.12's A, B, and the collision on
+/// the engine contact (Stop, Passive).
+#[derive(Clone)]
+struct ArmFamilyRuns {
+    member: usize,
+    seed: u64,
+    tracking: Vec<ArmTrackingRun>,
+    back_driving: Vec<JointRun>,
+    stop: JointRun,
+    passive: JointRun,
+}
+
+/// Every chapter-4 engine run on family member `member` with `seed`.
+fn family_runs(
+    member: usize,
+    seed: u64,
+    duration: f64,
+    settle: f64,
+) -> Result<ArmFamilyRuns, mrr_control::error::ParamError> {
+    let plant = ArmPlant::family(member, seed);
+    let mut tracking = Vec::new();
+    for fb in [
+        JointTorqueFeedback::None,
+        JointTorqueFeedback::Sensor,
+        JointTorqueFeedback::Estimated,
+    ] {
+        tracking.push(fig4_3_tracking::<f32>(plant, fb, duration, settle)?);
+    }
+    Ok(ArmFamilyRuns {
+        member,
+        seed,
+        tracking,
+        back_driving: vec![
+            arm_back_driving::<f32>(plant, false)?,
+            arm_back_driving::<f32>(plant, true)?,
+        ],
+        stop: arm_collision::<f32>(plant, CollisionObstacle::Contact, CollisionReaction::Stop)?,
+        passive: arm_collision::<f32>(
+            plant,
+            CollisionObstacle::Contact,
+            CollisionReaction::Passive,
+        )?,
+    })
+}
+
+/// The values `v` times `scale`, with `digits` decimals: the value for one run, else
+/// `median m (min a, max b)` (the middle value of the sorted runs).
+fn spread(v: &[f64], scale: f64, digits: usize) -> String {
+    let mut s: Vec<f64> = v.iter().map(|x| x * scale).collect();
+    s.sort_by(f64::total_cmp);
+    match s.len() {
+        0 => "none".into(),
+        1 => format!("{:.*}", digits, s[0]),
+        n => format!(
+            "median {:.*} (min {:.*}, max {:.*})",
+            digits,
+            s[n / 2],
+            digits,
+            s[0],
+            digits,
+            s[n - 1]
+        ),
+    }
 }
 
 /// Seeds of the chapter-6 engine sweeps in the report (the claims' own
@@ -216,6 +292,7 @@ struct EngineDoor {
 /// The chapter-4 collision runs on the engine arm (f32): the engine
 /// contact with the Stop and Passive reactions, and the spring obstacle
 /// (Stop) on the engine and on `Mrr` for comparison.
+#[derive(Clone)]
 struct ArmCollision {
     stop: JointRun,
     passive: JointRun,
@@ -224,17 +301,28 @@ struct ArmCollision {
 }
 
 /// What produced a chapter-4 engine figure, for its text.
-fn arm_source() -> String {
+fn arm_source(family: &[ArmFamilyRuns]) -> String {
+    let members = family
+        .iter()
+        .map(|f| format!("{} (seed {})", f.member, f.seed))
+        .collect::<Vec<_>>()
+        .join(", ");
     format!(
-        "rapier3d engine, step {} ms (one substep), arm of bodies (thesis joint: link, rotor, \
-         full drive plant and friction); the library's joint step at {} ms on f32. The drive \
-         plant is not from the independent family: its kinematic error is Table 3.2's eq. \
-         (3.7), the model the estimator subtracts, and its friction has eq. (4.8)'s form; the \
-         family's verdicts are the claims (`--example claims`)",
+        "rapier3d engine, step {} ms (one substep), arm of bodies (thesis joint: link, \
+         rotor); its drive members {members} of the independent joint family \
+         (sim::engine::FamilyDrives on sim::plants::joint_family: flexspline backbone and \
+         hysteresis, bearing compliance, mesh friction at the node, a drawn kinematic error \
+         with ripple, pre-sliding motor and link friction; not the models the library \
+         carries); the library's joint step at {} ms on f32; values over the members",
         arm_settings().dt() * 1e3,
         ARM_TICK * 1e3
     )
 }
+
+/// What the comparison runs on the library's own drive plant are.
+const PLANT_DRIVES: &str = "the library's drive plant on the same engine arm (PlantDrives: \
+     Table 3.2's eq. (3.7) kinematic error, the model the estimator subtracts, and friction \
+     of eq. (4.8)'s form)";
 
 /// The engine settings of every chapter-6 engine run (0.25 ms step).
 fn engine_settings() -> EngineSettings {
@@ -298,6 +386,7 @@ impl Report {
             arm_tracking: None,
             arm_back_driving: None,
             arm_collision: None,
+            arm_family: None,
         }
     }
 
@@ -496,6 +585,45 @@ impl Report {
         self.arm_tracking
             .as_deref()
             .ok_or_else(|| "engine arm tracking runs missing".into())
+    }
+
+    /// Every chapter-4 engine run on the family members of [`ARM_FAMILY`]
+    /// (one member in quick mode), one thread per member.
+    fn arm_family(&mut self) -> Result<&[ArmFamilyRuns], Error> {
+        if self.arm_family.is_none() {
+            let (duration, settle) = if self.opts.quick {
+                (4.0, 1.0)
+            } else {
+                (12.0, 2.0)
+            };
+            let n = self.engine_seeds() as usize;
+            let results: Vec<Result<ArmFamilyRuns, String>> = std::thread::scope(|scope| {
+                let handles: Vec<_> = ARM_FAMILY
+                    .iter()
+                    .take(n)
+                    .map(|&(member, seed)| {
+                        scope.spawn(move || {
+                            family_runs(member, seed, duration, settle).map_err(|e| e.to_string())
+                        })
+                    })
+                    .collect();
+                handles
+                    .into_iter()
+                    .map(|h| {
+                        h.join()
+                            .unwrap_or_else(|_| Err("a family run panicked".into()))
+                    })
+                    .collect()
+            });
+            let mut runs = Vec::new();
+            for r in results {
+                runs.push(r?);
+            }
+            self.arm_family = Some(runs);
+        }
+        self.arm_family
+            .as_deref()
+            .ok_or_else(|| "family arm runs missing".into())
     }
 
     /// Fig. 4.11–4.12 on the engine arm (f32): the hand back-drives the
@@ -1402,20 +1530,35 @@ fn fig4_3(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
     let home = r.tracking().to_vec();
     let all = r.arm_tracking()?.to_vec();
+    let family = r.arm_family()?.to_vec();
     let (runs, on_mrr) = all.split_at(3.min(all.len()));
+    let first = family.first().ok_or("no family run")?;
     let (off, markers) = abc(
-        runs,
+        &first.tracking,
         |x| x.time.last().map_or(0.0, |t| t + ARM_TICK),
         &["A: no JTF", "B: JTF, sensor", "C: JTF, estimate"],
     );
-    let pts: Vec<_> = runs
+    let member_pts = |f: &ArmFamilyRuns| -> Vec<(f64, f64)> {
+        f.tracking
+            .iter()
+            .zip(&off)
+            .flat_map(|(x, o)| {
+                x.time
+                    .iter()
+                    .zip(&x.link_error)
+                    .map(move |(t, e)| (o + t, e * 1e3))
+            })
+            .collect()
+    };
+    let mut series: Vec<_> = family
         .iter()
-        .zip(&off)
-        .flat_map(|(x, o)| {
-            x.time
-                .iter()
-                .zip(&x.link_error)
-                .map(move |(t, e)| (o + t, e * 1e3))
+        .zip([BLUE_, ORANGE, GREEN_])
+        .map(|(f, c)| {
+            line(
+                &format!("engine arm, member {} seed {}", f.member, f.seed),
+                c,
+                member_pts(f),
+            )
         })
         .collect();
     let home_pts: Vec<_> = home
@@ -1434,8 +1577,25 @@ fn fig4_3(r: &mut Report) -> Result<Figure, Error> {
             .collect::<Vec<_>>()
             .join(", ")
     };
-    let ours = rms(runs.iter().map(|x| x.rms_error[0]).collect());
-    let max = rms(runs.iter().map(|x| x.max_error[0]).collect());
+    let over = |k: usize, f: &dyn Fn(&ArmTrackingRun) -> f64| -> String {
+        let v: Vec<f64> = family
+            .iter()
+            .filter_map(|m| m.tracking.get(k))
+            .map(f)
+            .collect();
+        spread(&v, 1e3, 2)
+    };
+    let abc_over = |f: &dyn Fn(&ArmTrackingRun) -> f64| {
+        ["A", "B", "C"]
+            .iter()
+            .enumerate()
+            .map(|(k, l)| format!("{l} {}", over(k, f)))
+            .collect::<Vec<_>>()
+            .join("; ")
+    };
+    let ours = abc_over(&|x| x.rms_error[0]);
+    let max = abc_over(&|x| x.max_error[0]);
+    let plant_rms = rms(runs.iter().map(|x| x.rms_error[0]).collect());
     let mrr_rms = rms(on_mrr.iter().map(|x| x.rms_error[0]).collect());
     let home_rms = rms(home.iter().map(|x| x.link_error.rms).collect());
     let settle = if r.opts.quick { 1.0 } else { 2.0 };
@@ -1447,10 +1607,10 @@ fn fig4_3(r: &mut Report) -> Result<Figure, Error> {
             title: "Fig. 4.3  link error on the engine arm, eq. (4.19), Table 4.1, T = 4 ms (f32)",
             x: "time (s), three runs end to end",
             y: "q_l − q_l^d (mrad)",
-            series: vec![
-                line("engine arm", BLUE_, pts),
-                line("home-made single joint (comparison)", GREY, home_pts),
-            ],
+            series: {
+                series.push(line("home-made single joint (comparison)", GREY, home_pts));
+                series
+            },
             markers,
         },
         "area A (no joint-torque feedback) has the largest error; with feedback from the \
@@ -1461,10 +1621,11 @@ fn fig4_3(r: &mut Report) -> Result<Figure, Error> {
              crate's 4 ms preset (JointParams::table_4_1_at, gains redesigned for the tick); \
              A and B its active law fed 0 or the drive's true transmission torque (a \
              noiseless sensor), C the joint step on its estimate. Link error after {settle} s \
-             (mrad): RMS {ours}; max {max}. The same loop on Mrr (eq. 4.1–4.6): RMS \
-             {mrr_rms}. Comparison, home-made single joint (sim::closed_loop: Table 4.1's \
-             gains at 4 ms, f64 law, noisy F/T sensor): RMS {home_rms}",
-            arm_source()
+             (mrad): RMS {ours}; max {max}. Comparison, {PLANT_DRIVES}: RMS {plant_rms}; the \
+             same loop on Mrr (eq. 4.1–4.6): RMS {mrr_rms}. Comparison, home-made single \
+             joint (sim::closed_loop: Table 4.1's gains at 4 ms, f64 law, noisy F/T sensor): \
+             RMS {home_rms}",
+            arm_source(&family)
         ),
     )
 }
@@ -1482,16 +1643,34 @@ fn fig4_11(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
     let home = r.passive().to_vec();
     let runs = r.arm_back_driving()?.to_vec();
+    let family = r.arm_family()?.to_vec();
+    let first = family.first().ok_or("no family run")?;
     let (off, markers) = abc(
-        &runs,
+        &first.back_driving,
         |x| x.time.last().map_or(0.0, |t| t + ARM_TICK),
         &["A: no compensation", "B: eq. 4.32, estimate"],
     );
-    let pts: Vec<_> = runs
+    let series: Vec<_> = family
         .iter()
-        .zip(&off)
-        .flat_map(|(x, o)| hand_torque_series(x, *o))
+        .zip([BLUE_, ORANGE, GREEN_])
+        .map(|(f, c)| {
+            let pts: Vec<_> = f
+                .back_driving
+                .iter()
+                .zip(&off)
+                .flat_map(|(x, o)| hand_torque_series(x, *o))
+                .collect();
+            line(
+                &format!("hand torque, member {} seed {}", f.member, f.seed),
+                c,
+                pts,
+            )
+        })
         .collect();
+    let over = |f: &dyn Fn(&[JointRun]) -> f64, scale: f64, digits: usize| {
+        let v: Vec<f64> = family.iter().map(|m| f(&m.back_driving)).collect();
+        spread(&v, scale, digits)
+    };
     let home_rms = home
         .iter()
         .zip(["A", "B", "C"])
@@ -1506,23 +1685,30 @@ fn fig4_11(r: &mut Report) -> Result<Figure, Error> {
             title: "Fig. 4.11  hand torque back-driving the engine arm's joint, eq. (4.32), T = 4 ms (f32)",
             x: "time (s), two runs end to end",
             y: "hand torque (N·m)",
-            series: vec![line("hand torque, engine", BLUE_, pts)],
+            series,
             markers,
         },
         "back-driving without torque feedback (A) takes more torque than with eq. (4.32) on \
          the estimate (B) or the F/T sensor (C)"
             .into(),
         format!(
-            "{}; hand 200 N·m/rad, 5 N·m·s/rad on q_h = 0.5 sin(2πt/4 s), RMS over 2–6 s: A \
-             {:.3} N·m, B {:.3} N·m (reduction {:.3} N·m; RMS N τ_m {:.3} N·m); B in Passive \
-             from {:.2} s (mode manager, entry 1 N·m). Area C (F/T sensor) only in the \
-             comparison, home-made single joint (sim::closed_loop, 6 s): RMS {home_rms}",
-            arm_source(),
+            "{}; hand 200 N·m/rad, 5 N·m·s/rad on q_h = 0.5 sin(2πt/4 s), RMS over 2–6 s \
+             (N·m): A {}, B {} (reduction A − B {}; RMS N τ_m in B {}); B in Passive from {} s \
+             (mode manager, entry 1 N·m). Comparison, {PLANT_DRIVES}: RMS A {:.3}, B {:.3} N·m. \
+             Area C (F/T sensor) only in the comparison, home-made single joint \
+             (sim::closed_loop, 6 s): RMS {home_rms}",
+            arm_source(&family),
+            over(&|x| x[0].env_rms, 1.0, 3),
+            over(&|x| x[1].env_rms, 1.0, 3),
+            over(&|x| x[0].env_rms - x[1].env_rms, 1.0, 3),
+            over(&|x| x[1].reflected_motor_rms, 1.0, 3),
+            over(
+                &|x| x[1].switches.first().map_or(f64::NAN, |s| s.time),
+                1.0,
+                2
+            ),
             runs[0].env_rms,
             runs[1].env_rms,
-            runs[0].env_rms - runs[1].env_rms,
-            runs[1].reflected_motor_rms,
-            runs[1].switches.first().map_or(f64::NAN, |s| s.time),
         ),
     )
 }
@@ -1531,17 +1717,32 @@ fn fig4_12(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
     let home = r.passive().to_vec();
     let runs = r.arm_back_driving()?.to_vec();
+    let family = r.arm_family()?.to_vec();
+    let first = family.first().ok_or("no family run")?;
     let (off, markers) = abc(
-        &runs,
+        &first.back_driving,
         |x| x.time.last().map_or(0.0, |t| t + ARM_TICK),
         &["A", "B"],
     );
-    let link: Vec<_> = runs
+    let links: Vec<_> = family
         .iter()
-        .zip(&off)
-        .flat_map(|(x, o)| x.time.iter().zip(&x.link).map(move |(t, q)| (o + t, *q)))
+        .zip([BLUE_, ORANGE, GREEN_])
+        .map(|(f, c)| {
+            let pts: Vec<_> = f
+                .back_driving
+                .iter()
+                .zip(&off)
+                .flat_map(|(x, o)| x.time.iter().zip(&x.link).map(move |(t, q)| (o + t, *q)))
+                .collect();
+            line(
+                &format!("link q_l, member {} seed {}", f.member, f.seed),
+                c,
+                pts,
+            )
+        })
         .collect();
-    let hand: Vec<_> = runs
+    let hand: Vec<_> = first
+        .back_driving
         .iter()
         .zip(&off)
         .flat_map(|(x, o)| x.time.iter().map(move |t| (o + t, hand_path(*t).0)))
@@ -1570,17 +1771,35 @@ fn fig4_12(r: &mut Report) -> Result<Figure, Error> {
             title: "Fig. 4.12  engine arm's link angle while back-driven, T = 4 ms (f32)",
             x: "time (s), two runs end to end",
             y: "angle (rad)",
-            series: vec![
-                line("hand q_h", GREY, hand),
-                line("link q_l, engine", BLUE_, link),
-            ],
+            series: {
+                let mut v = vec![line("hand q_h", GREY, hand)];
+                v.extend(links);
+                v
+            },
             markers,
         },
         "the joint follows the hand".into(),
         format!(
-            "{}; link lag behind the hand over 2–6 s, RMS (mrad): A {:.1}, B {:.1}. \
-             Comparison, home-made single joint (sim::closed_loop): {home_lag}",
-            arm_source(),
+            "{}; link lag behind the hand over 2–6 s, RMS (mrad): A {}, B {}. Comparison, \
+             {PLANT_DRIVES}: A {:.1}, B {:.1}; home-made single joint (sim::closed_loop): \
+             {home_lag}",
+            arm_source(&family),
+            spread(
+                &family
+                    .iter()
+                    .map(|f| lag(&f.back_driving[0]))
+                    .collect::<Vec<_>>(),
+                1e3,
+                1
+            ),
+            spread(
+                &family
+                    .iter()
+                    .map(|f| lag(&f.back_driving[1]))
+                    .collect::<Vec<_>>(),
+                1e3,
+                1
+            ),
             lag(&runs[0]) * 1e3,
             lag(&runs[1]) * 1e3
         ),
@@ -1591,7 +1810,9 @@ fn fig4_12(r: &mut Report) -> Result<Figure, Error> {
 /// detected on the estimated joint torque.
 fn fig4_13_collision(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
-    let c = r.arm_collision()?;
+    let c = r.arm_collision()?.clone();
+    let family = r.arm_family()?.to_vec();
+    let first = family.first().ok_or("no family run")?;
     let window = |x: &JointRun, f: &dyn Fn(&JointRun, usize) -> f64| -> Vec<(f64, f64)> {
         x.time
             .iter()
@@ -1603,10 +1824,10 @@ fn fig4_13_collision(r: &mut Report) -> Result<Figure, Error> {
     let contact = |x: &JointRun, i: usize| x.environment_torque[i];
     let estimate = |x: &JointRun, i: usize| -x.estimate[i];
     let mut markers = Vec::new();
-    if let Some(t) = c.stop.contact {
+    if let Some(t) = first.stop.contact {
         markers.push((t, "contact".to_string()));
     }
-    if let Some(t) = c.stop.detection {
+    if let Some(t) = first.stop.detection {
         markers.push((t, "detected".to_string()));
     }
     let latency = |x: &JointRun| match (x.contact, x.detection) {
@@ -1619,6 +1840,19 @@ fn fig4_13_collision(r: &mut Report) -> Result<Figure, Error> {
             .fold(0.0f64, |m, v| m.max(v.abs()))
     };
     let end = |x: &JointRun| x.environment_torque.last().copied().unwrap_or(f64::NAN);
+    let delay = |x: &JointRun| match (x.contact, x.detection) {
+        (Some(a), Some(b)) => b - a,
+        _ => f64::NAN,
+    };
+    let over = |f: &dyn Fn(&ArmFamilyRuns) -> f64, scale: f64, digits: usize| {
+        spread(&family.iter().map(f).collect::<Vec<_>>(), scale, digits)
+    };
+    let detected = |f: &dyn Fn(&ArmFamilyRuns) -> &JointRun| {
+        family
+            .iter()
+            .filter(|m| f(m).detection.is_some() && f(m).contact.is_some())
+            .count()
+    };
     figure(
         &dir,
         "fig4_13_collision_contact.svg",
@@ -1628,13 +1862,24 @@ fn fig4_13_collision(r: &mut Report) -> Result<Figure, Error> {
             x: "time (s)",
             y: "torque on the link (N·m)",
             series: vec![
-                line("contact torque, Stop", BLUE_, window(&c.stop, &contact)),
+                line(
+                    &format!(
+                        "contact torque, Stop, member {} seed {}",
+                        first.member, first.seed
+                    ),
+                    BLUE_,
+                    window(&first.stop, &contact),
+                ),
                 line(
                     "contact torque, Passive",
                     ORANGE,
-                    window(&c.passive, &contact),
+                    window(&first.passive, &contact),
                 ),
-                line("−τ̂_t (estimate), Stop", GREEN_, window(&c.stop, &estimate)),
+                line(
+                    "−τ̂_t (estimate), Stop",
+                    GREEN_,
+                    window(&first.stop, &estimate),
+                ),
             ],
             markers,
         },
@@ -1645,18 +1890,25 @@ fn fig4_13_collision(r: &mut Report) -> Result<Figure, Error> {
         format!(
             "{}; a 2 cm ball at the link's tip meets a fixed box at {WALL_ANGLE} rad (rapier \
              colliders, frictionless; the force is the engine's contact). Detector 3 N·m, \
-             debounce 3 ticks. Stop: contact at {:.4} s, detected after {}, peak tick-mean \
-             contact torque {:.2} N·m, {:.2} N·m at 5 s (held pressing). Passive: detected \
-             after {}, {:.2} N·m at 5 s (yielded). Comparison, the spring obstacle \
-             (300 N·m/rad, a torque the crate writes), Stop: detected after {} on the engine, \
-             {} on Mrr",
-            arm_source(),
-            c.stop.contact.unwrap_or(f64::NAN),
+             debounce 3 ticks. Stop: detected on {} of {} members, contact at {} s, detected \
+             after {} ms, peak tick-mean contact torque {} N·m, {} N·m at 5 s. \
+             Passive: detected on {} of {}, after {} ms, {} N·m at 5 s. \
+             Comparison, {PLANT_DRIVES}: Stop detected after {}, Passive after {}; the spring \
+             obstacle (300 N·m/rad, a torque the crate writes), Stop, on that plant: detected \
+             after {} on the engine, {} on Mrr",
+            arm_source(&family),
+            detected(&|m| &m.stop),
+            family.len(),
+            over(&|m| m.stop.contact.unwrap_or(f64::NAN), 1.0, 4),
+            over(&|m| delay(&m.stop), 1e3, 1),
+            over(&|m| peak(&m.stop), 1.0, 2),
+            over(&|m| end(&m.stop), 1.0, 2),
+            detected(&|m| &m.passive),
+            family.len(),
+            over(&|m| delay(&m.passive), 1e3, 1),
+            over(&|m| end(&m.passive), 1.0, 2),
             latency(&c.stop),
-            peak(&c.stop),
-            end(&c.stop),
             latency(&c.passive),
-            end(&c.passive),
             latency(&c.spring),
             latency(&c.spring_mrr)
         ),

@@ -50,7 +50,10 @@
 //! damper per module), [`PlantDrives`] (the simulated drive
 //! [`crate::sim::DrivePlantParams`] with its hysteresis and kinematic
 //! error, and optionally the friction of eq. 4.7/4.8 of
-//! [`crate::sim::FrictionParams`]), or any closure
+//! [`crate::sim::FrictionParams`]; built from the models the library
+//! carries, so a comparison), [`super::FamilyDrives`] (members of the
+//! independent joint family, the plant the chapter-4 figures run on), or
+//! any closure
 //! `FnMut(usize, &DriveState) -> DriveTorques`.
 //!
 //! # Time stepping

@@ -1,7 +1,18 @@
 //! The chapter-4 experiments with the library's joint step in the loop, run
 //! on the arm of bodies on the engine ([`EngineArm`]) or, for comparison,
 //! on the thesis's own arm model ([`Mrr`], eq. 4.1–4.6): the runners, their
-//! set-ups and the traces a figure draws. The criteria these runs are held
+//! set-ups and the traces a figure draws.
+//!
+//! # Which drives
+//! [`ArmPlant::Family`] drives the engine arm's joints with a member of the
+//! independent joint family ([`FamilyDrives`]: its own backbone,
+//! hysteresis, node friction, drawn kinematic error and pre-sliding
+//! friction), the plant the figures' evidence rests on ([`ARM_FAMILY`]
+//! names the members and seeds the report runs). [`ArmPlant::Engine`]
+//! drives it with the library's drive plant ([`PlantDrives`]: Table 3.2's
+//! eq. 3.7 kinematic error, the model the estimator subtracts, and friction
+//! of eq. 4.8's form): a plant partly built from the models under test,
+//! kept as a comparison. The criteria these runs are held
 //! to live in `tests/engine_arm.rs` and `tests/engine_arm_modes.rs`.
 //!
 //! # The loop
@@ -46,7 +57,10 @@
 
 use std::f64::consts::{PI, TAU};
 
-use super::arm::{arm_settings, DriveState, EngineArm, PlantDrives, RotorBody, TipBall, Wall};
+use super::arm::{
+    arm_settings, DriveModel, DriveState, EngineArm, PlantDrives, RotorBody, TipBall, Wall,
+};
+use super::family_drives::{family_member, FamilyDrives};
 use super::world::EngineSettings;
 use crate::control::{ControlInput, JointMode, ModeParams, ModeSettings, ReleaseRule};
 use crate::error::ParamError;
@@ -71,9 +85,35 @@ pub enum ArmPlant {
     /// The thesis's model, eq. (4.1)–(4.6), RK4 at 0.1 ms.
     Mrr,
     /// The arm of bodies on the engine, at these settings (e.g.
-    /// [`arm_settings`] or its half step).
+    /// [`arm_settings`] or its half step), its drives the library's drive
+    /// plant and friction ([`PlantDrives`]: Table 3.2's eq. 3.7 kinematic
+    /// error, the model the estimator subtracts, and friction of eq. 4.8's
+    /// form) — kept as a comparison.
     Engine(EngineSettings),
+    /// The arm of bodies on the engine, at these settings, its drives
+    /// members of the independent joint family ([`FamilyDrives`]): member
+    /// `member` of [`joint_family`](crate::sim::plants::joint_family) on every module, module `i`'s
+    /// kinematic error drawn from seed `seed + i`.
+    Family {
+        /// Engine settings.
+        settings: EngineSettings,
+        /// Index into [`joint_family`](crate::sim::plants::joint_family) (0–23).
+        member: usize,
+        /// Seed of module 0's kinematic-error draw (odd seeds draw the
+        /// large tooth-pass ripple).
+        seed: u64,
+    },
 }
+
+/// The family members and seeds the chapter-4 engine figures run on:
+/// `(index into joint_family, seed)`. Member 2: rounded-knee backbone, the
+/// loss all at the node, full motor friction; 14: spline backbone, 30 % of
+/// the loss at the node, full friction (the quick family's first corner);
+/// 17: quadratic backbone, all at the node, half friction (its second
+/// corner). Seeds 1–3 (odd ones draw the large tooth-pass ripple). The
+/// members' link inertia and payload are not used on the engine (the
+/// arm's bodies are the link).
+pub const ARM_FAMILY: [(usize, u64); 3] = [(2, 1), (14, 2), (17, 3)];
 
 impl ArmPlant {
     /// The engine at [`arm_settings`] (0.1 ms, one substep).
@@ -81,11 +121,30 @@ impl ArmPlant {
         ArmPlant::Engine(arm_settings())
     }
 
-    /// A label for tables: `"Mrr"` or `"engine dt 0.1 ms"`.
+    /// The engine at [`arm_settings`] on family member `member`
+    /// (index into [`joint_family`](crate::sim::plants::joint_family)) with seed `seed`.
+    pub fn family(member: usize, seed: u64) -> Self {
+        ArmPlant::Family {
+            settings: arm_settings(),
+            member,
+            seed,
+        }
+    }
+
+    /// A label for tables: `"Mrr"`, `"engine dt 0.1 ms"` or
+    /// `"engine dt 0.1 ms, family member 14 seed 2"`.
     pub fn label(&self) -> String {
         match self {
             ArmPlant::Mrr => "Mrr".into(),
             ArmPlant::Engine(s) => format!("engine dt {} ms", s.dt() * 1e3),
+            ArmPlant::Family {
+                settings,
+                member,
+                seed,
+            } => format!(
+                "engine dt {} ms, family member {member} seed {seed}",
+                settings.dt() * 1e3
+            ),
         }
     }
 }
@@ -138,7 +197,7 @@ impl TickPlant for Mrr {
     }
 }
 
-impl TickPlant for EngineArm<PlantDrives> {
+impl<D: DriveModel> TickPlant for EngineArm<D> {
     fn angles(&self) -> (Vec<f64>, Vec<f64>) {
         (self.link_angles(), self.motor_angles())
     }
@@ -173,8 +232,10 @@ impl TickPlant for EngineArm<PlantDrives> {
 /// The arm of `modules` on `plant`, at rest at `q_l = 0`. With
 /// `hold_gravity` every drive starts twisted to carry the gravity torque
 /// there (motor angles from `Mrr`'s inversion of the drive plant, the same
-/// start on both plants); otherwise at `q_m = 0`, drives relaxed.
-/// Full drive plants and their friction on both.
+/// start on both plants; on a family member, its own drive loaded to the
+/// same gravity torque, [`FamilyDrives::load`]); otherwise at `q_m = 0`
+/// (a family member: its zero-load motor angle), drives relaxed. Full
+/// drive plants and their friction on every plant.
 fn build(
     modules: &[ModuleParams],
     plant: ArmPlant,
@@ -218,15 +279,44 @@ fn build(
                 })
                 .collect();
             let drive = PlantDrives::of(modules, true, &start);
-            let mut arm =
-                EngineArm::try_new(modules, ARM_GRAVITY, RotorBody::default(), drive, settings)?;
-            if let Some((ball, wall)) = contact {
-                arm.add_wall(ball, wall)?;
+            engine_arm(modules, drive, settings, &qm0, contact)
+        }
+        ArmPlant::Family {
+            settings,
+            member,
+            seed,
+        } => {
+            let plant = family_member(member)?;
+            let seeds: Vec<u64> = (0..n as u64).map(|i| seed.wrapping_add(i)).collect();
+            let mut drive = FamilyDrives::try_new(modules, vec![plant; n], &seeds, &zero)?;
+            if hold_gravity {
+                let g0 = model.gravity_torques();
+                for (i, g) in g0.iter().enumerate() {
+                    drive.load(i, *g)?;
+                }
             }
-            arm.set_state(&zero, &qm0, &zero, &zero);
-            Ok(Box::new(arm))
+            let qm = drive.motor_angles();
+            engine_arm(modules, drive, settings, &qm, contact)
         }
     }
+}
+
+/// The engine arm of `modules` on `drive`, at rest at `q_l = 0` with the
+/// motor angles `qm`, with the contact if any.
+fn engine_arm<D: DriveModel + 'static>(
+    modules: &[ModuleParams],
+    drive: D,
+    settings: EngineSettings,
+    qm: &[f64],
+    contact: Option<(&TipBall, &Wall)>,
+) -> Result<Box<dyn TickPlant>, ParamError> {
+    let zero = vec![0.0; modules.len()];
+    let mut arm = EngineArm::try_new(modules, ARM_GRAVITY, RotorBody::default(), drive, settings)?;
+    if let Some((ball, wall)) = contact {
+        arm.add_wall(ball, wall)?;
+    }
+    arm.set_state(&zero, qm, &zero, &zero);
+    Ok(Box::new(arm))
 }
 
 /// Count readings of true angles (rad) for a joint of `params`: the link's

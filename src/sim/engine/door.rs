@@ -26,10 +26,13 @@
 //! * **Turret** — the arm (shoulder and elbow locked: one body, 3 kg,
 //!   0.35 kg·m² about the turret axis) on a revolute joint to the base, and
 //!   its rotor (`I_m = 1.14e-5 kg·m²`, turning at `N = 100` times the link
-//!   speed) on its own joint, coupled by the drive plant of the independent
-//!   plant family ([`PlantDrives`] of [`ModuleParams::thesis_joint`]: the
-//!   SHD-17-100 backbone with Maxwell-slip hysteresis and kinematic error,
-//!   link and motor friction with presliding). The link-side torque sensor
+//!   speed) on its own joint, coupled by member [`TURRET_FAMILY_MEMBER`] of
+//!   the independent joint family ([`FamilyDrives`]: spline flexspline
+//!   backbone with Maxwell-slip hysteresis, 30 % of the catalogue loss at
+//!   the node, wave-generator bearing compliance, a kinematic error drawn
+//!   from the run's seed, asymmetric pre-sliding motor friction and
+//!   Maxwell-slip link friction; not the library's eq. 3.7 or eq. 4.8
+//!   models), the rotor mounted at the member's zero-load motor angle. The link-side torque sensor
 //!   reads the drive's transmission torque with ±0.05 N·m uniform noise;
 //!   the motor encoder has 2000 counts per turn.
 //! * **Wrist** — the DAUJ of [`super::wrist`] (the same parts, axes and
@@ -113,10 +116,11 @@
 use rapier3d_f64::na::UnitQuaternion;
 use rapier3d_f64::prelude::*;
 
-use super::arm::{DriveModel, DriveState, PlantDrives};
+use super::arm::{DriveModel, DriveState};
 use super::dauj::{
     insert_dauj, DaujJointAngles, DaujOptions, DaujRotors, DaujTool, WorldAxis, WristDrives,
 };
+use super::family_drives::{family_member, FamilyDrives};
 use super::ft_sensor::{GaugeErrors, StrainGaugeSensor, V_REF};
 use super::world::{body_at, hinge, Coord, EngineSettings, World};
 use crate::control::{
@@ -612,11 +616,16 @@ fn run<S: Scalar>(
         GaugeErrors::try_new(0.02, 0.0, 3e-4, cfg.seed ^ 0x5E45_0000)?,
     )?;
     let turret_module = ModuleParams::thesis_joint();
-    let mut turret_drive = PlantDrives::of(
+    let turret_family = FamilyDrives::try_new(
         core::slice::from_ref(&turret_module),
-        true,
-        &[DriveState::default()],
-    );
+        vec![family_member(TURRET_FAMILY_MEMBER)?],
+        &[cfg.seed],
+        &[0.0],
+    )?;
+    let mut turret_drive = TurretDrive {
+        motor_offset: turret_family.motor_angles()[0],
+        drive: turret_family,
+    };
     let wrist_friction = FrictionParams {
         coulomb: 0.008,
         static_excess: 0.004,
@@ -793,6 +802,30 @@ fn run<S: Scalar>(
     Ok(out)
 }
 
+/// Index into [`crate::sim::plants::joint_family`] of the turret's drive:
+/// the spline backbone, 30 % of the catalogue loss at the node, full motor
+/// friction (`F = 0.012` N·m; the quick family's first corner). Its
+/// kinematic error is drawn from the run's seed.
+pub const TURRET_FAMILY_MEMBER: usize = 14;
+
+/// The turret's drive: a family member, and the motor angle (rad) at which
+/// it carries no torque with the link at 0, added to the rotor joint's
+/// angle (the scene starts the rotor at 0).
+struct TurretDrive {
+    drive: FamilyDrives,
+    motor_offset: f64,
+}
+
+impl TurretDrive {
+    /// The member's state for the scene's turret state `ts`.
+    fn at(&self, ts: DriveState) -> DriveState {
+        DriveState {
+            motor_angle: ts.motor_angle + self.motor_offset,
+            ..ts
+        }
+    }
+}
+
 /// The engine steps of one control tick; `wrench` becomes the sensor's
 /// wrench averaged over the tick (the gauge amplifiers' integrate-and-dump
 /// anti-aliasing filter ahead of the 4 ms sampling).
@@ -808,7 +841,7 @@ fn step_ticks(
     cfg: &DoorConfig,
     gains: (f64, f64),
     grasp: (f64, f64),
-    turret_drive: &mut PlantDrives,
+    turret_drive: &mut TurretDrive,
     friction: (&FrictionParams, &DoorBody),
     torques: ([f64; 2], f64),
     transmission: &mut f64,
@@ -869,7 +902,7 @@ fn step_engine(
     cfg: &DoorConfig,
     (kp, kd): (f64, f64),
     (kg, kr): (f64, f64),
-    turret_drive: &mut PlantDrives,
+    turret_drive: &mut TurretDrive,
     (hinge, door): (&FrictionParams, &DoorBody),
     (torque_motor, torque_turret): ([f64; 2], f64),
     transmission: &mut f64,
@@ -917,7 +950,7 @@ fn step_engine(
         link_speed: tl.speed(bodies),
         motor_speed: tm.speed(bodies),
     };
-    let d = turret_drive.torques(0, &ts);
+    let d = turret_drive.drive.torques(0, &turret_drive.at(ts));
     *transmission = d.transmission;
     tl.push(bodies, d.on_link);
     tm.push(bodies, d.on_motor + torque_turret);
@@ -991,7 +1024,7 @@ fn step_engine(
         link_speed: tl.speed(bodies),
         motor_speed: tm.speed(bodies),
     };
-    turret_drive.advance(0, &ts);
+    turret_drive.drive.advance(0, &turret_drive.at(ts));
     mem.turret = [ts.link_angle, ts.motor_angle];
     mem.wrist.advance(bodies);
     let qd = dh.angle(bodies, -mem.door_angle);

@@ -21,12 +21,16 @@
 //!   multibody revolute joints, coupled by the library's drive models; the
 //!   independent check of eq. (4.1)–(4.6) of [`crate::sim::Mrr`]; a ball
 //!   on a link can hit a fixed wall through the engine's contacts.
+//! * [`family_drives`] — the independent joint family's members
+//!   ([`crate::sim::plants::JointPlant`]) as the arm's drives, in place of
+//!   the library's drive and friction models.
 //! * [`arm_scenarios`] — the chapter-4 experiments with the library's joint
 //!   step at 4 ms on that arm (or on [`crate::sim::Mrr`]): active tracking
 //!   (§4.4.1, Fig. 4.3), back-driving (§4.4.2, Fig. 4.11–4.12), mode
 //!   switching and collision detection, with their traces.
 //! * [`door`] — the door opening of §6.4.4: the mobile base, the turret on
-//!   a drive plant, the DAUJ and its F/T sensor on the arm, a hinged door,
+//!   a drive of the independent joint family ([`FamilyDrives`]), the DAUJ
+//!   and its F/T sensor on the arm, a hinged door,
 //!   with the library's wrist step and passive law in the loop at 4 ms.
 //! * [`universal_joint`] — the inner universal joint of eq. (5.1)–(5.3):
 //!   two shafts bent by `β` and the cross between them.
@@ -42,6 +46,7 @@ pub mod arm;
 pub mod arm_scenarios;
 mod dauj;
 pub mod door;
+pub mod family_drives;
 pub mod ft_sensor;
 pub mod universal_joint;
 mod world;
@@ -54,6 +59,7 @@ pub use arm::{
 };
 pub use arm_scenarios::{ArmPlant, ArmTrackingRun, JointRun};
 pub use door::{engine_door_opening, Backend, DoorBody, EngineDoorRun, EngineDoorSample};
+pub use family_drives::FamilyDrives;
 pub use ft_sensor::{GaugeErrors, SensedWrist, StrainGaugeSensor};
 pub use universal_joint::UniversalJointBench;
 pub use world::EngineSettings;

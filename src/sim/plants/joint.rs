@@ -248,6 +248,44 @@ pub struct JointPlantState {
     pub kinematic_error: KinematicErrorPlant,
 }
 
+/// The drive's and the frictions' share of the joint's equations at one
+/// state (module docs): what [`JointPlant::forces`] returns. Torques in
+/// N·m, slopes of `e_k` dimensionless (rad/rad).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JointForces {
+    /// Flexspline torque `T_f = B(y) + H(y)` (the transmitted `τ_t`).
+    pub flexspline_torque: f64,
+    /// Wave-generator bearing torque `T_w` at the input `a = θ_m/N`.
+    pub bearing_torque: f64,
+    /// `∂e_k/∂θ_m` of the kinematic error.
+    pub kinematic_error_slope_motor: f64,
+    /// `∂e_k/∂θ_l` of the kinematic error.
+    pub kinematic_error_slope_link: f64,
+    /// Motor friction `F_m` (Maxwell-slip plus viscous), opposing `θ̇_m`.
+    pub motor_friction: f64,
+    /// Link-bearing friction `F_l` (Maxwell-slip plus viscous), opposing
+    /// `θ̇_l`.
+    pub link_friction: f64,
+}
+
+impl JointForces {
+    /// Generalized force of the drive and the motor friction on `θ_m`:
+    /// `−T_w/N − T_f ∂e_k/∂θ_m − F_m` (the rotor equation of the module
+    /// docs without `τ_m`).
+    pub fn on_motor(&self) -> f64 {
+        -self.bearing_torque / RATIO
+            - self.flexspline_torque * self.kinematic_error_slope_motor
+            - self.motor_friction
+    }
+
+    /// Generalized force of the drive and the link friction on `θ_l`:
+    /// `T_f (1 − ∂e_k/∂θ_l) − F_l` (the link equation of the module docs
+    /// without `τ_load`).
+    pub fn on_link(&self) -> f64 {
+        self.flexspline_torque * (1.0 - self.kinematic_error_slope_link) - self.link_friction
+    }
+}
+
 /// What the sensors read at one instant.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct JointSensors {
@@ -315,6 +353,37 @@ impl JointPlant {
         t_w + RATIO * t_f * de_m
     }
 
+    /// The drive's and the frictions' torques at the state `x`
+    /// (`[θ_m, θ̇_m, θ_l, θ̇_l]`, rad and rad/s) with the anchors of `st`:
+    /// the node solved as [`transmitted`](Self::transmitted) does, the
+    /// frictions at their anchors. No payload and no external torque.
+    pub fn forces(&self, st: &JointPlantState, x: &[f64; 4]) -> JointForces {
+        let (_, t_f, t_w, de_m, de_l) = self.node(st, x);
+        JointForces {
+            flexspline_torque: t_f,
+            bearing_torque: t_w,
+            kinematic_error_slope_motor: de_m,
+            kinematic_error_slope_link: de_l,
+            motor_friction: self.motor_friction.torque(&st.motor, x[0], x[1])
+                + MOTOR_VISCOUS * x[1],
+            link_friction: self.link_friction.torque(&st.link, x[2]) + LINK_VISCOUS * x[3],
+        }
+    }
+
+    /// Accept the state `st.x` at the end of a step: solve the node there
+    /// and let every friction and hysteresis element past its break-away
+    /// slide (what [`advance`](Self::advance) does after each step).
+    pub fn commit(&self, st: &mut JointPlantState) {
+        let x = st.x;
+        let (y, ..) = self.node(st, &x);
+        let e = self.kinematic_error(st, x[0], x[2]);
+        self.hysteresis.commit(&mut st.hysteresis, y);
+        self.mesh_friction.commit(&mut st.mesh, x[2] - e + y);
+        st.flexspline_twist = y;
+        self.motor_friction.commit(&mut st.motor, x[0]);
+        self.link_friction.commit(&mut st.link, x[2]);
+    }
+
     fn derivative(
         &self,
         st: &JointPlantState,
@@ -322,9 +391,14 @@ impl JointPlant {
         motor_torque: f64,
         external: f64,
     ) -> [f64; 4] {
-        let (_, t_f, t_w, de_m, de_l) = self.node(st, x);
-        let f_m = self.motor_friction.torque(&st.motor, x[0], x[1]) + MOTOR_VISCOUS * x[1];
-        let f_l = self.link_friction.torque(&st.link, x[2]) + LINK_VISCOUS * x[3];
+        let JointForces {
+            flexspline_torque: t_f,
+            bearing_torque: t_w,
+            kinematic_error_slope_motor: de_m,
+            kinematic_error_slope_link: de_l,
+            motor_friction: f_m,
+            link_friction: f_l,
+        } = self.forces(st, x);
         let load = -self.payload * x[2].sin() + external;
         // By virtual work: the bearing takes `T_w` through `a = θ_m/N`; the
         // kinematic error moves the flexspline's end by `e_k(θ_m, θ_l)`.
@@ -381,13 +455,7 @@ impl JointPlant {
             let k4 = self.derivative(st, &add(x, k3, h), motor_torque, ext);
             st.x =
                 [0, 1, 2, 3].map(|j| x[j] + h / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]));
-            let (y, ..) = self.node(st, &st.x);
-            let e = self.kinematic_error(st, st.x[0], st.x[2]);
-            self.hysteresis.commit(&mut st.hysteresis, y);
-            self.mesh_friction.commit(&mut st.mesh, st.x[2] - e + y);
-            st.flexspline_twist = y;
-            self.motor_friction.commit(&mut st.motor, st.x[0]);
-            self.link_friction.commit(&mut st.link, st.x[2]);
+            self.commit(st);
         }
     }
 
