@@ -1,8 +1,9 @@
 //! Door opening with the compact wrist (thesis §6.4.4, Fig. 6.19–6.20) on
 //! the rigid-body engine ([`mrr_control::sim::engine::door`]): the mobile
-//! base with wheel slip and jerks, the turret passive (eq. 4.32) on the
-//! drive plant, the DAUJ wrist built from its parts and run by the library's
-//! wrist step in admittance-passive mode at 4 ms on `f32`, a hinged door.
+//! base with wheel slip and jerks, the turret passive (eq. 4.32) on a
+//! member of the joint family, the DAUJ wrist built from its parts and run
+//! by the library's wrist step in admittance-passive mode at 4 ms on `f32`,
+//! a hinged door.
 //! Three runs per seed — passive, passive with a 3° initial heading error,
 //! and wrist and turret held active (contrast) — and the verdicts of the
 //! chapter-6 claims ([`mrr_control::sim::claims::ch6`]) with median and

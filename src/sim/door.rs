@@ -63,11 +63,13 @@
 //! two agree on the peak measured `max(|τ_δ|, |τ_γ|)`: here median 2.71
 //! N·m (quartiles 2.46–3.15, range 2.20–3.98) passive, 2.66 with the 3°
 //! heading error, 6.28 held active (`cargo run --release --features sim
-//! --example door_approximation`); on the engine, with the wrist grasping
-//! at 5°–15° of pitch, 2.73 (2.36–3.22, 2.22–3.79), 2.62 and 6.4. The
-//! engine also shows what this Cartesian wrist cannot: grasped at the
-//! straight pose, the DAUJ's singularity gives passive peaks of 13–113 N·m
-//! (see the engine scene's docs).
+//! --example door_approximation`); on the engine with the same drive plant
+//! on the turret, grasping at 5°–15° of pitch, 2.73 (2.36–3.22,
+//! 2.22–3.79), 2.62 and 6.4 (the engine scene's turret now runs on a member
+//! of the joint family instead, see its docs). The engine also shows what
+//! this Cartesian wrist cannot: grasped at the straight pose, the DAUJ's
+//! singularity gives passive peaks far above these (see the engine scene's
+//! docs).
 
 use super::SplitMix64;
 use crate::control::{
