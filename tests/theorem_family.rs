@@ -281,7 +281,8 @@ const GRID_INTERVALS: usize = 4000;
 /// torque `T_f` (N·m): `[W⁻¹(T_f − M̄) + B⁻¹(T_f − H̄),
 /// W⁻¹(T_f + M̄) + B⁻¹(T_f + H̄)]`, with `M̄` the mesh friction's and
 /// `H̄` the flexspline hysteresis's break-away, widened by `1e-12` rad
-/// for the bisection of `B⁻¹` (its bracket is `1e-16` relative).
+/// for the bisection of `B⁻¹` (its bracket is `1e-16` relative) and the
+/// plant's node solve (to `1e-13` rad).
 fn twist_band(p: &JointPlant, flexspline_torque: f64) -> (f64, f64) {
     let m = p.mesh_friction.breakaway();
     let h = p.hysteresis.breakaway();
@@ -629,8 +630,10 @@ fn run(case: &Case) -> Run {
 /// friction's largest level is within `ρ_fq`, the mesh friction's
 /// break-away within the 2.0 N·m of `ρ_τt`, and the kinematic-error draws
 /// of 64 seeds have gradients within [`kinematic_gradient_max`] (evaluated
-/// on a grid of motor angles). The design is a valid law whose `K_r` is
-/// below the torque limit.
+/// on a grid of motor angles). The sensor design is a valid law whose
+/// `K_r` is below the torque limit; the estimate design (with the derived
+/// `ε̄`) is a valid law with `ρ_τt = 2.0 + 4.22 + ε̄` (its `K_r` is above
+/// the limit: `estimate_feedback_with_the_derived_bound_is_undecided`).
 #[test]
 fn derived_bounds_cover_the_family() {
     let rho_fq = friction_gap();
