@@ -164,11 +164,12 @@
 //! regressions), no sample saturated, `|r|` was 26–66 rad/s against
 //! `r̄(δ)` 373–445 rad/s. But in 3 of those 50 cases `|T_f(t_k)|` went
 //! beyond 5 N·m (up to 9.66 N·m at a sample, 17 samples in one case: the
-//! larger `K_r` makes the link ring harder against the spring), outside
-//! `ε̄`'s own premise, so those samples are not covered by the derivation
-//! (they are counted, and `|ε_k| ≤ ε̄` is checked on the others). The
-//! largest `|ε_k|` seen was 4.86 N·m, both over seeds 0–47 and over the
-//! check's cases, within `ε̄` with a wide margin: the bound is sound, not
+//! larger `K_r` makes the link ring harder against the spring; 1 case of
+//! 50, 6.36 N·m, on a second run), outside `ε̄`'s own premise, so those
+//! samples are not covered by the derivation (they are counted, and
+//! `|ε_k| ≤ ε̄` is checked on the others). The largest `|ε_k|` seen was
+//! 4.86 N·m over seeds 0–47 and 4.86 and 5.18 N·m over the check's cases
+//! on two runs, within `ε̄` with a wide margin: the bound is sound, not
 //! tight (each term is taken at its worst at once).
 #![cfg(feature = "sim")]
 
@@ -954,12 +955,13 @@ proptest! {
     /// saturated samples) and `|r|` against `r̄(δ)` for the record. Seeds
     /// from `[2³², 2⁶⁴)`, disjoint from the observation's.
     ///
-    /// 48 cases (about 9 s in release). Seen on one run (with the two kept
-    /// regressions, 50 cases): `|ε_k|` 1.1–4.86 N·m against `ε̄` = 18.13,
-    /// the feedback error 3.2–8.6 N·m against `ρ_τt` = 24.36 N·m,
-    /// `|T_f(t_k)|` up to 9.66 N·m (3 cases beyond 5 N·m, up to 17 samples
-    /// each), the step ratio 0.41–0.48, no saturated sample, `|r|` at most
-    /// 0.17 of `r̄(δ)`.
+    /// 48 cases (about 9 s in release). Seen on two runs (with the two
+    /// kept regressions, 50 cases each): `|ε_k|` 1.1–4.86 and 1.2–5.18 N·m
+    /// against `ε̄` = 18.13, the feedback error 3.2–8.6 and 3.1–7.6 N·m
+    /// against `ρ_τt` = 24.36 N·m, `|T_f(t_k)|` up to 9.66 and 6.36 N·m (3
+    /// and 1 cases beyond 5 N·m, up to 17 samples each), the step ratio
+    /// 0.41–0.48, no saturated sample, `|r|` at most 0.17 and 0.18 of
+    /// `r̄(δ)`.
     #[test]
     fn estimate_feedback_with_the_derived_bound(c in estimate_case()) {
         let r = run(&c);
