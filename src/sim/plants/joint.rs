@@ -56,6 +56,9 @@ pub const ROTOR_INERTIA: f64 = 1.14e-5;
 pub const MOTOR_COUNTS: u32 = 2000;
 /// Link encoder counts per revolution (`2¹⁷`).
 pub const LINK_COUNTS: u32 = 1 << 17;
+/// Standard deviation of both encoders' reading noise, counts (Gaussian,
+/// added before rounding to a whole count; [`JointPlant::read`]).
+pub const ENCODER_NOISE_COUNTS: f64 = 0.1;
 /// Integration step, s (80 steps per 4 ms tick).
 pub const STEP: f64 = 50e-6;
 /// Motor-friction pre-sliding displacements, motor rad (an assumption:
@@ -462,7 +465,7 @@ impl JointPlant {
     /// The sensors at the current state (noise from `rng`).
     pub fn read(&self, st: &JointPlantState, rng: &mut SplitMix64) -> JointSensors {
         let count = |angle: f64, per_rev: u32, rng: &mut SplitMix64| {
-            (angle / TAU * per_rev as f64 + 0.1 * rng.gaussian()).round() as i64
+            (angle / TAU * per_rev as f64 + ENCODER_NOISE_COUNTS * rng.gaussian()).round() as i64
         };
         let link = count(st.x[2], LINK_COUNTS, rng).rem_euclid(LINK_COUNTS as i64) as u32;
         let motor = count(st.x[0], MOTOR_COUNTS, rng) as u32;
