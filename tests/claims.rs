@@ -235,7 +235,10 @@ fn every_rerun_command_selects_its_claim() {
 #[test]
 fn plants_share_no_model_code() {
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/src/sim/plants");
-    let family_drives = concat!(env!("CARGO_MANIFEST_DIR"), "/src/sim/engine/family_drives.rs");
+    let family_drives = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/src/sim/engine/family_drives.rs"
+    );
     let forbidden = [
         "harmonic_drive",
         "estimation",

@@ -391,6 +391,67 @@ mod tests {
         assert_eq!(detected, [true, true, true, true, false]);
     }
 
+    /// The validated ranges at their edges: the largest threshold,
+    /// 30 000 N·m, and a release threshold equal to the threshold are
+    /// accepted; the next `f64` above either is rejected by name.
+    #[test]
+    fn threshold_ranges_are_closed_at_their_edges() {
+        let with = |threshold: f64, release_threshold: f64| {
+            CollisionParams::try_new(CollisionSettings {
+                threshold,
+                release_threshold,
+                ..settings(1, 1, CollisionReaction::Stop)
+            })
+        };
+        let above = |x: f64| f64::from_bits(x.to_bits() + 1);
+        assert_eq!(with(30_000.0, 1.0).unwrap().threshold(), 30_000.0);
+        for t in [above(30_000.0), 1e6] {
+            assert_eq!(
+                with(t, 1.0),
+                Err(ParamError::OutOfRange {
+                    name: "threshold",
+                    value: t,
+                    min: 0.0,
+                    max: 30_000.0,
+                })
+            );
+        }
+        assert_eq!(with(2.0, 2.0).unwrap().release_threshold(), 2.0);
+        assert_eq!(
+            with(2.0, above(2.0)),
+            Err(ParamError::Exceeds {
+                lower: "release_threshold",
+                lower_value: above(2.0),
+                upper: "threshold",
+                upper_value: 2.0,
+            })
+        );
+    }
+
+    /// `release` reaches its getter (a value other than 1), and the
+    /// state's `detected` follows the latch: false at rest, true from
+    /// detection, false again after release. A residual exactly at the
+    /// release threshold is not under it and keeps the latch; one LSB
+    /// below it releases.
+    #[test]
+    fn release_count_and_latched_state_are_visible() {
+        let p = CollisionParams::try_new(settings(1, 4, CollisionReaction::Stop)).unwrap();
+        assert_eq!(p.release(), 4);
+        let c = det(1, 1);
+        let f = I16F16::from_f64;
+        let mut st = CollisionState::default();
+        assert!(!st.detected());
+        c.update(&mut st, f(2.5), f(0.0));
+        assert!(st.detected());
+        for _ in 0..3 {
+            assert!(c.update(&mut st, f(1.0), f(0.0)).detected);
+            assert!(st.detected());
+        }
+        let just_under = I16F16::from_bits(f(1.0).to_bits() - 1);
+        assert!(!c.update(&mut st, just_under, f(0.0)).detected);
+        assert!(!st.detected());
+    }
+
     proptest! {
         /// Against a direct model of the specification over random
         /// residual sequences: detection exactly after `debounce`
