@@ -559,17 +559,23 @@ impl Report {
         })
     }
 
+    /// Duration and settling time of the chapter-4 engine tracking runs, s
+    /// (shorter in quick mode).
+    fn arm_run_length(&self) -> (f64, f64) {
+        if self.opts.quick {
+            (4.0, 1.0)
+        } else {
+            (12.0, 2.0)
+        }
+    }
+
     /// Fig. 4.3 on the engine arm (f32): the §4.4.1 joint tracking the
     /// raised cosine with feedback A (none), B (transmission torque), C
     /// (the joint step on the estimate); as long as the home-made runs.
     /// Then the same three on `Mrr` (the plant-independence check).
     fn arm_tracking(&mut self) -> Result<&[ArmTrackingRun], Error> {
         if self.arm_tracking.is_none() {
-            let (duration, settle) = if self.opts.quick {
-                (4.0, 1.0)
-            } else {
-                (12.0, 2.0)
-            };
+            let (duration, settle) = self.arm_run_length();
             let mut runs = Vec::new();
             for plant in [ArmPlant::engine(), ArmPlant::Mrr] {
                 for fb in [
@@ -591,11 +597,7 @@ impl Report {
     /// (one member in quick mode), one thread per member.
     fn arm_family(&mut self) -> Result<&[ArmFamilyRuns], Error> {
         if self.arm_family.is_none() {
-            let (duration, settle) = if self.opts.quick {
-                (4.0, 1.0)
-            } else {
-                (12.0, 2.0)
-            };
+            let (duration, settle) = self.arm_run_length();
             let n = self.engine_seeds() as usize;
             let results: Vec<Result<ArmFamilyRuns, String>> = std::thread::scope(|scope| {
                 let handles: Vec<_> = ARM_FAMILY
