@@ -221,6 +221,7 @@ impl UltimateBound {
 mod tests {
     use super::*;
     use crate::control::adaptive::RobustAdaptiveParams;
+    use crate::friction::{FrictionBounds, FrictionParams};
 
     /// Table 4.1 by a second route: the constant `c` is found by
     /// maximizing, on a fine grid, the actual right-hand sides of eq. (4.25)
@@ -338,5 +339,48 @@ mod tests {
         }
         assert!((b.reaching_time(v0, vs) - t).abs() <= dt);
         assert_eq!(b.reaching_time(vs, v0), 0.0);
+    }
+
+    /// `step_ratio_at_speed` by hand on round numbers: `T = 1 ms`,
+    /// `I_m = 1e-5 kg·m²`, `λ = 100 1/s`, `K_r = ρ_base = 0.1 N·m` over
+    /// `ε_r = 0.5`; friction box `f_s ≤ 0.02`, `f_τ ≥ 0.25`, variable parts
+    /// `ρ_F = (1e-4, 2e-3, 3e-3, 5e-3)` over layers
+    /// `ε_F = (0.01, 0.02, 0.05, 0.1)`. At `q̇ = ±2 rad/s`:
+    /// `Y = (2, 1, 1, 0.02·4·e^{−1})`, and the ratio is
+    /// `T/I_m · (I_m λ + K_r/ε_r + Σ ρ_Fj Y_j²/ε_Fj)`
+    /// `= 100 · (1e-3 + 0.2 + 0.04 + 0.1 + 0.06 + 0.05·(0.08/e)²)`;
+    /// at rest the `Y_1` and `Y_4` terms vanish: `100 · 0.361 = 36.1`.
+    #[test]
+    fn step_ratio_at_speed_by_hand() {
+        let mut d = *RobustAdaptiveParams::table_4_1().unwrap().design();
+        d.sample_period = 1e-3;
+        d.rotor_inertia = 1e-5;
+        d.lambda = 100.0;
+        d.eps_r = 0.5;
+        d.uncertainty = crate::control::UncertaintyBounds {
+            boundary_layer: 0.1,
+            nonparametric_friction: 0.0,
+            base_acceleration: 0.0,
+            torque_estimate: 0.0,
+        };
+        d.eps_f = [0.01, 0.02, 0.05, 0.1];
+        let p = |a: [f64; 4]| FrictionParams::from_array(a).validated().unwrap();
+        d.friction_bounds = FrictionBounds::try_new(
+            p([0.0, 0.0, 0.0, 0.25]),
+            p([1e-3, 0.01, 0.02, 4.0]),
+            [1e-4, 2e-3, 3e-3, 5e-3],
+        )
+        .unwrap();
+        let y4 = 0.08 * (-1.0f64).exp();
+        let want = 100.0 * (1e-3 + 0.2 + 0.04 + 0.1 + 0.06 + 0.05 * y4 * y4);
+        for qd in [2.0, -2.0] {
+            let got = UltimateBound::step_ratio_at_speed(&d, qd);
+            assert!(
+                (got - want).abs() <= 1e-12 * want,
+                "q̇ {qd}: {got} vs {want}"
+            );
+        }
+        let at_rest = UltimateBound::step_ratio_at_speed(&d, 0.0);
+        assert!((at_rest - 36.1).abs() <= 1e-12, "{at_rest}");
     }
 }
