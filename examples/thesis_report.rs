@@ -4,7 +4,7 @@
 //! gets (numbers computed here).
 //!
 //! ```sh
-//! cargo run --release --features sim --example thesis_report            # full runs (~40 s)
+//! cargo run --release --features sim --example thesis_report            # full runs (~55 s)
 //! cargo run --release --features sim --example thesis_report -- --quick # shorter runs (CI)
 //! cargo run --release --features sim --example thesis_report -- --out DIR
 //! cargo run --release --features sim --example thesis_report -- --chapter 6 # one chapter
@@ -16,6 +16,21 @@
 //! [`mrr_control::harmonic_drive`] and [`mrr_control::wrist`], the
 //! experiments of [`mrr_control::sim`]); this file only runs them and
 //! draws.
+//!
+//! Chapter 2's bench figures (Fig. 2.17–2.22) run on members of the
+//! independent drive-bench family ([`DRIVE_RUNS`] of
+//! [`mrr_control::sim::plants::drive::family`], the registry's runs through
+//! [`drive_figure_run`]) with the models identified from the catalogue
+//! alone. Chapter 3's figures fit eq. (3.7) to the drawn kinematic error
+//! of members of the independent joint family (Fig. 3.1–3.3) and run the
+//! library's joint step at 4 ms on them (Fig. 3.6–3.9), [`JOINT_RUNS`] of
+//! [`mrr_control::sim::plants::joint::joint_family`] through
+//! [`figure_run`]. Each figure draws the first run and states the spread
+//! over all; `--quick` takes two members of the quick families. The older
+//! plants of [`mrr_control::sim::experiments`] and
+//! [`mrr_control::sim::closed_loop`], whose kinematic error is Table 3.2
+//! (the model the estimator subtracts), give labelled comparison numbers
+//! only.
 //!
 //! Chapter 4's engine figures (Fig. 4.3, 4.11–4.12 and the collision
 //! extension) run on the arm of bodies on the engine with the drives of
@@ -48,7 +63,9 @@ use mrr_control::sim::claims::ch34::{
 use mrr_control::sim::claims::ch6::{
     bench_claims, claims as door_claims, run_bench, run_door, DoorRunMetrics,
 };
-use mrr_control::sim::claims::{evaluate, ClaimResult, Runs, RERUN};
+use mrr_control::sim::claims::{
+    drive_figure_run, evaluate, ClaimResult, DriveFigureRun, Runs, RERUN,
+};
 use mrr_control::sim::closed_loop::{
     active_tracking, back_drive, interaction_scenario, payload_drop, BackDriveConfig,
     BackDriveMode, BackDriveResult, JointTorqueFeedback, ModeScenarioConfig, PayloadDropConfig,
@@ -67,11 +84,12 @@ use mrr_control::sim::engine::wrist_bench::{
 use mrr_control::sim::engine::{arm_settings, ArmPlant, ArmTrackingRun, EngineSettings, JointRun};
 use mrr_control::sim::experiments::{
     back_driven, locked_output, torque_estimation, width_at_zero, BackDrivenConfig,
-    BackDrivenResult, ComplianceResult, ComplianceSample, ErrorStats, LockedOutputConfig, Models,
+    BackDrivenResult, ComplianceResult, ErrorStats, LockedOutputConfig, Models,
     TorqueEstimationConfig, TorqueEstimationResult, ESTIMATORS,
 };
 use mrr_control::sim::plants::elements::KinematicErrorPlant;
 use mrr_control::sim::plants::joint::{joint_family, quick_joint_family};
+use mrr_control::sim::plants::{family as drive_family, quick_family as quick_drive_family};
 use mrr_control::sim::wrist_bench::{
     tracking_trajectory, wrist_finger_push, wrist_tracking, FingerCase, WristBenchRun,
     BENCH_PERIOD, FINGER_TRAVEL,
@@ -185,6 +203,78 @@ pub struct Report {
     arm_family: Option<Vec<ArmFamilyRuns>>,
     /// The chapter-3 runs on members of the joint family.
     joint_figs: Option<JointFigs>,
+    /// The chapter-2 runs on members of the drive-bench family.
+    drive_figs: Option<DriveFigs>,
+}
+
+/// Members and seeds of the chapter-2 runs on
+/// [`family`](mrr_control::sim::plants::drive::family) (216 members): each
+/// backbone, both bearing shapes, both mesh break-aways, the three splits
+/// of the loss, the three amplitudes and both ripples appear.
+pub const DRIVE_RUNS: &[(usize, u64)] = &[(0, 0), (41, 1), (86, 2), (127, 3), (170, 4), (215, 5)];
+
+/// The chapter-2 runs in quick mode, on
+/// [`quick_family`](mrr_control::sim::plants::drive::quick_family) (4
+/// members).
+pub const DRIVE_RUNS_QUICK: &[(usize, u64)] = &[(0, 0), (3, 1)];
+
+/// The chapter-2 figure runs ([`drive_figure_run`]) on members of the
+/// drive-bench family, the first one drawn.
+struct DriveFigs {
+    /// `family` or `quick_family`.
+    family: &'static str,
+    /// The member's description, per run.
+    labels: Vec<String>,
+    /// The runs, in the order of [`DRIVE_RUNS`] (or [`DRIVE_RUNS_QUICK`]).
+    runs: Vec<DriveFigureRun>,
+}
+
+impl DriveFigs {
+    /// The run a figure draws, for its legend.
+    fn shown(&self) -> String {
+        let m = self.runs[0].metrics;
+        format!("{} member {} (seed {})", self.family, m.plant, m.seed)
+    }
+
+    /// The runs, for a figure's text.
+    fn runs_text(&self) -> String {
+        let list = self
+            .runs
+            .iter()
+            .map(|r| format!("{}/{}", r.metrics.plant, r.metrics.seed))
+            .collect::<Vec<_>>()
+            .join(", ");
+        format!("{} runs (member/seed {list})", self.runs.len())
+    }
+
+    /// What produced a chapter-2 figure, for its text.
+    fn source(&self) -> String {
+        format!(
+            "plant: {} of the independent drive-bench family (sim::plants::drive: flexspline \
+             backbone and hysteresis, bearing compliance, mesh friction, a drawn kinematic \
+             error with ripple, quantizing encoders, torque-sensor gain error; {}); models \
+             identified from the catalogue alone (sim::claims::blind_models), runs of \
+             sim::claims::drive_figure_run",
+            self.shown(),
+            self.labels[0]
+        )
+    }
+}
+
+/// [`spread`] in `e` notation, 2 decimals.
+fn spread_e(v: &[f64]) -> String {
+    let mut s = v.to_vec();
+    s.sort_by(f64::total_cmp);
+    match s.len() {
+        0 => "none".into(),
+        1 => format!("{:.2e}", s[0]),
+        n => format!(
+            "median {:.2e} (min {:.2e}, max {:.2e})",
+            s[n / 2],
+            s[0],
+            s[n - 1]
+        ),
+    }
 }
 
 /// Members and seeds of the chapter-3 runs on
@@ -458,7 +548,54 @@ impl Report {
             arm_collision: None,
             arm_family: None,
             joint_figs: None,
+            drive_figs: None,
         }
+    }
+
+    /// The chapter-2 runs on the drive-bench family ([`DRIVE_RUNS`], or
+    /// [`DRIVE_RUNS_QUICK`] on the quick family), one thread per run.
+    fn drive_figs(&mut self) -> Result<&DriveFigs, Error> {
+        if self.drive_figs.is_none() {
+            let (family, name, list) = if self.opts.quick {
+                (quick_drive_family(), "quick_family", DRIVE_RUNS_QUICK)
+            } else {
+                (drive_family(), "family", DRIVE_RUNS)
+            };
+            let family = &family;
+            let results: Vec<Result<DriveFigureRun, String>> = std::thread::scope(|scope| {
+                let handles: Vec<_> = list
+                    .iter()
+                    .map(|&(m, s)| {
+                        scope.spawn(move || {
+                            drive_figure_run(family, m, s).map_err(|e| e.to_string())
+                        })
+                    })
+                    .collect();
+                handles
+                    .into_iter()
+                    .map(|h| {
+                        h.join()
+                            .unwrap_or_else(|_| Err("a drive run panicked".into()))
+                    })
+                    .collect()
+            });
+            let mut runs = Vec::new();
+            for r in results {
+                runs.push(r?);
+            }
+            let labels = runs
+                .iter()
+                .map(|r| family[r.metrics.plant].label())
+                .collect();
+            self.drive_figs = Some(DriveFigs {
+                family: name,
+                labels,
+                runs,
+            });
+        }
+        self.drive_figs
+            .as_ref()
+            .ok_or_else(|| "drive family runs missing".into())
     }
 
     /// The chapter-3 runs on the joint family ([`JOINT_RUNS`], or
@@ -1071,29 +1208,76 @@ fn fig2_12(r: &mut Report) -> Result<Figure, Error> {
     )
 }
 
+/// Width of a hysteresis loop where `torque` crosses zero: the mean
+/// `torsion` on the falling crossings minus that on the rising ones.
+fn loop_width<T>(samples: &[T], torque: impl Fn(&T) -> f64, torsion: impl Fn(&T) -> f64) -> f64 {
+    let (mut down, mut up) = (Vec::new(), Vec::new());
+    for w in samples.windows(2) {
+        let (t0, t1) = (torque(&w[0]), torque(&w[1]));
+        if (t0 > 0.0) != (t1 > 0.0) && t0 != t1 {
+            let a = t0 / (t0 - t1);
+            let x = torsion(&w[0]) + a * (torsion(&w[1]) - torsion(&w[0]));
+            if t1 < t0 {
+                down.push(x);
+            } else {
+                up.push(x);
+            }
+        }
+    }
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
+    mean(&down) - mean(&up)
+}
+
+/// Samples per cycle of the drive bench's profile
+/// ([`DrivePlant::profile`](mrr_control::sim::plants::DrivePlant::profile)).
+const PROFILE_CYCLE: f64 = 100.0;
+
 fn fig2_17(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
-    let a = r.locked();
-    let pts: Vec<_> = a
+    let old = r.locked();
+    let old_peak = old
         .samples
         .iter()
-        .map(|s| (s.time, s.wave_generator_torque * 100.0))
+        .map(|s| s.wave_generator_torque.abs() * 100.0)
+        .fold(0.0, f64::max);
+    let d = r.drive_figs()?;
+    let run = &d.runs[0];
+    let pts: Vec<_> = run
+        .locked
+        .iter()
+        .enumerate()
+        .map(|(k, s)| (k as f64 / PROFILE_CYCLE, s.wave_generator_torque * 100.0))
         .collect();
     let peak = pts.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
-    let end = pts.last().map_or(0.0, |p| p.0);
+    let peaks: Vec<f64> = d
+        .runs
+        .iter()
+        .map(|x| {
+            x.locked
+                .iter()
+                .map(|s| s.wave_generator_torque.abs() * 100.0)
+                .fold(0.0, f64::max)
+        })
+        .collect();
     figure(
         &dir,
         "fig2_17_input_torque.svg",
         "Fig. 2.17: motor-side input torque",
         Chart {
             title: "Fig. 2.17  motor torque command, output locked",
-            x: "time (s)",
+            x: "profile cycles (100 samples each; the plant is rate-independent)",
             y: "motor torque τ_w (N·cm)",
-            series: vec![line("τ_w", BLUE_, pts)],
+            series: vec![line(&format!("τ_w, {}", d.shown()), BLUE_, pts)],
             markers: vec![],
         },
         "a sinusoidal motor torque of decreasing amplitude drives the locked drive".into(),
-        format!("0.5 Hz sinusoid, peak {peak:.1} N·cm decreasing to 0 over {end:.0} s"),
+        format!(
+            "{}: ten cycles decreasing linearly to 0, peak {peak:.1} N·cm; peaks over {}: {} \
+             N·cm. Comparison only, the old plant of sim::experiments: peak {old_peak:.1} N·cm",
+            d.source(),
+            d.runs_text(),
+            spread(&peaks, 1.0, 1)
+        ),
     )
 }
 
@@ -1102,29 +1286,51 @@ fn fig2_18(r: &mut Report) -> Result<Figure, Error> {
     let psi = CatalogueData::SHD_17_100.hysteresis_loss;
     let a = r.locked();
     let to = a.samples.last().map_or(0.0, |s| s.time).min(6.0);
-    let w_plant = width_at_zero(
+    let old_plant = width_at_zero(
         &a.samples,
         |s| -s.wave_generator_torque,
         |s| s.measured_torsion,
         0.0,
         to,
     );
-    let w_model = width_at_zero(
+    let old_model = width_at_zero(
         &a.samples,
         |s| -s.wave_generator_torque,
         |s| s.proposed,
         0.0,
         to,
     );
-    let meas: Vec<_> = a
-        .samples
+    let d = r.drive_figs()?;
+    let run = &d.runs[0];
+    let meas: Vec<_> = run
+        .locked
         .iter()
-        .map(|s| (-s.wave_generator_torque * 100.0, s.measured_torsion * 1e3))
+        .map(|s| (-s.wave_generator_torque * 100.0, s.torsion * 1e3))
         .collect();
-    let model: Vec<_> = a
-        .samples
+    let model: Vec<_> = run
+        .locked
         .iter()
-        .map(|s| (-s.wave_generator_torque * 100.0, s.proposed * 1e3))
+        .zip(&run.locked_proposed)
+        .map(|(s, p)| (-s.wave_generator_torque * 100.0, p * 1e3))
+        .collect();
+    let widths = |x: &DriveFigureRun| {
+        let plant = loop_width(&x.locked, |s| -s.wave_generator_torque, |s| s.torsion);
+        let idx: Vec<usize> = (0..x.locked.len()).collect();
+        let model = loop_width(
+            &idx,
+            |&i| -x.locked[i].wave_generator_torque,
+            |&i| x.locked_proposed[i],
+        );
+        (plant, model)
+    };
+    let (w_plant, w_model) = widths(run);
+    let ratio: Vec<f64> = d
+        .runs
+        .iter()
+        .map(|x| {
+            let (p, m) = widths(x);
+            m / p
+        })
         .collect();
     figure(
         &dir,
@@ -1135,8 +1341,8 @@ fn fig2_18(r: &mut Report) -> Result<Figure, Error> {
             x: "input torque −τ_w (N·cm)",
             y: "torsion Δθ (mrad)",
             series: vec![
-                dots("simulated encoders", GREY, meas),
-                line("proposed model, eq. (2.30)", RED_, model),
+                dots(&format!("encoders, {}", d.shown()), GREY, meas),
+                line("proposed model, eq. (2.30), catalogue", RED_, model),
             ],
             markers: vec![],
         },
@@ -1145,63 +1351,103 @@ fn fig2_18(r: &mut Report) -> Result<Figure, Error> {
             psi
         ),
         format!(
-            "loop width at zero torque (first {to:.0} s): plant {:.2e} rad, model {:.2e} rad",
-            w_plant, w_model
+            "{}: loop width at zero torque (whole run) plant {:.2e} rad, eq. (2.30) identified \
+             from the catalogue {:.2e} rad; model/plant width over {}: {}. Comparison only, the \
+             old plant of sim::experiments (first {to:.0} s): plant {:.2e} rad, model {:.2e} rad",
+            d.source(),
+            w_plant,
+            w_model,
+            d.runs_text(),
+            spread(&ratio, 1.0, 2),
+            old_plant,
+            old_model
         ),
     )
 }
 
 fn fig2_19(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
-    let a = r.locked();
-    let err = |f: fn(&ComplianceSample) -> f64| -> Vec<(f64, f64)> {
-        a.samples
+    let old = r.locked().clone();
+    let d = r.drive_figs()?;
+    let run = &d.runs[0];
+    let err = |pred: &[f64]| -> Vec<(f64, f64)> {
+        run.locked
             .iter()
-            .map(|s| (s.time, (f(s) - s.measured_torsion) * 1e3))
+            .zip(pred)
+            .enumerate()
+            .map(|(k, (s, p))| (k as f64 / PROFILE_CYCLE, (p - s.torsion) * 1e3))
             .collect()
     };
-    let ours = format!(
-        "error range: proposed {:+.2e} … {:+.2e} rad, piecewise {:+.2e} … {:+.2e} rad (RMS {:.2e} vs {:.2e})",
-        a.proposed.min, a.proposed.max, a.piecewise.min, a.piecewise.max, a.proposed.rms, a.piecewise.rms
-    );
+    let m = run.metrics;
+    let reduction: Vec<f64> = d.runs.iter().map(|x| x.metrics.reduction_blind()).collect();
+    let proposed: Vec<f64> = d
+        .runs
+        .iter()
+        .map(|x| x.metrics.locked_proposed_blind)
+        .collect();
     figure(
         &dir,
         "fig2_19_error_time.svg",
         "Fig. 2.19: estimation error versus time",
         Chart {
-            title: "Fig. 2.19  torsion error (model − encoders) versus time",
-            x: "time (s)",
+            title: "Fig. 2.19  torsion error (model − encoders), output locked",
+            x: "profile cycles (100 samples each)",
             y: "torsion error (mrad)",
             series: vec![
-                line("piecewise, eq. (2.11)", ORANGE, err(|s| s.piecewise)),
-                line("proposed, eq. (2.30)", BLUE_, err(|s| s.proposed)),
+                line(
+                    "piecewise, eq. (2.11), catalogue",
+                    ORANGE,
+                    err(&run.locked_classic),
+                ),
+                line(
+                    &format!("proposed, eq. (2.30), catalogue; {}", d.shown()),
+                    BLUE_,
+                    err(&run.locked_proposed),
+                ),
             ],
             markers: vec![],
         },
         "error reduced from ±2.3e-4 rad (eq. 2.11) to ±1.7e-4 rad (eq. 2.30)".into(),
-        ours,
+        format!(
+            "{}: peak |error| piecewise {:.2e} rad, proposed {:.2e} rad; over {}: proposed peak \
+             {} rad (claim 2.19-level), 1 − proposed/piecewise {} (claim 2.19-blind). \
+             Comparison only, the old plant of sim::experiments: proposed {:+.2e} … {:+.2e} \
+             rad, piecewise {:+.2e} … {:+.2e} rad",
+            d.source(),
+            m.locked_classic_blind,
+            m.locked_proposed_blind,
+            d.runs_text(),
+            spread_e(&proposed),
+            spread(&reduction, 1.0, 2),
+            old.proposed.min,
+            old.proposed.max,
+            old.piecewise.min,
+            old.piecewise.max
+        ),
     )
 }
 
 fn fig2_20(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
-    let a = r.locked();
-    let err = |f: fn(&ComplianceSample) -> f64| -> Vec<(f64, f64)> {
-        a.samples
+    let d = r.drive_figs()?;
+    let run = &d.runs[0];
+    let tau = std::f64::consts::TAU;
+    let err = |pred: &[f64]| -> Vec<(f64, f64)> {
+        run.locked
             .iter()
-            .map(|s| (s.motor_angle, (f(s) - s.measured_torsion) * 1e3))
+            .zip(pred)
+            .map(|(s, p)| (s.motor_angle.rem_euclid(tau), (p - s.torsion) * 1e3))
             .collect()
     };
-    let (lo, hi) = a.samples.iter().fold((f64::MAX, f64::MIN), |(l, h), s| {
+    let (lo, hi) = run.locked.iter().fold((f64::MAX, f64::MIN), |(l, h), s| {
         (l.min(s.motor_angle), h.max(s.motor_angle))
     });
-    let gap = |f: fn(&ComplianceSample) -> f64| {
-        width_at_zero(
-            &a.samples,
-            |s| -s.wave_generator_torque,
-            |s| f(s) - s.measured_torsion,
-            0.0,
-            f64::MAX,
+    let idx: Vec<usize> = (0..run.locked.len()).collect();
+    let gap = |pred: &[f64]| {
+        loop_width(
+            &idx,
+            |&i| -run.locked[i].wave_generator_torque,
+            |&i| pred[i] - run.locked[i].torsion,
         )
     };
     figure(
@@ -1210,11 +1456,15 @@ fn fig2_20(r: &mut Report) -> Result<Figure, Error> {
         "Fig. 2.20: estimation error versus motor position",
         Chart {
             title: "Fig. 2.20  torsion error versus motor position",
-            x: "motor angle (rad)",
+            x: "motor angle θ_wi mod 2π (rad)",
             y: "torsion error (mrad)",
             series: vec![
-                dots("piecewise, eq. (2.11)", ORANGE, err(|s| s.piecewise)),
-                dots("proposed, eq. (2.30)", BLUE_, err(|s| s.proposed)),
+                dots("piecewise, eq. (2.11)", ORANGE, err(&run.locked_classic)),
+                dots(
+                    &format!("proposed, eq. (2.30); {}", d.shown()),
+                    BLUE_,
+                    err(&run.locked_proposed),
+                ),
             ],
             markers: vec![],
         },
@@ -1222,57 +1472,94 @@ fn fig2_20(r: &mut Report) -> Result<Figure, Error> {
          them (hysteresis)"
             .into(),
         format!(
-            "motor swings over {:.2} rad; signed gap between the error's unloading and loading \
-             branches at zero torque (a model without hysteresis leaves the plant's loop, one \
-             whose hysteresis is too wide flips its sign): piecewise {:+.2e} rad, proposed \
-             {:+.2e} rad",
+            "{}: the motor swings over {:.2} rad; signed gap between the error's unloading and \
+             loading branches at zero torque (a model without hysteresis leaves the plant's \
+             loop, one whose hysteresis is too wide flips its sign): piecewise {:+.2e} rad, \
+             proposed {:+.2e} rad",
+            d.source(),
             hi - lo,
-            gap(|s| s.piecewise),
-            gap(|s| s.proposed)
+            gap(&run.locked_classic),
+            gap(&run.locked_proposed)
         ),
     )
 }
 
 fn fig2_21(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
-    let b = r.back_driven();
-    let pts: Vec<_> = b
+    let old_peak = r
+        .back_driven()
         .compliance
         .samples
         .iter()
-        .map(|s| (s.time, s.flexspline_torque))
+        .map(|s| s.flexspline_torque.abs())
+        .fold(0.0, f64::max);
+    let d = r.drive_figs()?;
+    let run = &d.runs[0];
+    let pts: Vec<_> = run
+        .held
+        .iter()
+        .enumerate()
+        .map(|(k, s)| (k as f64 / PROFILE_CYCLE, s.flexspline_torque))
         .collect();
     let peak = pts.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
+    let peaks: Vec<f64> = d
+        .runs
+        .iter()
+        .map(|x| {
+            x.held
+                .iter()
+                .map(|s| s.flexspline_torque.abs())
+                .fold(0.0, f64::max)
+        })
+        .collect();
     figure(
         &dir,
         "fig2_21_external_torque.svg",
         "Fig. 2.21: external torque on the output side",
         Chart {
             title: "Fig. 2.21  output-side torque, motor held",
-            x: "time (s)",
+            x: "profile cycles (100 samples each)",
             y: "flexspline torque τ_f (N·m)",
-            series: vec![line("τ_f (torque sensor)", BLUE_, pts)],
+            series: vec![line(
+                &format!("τ_f (torque sensor), {}", d.shown()),
+                BLUE_,
+                pts,
+            )],
             markers: vec![],
         },
         "a bidirectional external torque of decreasing amplitude back-drives the link".into(),
-        format!("measured flexspline torque peaks at {peak:.1} N·m"),
+        format!(
+            "{}: measured flexspline torque peaks at {peak:.1} N·m; over {}: {} N·m. \
+             Comparison only, the old plant of sim::experiments: {old_peak:.1} N·m",
+            d.source(),
+            d.runs_text(),
+            spread(&peaks, 1.0, 1)
+        ),
     )
 }
 
 fn fig2_22(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
-    let b = r.back_driven();
-    let c = &b.compliance;
-    let meas: Vec<_> = c
-        .samples
+    let old = r.back_driven().compliance.clone();
+    let d = r.drive_figs()?;
+    let run = &d.runs[0];
+    let meas: Vec<_> = run
+        .held
         .iter()
-        .map(|s| (s.measured_torsion * 1e3, s.flexspline_torque))
+        .map(|s| (s.torsion * 1e3, s.flexspline_torque))
         .collect();
-    let model: Vec<_> = c
-        .samples
+    let model: Vec<_> = run
+        .held
         .iter()
-        .map(|s| (s.proposed * 1e3, s.flexspline_torque))
+        .zip(&run.held_proposed)
+        .map(|(s, p)| (p * 1e3, s.flexspline_torque))
         .collect();
+    let held: Vec<f64> = d
+        .runs
+        .iter()
+        .map(|x| x.metrics.held_proposed_blind)
+        .collect();
+    let m = run.metrics;
     figure(
         &dir,
         "fig2_22_back_driven.svg",
@@ -1282,16 +1569,25 @@ fn fig2_22(r: &mut Report) -> Result<Figure, Error> {
             x: "torsion Δθ (mrad)",
             y: "flexspline torque τ_f (N·m)",
             series: vec![
-                dots("simulated encoders", GREY, meas),
-                line("eq. (2.30), τ_w from eq. (2.40)", RED_, model),
+                dots(&format!("encoders, {}", d.shown()), GREY, meas),
+                line("eq. (2.30), τ_w from eq. (2.40), catalogue", RED_, model),
             ],
             markers: vec![],
         },
         "the torsion predicted by eq. (2.30) with τ_w from eq. (2.40) agrees with the measured one"
             .into(),
         format!(
-            "torsion error RMS: eq. (2.30) {:.2e} rad, piecewise eq. (2.11) {:.2e} rad, cubic {:.2e} rad",
-            c.proposed.rms, c.piecewise.rms, c.cubic.rms
+            "{}: peak |torsion error| eq. (2.30) {:.2e} rad, piecewise eq. (2.11) {:.2e} rad; \
+             eq. (2.30) over {}: {} rad (claim 2.22-blind). Comparison only, the old plant of \
+             sim::experiments: RMS eq. (2.30) {:.2e} rad, piecewise {:.2e} rad, cubic {:.2e} rad",
+            d.source(),
+            m.held_proposed_blind,
+            m.held_classic_blind,
+            d.runs_text(),
+            spread_e(&held),
+            old.proposed.rms,
+            old.piecewise.rms,
+            old.cubic.rms
         ),
     )
 }
