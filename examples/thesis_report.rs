@@ -1796,7 +1796,11 @@ fn errors(trace: &[TorqueSample]) -> ErrorStats {
     ErrorStats::of(trace.iter().map(|s| s.estimate - s.truth))
 }
 
-fn torque_series(trace: &[TorqueSample]) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+/// Points of one curve, `(x, y)`.
+type Points = Vec<(f64, f64)>;
+
+/// The true torque and the estimate of a trace, against time.
+fn torque_series(trace: &[TorqueSample]) -> (Points, Points) {
     (
         trace.iter().map(|s| (s.time, s.truth)).collect(),
         trace.iter().map(|s| (s.time, s.estimate)).collect(),
