@@ -4,7 +4,7 @@
 //! gets (numbers computed here).
 //!
 //! ```sh
-//! cargo run --release --features sim --example thesis_report            # full runs (~40 s)
+//! cargo run --release --features sim --example thesis_report            # full runs (~55 s)
 //! cargo run --release --features sim --example thesis_report -- --quick # shorter runs (CI)
 //! cargo run --release --features sim --example thesis_report -- --out DIR
 //! cargo run --release --features sim --example thesis_report -- --chapter 6 # one chapter
@@ -16,6 +16,21 @@
 //! [`mrr_control::harmonic_drive`] and [`mrr_control::wrist`], the
 //! experiments of [`mrr_control::sim`]); this file only runs them and
 //! draws.
+//!
+//! Chapter 2's bench figures (Fig. 2.17–2.22) run on members of the
+//! independent drive-bench family ([`DRIVE_RUNS`] of
+//! [`mrr_control::sim::plants::drive::family`], the registry's runs through
+//! [`drive_figure_run`]) with the models identified from the catalogue
+//! alone. Chapter 3's figures fit eq. (3.7) to the drawn kinematic error
+//! of members of the independent joint family (Fig. 3.1–3.3) and run the
+//! library's joint step at 4 ms on them (Fig. 3.6–3.9), [`JOINT_RUNS`] of
+//! [`mrr_control::sim::plants::joint::joint_family`] through
+//! [`figure_run`]. Each figure draws the first run and states the spread
+//! over all; `--quick` takes two members of the quick families. The older
+//! plants of [`mrr_control::sim::experiments`] and
+//! [`mrr_control::sim::closed_loop`], whose kinematic error is Table 3.2
+//! (the model the estimator subtracts), give labelled comparison numbers
+//! only.
 //!
 //! Chapter 4's engine figures (Fig. 4.3, 4.11–4.12 and the collision
 //! extension) run on the arm of bodies on the engine with the drives of
@@ -42,10 +57,15 @@
 use mrr_control::estimation::collision::CollisionReaction;
 use mrr_control::harmonic_drive::kinematic_error::KinematicErrorModel;
 use mrr_control::harmonic_drive::CatalogueData;
+use mrr_control::sim::claims::ch34::{
+    figure_run, JointFigureRun, Table33Run, TorqueSample, TABLE_3_3_COMMANDS,
+};
 use mrr_control::sim::claims::ch6::{
     bench_claims, claims as door_claims, run_bench, run_door, DoorRunMetrics,
 };
-use mrr_control::sim::claims::{evaluate, ClaimResult, Runs, RERUN};
+use mrr_control::sim::claims::{
+    drive_figure_run, evaluate, ClaimResult, DriveFigureRun, Runs, RERUN,
+};
 use mrr_control::sim::closed_loop::{
     active_tracking, back_drive, interaction_scenario, payload_drop, BackDriveConfig,
     BackDriveMode, BackDriveResult, JointTorqueFeedback, ModeScenarioConfig, PayloadDropConfig,
@@ -64,9 +84,12 @@ use mrr_control::sim::engine::wrist_bench::{
 use mrr_control::sim::engine::{arm_settings, ArmPlant, ArmTrackingRun, EngineSettings, JointRun};
 use mrr_control::sim::experiments::{
     back_driven, locked_output, torque_estimation, width_at_zero, BackDrivenConfig,
-    BackDrivenResult, ComplianceResult, ComplianceSample, ErrorStats, LockedOutputConfig, Models,
+    BackDrivenResult, ComplianceResult, ErrorStats, LockedOutputConfig, Models,
     TorqueEstimationConfig, TorqueEstimationResult, ESTIMATORS,
 };
+use mrr_control::sim::plants::elements::KinematicErrorPlant;
+use mrr_control::sim::plants::joint::{joint_family, quick_joint_family};
+use mrr_control::sim::plants::{family as drive_family, quick_family as quick_drive_family};
 use mrr_control::sim::wrist_bench::{
     tracking_trajectory, wrist_finger_push, wrist_tracking, FingerCase, WristBenchRun,
     BENCH_PERIOD, FINGER_TRAVEL,
@@ -178,6 +201,143 @@ pub struct Report {
     arm_collision: Option<ArmCollision>,
     /// The chapter-4 engine runs on the family members of [`ARM_FAMILY`].
     arm_family: Option<Vec<ArmFamilyRuns>>,
+    /// The chapter-3 runs on members of the joint family.
+    joint_figs: Option<JointFigs>,
+    /// The chapter-2 runs on members of the drive-bench family.
+    drive_figs: Option<DriveFigs>,
+}
+
+/// Members and seeds of the chapter-2 runs on
+/// [`family`](mrr_control::sim::plants::drive::family) (216 members): each
+/// backbone, both bearing shapes, both mesh break-aways, the three splits
+/// of the loss, the three amplitudes and both ripples appear.
+pub const DRIVE_RUNS: &[(usize, u64)] = &[(0, 0), (41, 1), (86, 2), (127, 3), (170, 4), (215, 5)];
+
+/// The chapter-2 runs in quick mode, on
+/// [`quick_family`](mrr_control::sim::plants::drive::quick_family) (4
+/// members).
+pub const DRIVE_RUNS_QUICK: &[(usize, u64)] = &[(0, 0), (3, 1)];
+
+/// The chapter-2 figure runs ([`drive_figure_run`]) on members of the
+/// drive-bench family, the first one drawn.
+struct DriveFigs {
+    /// `family` or `quick_family`.
+    family: &'static str,
+    /// The member's description, per run.
+    labels: Vec<String>,
+    /// The runs, in the order of [`DRIVE_RUNS`] (or [`DRIVE_RUNS_QUICK`]).
+    runs: Vec<DriveFigureRun>,
+}
+
+impl DriveFigs {
+    /// The run a figure draws, for its legend.
+    fn shown(&self) -> String {
+        let m = self.runs[0].metrics;
+        format!("{} member {} (seed {})", self.family, m.plant, m.seed)
+    }
+
+    /// The runs, for a figure's text.
+    fn runs_text(&self) -> String {
+        let list = self
+            .runs
+            .iter()
+            .map(|r| format!("{}/{}", r.metrics.plant, r.metrics.seed))
+            .collect::<Vec<_>>()
+            .join(", ");
+        format!("{} runs (member/seed {list})", self.runs.len())
+    }
+
+    /// What produced a chapter-2 figure, for its text.
+    fn source(&self) -> String {
+        format!(
+            "plant: {} of the independent drive-bench family (sim::plants::drive: flexspline \
+             backbone and hysteresis, bearing compliance, mesh friction, a drawn kinematic \
+             error with ripple, quantizing encoders, torque-sensor gain error; {}); models \
+             identified from the catalogue alone (sim::claims::blind_models), runs of \
+             sim::claims::drive_figure_run",
+            self.shown(),
+            self.labels[0]
+        )
+    }
+}
+
+/// [`spread`] in `e` notation, 2 decimals.
+fn spread_e(v: &[f64]) -> String {
+    let mut s = v.to_vec();
+    s.sort_by(f64::total_cmp);
+    match s.len() {
+        0 => "none".into(),
+        1 => format!("{:.2e}", s[0]),
+        n => format!(
+            "median {:.2e} (min {:.2e}, max {:.2e})",
+            s[n / 2],
+            s[0],
+            s[n - 1]
+        ),
+    }
+}
+
+/// Members and seeds of the chapter-3 runs on
+/// [`joint_family`](mrr_control::sim::plants::joint::joint_family) (24
+/// members): one of each backbone and loss split, both friction levels and
+/// link inertias, each with its own seed.
+pub const JOINT_RUNS: &[(usize, u64)] = &[(0, 0), (7, 1), (10, 2), (13, 3), (19, 4), (22, 5)];
+
+/// The chapter-3 runs in quick mode, on
+/// [`quick_joint_family`](mrr_control::sim::plants::joint::quick_joint_family)
+/// (2 members).
+pub const JOINT_RUNS_QUICK: &[(usize, u64)] = &[(0, 0), (1, 1)];
+
+/// The chapter-3 figure runs ([`figure_run`]) on members of the joint
+/// family, the first one drawn.
+struct JointFigs {
+    /// `joint_family` or `quick_joint_family`.
+    family: &'static str,
+    /// The member's description, per run.
+    labels: Vec<String>,
+    /// The runs, in the order of [`JOINT_RUNS`] (or [`JOINT_RUNS_QUICK`]).
+    runs: Vec<JointFigureRun>,
+    /// The kinematic error each run drew (the truth of the fit).
+    drawn: Vec<KinematicErrorPlant>,
+}
+
+impl JointFigs {
+    /// The run a figure draws, for its legend.
+    fn shown(&self) -> String {
+        format!(
+            "{} member {} (seed {})",
+            self.family, self.runs[0].plant, self.runs[0].seed
+        )
+    }
+
+    /// The runs, for a figure's text.
+    fn runs_text(&self) -> String {
+        let list = self
+            .runs
+            .iter()
+            .map(|r| format!("{}/{}", r.plant, r.seed))
+            .collect::<Vec<_>>()
+            .join(", ");
+        format!("{} runs (member/seed {list})", self.runs.len())
+    }
+
+    /// What produced a chapter-3 figure, for its text.
+    fn source(&self) -> String {
+        format!(
+            "plant: {} of the independent joint family (sim::plants::joint: flexspline \
+             backbone and hysteresis, bearing compliance, mesh friction, a drawn kinematic \
+             error with ripple, pre-sliding friction; {}), the library's joint step at 4 ms, \
+             runs of sim::claims::ch34::figure_run",
+            self.shown(),
+            self.labels[0]
+        )
+    }
+}
+
+/// The forward calibration revolution of a run (the first half of its
+/// samples).
+fn forward(run: &JointFigureRun) -> &[mrr_control::sim::claims::ch34::CalibrationSample] {
+    &run.calibration[..run.calibration.len() / 2]
 }
 
 /// The chapter-4 engine runs on one member of the independent joint family
@@ -387,7 +547,101 @@ impl Report {
             arm_back_driving: None,
             arm_collision: None,
             arm_family: None,
+            joint_figs: None,
+            drive_figs: None,
         }
+    }
+
+    /// The chapter-2 runs on the drive-bench family ([`DRIVE_RUNS`], or
+    /// [`DRIVE_RUNS_QUICK`] on the quick family), one thread per run.
+    fn drive_figs(&mut self) -> Result<&DriveFigs, Error> {
+        if self.drive_figs.is_none() {
+            let (family, name, list) = if self.opts.quick {
+                (quick_drive_family(), "quick_family", DRIVE_RUNS_QUICK)
+            } else {
+                (drive_family(), "family", DRIVE_RUNS)
+            };
+            let family = &family;
+            let results: Vec<Result<DriveFigureRun, String>> = std::thread::scope(|scope| {
+                let handles: Vec<_> = list
+                    .iter()
+                    .map(|&(m, s)| {
+                        scope.spawn(move || {
+                            drive_figure_run(family, m, s).map_err(|e| e.to_string())
+                        })
+                    })
+                    .collect();
+                handles
+                    .into_iter()
+                    .map(|h| {
+                        h.join()
+                            .unwrap_or_else(|_| Err("a drive run panicked".into()))
+                    })
+                    .collect()
+            });
+            let mut runs = Vec::new();
+            for r in results {
+                runs.push(r?);
+            }
+            let labels = runs
+                .iter()
+                .map(|r| family[r.metrics.plant].label())
+                .collect();
+            self.drive_figs = Some(DriveFigs {
+                family: name,
+                labels,
+                runs,
+            });
+        }
+        self.drive_figs
+            .as_ref()
+            .ok_or_else(|| "drive family runs missing".into())
+    }
+
+    /// The chapter-3 runs on the joint family ([`JOINT_RUNS`], or
+    /// [`JOINT_RUNS_QUICK`] on the quick family), one thread per run.
+    fn joint_figs(&mut self) -> Result<&JointFigs, Error> {
+        if self.joint_figs.is_none() {
+            let (family, name, list) = if self.opts.quick {
+                (quick_joint_family(), "quick_joint_family", JOINT_RUNS_QUICK)
+            } else {
+                (joint_family(), "joint_family", JOINT_RUNS)
+            };
+            let family = &family;
+            let results: Vec<Result<JointFigureRun, String>> = std::thread::scope(|scope| {
+                let handles: Vec<_> = list
+                    .iter()
+                    .map(|&(m, s)| {
+                        scope.spawn(move || figure_run(family, m, s).map_err(|e| e.to_string()))
+                    })
+                    .collect();
+                handles
+                    .into_iter()
+                    .map(|h| {
+                        h.join()
+                            .unwrap_or_else(|_| Err("a joint run panicked".into()))
+                    })
+                    .collect()
+            });
+            let mut runs = Vec::new();
+            for r in results {
+                runs.push(r?);
+            }
+            let labels = runs.iter().map(|r| family[r.plant].label()).collect();
+            let drawn = runs
+                .iter()
+                .map(|r| family[r.plant].rest(0.0, r.seed).kinematic_error)
+                .collect();
+            self.joint_figs = Some(JointFigs {
+                family: name,
+                labels,
+                runs,
+                drawn,
+            });
+        }
+        self.joint_figs
+            .as_ref()
+            .ok_or_else(|| "joint family runs missing".into())
     }
 
     /// Seeds of the engine sweeps: [`ENGINE_SEEDS`], or
@@ -954,29 +1208,76 @@ fn fig2_12(r: &mut Report) -> Result<Figure, Error> {
     )
 }
 
+/// Width of a hysteresis loop where `torque` crosses zero: the mean
+/// `torsion` on the falling crossings minus that on the rising ones.
+fn loop_width<T>(samples: &[T], torque: impl Fn(&T) -> f64, torsion: impl Fn(&T) -> f64) -> f64 {
+    let (mut down, mut up) = (Vec::new(), Vec::new());
+    for w in samples.windows(2) {
+        let (t0, t1) = (torque(&w[0]), torque(&w[1]));
+        if (t0 > 0.0) != (t1 > 0.0) && t0 != t1 {
+            let a = t0 / (t0 - t1);
+            let x = torsion(&w[0]) + a * (torsion(&w[1]) - torsion(&w[0]));
+            if t1 < t0 {
+                down.push(x);
+            } else {
+                up.push(x);
+            }
+        }
+    }
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
+    mean(&down) - mean(&up)
+}
+
+/// Samples per cycle of the drive bench's profile
+/// ([`DrivePlant::profile`](mrr_control::sim::plants::DrivePlant::profile)).
+const PROFILE_CYCLE: f64 = 100.0;
+
 fn fig2_17(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
-    let a = r.locked();
-    let pts: Vec<_> = a
+    let old = r.locked();
+    let old_peak = old
         .samples
         .iter()
-        .map(|s| (s.time, s.wave_generator_torque * 100.0))
+        .map(|s| s.wave_generator_torque.abs() * 100.0)
+        .fold(0.0, f64::max);
+    let d = r.drive_figs()?;
+    let run = &d.runs[0];
+    let pts: Vec<_> = run
+        .locked
+        .iter()
+        .enumerate()
+        .map(|(k, s)| (k as f64 / PROFILE_CYCLE, s.wave_generator_torque * 100.0))
         .collect();
     let peak = pts.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
-    let end = pts.last().map_or(0.0, |p| p.0);
+    let peaks: Vec<f64> = d
+        .runs
+        .iter()
+        .map(|x| {
+            x.locked
+                .iter()
+                .map(|s| s.wave_generator_torque.abs() * 100.0)
+                .fold(0.0, f64::max)
+        })
+        .collect();
     figure(
         &dir,
         "fig2_17_input_torque.svg",
         "Fig. 2.17: motor-side input torque",
         Chart {
             title: "Fig. 2.17  motor torque command, output locked",
-            x: "time (s)",
+            x: "profile cycles (100 samples each; the plant is rate-independent)",
             y: "motor torque τ_w (N·cm)",
-            series: vec![line("τ_w", BLUE_, pts)],
+            series: vec![line(&format!("τ_w, {}", d.shown()), BLUE_, pts)],
             markers: vec![],
         },
         "a sinusoidal motor torque of decreasing amplitude drives the locked drive".into(),
-        format!("0.5 Hz sinusoid, peak {peak:.1} N·cm decreasing to 0 over {end:.0} s"),
+        format!(
+            "{}: ten cycles decreasing linearly to 0, peak {peak:.1} N·cm; peaks over {}: {} \
+             N·cm. Comparison only, the old plant of sim::experiments: peak {old_peak:.1} N·cm",
+            d.source(),
+            d.runs_text(),
+            spread(&peaks, 1.0, 1)
+        ),
     )
 }
 
@@ -985,29 +1286,51 @@ fn fig2_18(r: &mut Report) -> Result<Figure, Error> {
     let psi = CatalogueData::SHD_17_100.hysteresis_loss;
     let a = r.locked();
     let to = a.samples.last().map_or(0.0, |s| s.time).min(6.0);
-    let w_plant = width_at_zero(
+    let old_plant = width_at_zero(
         &a.samples,
         |s| -s.wave_generator_torque,
         |s| s.measured_torsion,
         0.0,
         to,
     );
-    let w_model = width_at_zero(
+    let old_model = width_at_zero(
         &a.samples,
         |s| -s.wave_generator_torque,
         |s| s.proposed,
         0.0,
         to,
     );
-    let meas: Vec<_> = a
-        .samples
+    let d = r.drive_figs()?;
+    let run = &d.runs[0];
+    let meas: Vec<_> = run
+        .locked
         .iter()
-        .map(|s| (-s.wave_generator_torque * 100.0, s.measured_torsion * 1e3))
+        .map(|s| (-s.wave_generator_torque * 100.0, s.torsion * 1e3))
         .collect();
-    let model: Vec<_> = a
-        .samples
+    let model: Vec<_> = run
+        .locked
         .iter()
-        .map(|s| (-s.wave_generator_torque * 100.0, s.proposed * 1e3))
+        .zip(&run.locked_proposed)
+        .map(|(s, p)| (-s.wave_generator_torque * 100.0, p * 1e3))
+        .collect();
+    let widths = |x: &DriveFigureRun| {
+        let plant = loop_width(&x.locked, |s| -s.wave_generator_torque, |s| s.torsion);
+        let idx: Vec<usize> = (0..x.locked.len()).collect();
+        let model = loop_width(
+            &idx,
+            |&i| -x.locked[i].wave_generator_torque,
+            |&i| x.locked_proposed[i],
+        );
+        (plant, model)
+    };
+    let (w_plant, w_model) = widths(run);
+    let ratio: Vec<f64> = d
+        .runs
+        .iter()
+        .map(|x| {
+            let (p, m) = widths(x);
+            m / p
+        })
         .collect();
     figure(
         &dir,
@@ -1018,8 +1341,8 @@ fn fig2_18(r: &mut Report) -> Result<Figure, Error> {
             x: "input torque −τ_w (N·cm)",
             y: "torsion Δθ (mrad)",
             series: vec![
-                dots("simulated encoders", GREY, meas),
-                line("proposed model, eq. (2.30)", RED_, model),
+                dots(&format!("encoders, {}", d.shown()), GREY, meas),
+                line("proposed model, eq. (2.30), catalogue", RED_, model),
             ],
             markers: vec![],
         },
@@ -1028,63 +1351,103 @@ fn fig2_18(r: &mut Report) -> Result<Figure, Error> {
             psi
         ),
         format!(
-            "loop width at zero torque (first {to:.0} s): plant {:.2e} rad, model {:.2e} rad",
-            w_plant, w_model
+            "{}: loop width at zero torque (whole run) plant {:.2e} rad, eq. (2.30) identified \
+             from the catalogue {:.2e} rad; model/plant width over {}: {}. Comparison only, the \
+             old plant of sim::experiments (first {to:.0} s): plant {:.2e} rad, model {:.2e} rad",
+            d.source(),
+            w_plant,
+            w_model,
+            d.runs_text(),
+            spread(&ratio, 1.0, 2),
+            old_plant,
+            old_model
         ),
     )
 }
 
 fn fig2_19(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
-    let a = r.locked();
-    let err = |f: fn(&ComplianceSample) -> f64| -> Vec<(f64, f64)> {
-        a.samples
+    let old = r.locked().clone();
+    let d = r.drive_figs()?;
+    let run = &d.runs[0];
+    let err = |pred: &[f64]| -> Vec<(f64, f64)> {
+        run.locked
             .iter()
-            .map(|s| (s.time, (f(s) - s.measured_torsion) * 1e3))
+            .zip(pred)
+            .enumerate()
+            .map(|(k, (s, p))| (k as f64 / PROFILE_CYCLE, (p - s.torsion) * 1e3))
             .collect()
     };
-    let ours = format!(
-        "error range: proposed {:+.2e} … {:+.2e} rad, piecewise {:+.2e} … {:+.2e} rad (RMS {:.2e} vs {:.2e})",
-        a.proposed.min, a.proposed.max, a.piecewise.min, a.piecewise.max, a.proposed.rms, a.piecewise.rms
-    );
+    let m = run.metrics;
+    let reduction: Vec<f64> = d.runs.iter().map(|x| x.metrics.reduction_blind()).collect();
+    let proposed: Vec<f64> = d
+        .runs
+        .iter()
+        .map(|x| x.metrics.locked_proposed_blind)
+        .collect();
     figure(
         &dir,
         "fig2_19_error_time.svg",
         "Fig. 2.19: estimation error versus time",
         Chart {
-            title: "Fig. 2.19  torsion error (model − encoders) versus time",
-            x: "time (s)",
+            title: "Fig. 2.19  torsion error (model − encoders), output locked",
+            x: "profile cycles (100 samples each)",
             y: "torsion error (mrad)",
             series: vec![
-                line("piecewise, eq. (2.11)", ORANGE, err(|s| s.piecewise)),
-                line("proposed, eq. (2.30)", BLUE_, err(|s| s.proposed)),
+                line(
+                    "piecewise, eq. (2.11), catalogue",
+                    ORANGE,
+                    err(&run.locked_classic),
+                ),
+                line(
+                    &format!("proposed, eq. (2.30), catalogue; {}", d.shown()),
+                    BLUE_,
+                    err(&run.locked_proposed),
+                ),
             ],
             markers: vec![],
         },
         "error reduced from ±2.3e-4 rad (eq. 2.11) to ±1.7e-4 rad (eq. 2.30)".into(),
-        ours,
+        format!(
+            "{}: peak |error| piecewise {:.2e} rad, proposed {:.2e} rad; over {}: proposed peak \
+             {} rad (claim 2.19-level), 1 − proposed/piecewise {} (claim 2.19-blind). \
+             Comparison only, the old plant of sim::experiments: proposed {:+.2e} … {:+.2e} \
+             rad, piecewise {:+.2e} … {:+.2e} rad",
+            d.source(),
+            m.locked_classic_blind,
+            m.locked_proposed_blind,
+            d.runs_text(),
+            spread_e(&proposed),
+            spread(&reduction, 1.0, 2),
+            old.proposed.min,
+            old.proposed.max,
+            old.piecewise.min,
+            old.piecewise.max
+        ),
     )
 }
 
 fn fig2_20(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
-    let a = r.locked();
-    let err = |f: fn(&ComplianceSample) -> f64| -> Vec<(f64, f64)> {
-        a.samples
+    let d = r.drive_figs()?;
+    let run = &d.runs[0];
+    let tau = std::f64::consts::TAU;
+    let err = |pred: &[f64]| -> Vec<(f64, f64)> {
+        run.locked
             .iter()
-            .map(|s| (s.motor_angle, (f(s) - s.measured_torsion) * 1e3))
+            .zip(pred)
+            .map(|(s, p)| (s.motor_angle.rem_euclid(tau), (p - s.torsion) * 1e3))
             .collect()
     };
-    let (lo, hi) = a.samples.iter().fold((f64::MAX, f64::MIN), |(l, h), s| {
+    let (lo, hi) = run.locked.iter().fold((f64::MAX, f64::MIN), |(l, h), s| {
         (l.min(s.motor_angle), h.max(s.motor_angle))
     });
-    let gap = |f: fn(&ComplianceSample) -> f64| {
-        width_at_zero(
-            &a.samples,
-            |s| -s.wave_generator_torque,
-            |s| f(s) - s.measured_torsion,
-            0.0,
-            f64::MAX,
+    let idx: Vec<usize> = (0..run.locked.len()).collect();
+    let gap = |pred: &[f64]| {
+        loop_width(
+            &idx,
+            |&i| -run.locked[i].wave_generator_torque,
+            |&i| pred[i] - run.locked[i].torsion,
         )
     };
     figure(
@@ -1093,11 +1456,15 @@ fn fig2_20(r: &mut Report) -> Result<Figure, Error> {
         "Fig. 2.20: estimation error versus motor position",
         Chart {
             title: "Fig. 2.20  torsion error versus motor position",
-            x: "motor angle (rad)",
+            x: "motor angle θ_wi mod 2π (rad)",
             y: "torsion error (mrad)",
             series: vec![
-                dots("piecewise, eq. (2.11)", ORANGE, err(|s| s.piecewise)),
-                dots("proposed, eq. (2.30)", BLUE_, err(|s| s.proposed)),
+                dots("piecewise, eq. (2.11)", ORANGE, err(&run.locked_classic)),
+                dots(
+                    &format!("proposed, eq. (2.30); {}", d.shown()),
+                    BLUE_,
+                    err(&run.locked_proposed),
+                ),
             ],
             markers: vec![],
         },
@@ -1105,57 +1472,94 @@ fn fig2_20(r: &mut Report) -> Result<Figure, Error> {
          them (hysteresis)"
             .into(),
         format!(
-            "motor swings over {:.2} rad; signed gap between the error's unloading and loading \
-             branches at zero torque (a model without hysteresis leaves the plant's loop, one \
-             whose hysteresis is too wide flips its sign): piecewise {:+.2e} rad, proposed \
-             {:+.2e} rad",
+            "{}: the motor swings over {:.2} rad; signed gap between the error's unloading and \
+             loading branches at zero torque (a model without hysteresis leaves the plant's \
+             loop, one whose hysteresis is too wide flips its sign): piecewise {:+.2e} rad, \
+             proposed {:+.2e} rad",
+            d.source(),
             hi - lo,
-            gap(|s| s.piecewise),
-            gap(|s| s.proposed)
+            gap(&run.locked_classic),
+            gap(&run.locked_proposed)
         ),
     )
 }
 
 fn fig2_21(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
-    let b = r.back_driven();
-    let pts: Vec<_> = b
+    let old_peak = r
+        .back_driven()
         .compliance
         .samples
         .iter()
-        .map(|s| (s.time, s.flexspline_torque))
+        .map(|s| s.flexspline_torque.abs())
+        .fold(0.0, f64::max);
+    let d = r.drive_figs()?;
+    let run = &d.runs[0];
+    let pts: Vec<_> = run
+        .held
+        .iter()
+        .enumerate()
+        .map(|(k, s)| (k as f64 / PROFILE_CYCLE, s.flexspline_torque))
         .collect();
     let peak = pts.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
+    let peaks: Vec<f64> = d
+        .runs
+        .iter()
+        .map(|x| {
+            x.held
+                .iter()
+                .map(|s| s.flexspline_torque.abs())
+                .fold(0.0, f64::max)
+        })
+        .collect();
     figure(
         &dir,
         "fig2_21_external_torque.svg",
         "Fig. 2.21: external torque on the output side",
         Chart {
             title: "Fig. 2.21  output-side torque, motor held",
-            x: "time (s)",
+            x: "profile cycles (100 samples each)",
             y: "flexspline torque τ_f (N·m)",
-            series: vec![line("τ_f (torque sensor)", BLUE_, pts)],
+            series: vec![line(
+                &format!("τ_f (torque sensor), {}", d.shown()),
+                BLUE_,
+                pts,
+            )],
             markers: vec![],
         },
         "a bidirectional external torque of decreasing amplitude back-drives the link".into(),
-        format!("measured flexspline torque peaks at {peak:.1} N·m"),
+        format!(
+            "{}: measured flexspline torque peaks at {peak:.1} N·m; over {}: {} N·m. \
+             Comparison only, the old plant of sim::experiments: {old_peak:.1} N·m",
+            d.source(),
+            d.runs_text(),
+            spread(&peaks, 1.0, 1)
+        ),
     )
 }
 
 fn fig2_22(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
-    let b = r.back_driven();
-    let c = &b.compliance;
-    let meas: Vec<_> = c
-        .samples
+    let old = r.back_driven().compliance.clone();
+    let d = r.drive_figs()?;
+    let run = &d.runs[0];
+    let meas: Vec<_> = run
+        .held
         .iter()
-        .map(|s| (s.measured_torsion * 1e3, s.flexspline_torque))
+        .map(|s| (s.torsion * 1e3, s.flexspline_torque))
         .collect();
-    let model: Vec<_> = c
-        .samples
+    let model: Vec<_> = run
+        .held
         .iter()
-        .map(|s| (s.proposed * 1e3, s.flexspline_torque))
+        .zip(&run.held_proposed)
+        .map(|(s, p)| (p * 1e3, s.flexspline_torque))
         .collect();
+    let held: Vec<f64> = d
+        .runs
+        .iter()
+        .map(|x| x.metrics.held_proposed_blind)
+        .collect();
+    let m = run.metrics;
     figure(
         &dir,
         "fig2_22_back_driven.svg",
@@ -1165,23 +1569,30 @@ fn fig2_22(r: &mut Report) -> Result<Figure, Error> {
             x: "torsion Δθ (mrad)",
             y: "flexspline torque τ_f (N·m)",
             series: vec![
-                dots("simulated encoders", GREY, meas),
-                line("eq. (2.30), τ_w from eq. (2.40)", RED_, model),
+                dots(&format!("encoders, {}", d.shown()), GREY, meas),
+                line("eq. (2.30), τ_w from eq. (2.40), catalogue", RED_, model),
             ],
             markers: vec![],
         },
         "the torsion predicted by eq. (2.30) with τ_w from eq. (2.40) agrees with the measured one"
             .into(),
         format!(
-            "torsion error RMS: eq. (2.30) {:.2e} rad, piecewise eq. (2.11) {:.2e} rad, cubic {:.2e} rad",
-            c.proposed.rms, c.piecewise.rms, c.cubic.rms
+            "{}: peak |torsion error| eq. (2.30) {:.2e} rad, piecewise eq. (2.11) {:.2e} rad; \
+             eq. (2.30) over {}: {} rad (claim 2.22-blind). Comparison only, the old plant of \
+             sim::experiments: RMS eq. (2.30) {:.2e} rad, piecewise {:.2e} rad, cubic {:.2e} rad",
+            d.source(),
+            m.held_proposed_blind,
+            m.held_classic_blind,
+            d.runs_text(),
+            spread_e(&held),
+            old.proposed.rms,
+            old.piecewise.rms,
+            old.cubic.rms
         ),
     )
 }
 
 // ---------------------------------------------------------------- chapter 3
-
-const RATIO: f64 = 100.0;
 
 /// The link-side part of a kinematic-error model (`a0`, `a_l1`, `b_l1`).
 fn link_part(m: &KinematicErrorModel) -> KinematicErrorModel {
@@ -1204,16 +1615,24 @@ fn revolution(n: usize) -> impl Iterator<Item = f64> {
 
 fn fig3_1(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
-    let truth = KinematicErrorModel::table_3_2();
-    let fitted = r.estimation().fitted_kinematic_error;
+    let j = r.joint_figs()?;
+    let run = &j.runs[0];
     let deg = 180.0 / std::f64::consts::PI;
-    let total: Vec<_> = revolution(20_000)
-        .map(|q| (q * deg, truth.evaluate(q, RATIO * q) * 1e6))
+    let total: Vec<_> = forward(run)
+        .iter()
+        .map(|c| (c.link * deg, c.error * 1e6))
         .collect();
     let fit: Vec<_> = revolution(720)
-        .map(|q| (q * deg, link_part(&fitted).evaluate(q, 0.0) * 1e6))
+        .map(|q| (q * deg, link_part(&run.fitted).evaluate(q, 0.0) * 1e6))
         .collect();
     let amp = |m: &KinematicErrorModel| m.phase_form().amplitudes[0];
+    // Fitted link amplitude over the drawn output term, every run.
+    let share: Vec<f64> = j
+        .runs
+        .iter()
+        .zip(&j.drawn)
+        .map(|(x, k)| amp(&x.fitted) / k.output.0)
+        .collect();
     figure(
         &dir,
         "fig3_1_ke_link.svg",
@@ -1223,174 +1642,277 @@ fn fig3_1(r: &mut Report) -> Result<Figure, Error> {
             x: "link angle θ_fo (deg)",
             y: "kinematic error (µrad)",
             series: vec![
-                line("simulated drive (Table 3.2)", GREY, total),
+                line(
+                    &format!("drawn truth, {}", j.shown()),
+                    GREY,
+                    thin(total, 6100),
+                ),
                 line("fitted link harmonic, eq. (3.3)", RED_, fit),
             ],
             markers: vec![],
         },
         format!(
-            "a once-per-output-revolution harmonic of amplitude {:.1} µrad (Table 3.2)",
-            amp(&truth) * 1e6
+            "the measured error has a once-per-output-revolution harmonic (Table 3.2: \
+             amplitude {:.1} µrad)",
+            amp(&KinematicErrorModel::table_3_2()) * 1e6
         ),
         format!(
-            "fitted from two calibration revolutions: amplitude {:.1} µrad",
-            amp(&fitted) * 1e6
+            "{}; truth: its drawn kinematic error (wave-generator harmonics 1–4, tooth-pass \
+             ripple, output term {:.1} µrad), not eq. (3.7); eq. (3.7) fitted by \
+             KinematicErrorFit from the plant's encoders over one revolution each way at zero \
+             load (§3.1): link amplitude {:.1} µrad; fitted/drawn link amplitude over {}: {}",
+            j.source(),
+            j.drawn[0].output.0 * 1e6,
+            amp(&run.fitted) * 1e6,
+            j.runs_text(),
+            spread(&share, 1.0, 3)
         ),
     )
 }
 
 fn fig3_2(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
-    let truth = KinematicErrorModel::table_3_2();
-    let fitted = r.estimation().fitted_kinematic_error;
+    let j = r.joint_figs()?;
+    let run = &j.runs[0];
     let deg = 180.0 / std::f64::consts::PI;
     let tau = std::f64::consts::TAU;
-    let residual: Vec<_> = revolution(4000)
-        .map(|q| {
-            let qm = RATIO * q;
+    let residual: Vec<_> = forward(run)
+        .iter()
+        .map(|c| {
             (
-                qm.rem_euclid(tau) * deg,
-                (truth.evaluate(q, qm) - link_part(&truth).evaluate(q, 0.0)) * 1e6,
+                c.motor.rem_euclid(tau) * deg,
+                (c.error - link_part(&run.fitted).evaluate(c.link, 0.0)) * 1e6,
             )
         })
         .collect();
+    // The estimator's θ_wi is −θ_m.
     let fit: Vec<_> = revolution(720)
-        .map(|qm| (qm * deg, motor_part(&fitted).evaluate(0.0, qm) * 1e6))
+        .map(|qm| (qm * deg, motor_part(&run.fitted).evaluate(0.0, -qm) * 1e6))
         .collect();
-    let mut worst = 0.0f64;
-    for qm in revolution(720) {
-        worst = worst.max(
-            (motor_part(&fitted).evaluate(0.0, qm) - motor_part(&truth).evaluate(0.0, qm)).abs(),
-        );
+    let amps = |x: &JointFigureRun| {
+        let a = x.fitted.phase_form().amplitudes;
+        [a[1], a[2]]
+    };
+    let (mut h1, mut h2) = (Vec::new(), Vec::new());
+    for (x, k) in j.runs.iter().zip(&j.drawn) {
+        let a = amps(x);
+        h1.push(a[0] / k.wave_generator[0].0);
+        h2.push(a[1] / k.wave_generator[1].0);
     }
+    let k = &j.drawn[0];
+    let a = amps(run);
     figure(
         &dir,
         "fig3_2_ke_motor.svg",
         "Fig. 3.2: kinematic error versus motor position",
         Chart {
             title: "Fig. 3.2  residual kinematic error over one motor revolution",
-            x: "motor angle θ_wi mod 360° (deg)",
+            x: "motor angle θ_m mod 360° (deg)",
             y: "residual error (µrad)",
             series: vec![
-                dots("simulated drive minus link harmonic", GREY, residual),
+                dots(
+                    &format!("drawn truth minus fitted link harmonic, {}", j.shown()),
+                    GREY,
+                    thin(residual, 4000),
+                ),
                 line("fitted motor harmonics, eq. (3.5)", RED_, fit),
             ],
             markers: vec![],
         },
         "the residual repeats once per motor revolution with two harmonics (eq. 3.5)".into(),
         format!(
-            "largest |fitted − Table 3.2| motor-side part: {:.1} µrad",
-            worst * 1e6
+            "{}: drawn wave-generator harmonics 1, 2 of {:.1}, {:.1} µrad, fitted {:.1}, {:.1} \
+             µrad; the content eq. (3.5) lacks (harmonics 3, 4 and the ripple: {:.1}, {:.1}, \
+             {:.1} µrad) stays in the residual; fitted/drawn over {}: harmonic 1 {}, \
+             harmonic 2 {}",
+            j.shown(),
+            k.wave_generator[0].0 * 1e6,
+            k.wave_generator[1].0 * 1e6,
+            a[0] * 1e6,
+            a[1] * 1e6,
+            k.wave_generator[2].0 * 1e6,
+            k.wave_generator[3].0 * 1e6,
+            k.ripple.0 * 1e6,
+            j.runs_text(),
+            spread(&h1, 1.0, 3),
+            spread(&h2, 1.0, 3)
         ),
     )
 }
 
 fn fig3_3(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
-    let truth = KinematicErrorModel::table_3_2();
-    let fitted = r.estimation().fitted_kinematic_error;
+    let j = r.joint_figs()?;
+    let run = &j.runs[0];
     let deg = 180.0 / std::f64::consts::PI;
-    let grid: Vec<f64> = revolution(20_000).collect();
-    let t: Vec<_> = grid
+    let cal = forward(run);
+    let t: Vec<_> = cal.iter().map(|c| (c.link * deg, c.error * 1e6)).collect();
+    let f: Vec<_> = cal
         .iter()
-        .map(|&q| (q * deg, truth.evaluate(q, RATIO * q) * 1e6))
-        .collect();
-    let f: Vec<_> = grid
-        .iter()
-        .map(|&q| (q * deg, fitted.evaluate(q, RATIO * q) * 1e6))
+        .map(|c| (c.link * deg, run.fitted.evaluate(c.link, -c.motor) * 1e6))
         .collect();
     let worst = t
         .iter()
         .zip(&f)
         .map(|(a, b)| (a.1 - b.1).abs())
         .fold(0.0, f64::max);
+    let peak = cal.iter().map(|c| c.error.abs()).fold(0.0, f64::max);
+    let residuals: Vec<f64> = j.runs.iter().map(|x| x.ke_fit_residual).collect();
     let d = CatalogueData::SHD_17_100;
     figure(
         &dir,
         "fig3_3_ke_model.svg",
         "Fig. 3.3: modelled kinematic error",
         Chart {
-            title: "Fig. 3.3  kinematic error model, eq. (3.7)",
+            title: "Fig. 3.3  kinematic error model, eq. (3.7), against the drawn truth",
             x: "link angle θ_fo (deg)",
             y: "kinematic error (µrad)",
             series: vec![
-                line("Table 3.2 (simulated drive)", GREY, t),
-                line("fitted, eq. (3.7)", RED_, f),
+                line(&format!("drawn truth, {}", j.shown()), GREY, thin(t, 6100)),
+                line("fitted, eq. (3.7)", RED_, thin(f, 6100)),
             ],
             markers: vec![],
         },
-        "eq. (3.7) with Table 3.2; without it the torque error would reach K2·θ_err \
-         (eq. 3.1, Table 3.1: 4.1 N·m for this size)"
+        "eq. (3.7) models the kinematic error; without it the torque error would reach \
+         K2·θ_err (eq. 3.1, Table 3.1: 4.1 N·m for this size)"
             .into(),
         format!(
-            "Table 3.2 bound {:.1} µrad (K2·bound = {:.2} N·m); largest |fitted − Table 3.2| {:.1} µrad",
-            truth.amplitude_bound() * 1e6,
-            truth.amplitude_bound() * d.k2,
-            worst
+            "{}: largest |truth| {:.1} µrad (K2·that = {:.2} N·m), largest |fitted − truth| \
+             {:.1} µrad, residual RMS/error RMS {:.3}; over {}: {} (claim 3.1-fit: at most 0.5 \
+             in 80 % of the runs)",
+            j.shown(),
+            peak * 1e6,
+            peak * d.k2,
+            worst,
+            run.ke_fit_residual,
+            j.runs_text(),
+            spread(&residuals, 1.0, 3)
         ),
+    )
+}
+
+/// `τ̂_t − τ_t` of a trace.
+fn errors(trace: &[TorqueSample]) -> ErrorStats {
+    ErrorStats::of(trace.iter().map(|s| s.estimate - s.truth))
+}
+
+/// Points of one curve, `(x, y)`.
+type Points = Vec<(f64, f64)>;
+
+/// The true torque and the estimate of a trace, against time.
+fn torque_series(trace: &[TorqueSample]) -> (Points, Points) {
+    (
+        trace.iter().map(|s| (s.time, s.truth)).collect(),
+        trace.iter().map(|s| (s.time, s.estimate)).collect(),
     )
 }
 
 fn fig3_6(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
     let chattering = r.tracking()[2].feedback_error;
-    let c = r.smooth().clone();
-    let truth: Vec<_> = c.trace.iter().map(|s| (s.time, s.joint_torque)).collect();
-    let est: Vec<_> = c.trace.iter().map(|s| (s.time, s.estimate)).collect();
+    let smooth = r.smooth().feedback_error;
+    let j = r.joint_figs()?;
+    let run = &j.runs[0];
+    let (truth, est) = torque_series(&run.tracking);
+    let e = errors(&run.tracking);
+    let peaks: Vec<f64> = j
+        .runs
+        .iter()
+        .map(|x| max_abs(&errors(&x.tracking)))
+        .collect();
+    let rmss: Vec<f64> = j.runs.iter().map(|x| errors(&x.tracking).rms).collect();
     figure(
         &dir,
         "fig3_6_estimation_slow.svg",
         "Fig. 3.6: estimated versus measured torque, slow changes",
         Chart {
-            title: "Fig. 3.6  joint torque while tracking a slow raised cosine (0.1 ms tick)",
+            title: "Fig. 3.6  joint torque while tracking a slow raised cosine (4 ms preset)",
             x: "time (s)",
             y: "joint torque τ_t (N·m)",
             series: vec![
-                line("true τ_t (F/T sensor)", GREY, truth),
+                line(
+                    &format!("true τ_t (F/T sensor), {}", j.shown()),
+                    GREY,
+                    truth,
+                ),
                 line("estimate, eq. (3.8)–(3.10)", RED_, est),
             ],
             markers: vec![],
         },
         "estimation error around 1 N·m, comparable with the F/T sensor".into(),
         format!(
-            "estimate − true τ_t after settling, with layers the sampled law holds (0.1 ms): \
-             RMS {:.2} N·m, max |·| {:.2} N·m; with Table 4.1 at 4 ms, where the law chatters: \
-             RMS {:.2} N·m, max |·| {:.2} N·m",
-            c.feedback_error.rms,
-            max_abs(&c.feedback_error),
+            "{}; the joint step of table_4_1_at(0.004) with the fitted eq. (3.7) tracks 0.8 rad \
+             in 3 s under a payload G sin θ_l: estimate − true τ_t from 0.2 s, shown run RMS \
+             {:.2} N·m, max |·| {:.2} N·m; over {}: max |·| {}, RMS {} N·m (claim 3.6-level). \
+             Comparison only, the old plant of sim::closed_loop (Table 3.2's kinematic error, \
+             the model the estimator subtracts): 0.1 ms layers RMS {:.2}, max |·| {:.2} N·m; \
+             Table 4.1 at 4 ms RMS {:.2}, max |·| {:.2} N·m",
+            j.source(),
+            e.rms,
+            max_abs(&e),
+            j.runs_text(),
+            spread(&peaks, 1.0, 2),
+            spread(&rmss, 1.0, 2),
+            smooth.rms,
+            max_abs(&smooth),
             chattering.rms,
             max_abs(&chattering)
         ),
     )
 }
 
+/// The Table 3.3 run drawn in Fig. 3.7: +5 N·cm at the motor.
+const FIG3_7_COMMAND: usize = 3;
+
 fn fig3_7(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
-    let s = interaction_scenario(&ModeScenarioConfig::interaction());
-    let truth: Vec<_> = s.trace.iter().map(|x| (x.time, x.joint_torque)).collect();
-    let est: Vec<_> = s.trace.iter().map(|x| (x.time, x.estimate)).collect();
-    let e = ErrorStats::of(s.trace.iter().map(|x| x.estimate - x.joint_torque));
-    let peak = s
-        .trace
-        .iter()
-        .map(|x| x.joint_torque.abs())
-        .fold(0.0, f64::max);
+    let old = interaction_scenario(&ModeScenarioConfig::interaction());
+    let old_e = ErrorStats::of(old.trace.iter().map(|x| x.estimate - x.joint_torque));
+    let j = r.joint_figs()?;
+    let pick = |x: &JointFigureRun| -> Result<Vec<TorqueSample>, Error> {
+        Ok(x.table_3_3
+            .get(FIG3_7_COMMAND)
+            .ok_or("Table 3.3 run missing")?
+            .trace
+            .clone())
+    };
+    let shown = pick(&j.runs[0])?;
+    let (truth, est) = torque_series(&shown);
+    let e = errors(&shown);
+    let peak = shown.iter().map(|x| x.truth.abs()).fold(0.0, f64::max);
+    let mut peaks = Vec::new();
+    for x in &j.runs {
+        peaks.push(max_abs(&errors(&pick(x)?)));
+    }
     figure(
         &dir,
         "fig3_7_estimation_fast.svg",
         "Fig. 3.7: estimated versus measured torque, fast changes",
         Chart {
-            title: "Fig. 3.7  joint torque while a hand pushes the joint and lets go",
+            title: "Fig. 3.7  joint torque while a hand moves the link out and back",
             x: "time (s)",
             y: "joint torque τ_t (N·m)",
-            series: vec![line("true τ_t", GREY, truth), line("estimate", RED_, est)],
+            series: vec![
+                line(&format!("true τ_t, {}", j.shown()), GREY, truth),
+                line("estimate", RED_, est),
+            ],
             markers: vec![],
         },
         "the estimate follows torque applied by hand; error around 1 N·m".into(),
         format!(
-            "true torque up to {peak:.1} N·m; estimate − true: RMS {:.2} N·m, max |·| {:.2} N·m",
+            "{}; motor open loop at {:+.0} N·cm while a hand guides the link 0.48 rad out \
+             and back in 1 s (Table 3.3's run): true torque up to {peak:.1} N·m; estimate − \
+             true RMS {:.2} N·m, max |·| {:.2} N·m; max |·| over {}: {} N·m. Comparison \
+             only, the old plant of sim::closed_loop (Table 3.2's kinematic error): RMS {:.2}, \
+             max |·| {:.2} N·m",
+            j.source(),
+            TABLE_3_3_COMMANDS[FIG3_7_COMMAND] * 100.0,
             e.rms,
-            max_abs(&e)
+            max_abs(&e),
+            j.runs_text(),
+            spread(&peaks, 1.0, 2),
+            old_e.rms,
+            max_abs(&old_e)
         ),
     )
 }
@@ -1398,28 +1920,38 @@ fn fig3_7(r: &mut Report) -> Result<Figure, Error> {
 fn fig3_8(r: &mut Report) -> Result<Figure, Error> {
     let dir = r.opts.out.clone();
     let p = payload_drop(&PayloadDropConfig::default());
-    let truth: Vec<_> = p.trace.iter().map(|x| (x.0, x.1)).collect();
-    let est: Vec<_> = p.trace.iter().map(|x| (x.0, x.2)).collect();
+    let j = r.joint_figs()?;
+    let run = &j.runs[0];
+    let (truth, est) = torque_series(&run.payload_cut);
+    let shares: Vec<f64> = j.runs.iter().map(|x| x.step_share).collect();
     figure(
         &dir,
         "fig3_8_payload_drop.svg",
         "Fig. 3.8: torque estimation when the payload is cut",
         Chart {
-            title: "Fig. 3.8  1 kg at 0.4 m cut at t = 1 s",
+            title: "Fig. 3.8  a 1.5 N·m payload cut at t = 1 s, joint holding position",
             x: "time (s)",
             y: "joint torque τ_t (N·m)",
-            series: vec![line("true τ_t", GREY, truth), line("estimate", RED_, est)],
+            series: vec![
+                line(&format!("true τ_t, {}", j.shown()), GREY, truth),
+                line("estimate", RED_, est),
+            ],
             markers: vec![],
         },
         "the estimate has a relatively good dynamic response to the sudden change".into(),
         format!(
-            "step {:.2} N·m (true {:.2}); half-way after {:.1} ms (true {:.1} ms); \
-             error after settling RMS {:.2} N·m",
+            "{}; share of the true step the estimate shows 40–100 ms after the cut: shown \
+             run {:.2}; over {}: {} (claim 3.8-step). Comparison only, the old plant of \
+             sim::closed_loop (1 kg at 0.4 m, Table 3.2's kinematic error): step {:.2} N·m \
+             (true {:.2}), half-way after {:.1} ms (true {:.1} ms)",
+            j.source(),
+            run.step_share,
+            j.runs_text(),
+            spread(&shares, 1.0, 2),
             p.estimate.after - p.estimate.before,
             p.truth.after - p.truth.before,
             p.estimate.half_time * 1e3,
             p.truth.half_time * 1e3,
-            p.error_after.rms
         ),
     )
 }
@@ -1437,21 +1969,41 @@ fn fig3_9(r: &mut Report) -> Result<Figure, Error> {
         (-10.0, 0.6, -2.3),
     ];
     let c = r.estimation();
-    let j = ESTIMATORS
+    let k = ESTIMATORS
         .iter()
         .position(|e| *e == "f64, KE fitted")
         .ok_or("estimator missing")?;
-    let by_torque = |f: fn(&ErrorStats) -> f64| -> Vec<(f64, f64)> {
-        let mut v: Vec<_> = c
-            .levels
-            .iter()
-            .map(|l| (l.motor_torque * 100.0, f(&l.errors[j])))
-            .collect();
-        v.sort_by(|a, b| a.0.total_cmp(&b.0));
-        v
-    };
-    let (ours_max, ours_min) = (by_torque(|e| e.max), by_torque(|e| e.min));
-    let overall = c.overall[j];
+    let old = c.overall[k];
+    let j = r.joint_figs()?;
+    // Per motor torque, the envelope over the runs.
+    let mut env: Vec<(f64, f64, f64)> = TABLE_3_3_COMMANDS
+        .iter()
+        .enumerate()
+        .map(|(i, &cmd)| {
+            let lo = j
+                .runs
+                .iter()
+                .filter_map(|x| x.table_3_3.get(i).map(|t| t.min))
+                .fold(f64::INFINITY, f64::min);
+            let hi = j
+                .runs
+                .iter()
+                .filter_map(|x| x.table_3_3.get(i).map(|t| t.max))
+                .fold(f64::NEG_INFINITY, f64::max);
+            (cmd * 100.0, lo, hi)
+        })
+        .collect();
+    env.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let (lo, hi) = env
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), e| {
+            (l.min(e.1), h.max(e.2))
+        });
+    let peaks: Vec<f64> = j
+        .runs
+        .iter()
+        .map(|x| x.table_3_3.iter().map(Table33Run::peak).fold(0.0, f64::max))
+        .collect();
     let worst_thesis = TABLE_3_3
         .iter()
         .map(|t| t.1.abs().max(t.2.abs()))
@@ -1475,15 +2027,30 @@ fn fig3_9(r: &mut Report) -> Result<Figure, Error> {
                     RED_,
                     TABLE_3_3.iter().map(|t| (t.0, t.2)).collect(),
                 ),
-                line("simulated max (f64, KE fitted)", BLUE_, ours_max),
-                line("simulated min", GREEN_, ours_min),
+                line(
+                    &format!("family max over {}", j.runs_text()),
+                    BLUE_,
+                    env.iter().map(|e| (e.0, e.2)).collect(),
+                ),
+                line(
+                    "family min",
+                    GREEN_,
+                    env.iter().map(|e| (e.0, e.1)).collect(),
+                ),
             ],
             markers: vec![],
         },
         format!("errors within −2.3 … +1.0 N·m (largest |·| {worst_thesis:.1} N·m)"),
         format!(
-            "errors within {:+.2} … {:+.2} N·m, RMS {:.2} N·m over all levels",
-            overall.min, overall.max, overall.rms
+            "{}; each motor torque open loop while a hand moves the link at up to 1.5 rad/s: \
+             errors within {lo:+.2} … {hi:+.2} N·m over {}; largest |·| per run {} N·m \
+             (claim 3.3-table). Comparison only, the old plant of sim::experiments (Table \
+             3.2's kinematic error): {:+.2} … {:+.2} N·m",
+            j.source(),
+            j.runs_text(),
+            spread(&peaks, 1.0, 2),
+            old.min,
+            old.max
         ),
     )
 }

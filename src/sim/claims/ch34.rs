@@ -145,6 +145,16 @@ fn fit_kinematic_error(
     st: &JointPlantState,
     rng: &mut SplitMix64,
 ) -> Result<(KinematicErrorModel, f64), ClaimError> {
+    fit_kinematic_error_samples(plant, st, rng).map(|(m, r, _)| (m, r))
+}
+
+/// [`fit_kinematic_error`], also returning the true error at each
+/// calibration point.
+fn fit_kinematic_error_samples(
+    plant: &JointPlant,
+    st: &JointPlantState,
+    rng: &mut SplitMix64,
+) -> Result<(KinematicErrorModel, f64, Vec<CalibrationSample>), ClaimError> {
     let mut fit = KinematicErrorFit::new();
     let n = 100 * 61;
     let mut truth = Vec::with_capacity(2 * n);
@@ -158,16 +168,20 @@ fn fit_kinematic_error(
             // Estimator convention: θ_wi = −θ_m, error = θ_fo + θ_wi/N.
             let e = wrap(link_read - motor_read / RATIO);
             fit.add_sample(link_read, -motor_read, e)?;
-            truth.push((link, motor, plant.kinematic_error(st, motor, link)));
+            truth.push(CalibrationSample {
+                link,
+                motor,
+                error: plant.kinematic_error(st, motor, link),
+            });
         }
     }
     let model = fit.solve()?;
     let (mut res, mut tot) = (0.0, 0.0);
-    for &(l, m, e) in &truth {
-        res += (e - model.evaluate(l, -m)).powi(2);
-        tot += e * e;
+    for c in &truth {
+        res += (c.error - model.evaluate(c.link, -c.motor)).powi(2);
+        tot += c.error * c.error;
     }
-    Ok((model, (res / tot).sqrt()))
+    Ok((model, (res / tot).sqrt(), truth))
 }
 
 /// An angle difference brought into `[−π, π)`.
@@ -250,6 +264,7 @@ struct Tracking {
     est_none: Vec<f64>,
     est_table: Vec<f64>,
     active_share: f64,
+    trace: Vec<TorqueSample>,
 }
 
 /// The tracking run of Fig. 3.6 on the full joint step: the payload `G
@@ -273,6 +288,7 @@ fn tracking(
         est_none: vec![],
         est_table: vec![],
         active_share: 0.0,
+        trace: vec![],
     };
     let ticks = (TRACK_TIME / PERIOD).round() as usize;
     let mut command = 0.0;
@@ -300,6 +316,11 @@ fn tracking(
             out.est_fit.push(o.joint_torque_si() - truth);
             out.est_none.push(shadow[0] - truth);
             out.est_table.push(shadow[1] - truth);
+            out.trace.push(TorqueSample {
+                time: t,
+                truth,
+                estimate: o.joint_torque_si(),
+            });
         }
         command = o.motor_torque_si();
         plant.advance(&mut st, command, PERIOD, |_, _| 0.0);
@@ -376,7 +397,7 @@ fn payload_cut(
     seed: u64,
     params: &JointParams,
     model: &KinematicErrorModel,
-) -> f64 {
+) -> (f64, Vec<TorqueSample>) {
     const LOAD: f64 = 1.5;
     const CUT: usize = 250;
     let cfg = JointConfig::<f64>::new(params);
@@ -408,7 +429,17 @@ fn payload_cut(
     let after = CUT + 11..CUT + 26;
     let de = mean(&est[after.clone()]) - mean(&est[before.clone()]);
     let dt = mean(&truth[after]) - mean(&truth[before]);
-    de / dt
+    let trace = truth
+        .iter()
+        .zip(&est)
+        .enumerate()
+        .map(|(k, (&truth, &estimate))| TorqueSample {
+            time: k as f64 * PERIOD,
+            truth,
+            estimate,
+        })
+        .collect();
+    (de / dt, trace)
 }
 
 /// Fig. 4.11: a hand back-drives the link along `0.5 (1 − cos(π t))/2`
@@ -503,7 +534,7 @@ fn table_3_3_run(
     params: &JointParams,
     model: &KinematicErrorModel,
     command: f64,
-) -> f64 {
+) -> Table33Run {
     const T: f64 = 1.0;
     const A: f64 = 1.5 * T / PI;
     // The drive's rated torque (§3.2): the hand pushes no harder.
@@ -527,7 +558,12 @@ fn table_3_3_run(
             amplitude * w * (w * s).sin() / 2.0,
         )
     };
-    let mut peak = 0.0f64;
+    let mut out = Table33Run {
+        command,
+        min: f64::INFINITY,
+        max: f64::NEG_INFINITY,
+        trace: Vec::new(),
+    };
     let ticks = ((SETTLE + T + 0.2) / PERIOD).round() as usize;
     for k in 0..ticks {
         let t0 = k as f64 * PERIOD;
@@ -535,14 +571,139 @@ fn table_3_3_run(
         let truth = p.transmitted(&st, &st.x);
         let m = jc.measure(&mut js, &readings(&r, command));
         if t0 >= SETTLE {
-            peak = peak.max((m.joint_torque_si() - truth).abs());
+            let e = m.joint_torque_si() - truth;
+            out.min = out.min.min(e);
+            out.max = out.max.max(e);
+            out.trace.push(TorqueSample {
+                time: t0,
+                truth,
+                estimate: m.joint_torque_si(),
+            });
         }
         p.advance(&mut st, command, PERIOD, |dt, x| {
             let (q, qd) = hand_path(t0 + dt);
             (300.0 * (q - x[2]) + 3.0 * (qd - x[3])).clamp(-HAND_LIMIT, HAND_LIMIT)
         });
     }
-    peak
+    out
+}
+
+/// One sample of a figure's torque trace (SI units).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TorqueSample {
+    /// Time from the start of the run, s.
+    pub time: f64,
+    /// The plant's transmitted joint torque `τ_t`, N·m (what the F/T
+    /// sensor of §3.2 measures).
+    pub truth: f64,
+    /// The library's estimate `τ̂_t` (eq. 3.8–3.10), N·m.
+    pub estimate: f64,
+}
+
+/// One point of the §3.1 calibration: the plant's true kinematic error at
+/// one link angle of the zero-load revolution.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CalibrationSample {
+    /// Link (output) angle `θ_fo`, rad.
+    pub link: f64,
+    /// Motor (wave-generator) angle `θ_m` at zero load, rad; the
+    /// estimator's `θ_wi` is `−θ_m`.
+    pub motor: f64,
+    /// The plant's kinematic error there, output-side rad.
+    pub error: f64,
+}
+
+/// One Table 3.3 run ([`TABLE_3_3_COMMANDS`]): the signed extremes of
+/// `τ̂_t − τ_t` and the trace, from 0.2 s on.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Table33Run {
+    /// Constant motor torque, N·m.
+    pub command: f64,
+    /// Smallest `τ̂_t − τ_t`, N·m.
+    pub min: f64,
+    /// Largest `τ̂_t − τ_t`, N·m.
+    pub max: f64,
+    /// The trace.
+    pub trace: Vec<TorqueSample>,
+}
+
+impl Table33Run {
+    /// Largest `|τ̂_t − τ_t|`, N·m.
+    pub fn peak(&self) -> f64 {
+        self.max.abs().max(self.min.abs()).max(0.0)
+    }
+}
+
+/// The traces behind the chapter-3 figures for one `(plant, seed)` of the
+/// joint family: the same runs as [`run_joint`]'s (same seeds, the 4 ms
+/// preset `table_4_1_at(0.004)` with the fitted eq. (3.7)), so the numbers
+/// they give equal its metrics for that run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct JointFigureRun {
+    /// Index of the plant in the family.
+    pub plant: usize,
+    /// Seed of the run.
+    pub seed: u64,
+    /// Eq. (3.7) fitted from the plant's encoders (§3.1).
+    pub fitted: KinematicErrorModel,
+    /// RMS of the fit's residual over RMS of the true error
+    /// ([`JointRunMetrics::ke_fit_residual`]).
+    pub ke_fit_residual: f64,
+    /// The true kinematic error at the calibration points, both
+    /// directions (forward first).
+    pub calibration: Vec<CalibrationSample>,
+    /// Fig. 3.6: the tracking run with the payload `G sin θ_l`, from 0.2 s.
+    pub tracking: Vec<TorqueSample>,
+    /// Fig. 3.8: the payload cut at 1 s (whole run).
+    pub payload_cut: Vec<TorqueSample>,
+    /// [`JointRunMetrics::step_share`].
+    pub step_share: f64,
+    /// Table 3.3: one run per entry of [`TABLE_3_3_COMMANDS`], in order.
+    pub table_3_3: Vec<Table33Run>,
+}
+
+/// The chapter-3 figure runs on `family[index]` with `seed`.
+pub fn figure_run(
+    family: &[JointPlant],
+    index: usize,
+    seed: u64,
+) -> Result<JointFigureRun, ClaimError> {
+    let plant = family
+        .get(index)
+        .ok_or(ClaimError::NoRuns { name: "family" })?;
+    let preset = JointParams::table_4_1_at(PERIOD).map_err(|_| ClaimError::NoRuns {
+        name: "table_4_1_at(0.004)",
+    })?;
+    let mut rng = SplitMix64::new(seed.wrapping_mul(0x9E37_79B9) ^ 7);
+    let st = plant.rest(0.0, seed);
+    let (model, residual, calibration) = fit_kinematic_error_samples(plant, &st, &mut rng)?;
+    let fitted = with_kinematic_error(&preset, Some(model))?;
+    let shadows = [
+        TorqueEstimatorConfig::<f64>::new(
+            &with_kinematic_error(&preset, None)?.settings().estimator,
+        ),
+        TorqueEstimatorConfig::<f64>::new(
+            &with_kinematic_error(&preset, Some(KinematicErrorModel::table_3_2()))?
+                .settings()
+                .estimator,
+        ),
+    ];
+    let tr = tracking(plant, seed, &fitted, &shadows, &model);
+    let (step_share, payload_cut) = payload_cut(plant, seed, &fitted, &model);
+    Ok(JointFigureRun {
+        plant: index,
+        seed,
+        fitted: model,
+        ke_fit_residual: residual,
+        calibration,
+        tracking: tr.trace,
+        payload_cut,
+        step_share,
+        table_3_3: TABLE_3_3_COMMANDS
+            .iter()
+            .map(|&c| table_3_3_run(plant, seed, &fitted, &model, c))
+            .collect(),
+    })
 }
 
 /// Everything one `(plant, seed)` run measures.
@@ -597,13 +758,13 @@ fn run_one(
         link_rms_none: link_none,
         link_rms_sensor: link_sensor,
         link_rms_estimate: link_estimate,
-        step_share: payload_cut(plant, seed, &fitted, &model),
+        step_share: payload_cut(plant, seed, &fitted, &model).0,
         hand_rms_none: passive_run(plant, seed, &fitted, &model, Feedback::None, 1.0)?,
         hand_rms_estimate: best(Feedback::Estimate)?,
         hand_rms_sensor: best(Feedback::Sensor)?,
         table_3_3_peak: TABLE_3_3_COMMANDS
             .iter()
-            .map(|&c| table_3_3_run(plant, seed, &fitted, &model, c))
+            .map(|&c| table_3_3_run(plant, seed, &fitted, &model, c).peak())
             .fold(0.0, f64::max),
     })
 }
@@ -934,6 +1095,30 @@ mod tests {
             worst_naive = worst_naive.max(naive.abs());
         }
         assert!(worst_naive > 0.5, "{worst_naive}");
+    }
+
+    /// The figure runs are the registry's runs: on the same plant and
+    /// seed they give the same fit residual, tracking peak, step share and
+    /// Table 3.3 peak as [`run_joint`].
+    #[test]
+    fn figure_run_matches_the_registry_run() {
+        let family = quick_joint_family();
+        let m = run_joint(&family[..1], 1, 1).unwrap().remove(0);
+        let f = figure_run(&family, 0, 0).unwrap();
+        assert_eq!((f.plant, f.seed), (m.plant, m.seed));
+        assert_eq!(f.ke_fit_residual, m.ke_fit_residual);
+        assert_eq!(f.step_share, m.step_share);
+        let peak = f
+            .tracking
+            .iter()
+            .map(|s| (s.estimate - s.truth).abs())
+            .fold(0.0, f64::max);
+        assert_eq!(peak, m.est_peak_fit);
+        let table = f.table_3_3.iter().map(Table33Run::peak).fold(0.0, f64::max);
+        assert_eq!(table, m.table_3_3_peak);
+        assert_eq!(f.table_3_3.len(), TABLE_3_3_COMMANDS.len());
+        assert_eq!(f.calibration.len(), 2 * 100 * 61);
+        assert!(figure_run(&family, family.len(), 0).is_err());
     }
 
     #[test]

@@ -737,6 +737,112 @@ fn peak(trace: &[Sample], predict: impl Fn(&Sample) -> f64) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// One drive-bench run with the samples the chapter-2 figures draw and,
+/// per sample, the torsion the catalogue-identified models predict (rad).
+#[derive(Debug, Clone, PartialEq)]
+pub struct DriveFigureRun {
+    /// The run's metrics, as [`run`] records them.
+    pub metrics: RunMetrics,
+    /// Locked output (Fig. 2.17–2.20).
+    pub locked: Vec<Sample>,
+    /// Eq. (2.30) of [`blind_models`] on each locked sample (measured `τ_f`
+    /// and the commanded `τ_w`), rad.
+    pub locked_proposed: Vec<f64>,
+    /// Eq. (2.11) of [`blind_models`] on each locked sample, rad.
+    pub locked_classic: Vec<f64>,
+    /// Input held, output back-driven (Fig. 2.21–2.22).
+    pub held: Vec<Sample>,
+    /// Eq. (2.30) on each held sample with `τ_w` from eq. (2.40), rad.
+    pub held_proposed: Vec<f64>,
+    /// Eq. (2.11) on each held sample, rad.
+    pub held_classic: Vec<f64>,
+}
+
+/// The models and eq. (2.40)'s estimator every run shares.
+struct DriveModels {
+    blind: BlindModels,
+    eq240: WaveGeneratorTorqueConfig<f64>,
+}
+
+impl DriveModels {
+    fn new() -> Result<Self, ClaimError> {
+        Ok(DriveModels {
+            blind: blind_models()?,
+            eq240: WaveGeneratorTorqueConfig::<f64>::new(&WaveGeneratorTorqueParams::try_new(
+                WaveGeneratorTorqueSettings {
+                    backdrive_friction: super::plants::drive::BACKDRIVE_TORQUE,
+                    ratio: super::plants::drive::RATIO,
+                },
+            )?),
+        })
+    }
+
+    /// Both experiments on `plant` with `seed`.
+    fn run(
+        &self,
+        plant: &DrivePlant,
+        index: usize,
+        seed: u64,
+        oracle: &OracleModels,
+    ) -> DriveFigureRun {
+        let blind = &self.blind;
+        let locked = plant.locked_output(seed, false);
+        let held = plant.held_input(seed, false);
+        let mut state = WaveGeneratorTorqueState::<f64>::default();
+        let held_proposed: Vec<f64> = held
+            .iter()
+            .map(|s| {
+                let tau_w = self.eq240.update(&mut state, s.flexspline_torque);
+                blind.proposed.torsion(s.flexspline_torque, tau_w)
+            })
+            .collect();
+        let locked_proposed: Vec<f64> = locked
+            .iter()
+            .map(|s| {
+                blind
+                    .proposed
+                    .torsion(s.flexspline_torque, s.wave_generator_torque)
+            })
+            .collect();
+        let classic = |v: &[Sample]| -> Vec<f64> {
+            v.iter()
+                .map(|s| blind.classic.torsion(s.flexspline_torque))
+                .collect()
+        };
+        let (locked_classic, held_classic) = (classic(&locked), classic(&held));
+        let peak_of = |trace: &[Sample], predicted: &[f64]| {
+            trace
+                .iter()
+                .zip(predicted)
+                .map(|(s, p)| (p - s.torsion).abs())
+                .fold(0.0, f64::max)
+        };
+        let metrics = RunMetrics {
+            plant: index,
+            seed,
+            locked_classic_blind: peak_of(&locked, &locked_classic),
+            locked_proposed_blind: peak_of(&locked, &locked_proposed),
+            locked_classic_oracle: peak(&locked, |s| oracle.classic.torsion(s.flexspline_torque)),
+            locked_proposed_oracle: peak(&locked, |s| {
+                oracle
+                    .proposed
+                    .torsion(s.flexspline_torque, s.wave_generator_torque)
+            }),
+            held_proposed_blind: peak_of(&held, &held_proposed),
+            held_classic_blind: peak_of(&held, &held_classic),
+        };
+        DriveFigureRun {
+            metrics,
+            locked,
+            locked_proposed,
+            locked_classic,
+            held,
+            held_proposed,
+            held_classic,
+        }
+    }
+}
+
 /// Run every plant of `family` with seeds `0..seeds`: both experiments,
 /// blind and oracle models. Errors: an empty family or zero seeds, or a
 /// library parameter error.
@@ -747,50 +853,32 @@ pub fn run(family: &[DrivePlant], seeds: u64) -> Result<Vec<RunMetrics>, ClaimEr
     if seeds == 0 {
         return Err(ClaimError::NoRuns { name: "seeds" });
     }
-    let blind = blind_models()?;
-    let eq240 = WaveGeneratorTorqueConfig::<f64>::new(&WaveGeneratorTorqueParams::try_new(
-        WaveGeneratorTorqueSettings {
-            backdrive_friction: super::plants::drive::BACKDRIVE_TORQUE,
-            ratio: super::plants::drive::RATIO,
-        },
-    )?);
+    let models = DriveModels::new()?;
     let mut out = Vec::new();
     for (p, plant) in family.iter().enumerate() {
-        let oracle = oracle_models(&plant.locked_output(0, true), &blind)?;
+        let oracle = oracle_models(&plant.locked_output(0, true), &models.blind)?;
         for seed in 0..seeds {
-            let locked = plant.locked_output(seed, false);
-            let held = plant.held_input(seed, false);
-            let mut state = WaveGeneratorTorqueState::<f64>::default();
-            let held_proposed = held
-                .iter()
-                .map(|s| {
-                    let tau_w = eq240.update(&mut state, s.flexspline_torque);
-                    (blind.proposed.torsion(s.flexspline_torque, tau_w) - s.torsion).abs()
-                })
-                .fold(0.0, f64::max);
-            out.push(RunMetrics {
-                plant: p,
-                seed,
-                locked_classic_blind: peak(&locked, |s| blind.classic.torsion(s.flexspline_torque)),
-                locked_proposed_blind: peak(&locked, |s| {
-                    blind
-                        .proposed
-                        .torsion(s.flexspline_torque, s.wave_generator_torque)
-                }),
-                locked_classic_oracle: peak(&locked, |s| {
-                    oracle.classic.torsion(s.flexspline_torque)
-                }),
-                locked_proposed_oracle: peak(&locked, |s| {
-                    oracle
-                        .proposed
-                        .torsion(s.flexspline_torque, s.wave_generator_torque)
-                }),
-                held_proposed_blind: held_proposed,
-                held_classic_blind: peak(&held, |s| blind.classic.torsion(s.flexspline_torque)),
-            });
+            out.push(models.run(plant, p, seed, &oracle).metrics);
         }
     }
     Ok(out)
+}
+
+/// The chapter-2 figure runs on `family[index]` with `seed`: the same run
+/// as [`run`]'s for that plant and seed (equal metrics), with its samples
+/// and the blind models' predictions. Errors: an index outside the family,
+/// or a library parameter error.
+pub fn drive_figure_run(
+    family: &[DrivePlant],
+    index: usize,
+    seed: u64,
+) -> Result<DriveFigureRun, ClaimError> {
+    let plant = family
+        .get(index)
+        .ok_or(ClaimError::NoRuns { name: "family" })?;
+    let models = DriveModels::new()?;
+    let oracle = oracle_models(&plant.locked_output(0, true), &models.blind)?;
+    Ok(models.run(plant, index, seed, &oracle))
 }
 
 #[cfg(test)]
@@ -809,6 +897,28 @@ mod tests {
         assert_eq!((s.q1, s.median, s.q3), (0.25, 0.5, 0.75));
         assert!(Spread::of(&[]).is_none());
         assert!(Spread::of(&[1.0, f64::NAN]).is_none());
+    }
+
+    /// The figure run is the registry's run: equal metrics for the same
+    /// plant and seed, and predictions whose peak errors are those metrics.
+    #[test]
+    fn drive_figure_run_matches_the_registry_run() {
+        let family = crate::sim::plants::quick_family();
+        let m = run(&family[1..2], 2).unwrap();
+        let f = drive_figure_run(&family, 1, 1).unwrap();
+        let mut expected = m[1];
+        expected.plant = 1;
+        assert_eq!(f.metrics, expected);
+        let peak = f
+            .locked
+            .iter()
+            .zip(&f.locked_proposed)
+            .map(|(s, p)| (p - s.torsion).abs())
+            .fold(0.0, f64::max);
+        assert_eq!(peak, m[1].locked_proposed_blind);
+        assert_eq!(f.locked.len(), f.locked_classic.len());
+        assert_eq!(f.held.len(), f.held_proposed.len());
+        assert!(drive_figure_run(&family, family.len(), 0).is_err());
     }
 
     /// Least squares recovers an exact linear combination.

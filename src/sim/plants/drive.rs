@@ -113,6 +113,9 @@ pub struct Sample {
     pub true_flexspline_torque: f64,
     /// True `τ_w` (motor side), N·m.
     pub true_wave_generator_torque: f64,
+    /// True motor-side angle `θ_wi` (with the run's random start angle),
+    /// rad: the angle the kinematic error repeats with.
+    pub motor_angle: f64,
 }
 
 /// Mutable state of the plant.
@@ -311,6 +314,7 @@ impl DrivePlant {
                 true_torsion: -r.torsion,
                 true_flexspline_torque: -r.flexspline_torque,
                 true_wave_generator_torque: r.wave_generator_torque / RATIO,
+                motor_angle: motor,
             });
         }
         out
