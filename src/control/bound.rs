@@ -383,4 +383,42 @@ mod tests {
         let at_rest = UltimateBound::step_ratio_at_speed(&d, 0.0);
         assert!((at_rest - 36.1).abs() <= 1e-12, "{at_rest}");
     }
+
+    /// Eq. (4.20) by hand: `I_m = 1e-5`, `K_I = 2`, `Γ = (0.5, 0, 2, 4)`
+    /// (the second component not adapted), `r = 3`, `∫r = 0.5`,
+    /// `F̃ = (0.1, 7, 0.2, 0.4)`: `V = ½·1e-5·9 + ½·2·0.25 + ½(0.01/0.5 +
+    /// 0.04/2 + 0.16/4) = 4.5e-5 + 0.25 + 0.04`; the unadapted component
+    /// adds nothing, whatever its error.
+    #[test]
+    fn lyapunov_by_hand() {
+        let mut d = *RobustAdaptiveParams::table_4_1().unwrap().design();
+        d.rotor_inertia = 1e-5;
+        d.integral_gain = 2.0;
+        d.adaptation_gain = [0.5, 0.0, 2.0, 4.0];
+        let v = UltimateBound::lyapunov(&d, 3.0, 0.5, &[0.1, 7.0, 0.2, 0.4]);
+        let want = 4.5e-5 + 0.25 + 0.04;
+        assert!((v - want).abs() <= 1e-15, "{v} vs {want}");
+    }
+
+    /// `for_torque_error`: a `K_r` exactly at the torque limit leaves the
+    /// bound without its premise (the law must stay below its limit), and a
+    /// negative error counts as 0.
+    #[test]
+    fn for_torque_error_needs_k_r_below_the_limit() {
+        let mut d = *RobustAdaptiveParams::table_4_1().unwrap().design();
+        d.uncertainty.boundary_layer = 0.25;
+        d.uncertainty.nonparametric_friction = 0.0;
+        d.uncertainty.base_acceleration = 0.0;
+        d.ratio = 100.0;
+        d.torque_limit = 0.5;
+        // K_r = 0.25 + 25/100 = 0.5, exact in f64.
+        let (_, kr, applied) = UltimateBound::for_torque_error(&d, 25.0);
+        assert_eq!(kr, 0.5);
+        assert!(!applied);
+        let (_, kr, applied) = UltimateBound::for_torque_error(&d, 12.5);
+        assert_eq!(kr, 0.375);
+        assert!(applied);
+        let (_, kr, _) = UltimateBound::for_torque_error(&d, -3.0);
+        assert_eq!(kr, 0.25);
+    }
 }
