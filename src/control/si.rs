@@ -113,3 +113,85 @@ impl<S: Scalar> PassiveConfig<S> {
         dequantize(self.torque_limit(), S::UNITS.motor_torque)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::control::{
+        JointMode, ModeParams, ModeSettings, PassiveParams, RobustAdaptiveParams,
+    };
+    use crate::scalar::I16F16;
+
+    /// Each SI reader of the control outputs is its own field in the units
+    /// the backend stores (`scalar::units`: on `I16F16` motor torque in
+    /// mN·m, link torque in N·m, angles in rad; SI on floats). The fields
+    /// hold different values (all exact in every backend), so a reader of
+    /// another field, a constant or a wrong scale fails; `motor` is the
+    /// backend's motor-torque scale, written here from the units table.
+    fn outputs_read_their_own_field<S: Scalar>(motor: f64) {
+        let v = S::from_f64;
+        let m = ModeOutput {
+            torque: v(0.125 * motor),
+            mode: JointMode::Active,
+            switched: false,
+            saturated: false,
+            invalid_input: false,
+            interaction: v(2.5),
+            collision: false,
+            reference_position: v(0.75),
+        };
+        assert_eq!(
+            (m.torque_si(), m.interaction_si(), m.reference_position_si()),
+            (0.125, 2.5, 0.75)
+        );
+        let a = ActiveOutput {
+            torque: v(-0.0625 * motor),
+            law_torque: v(0.1875 * motor),
+            saturated: false,
+            invalid_input: false,
+            tracking_error: v(-0.375),
+            sliding: v(3.0),
+        };
+        assert_eq!(
+            (a.torque_si(), a.law_torque_si(), a.tracking_error_si()),
+            (-0.0625, 0.1875, -0.375)
+        );
+        let p = PassiveOutput {
+            torque: v(0.03125 * motor),
+            law_torque: v(-0.15625 * motor),
+            saturated: false,
+            invalid_input: false,
+        };
+        assert_eq!((p.torque_si(), p.law_torque_si()), (0.03125, -0.15625));
+    }
+
+    #[test]
+    fn outputs_read_their_own_field_on_every_backend() {
+        outputs_read_their_own_field::<f32>(1.0);
+        outputs_read_their_own_field::<f64>(1.0);
+        outputs_read_their_own_field::<I16F16>(1e3);
+    }
+
+    /// The configurations' torque limits read back the SI limit they were
+    /// built from (Table 4.1's 0.188 N·m), within half a stored step of
+    /// motor torque (`I16F16`: 2⁻¹⁷ mN·m) or the float's rounding.
+    #[test]
+    fn torque_limits_read_back_the_si_limit() {
+        fn check<S: Scalar>(tol: f64) {
+            let active = RobustAdaptiveParams::table_4_1().unwrap();
+            let want = active.design().torque_limit;
+            let passive = PassiveParams::table_4_1(1e4).unwrap();
+            let mode = ModeParams::try_new(ModeSettings::table_4_1(1e4).unwrap()).unwrap();
+            for got in [
+                RobustAdaptiveConfig::<S>::new(&active).torque_limit_si(),
+                PassiveConfig::<S>::new(&passive).torque_limit_si(),
+                ModeConfig::<S>::new(&mode).torque_limit_si(),
+            ] {
+                assert!((got - want).abs() <= tol, "{got} vs {want}");
+            }
+        }
+        check::<f64>(0.0);
+        check::<f32>(0.188 * f32::EPSILON as f64);
+        check::<I16F16>(0.5 / 65_536.0 / 1e3);
+    }
+}
