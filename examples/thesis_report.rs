@@ -263,17 +263,10 @@ impl DriveFigs {
 
 /// [`spread`] in `e` notation, 2 decimals.
 fn spread_e(v: &[f64]) -> String {
-    let mut s = v.to_vec();
-    s.sort_by(f64::total_cmp);
-    match s.len() {
-        0 => "none".into(),
-        1 => format!("{:.2e}", s[0]),
-        n => format!(
-            "median {:.2e} (min {:.2e}, max {:.2e})",
-            s[n / 2],
-            s[0],
-            s[n - 1]
-        ),
+    match median_min_max(v) {
+        None => "none".into(),
+        Some((m, _, _)) if v.len() == 1 => format!("{m:.2e}"),
+        Some((m, lo, hi)) => format!("median {m:.2e} (min {lo:.2e}, max {hi:.2e})"),
     }
 }
 
@@ -387,23 +380,29 @@ fn family_runs(
 }
 
 /// The values `v` times `scale`, with `digits` decimals: the value for one run, else
-/// `median m (min a, max b)` (the middle value of the sorted runs).
+/// `median m (min a, max b)` (the middle of the sorted runs; the mean of
+/// the two middle ones for an even count).
 fn spread(v: &[f64], scale: f64, digits: usize) -> String {
-    let mut s: Vec<f64> = v.iter().map(|x| x * scale).collect();
-    s.sort_by(f64::total_cmp);
-    match s.len() {
-        0 => "none".into(),
-        1 => format!("{:.*}", digits, s[0]),
-        n => format!(
-            "median {:.*} (min {:.*}, max {:.*})",
-            digits,
-            s[n / 2],
-            digits,
-            s[0],
-            digits,
-            s[n - 1]
-        ),
+    let scaled: Vec<f64> = v.iter().map(|x| x * scale).collect();
+    match median_min_max(&scaled) {
+        None => "none".into(),
+        Some((m, _, _)) if scaled.len() == 1 => format!("{m:.digits$}"),
+        Some((m, lo, hi)) => format!("median {m:.digits$} (min {lo:.digits$}, max {hi:.digits$})"),
     }
+}
+
+/// Median (the mean of the two middle values for an even count), minimum
+/// and maximum; `None` for no values.
+fn median_min_max(v: &[f64]) -> Option<(f64, f64, f64)> {
+    let mut s = v.to_vec();
+    s.sort_by(f64::total_cmp);
+    let n = s.len();
+    let median = match n {
+        0 => return None,
+        _ if n % 2 == 1 => s[n / 2],
+        _ => 0.5 * (s[n / 2 - 1] + s[n / 2]),
+    };
+    Some((median, s[0], s[n - 1]))
 }
 
 /// Seeds of the chapter-6 engine sweeps in the report (the claims' own
@@ -3213,15 +3212,9 @@ fn door_peak_band(
         }
     }
     bins.into_iter()
-        .map(|(b, mut v)| {
-            v.sort_by(f64::total_cmp);
-            let n = v.len();
-            let median = if n % 2 == 1 {
-                v[n / 2]
-            } else {
-                0.5 * (v[n / 2 - 1] + v[n / 2])
-            };
-            (b as f64 + 0.5, median, v[0], v[n - 1])
+        .filter_map(|(b, v)| {
+            let (median, lo, hi) = median_min_max(&v)?;
+            Some((b as f64 + 0.5, median, lo, hi))
         })
         .collect()
 }
