@@ -83,7 +83,7 @@ use mrr_control::sim::engine::wrist_bench::{
 };
 use mrr_control::sim::engine::{arm_settings, ArmPlant, ArmTrackingRun, EngineSettings, JointRun};
 use mrr_control::sim::experiments::{
-    back_driven, locked_output, torque_estimation, width_at_zero, BackDrivenConfig,
+    back_driven, locked_output, loop_width, torque_estimation, width_at_zero, BackDrivenConfig,
     BackDrivenResult, ComplianceResult, ErrorStats, LockedOutputConfig, Models,
     TorqueEstimationConfig, TorqueEstimationResult, ESTIMATORS,
 };
@@ -1205,26 +1205,6 @@ fn fig2_12(r: &mut Report) -> Result<Figure, Error> {
             m.piecewise.torsion(d.t2) * 1e3
         ),
     )
-}
-
-/// Width of a hysteresis loop where `torque` crosses zero: the mean
-/// `torsion` on the falling crossings minus that on the rising ones.
-fn loop_width<T>(samples: &[T], torque: impl Fn(&T) -> f64, torsion: impl Fn(&T) -> f64) -> f64 {
-    let (mut down, mut up) = (Vec::new(), Vec::new());
-    for w in samples.windows(2) {
-        let (t0, t1) = (torque(&w[0]), torque(&w[1]));
-        if (t0 > 0.0) != (t1 > 0.0) && t0 != t1 {
-            let a = t0 / (t0 - t1);
-            let x = torsion(&w[0]) + a * (torsion(&w[1]) - torsion(&w[0]));
-            if t1 < t0 {
-                down.push(x);
-            } else {
-                up.push(x);
-            }
-        }
-    }
-    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
-    mean(&down) - mean(&up)
 }
 
 /// Samples per cycle of the drive bench's profile

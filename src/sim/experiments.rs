@@ -911,11 +911,23 @@ pub fn width_at_zero(
     from: f64,
     to: f64,
 ) -> f64 {
+    // Samples are in time order: the windows inside `[from, to)` are those
+    // of the slice of samples timed in it.
+    let start = samples.partition_point(|s| s.time < from);
+    let end = samples.partition_point(|s| s.time < to).max(start);
+    loop_width(&samples[start..end], torque, torsion)
+}
+
+/// Width of a hysteresis loop where `torque` crosses zero, for samples of
+/// any type in time order: the mean `torsion` at downward zero crossings
+/// minus that at upward ones (linear interpolation between samples).
+pub fn loop_width<T>(
+    samples: &[T],
+    torque: impl Fn(&T) -> f64,
+    torsion: impl Fn(&T) -> f64,
+) -> f64 {
     let (mut down, mut up) = (Vec::new(), Vec::new());
     for w in samples.windows(2) {
-        if w[0].time < from || w[1].time >= to {
-            continue;
-        }
         let (t0, t1) = (torque(&w[0]), torque(&w[1]));
         if (t0 > 0.0) != (t1 > 0.0) && t0 != t1 {
             let a = t0 / (t0 - t1);

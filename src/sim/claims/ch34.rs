@@ -662,7 +662,10 @@ pub struct JointFigureRun {
     pub table_3_3: Vec<Table33Run>,
 }
 
-/// The chapter-3 figure runs on `family[index]` with `seed`.
+/// The chapter-3 figure runs on `family[index]` with `seed`: the runs the
+/// registry makes for that plant and seed (equal metrics), with their
+/// traces. Errors: an index outside the family, or a library parameter
+/// error.
 pub fn figure_run(
     family: &[JointPlant],
     index: usize,
