@@ -182,6 +182,21 @@ impl Divisor {
         }
         div_rem_reciprocal(x, self.d.get(), self.recip)
     }
+
+    /// [`div_rem`](Self::div_rem), except that without a divide
+    /// instruction (`DIVIDE = false`: Armv6-M) an `x < d` skips the
+    /// division (quotient 0, remainder `x`), a test cheaper than the
+    /// library's division there and dearer than the instruction elsewhere.
+    /// The callers pass [`HAS_DIVIDE`]; the tests run both forms on the
+    /// host.
+    #[inline(always)]
+    fn div_rem_or_skip<const DIVIDE: bool>(&self, x: u32) -> (u32, u32) {
+        if DIVIDE || x >= self.d.get() {
+            self.div_rem(x)
+        } else {
+            (0, x)
+        }
+    }
 }
 
 /// [`Divisor::div_rem`] from `r = ⌊(2³² − 1)/d⌋`: `q₀ = ⌊x·r/2³²⌋` (one 32×32 → 64
@@ -764,13 +779,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         let (m, n) = (self.m, self.n);
         let (mut in_turn, turn) = (st.motor_in_turn, st.motor_turn);
         let mag = delta.unsigned_abs();
-        // With a divide instruction the division is cheaper than the test
-        // that skips it (and the static bound pays both); Armv6-M skips it.
-        let (q, r) = if HAS_DIVIDE || mag >= m {
-            self.m_div.div_rem(mag)
-        } else {
-            (0, mag)
-        };
+        let (q, r) = self.m_div.div_rem_or_skip::<HAS_DIVIDE>(mag);
         let turn = if delta >= 0 {
             // in_turn + r < 2M, compared without overflow.
             let mut carry = q;
@@ -780,11 +789,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             } else {
                 in_turn += r;
             }
-            let c = if HAS_DIVIDE || carry >= n {
-                self.n_div.div_rem(carry).1
-            } else {
-                carry
-            };
+            let c = self.n_div.div_rem_or_skip::<HAS_DIVIDE>(carry).1;
             if c >= n - turn {
                 c - (n - turn)
             } else {
@@ -798,11 +803,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             } else {
                 in_turn -= r;
             }
-            let b = if HAS_DIVIDE || borrow >= n {
-                self.n_div.div_rem(borrow).1
-            } else {
-                borrow
-            };
+            let b = self.n_div.div_rem_or_skip::<HAS_DIVIDE>(borrow).1;
             if b > turn {
                 turn + (n - b)
             } else {
@@ -975,11 +976,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             torque_finite: bool,
         ) -> TorqueEstimate<S> {
             self.advance(st, motor_counter);
-            let c_l = if HAS_DIVIDE || link_count >= self.l {
-                self.l_div.div_rem(link_count).1
-            } else {
-                link_count
-            };
+            let c_l = self.l_div.div_rem_or_skip::<HAS_DIVIDE>(link_count).1;
             // The kinematic error first: its phases need only `c_l` and the
             // motor position within the revolution, and fewer values are live
             // across it than across the torsion's 64-bit products.

@@ -8,7 +8,8 @@ use std::string::ToString;
 const L: u32 = 1 << 17;
 const M: u32 = 2000;
 
-/// The reciprocal division equals `/` and `%` on edges of every kind:
+/// The reciprocal division, and the division that skips `x < d`, equal
+/// `/` and `%` on edges of every kind:
 /// divisors 1, 2, powers of two and their neighbours, the estimator's
 /// M, N and L, the largest `u32`; dividends around multiples of `d`
 /// and at the ends of the `u32` range.
@@ -32,6 +33,10 @@ fn reciprocal_division_is_exact_on_edges() {
                 (x / d, x % d),
                 "{x} / {d}"
             );
+            // Both forms of the skip: with and without a divide instruction.
+            let div = Divisor::new(d);
+            assert_eq!(div.div_rem_or_skip::<false>(x), (x / d, x % d), "{x} / {d}");
+            assert_eq!(div.div_rem_or_skip::<true>(x), (x / d, x % d), "{x} / {d}");
         }
     }
 }
@@ -43,6 +48,7 @@ proptest! {
     fn reciprocal_division_is_exact(x: u32, d in 1u32.., small in 1u32..5000) {
         for d in [d, small] {
             prop_assert_eq!(div_rem_reciprocal(x, d, reciprocal(d)), (x / d, x % d));
+            prop_assert_eq!(Divisor::new(d).div_rem_or_skip::<false>(x), (x / d, x % d));
         }
     }
 }
@@ -140,6 +146,7 @@ proptest! {
             cfg.advance(&mut st, counter);
             let want = pos.rem_euclid(mn);
             prop_assert_eq!(st.motor_turn as i64 * M as i64 + st.motor_in_turn as i64, want);
+            prop_assert_eq!(cfg.motor_position_counts(&st) as i64, want);
         }
     }
 
@@ -233,6 +240,125 @@ fn f32_agreement_bound_covers_a_large_kinematic_error() {
         bound.torsion
     );
     assert!(worst > former, "{worst:e} <= {former:e}");
+}
+
+/// The agreement bound is the sum its documentation states, evaluated
+/// here term by term with the documented constants (`2⁻¹⁵`, `2⁻¹⁷`,
+/// `e_θ = 3.5 · 2π/2³²`, `ε_c = 4.8e-6`), on a drive whose three
+/// harmonic amplitudes differ (5e-5, 1e-4, 2e-4 rad, offset 1e-5 rad), so
+/// that every term moves the result; `torsion_range` and the parameter
+/// getters likewise.
+#[test]
+fn agreement_bound_is_the_documented_sum() {
+    let k = KinematicErrorModel::try_new([1e-5, 3e-5, 4e-5, 6e-5, 8e-5, 1.2e-4, 1.6e-4]).unwrap();
+    let p = params(Some(k));
+    assert_eq!(p.kinematic_error(), Some(k));
+    assert_eq!(params(None).kinematic_error(), None);
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs();
+    let d = CatalogueData::SHD_17_100.identify().unwrap();
+    let (c_f, k_f0) = (d.flexspline().c_f(), d.flexspline().k_f0());
+    let (c_w, k_w0) = (d.wave_generator().c_w(), d.wave_generator().k_w0());
+    let a_w = 1.0 / (c_w * 100.0 * k_w0); // rad at the output, N = 100
+    let amp = 1e-5 + 5e-5 + 1e-4 + 2e-4; // |a_0| + R_l + R_1 + R_2
+    let range = 1.01 * (core::f64::consts::FRAC_PI_2 / (c_f * k_f0) + a_w + amp);
+    assert!(
+        close(p.torsion_range(), range),
+        "{} vs {range}",
+        p.torsion_range()
+    );
+    let e_theta = 3.5 * TAU / 4_294_967_296.0;
+
+    // I16F16, in mrad: q = 2⁻¹⁶ mrad.
+    let q = libm::exp2(-16.0);
+    let a_w_mrad = 1e3 * a_w;
+    let wave = a_w_mrad * (libm::exp2(-15.0) + libm::exp2(-17.0) * (1.0 + c_w / 1e3)) + q / 2.0;
+    let harmonics: f64 = [5e-5, 1e-4, 2e-4]
+        .iter()
+        .map(|r| q + 1e3 * r * (q + e_theta))
+        .sum();
+    let kin = q / 2.0 + harmonics;
+    let angle = 1e3 * libm::exp2(-17.0) / (c_f * k_f0);
+    let b = p.agreement_bound::<I16F16>();
+    let torsion = 2.0 * (q / 2.0 + wave + kin + angle) * 1e-3;
+    assert!(close(b.torsion, torsion), "{} vs {torsion}", b.torsion);
+    assert_eq!(b.torque_relative, libm::exp2(-28.0));
+    let absolute = 2.0 * (q / c_f + q);
+    assert!(
+        close(b.torque_absolute, absolute),
+        "{} vs {absolute}",
+        b.torque_absolute
+    );
+
+    // f32: u = 2⁻²⁴.
+    let u = libm::exp2(-24.0);
+    let b = p.agreement_bound::<f32>();
+    let torsion =
+        2.0 * (8.0 * u * range + 8.0 * u * a_w + (30.0 * u + 8.0 * (4.8e-6 + e_theta)) * amp);
+    assert!(close(b.torsion, torsion), "{} vs {torsion}", b.torsion);
+    assert_eq!(b.torque_relative, libm::exp2(-19.0));
+
+    // f64 is the reference.
+    let b = p.agreement_bound::<f64>();
+    assert_eq!(
+        (b.torsion, b.torque_relative, b.torque_absolute),
+        (0.0, 0.0, 0.0)
+    );
+}
+
+/// `torque_interval` is eq. (3.10) at `Δθ_f ∓ torsion`, widened by the
+/// relative and the absolute bound, each computed here by hand; beyond
+/// the `tan` branch it is `±max_torque`.
+#[test]
+fn torque_interval_widens_eq_3_10_by_both_bounds() {
+    let p = params(None);
+    let f = p.drive().flexspline();
+    let b = AgreementBound {
+        torsion: 1e-4,
+        torque_relative: 0.01,
+        torque_absolute: 0.5,
+    };
+    let eq_3_10 = |x: f64| libm::tan(x * f.c_f() * f.k_f0()) / f.c_f();
+    let x = f.torsion(10.0);
+    let (lo, hi) = b.torque_interval(&p, x);
+    let (t_lo, t_hi) = (eq_3_10(x - 1e-4), eq_3_10(x + 1e-4));
+    assert!(0.0 < t_lo && t_lo < 10.0 && 10.0 < t_hi, "{t_lo} {t_hi}");
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs();
+    assert!(
+        close(lo, 0.99 * t_lo - 0.5),
+        "{lo} vs {}",
+        0.99 * t_lo - 0.5
+    );
+    assert!(
+        close(hi, 1.01 * t_hi + 0.5),
+        "{hi} vs {}",
+        1.01 * t_hi + 0.5
+    );
+    // Negative torsion: the relative term widens away from zero again.
+    let (lo, hi) = b.torque_interval(&p, -x);
+    assert!(
+        close(lo, -1.01 * t_hi - 0.5) && close(hi, -0.99 * t_lo + 0.5),
+        "{lo} {hi}"
+    );
+    // Past the branch (and past the limit) both ends are the limit, widened.
+    let (lo, hi) = b.torque_interval(&p, 2.0 * f.max_torsion());
+    assert!(
+        close(lo, 60.0 * 0.99 - 0.5) && close(hi, 60.0 * 1.01 + 0.5),
+        "{lo} {hi}"
+    );
+}
+
+/// `last_counter` is the counter given to `state` and then to each
+/// `update`, whatever the direction of the move.
+#[test]
+fn last_counter_is_the_last_counter_given() {
+    let p = params(None);
+    let c = TorqueEstimatorConfig::<f64>::new(&p);
+    let mut st = c.state(12_345, 777);
+    assert_eq!(st.last_counter(), 777);
+    for counter in [900u32, 5, u32::MAX - 3, 41] {
+        let _ = c.update(&mut st, 0, counter, 0.0);
+        assert_eq!(st.last_counter(), counter);
+    }
 }
 
 /// The agreement bound is not vacuous: at a loaded torsion the
