@@ -290,6 +290,19 @@ fn state_starts_the_motor_at_n_times_the_link_angle() {
     assert_eq!(cfg.state(3 * l / 4, 0).motor_position_counts(), -50_000);
     // A count beyond L is taken modulo L.
     assert_eq!(cfg.state(l + l / 4, 0).motor_position_counts(), 50_000);
+    // Between counts it is the floor `⌊c·M·N/L⌋` (M·N = 200 000), also
+    // where the nearest count is the one above (fraction over one half),
+    // as documented: no search on a drive without the model.
+    for c in [1i64, 3, 5, 1000, -1, -3, -(l as i64) / 2] {
+        let want = (c * 200_000).div_euclid(l as i64);
+        let frac = (c * 200_000).rem_euclid(l as i64) as f64 / l as f64;
+        let count = c.rem_euclid(l as i64) as u32;
+        assert_eq!(
+            cfg.state(count, 0).motor_position_counts(),
+            want,
+            "c = {c} (fraction {frac})"
+        );
+    }
 }
 
 /// With the Table 3.2 kinematic-error model the unloaded motor stands

@@ -906,6 +906,38 @@ fn oversized_encoder_product_names_the_product() {
         .starts_with("`link_counts_per_rev·motor_counts_per_rev·drive.ratio` must lie in [1, "));
 }
 
+/// `update_radians` subtracts eq. (3.7) evaluated by the model itself at
+/// the two angles: with and without the model, the flexspline torsions
+/// of the same readings differ by `e_k(θ_fo, θ_wi)` and the total
+/// torsions not at all.
+#[test]
+fn update_radians_subtracts_the_kinematic_error() {
+    let k = KinematicErrorModel::table_3_2();
+    let (with, without) = (
+        TorqueEstimatorConfig::<f64>::new(&params(Some(k))),
+        TorqueEstimatorConfig::<f64>::new(&params(None)),
+    );
+    let mut largest = 0.0f64;
+    for i in 0..64 {
+        let link = TAU * i as f64 / 64.0 + 0.01;
+        // θ_wi = N(Δθ − θ_fo), eq. (2.13), at torsions of −3 to +3 mrad.
+        let motor = 100.0 * (3e-3 - 1e-4 * i as f64 - link);
+        let (a, b) = (
+            with.update_radians(link, motor, 0.02),
+            without.update_radians(link, motor, 0.02),
+        );
+        let e_k = k.evaluate(link, motor);
+        assert_eq!(a.torsion, b.torsion);
+        assert!(
+            (b.flexspline_torsion - a.flexspline_torsion - e_k).abs() <= 1e-15,
+            "{i}: {} vs {e_k}",
+            b.flexspline_torsion - a.flexspline_torsion
+        );
+        largest = largest.max(e_k.abs());
+    }
+    assert!(largest > 1e-4, "{largest}");
+}
+
 /// `update_radians` with NaN or infinite readings: every field finite,
 /// `invalid_input` set, on every backend that has non-finite values;
 /// and a NaN or infinite motor torque on the count path is flagged
