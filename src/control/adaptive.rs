@@ -48,7 +48,6 @@ use crate::error::{combination, in_range, non_negative, positive, ParamError};
 use crate::friction::{
     mul_unit, parameter_scales, regressor_scales, FrictionBounds, FrictionConfig, FrictionParams,
 };
-use crate::scalar::target::inlined_except_on_armv6m;
 use crate::scalar::{slope_within, units, Coef, Gain, Scalar};
 
 /// The uncertainty bounds of Assumptions 3–6, eq. (4.11)–(4.14).
@@ -763,76 +762,76 @@ impl<S: Scalar> RobustAdaptiveConfig<S> {
         t
     }
 
-    inlined_except_on_armv6m! {
-        /// [`law`](Self::law) for a caller that has already rejected a
-        /// non-finite sample (the mode manager checks its input once, before
-        /// it shifts the reference): `valid` then only tests the law and `r`
-        /// for NaN.
-        pub(crate) fn law_of_checked_input(
-            &self,
-            st: &RobustAdaptiveState<S>,
-            x: &ControlInput<S>,
-        ) -> ActiveTerms<S> {
-            let e = x.motor_position.sub(x.desired_position);
-            let ed = x.motor_velocity.sub(x.desired_velocity);
-            let r = ed.add(self.lambda.apply(e));
-            // I_m a = I_m q̈_d − 2λ I_m ė − λ² I_m e = I_m q̈_d − λ I_m (ė + r)
-            // (r = ė + λe): two products instead of three.
-            let ia = x
-                .desired_acceleration
-                .mul_coef(&self.accel_inertia)
-                .sub(ed.add(r).mul_coef(&self.lambda_inertia));
-            // The speed is a number here (checked by the caller) or the law is NaN
-            // anyway (`F̂_1 q̇`): the sat without its NaN test.
-            let fr = self
-                .friction
-                .evaluate_number(&st.friction, x.motor_velocity);
-            // K_r sat(r/ε_r): ±K_r outside the layer, (K_r/ε_r)·r inside it
-            // (one product; the same value up to its rounding).
-            // One magnitude test for the common inside-layer case (a NaN `r`
-            // fails it too, and its law is NaN either way).
-            // sign(r): ±1, for the robust terms outside their layers on floats.
-            let r_sign = if r > S::ZERO { S::ONE } else { S::ONE.neg() };
-            let robust = if r.abs() > self.eps_r {
-                if r > S::ZERO {
-                    self.robust_gain_value[0]
-                } else {
-                    self.robust_gain_value[1]
-                }
+    /// [`law`](Self::law) for a caller that has already rejected a
+    /// non-finite sample (the mode manager checks its input once, before
+    /// it shifts the reference): `valid` then only tests the law and `r`
+    /// for NaN.
+    #[cfg_attr(not(armv6m), inline(always))]
+    #[cfg_attr(armv6m, inline)]
+    pub(crate) fn law_of_checked_input(
+        &self,
+        st: &RobustAdaptiveState<S>,
+        x: &ControlInput<S>,
+    ) -> ActiveTerms<S> {
+        let e = x.motor_position.sub(x.desired_position);
+        let ed = x.motor_velocity.sub(x.desired_velocity);
+        let r = ed.add(self.lambda.apply(e));
+        // I_m a = I_m q̈_d − 2λ I_m ė − λ² I_m e = I_m q̈_d − λ I_m (ė + r)
+        // (r = ė + λe): two products instead of three.
+        let ia = x
+            .desired_acceleration
+            .mul_coef(&self.accel_inertia)
+            .sub(ed.add(r).mul_coef(&self.lambda_inertia));
+        // The speed is a number here (checked by the caller) or the law is NaN
+        // anyway (`F̂_1 q̇`): the sat without its NaN test.
+        let fr = self
+            .friction
+            .evaluate_number(&st.friction, x.motor_velocity);
+        // K_r sat(r/ε_r): ±K_r outside the layer, (K_r/ε_r)·r inside it
+        // (one product; the same value up to its rounding).
+        // One magnitude test for the common inside-layer case (a NaN `r`
+        // fails it too, and its law is NaN either way).
+        // sign(r): ±1, for the robust terms outside their layers on floats.
+        let r_sign = if r > S::ZERO { S::ONE } else { S::ONE.neg() };
+        let robust = if r.abs() > self.eps_r {
+            if r > S::ZERO {
+                self.robust_gain_value[0]
             } else {
-                // Never beyond ±K_r: the slope is prepared for that (`new`).
-                r.mul_coef(&self.robust_slope)
-            };
-            // Written out for the four parameters (a counted loop is not
-            // unrolled on Armv6-M, where its iterator costs more than the body).
-            let y = fr.regressor;
-            // Y_2 = sat(q̇, ε_q̇) is in [−1, 1] (usually ±1): the unit-range
-            // product.
-            // Y_3 = e^{−f̂_τ q̇²} sat(q̇, ε_q̇) is in [−1, 1] too.
-            let ry = [
-                r.mul(y[0]),
-                mul_unit(r, y[1]),
-                mul_unit(r, y[2]),
-                r.mul(y[3]),
-            ];
-            let param_robust = self
-                .param_robust_term(0, y[0], ry[0], r_sign)
-                .add(self.param_robust_term(1, y[1], ry[1], r_sign))
-                .add(self.param_robust_term(2, y[2], ry[2], r_sign))
-                .add(self.param_robust_term(3, y[3], ry[3], r_sign));
-            let law = ia
-                .add(self.feedback.apply(x.joint_torque))
-                .add(fr.torque)
-                .sub(st.integral)
-                .sub(robust)
-                .sub(param_robust);
-            ActiveTerms {
-                law,
-                e,
-                r,
-                ry,
-                valid: !law.is_nan() && !r.is_nan(),
+                self.robust_gain_value[1]
             }
+        } else {
+            // Never beyond ±K_r: the slope is prepared for that (`new`).
+            r.mul_coef(&self.robust_slope)
+        };
+        // Written out for the four parameters (a counted loop is not
+        // unrolled on Armv6-M, where its iterator costs more than the body).
+        let y = fr.regressor;
+        // Y_2 = sat(q̇, ε_q̇) is in [−1, 1] (usually ±1): the unit-range
+        // product.
+        // Y_3 = e^{−f̂_τ q̇²} sat(q̇, ε_q̇) is in [−1, 1] too.
+        let ry = [
+            r.mul(y[0]),
+            mul_unit(r, y[1]),
+            mul_unit(r, y[2]),
+            r.mul(y[3]),
+        ];
+        let param_robust = self
+            .param_robust_term(0, y[0], ry[0], r_sign)
+            .add(self.param_robust_term(1, y[1], ry[1], r_sign))
+            .add(self.param_robust_term(2, y[2], ry[2], r_sign))
+            .add(self.param_robust_term(3, y[3], ry[3], r_sign));
+        let law = ia
+            .add(self.feedback.apply(x.joint_torque))
+            .add(fr.torque)
+            .sub(st.integral)
+            .sub(robust)
+            .sub(param_robust);
+        ActiveTerms {
+            law,
+            e,
+            r,
+            ry,
+            valid: !law.is_nan() && !r.is_nan(),
         }
     }
 

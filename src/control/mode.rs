@@ -138,8 +138,6 @@ use crate::error::{positive, ParamError};
 use crate::estimation::collision::{
     CollisionConfig, CollisionParams, CollisionReaction, CollisionState,
 };
-use crate::scalar::target::inlined_except_on_armv6m;
-use crate::scalar::target::own_function_on_armv6m;
 use crate::scalar::{Coef, CoefRow, Scalar};
 
 /// The operating mode of a joint.
@@ -882,12 +880,12 @@ impl<S: Scalar> ModeConfig<S> {
         }
     }
 
-    inlined_except_on_armv6m! {
-        /// One sample: collision detection, mode decision (with seeding at a
-        /// switch), the mode's law, and the state updates.
-        pub fn update(&self, st: &mut ModeState<S>, x: &ControlInput<S>) -> ModeOutput<S> {
-            self.update_checked(st, x, x.is_finite())
-        }
+    /// One sample: collision detection, mode decision (with seeding at a
+    /// switch), the mode's law, and the state updates.
+    #[cfg_attr(not(armv6m), inline(always))]
+    #[cfg_attr(armv6m, inline)]
+    pub fn update(&self, st: &mut ModeState<S>, x: &ControlInput<S>) -> ModeOutput<S> {
+        self.update_checked(st, x, x.is_finite())
     }
 
     /// [`update`](Self::update) for a sample whose measured motor position
@@ -903,121 +901,121 @@ impl<S: Scalar> ModeConfig<S> {
         self.update_checked(st, x, x.is_finite_but_measured())
     }
 
-    own_function_on_armv6m! {
-        /// [`update`](Self::update) given whether the sample is finite.
-        fn update_checked(
-            &self,
-            st: &mut ModeState<S>,
-            x: &ControlInput<S>,
-            finite: bool,
-        ) -> ModeOutput<S> {
-            let interaction = x.joint_torque.sub(x.expected_joint_torque);
-            if !finite {
-                // Never NaN out of a step: the measured position when it is
-                // a number (`v − v` is 0 only for a finite float), else 0.
-                let position = if x.motor_position.sub(x.motor_position) == S::ZERO {
-                    x.motor_position
+    /// [`update`](Self::update) given whether the sample is finite.
+    #[cfg_attr(armv6m, inline(never))]
+    #[cfg_attr(not(armv6m), inline(always))]
+    fn update_checked(
+        &self,
+        st: &mut ModeState<S>,
+        x: &ControlInput<S>,
+        finite: bool,
+    ) -> ModeOutput<S> {
+        let interaction = x.joint_torque.sub(x.expected_joint_torque);
+        if !finite {
+            // Never NaN out of a step: the measured position when it is
+            // a number (`v − v` is 0 only for a finite float), else 0.
+            let position = if x.motor_position.sub(x.motor_position) == S::ZERO {
+                x.motor_position
+            } else {
+                S::ZERO
+            };
+            return Self::invalid_sample(st, position);
+        }
+        let mut reaction = None;
+        if let Some(c) = &self.collision {
+            if c.update(&mut st.collision, x.joint_torque, x.expected_joint_torque)
+                .onset
+            {
+                st.latched = true;
+                reaction = Some(c.reaction());
+            }
+        }
+        st.in_mode = st.in_mode.saturating_add(1);
+        let mut switched = false;
+        let mut seeded = None;
+        if let Some(reaction) = reaction {
+            // A collision onset: from Active or Hold at once to the
+            // reaction's mode; a Passive joint stays Passive, its release
+            // blocked by the latch from this sample on. Never into Active
+            // (a separate arm: the seeding of Active is not on its path).
+            st.run = 0;
+            if st.mode != JointMode::Passive {
+                switched = self.seed_reaction(st, reaction, x);
+            }
+        } else {
+            let target = self.wanted(st, interaction, x.motor_velocity);
+            if target != st.mode {
+                st.run = st.run.saturating_add(1);
+                // Passive → Active waits for the release rule's hold.
+                let needed = if st.mode == JointMode::Passive {
+                    self.release_samples
                 } else {
-                    S::ZERO
+                    self.debounce
                 };
-                return Self::invalid_sample(st, position);
-            }
-            let mut reaction = None;
-            if let Some(c) = &self.collision {
-                if c.update(&mut st.collision, x.joint_torque, x.expected_joint_torque)
-                    .onset
-                {
-                    st.latched = true;
-                    reaction = Some(c.reaction());
-                }
-            }
-            st.in_mode = st.in_mode.saturating_add(1);
-            let mut switched = false;
-            let mut seeded = None;
-            if let Some(reaction) = reaction {
-                // A collision onset: from Active or Hold at once to the
-                // reaction's mode; a Passive joint stays Passive, its release
-                // blocked by the latch from this sample on. Never into Active
-                // (a separate arm: the seeding of Active is not on its path).
-                st.run = 0;
-                if st.mode != JointMode::Passive {
-                    switched = self.seed_reaction(st, reaction, x);
+                if st.run >= needed && st.in_mode > self.dwell {
+                    seeded = self.seed(st, target, x);
+                    switched = true;
                 }
             } else {
-                let target = self.wanted(st, interaction, x.motor_velocity);
-                if target != st.mode {
-                    st.run = st.run.saturating_add(1);
-                    // Passive → Active waits for the release rule's hold.
-                    let needed = if st.mode == JointMode::Passive {
-                        self.release_samples
-                    } else {
-                        self.debounce
-                    };
-                    if st.run >= needed && st.in_mode > self.dwell {
-                        seeded = self.seed(st, target, x);
-                        switched = true;
-                    }
-                } else {
-                    st.run = 0;
-                }
+                st.run = 0;
             }
-            // τ_before: the previous command.
-            let before = st.last_torque;
-            // The current mode's law, then its state updates.
-            let (law, overflow, reference_position) = match st.mode {
-                JointMode::Passive => {
-                    let law = self.passive.law(x, &st.active.friction);
-                    let overflow = law.is_nan();
-                    let law = if overflow { S::ZERO } else { law };
-                    (law, overflow, x.motor_position)
-                }
-                mode => {
-                    let (xr, acc) = self.reference(st, x, seeded);
-                    // `x` was checked above; `xr` only shifts its reference.
-                    let mut t: ActiveTerms<S> = self.active.law_of_checked_input(&st.active, &xr);
-                    // `valid` is false exactly when the law is NaN (a NaN `r`
-                    // makes the law NaN): that is the overflow the command
-                    // replaces by 0.
-                    let overflow = !t.valid;
-                    if t.valid {
-                        if switched {
-                            // Re-seed the integral so the law starts near
-                            // τ_before (the law is affine in z with slope −1).
-                            let zl = self.active.integral_limit();
-                            let z = t.law.sub(before).clamp(zl.neg(), zl);
-                            st.active.integral = z;
-                            t.law = t.law.sub(z);
-                        }
-                        self.active.commit_valid(&mut st.active, &t);
-                    }
-                    if mode == JointMode::Active {
-                        // Semi-implicit Euler of ö = −2ω ȯ − ω² o.
-                        let rate = st.offset_rate.add(acc.mul_coef(&self.step_rate));
-                        st.offset_rate = rate;
-                        st.offset = st.offset.add(rate.mul_coef(&self.step_position));
-                        let _ = self.drop_overflowing_offset(st);
-                    }
-                    (
-                        if overflow { S::ZERO } else { t.law },
-                        overflow,
-                        xr.desired_position,
-                    )
-                }
-            };
-            let (torque, saturated, overflow) =
-                self.command_of_number(law, overflow, before, switched, &mut st.bias);
-            st.bias = st.bias.mul_coef(&self.bias_decay);
-            st.last_torque = torque;
-            ModeOutput {
-                torque,
-                mode: st.mode,
-                switched,
-                saturated,
-                invalid_input: overflow,
-                interaction,
-                collision: st.latched,
-                reference_position,
+        }
+        // τ_before: the previous command.
+        let before = st.last_torque;
+        // The current mode's law, then its state updates.
+        let (law, overflow, reference_position) = match st.mode {
+            JointMode::Passive => {
+                let law = self.passive.law(x, &st.active.friction);
+                let overflow = law.is_nan();
+                let law = if overflow { S::ZERO } else { law };
+                (law, overflow, x.motor_position)
             }
+            mode => {
+                let (xr, acc) = self.reference(st, x, seeded);
+                // `x` was checked above; `xr` only shifts its reference.
+                let mut t: ActiveTerms<S> = self.active.law_of_checked_input(&st.active, &xr);
+                // `valid` is false exactly when the law is NaN (a NaN `r`
+                // makes the law NaN): that is the overflow the command
+                // replaces by 0.
+                let overflow = !t.valid;
+                if t.valid {
+                    if switched {
+                        // Re-seed the integral so the law starts near
+                        // τ_before (the law is affine in z with slope −1).
+                        let zl = self.active.integral_limit();
+                        let z = t.law.sub(before).clamp(zl.neg(), zl);
+                        st.active.integral = z;
+                        t.law = t.law.sub(z);
+                    }
+                    self.active.commit_valid(&mut st.active, &t);
+                }
+                if mode == JointMode::Active {
+                    // Semi-implicit Euler of ö = −2ω ȯ − ω² o.
+                    let rate = st.offset_rate.add(acc.mul_coef(&self.step_rate));
+                    st.offset_rate = rate;
+                    st.offset = st.offset.add(rate.mul_coef(&self.step_position));
+                    let _ = self.drop_overflowing_offset(st);
+                }
+                (
+                    if overflow { S::ZERO } else { t.law },
+                    overflow,
+                    xr.desired_position,
+                )
+            }
+        };
+        let (torque, saturated, overflow) =
+            self.command_of_number(law, overflow, before, switched, &mut st.bias);
+        st.bias = st.bias.mul_coef(&self.bias_decay);
+        st.last_torque = torque;
+        ModeOutput {
+            torque,
+            mode: st.mode,
+            switched,
+            saturated,
+            invalid_input: overflow,
+            interaction,
+            collision: st.latched,
+            reference_position,
         }
     }
 }

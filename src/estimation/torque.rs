@@ -117,8 +117,6 @@ use crate::harmonic_drive::{
     kinematic_error::KinematicErrorModel, FlexsplineConfig, HarmonicDriveParams,
     WaveGeneratorConfig,
 };
-use crate::scalar::target::inlined_except_on_armv6m;
-use crate::scalar::target::own_function_on_armv6m;
 use crate::scalar::target::{mul_add_below, mul_wide, HAS_DIVIDE};
 use crate::scalar::{turn_from_radians, Coef, CountToTurn, Scalar};
 use core::f64::consts::TAU;
@@ -841,163 +839,163 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         }
     }
 
-    own_function_on_armv6m! {
-        /// Eq. (3.7) in phase form from the link count `c_l < L` and the motor
-        /// count within the motor revolution `p < M` (stored torsion units; the
-        /// error bound is in the module docs).
-        pub(crate) fn kinematic_error_from_counts(&self, c_l: u32, p: u32) -> S {
-            match &self.kinematic_error_phase {
-                Some(k) => {
-                    let link = self.link_turn.turn(c_l);
-                    let motor = self.motor_turn.turn(p);
-                    let (r, phi) = (&k.amplitudes, &k.phases);
-                    if S::FLOAT {
-                        // Floats (folded at compile time): one sine and cosine
-                        // of the motor angle for both motor harmonics.
-                        let [o, a, b] = self.double_angle;
-                        let (s, c) = S::sin_cos_turn_coarse(motor.wrapping_sub(phi[1]));
-                        return o
-                            .add(r[0].mul(S::cos_turn_coarse(link.wrapping_sub(phi[0]))))
-                            .add(c.mul(r[1].add(a.mul(c).add(b.mul(s)))));
-                    }
-                    // |cos| ≤ 1 on every backend: the unit-range product.
-                    k.offset
-                        .add(r[0].mul_unit_range(S::cos_turn(link.wrapping_sub(phi[0]))))
-                        .add(r[1].mul_unit_range(S::cos_turn(motor.wrapping_sub(phi[1]))))
-                        .add(r[2].mul_unit_range(S::cos_turn((motor << 1).wrapping_sub(phi[2]))))
+    /// Eq. (3.7) in phase form from the link count `c_l < L` and the motor
+    /// count within the motor revolution `p < M` (stored torsion units; the
+    /// error bound is in the module docs).
+    #[cfg_attr(armv6m, inline(never))]
+    #[cfg_attr(not(armv6m), inline(always))]
+    pub(crate) fn kinematic_error_from_counts(&self, c_l: u32, p: u32) -> S {
+        match &self.kinematic_error_phase {
+            Some(k) => {
+                let link = self.link_turn.turn(c_l);
+                let motor = self.motor_turn.turn(p);
+                let (r, phi) = (&k.amplitudes, &k.phases);
+                if S::FLOAT {
+                    // Floats (folded at compile time): one sine and cosine
+                    // of the motor angle for both motor harmonics.
+                    let [o, a, b] = self.double_angle;
+                    let (s, c) = S::sin_cos_turn_coarse(motor.wrapping_sub(phi[1]));
+                    return o
+                        .add(r[0].mul(S::cos_turn_coarse(link.wrapping_sub(phi[0]))))
+                        .add(c.mul(r[1].add(a.mul(c).add(b.mul(s)))));
                 }
-                None => S::ZERO,
+                // |cos| ≤ 1 on every backend: the unit-range product.
+                k.offset
+                    .add(r[0].mul_unit_range(S::cos_turn(link.wrapping_sub(phi[0]))))
+                    .add(r[1].mul_unit_range(S::cos_turn(motor.wrapping_sub(phi[1]))))
+                    .add(r[2].mul_unit_range(S::cos_turn((motor << 1).wrapping_sub(phi[2]))))
             }
+            None => S::ZERO,
         }
     }
 
-    own_function_on_armv6m! {
-        /// Eq. (3.9)–(3.10) from a torsion, the kinematic error and the motor
-        /// torque, with the output saturation and the input checks of
-        /// [`TorqueEstimate::invalid_input`]: a torsion beyond `±torsion_range`
-        /// (or NaN) is clamped to it (NaN to 0), a non-finite motor torque is
-        /// taken as 0, and either sets `invalid_input`. `count_negative` is
-        /// `Some(D < 0)` for a torsion converted from a count `D` (finite, with
-        /// the sign of `D`: the clamp then takes that sign without comparing
-        /// the torsion again), `None` otherwise. `torque_finite` tells that
-        /// the motor torque is known to be finite (the previous command of the
-        /// mode manager), so that it is not tested.
-        fn finish(
-            &self,
-            torsion: S,
-            count_negative: Option<bool>,
-            kin_err: S,
-            motor_torque: S,
-            torque_finite: bool,
-            link_count_invalid: bool,
-        ) -> TorqueEstimate<S> {
-            // One comparison on the common path; NaN fails it.
-            let (torsion, torsion_bad) = if torsion.abs() <= self.torsion_range {
-                (torsion, false)
-            } else if let Some(negative) = count_negative {
-                // From counts: finite, with the sign of the count.
-                let r = self.torsion_range;
-                (if negative { r.neg() } else { r }, true)
-            } else if torsion > S::ZERO {
-                (self.torsion_range, true)
-            } else if torsion < S::ZERO {
-                (self.torsion_range.neg(), true)
+    /// Eq. (3.9)–(3.10) from a torsion, the kinematic error and the motor
+    /// torque, with the output saturation and the input checks of
+    /// [`TorqueEstimate::invalid_input`]: a torsion beyond `±torsion_range`
+    /// (or NaN) is clamped to it (NaN to 0), a non-finite motor torque is
+    /// taken as 0, and either sets `invalid_input`. `count_negative` is
+    /// `Some(D < 0)` for a torsion converted from a count `D` (finite, with
+    /// the sign of `D`: the clamp then takes that sign without comparing
+    /// the torsion again), `None` otherwise. `torque_finite` tells that
+    /// the motor torque is known to be finite (the previous command of the
+    /// mode manager), so that it is not tested.
+    #[cfg_attr(armv6m, inline(never))]
+    #[cfg_attr(not(armv6m), inline(always))]
+    fn finish(
+        &self,
+        torsion: S,
+        count_negative: Option<bool>,
+        kin_err: S,
+        motor_torque: S,
+        torque_finite: bool,
+        link_count_invalid: bool,
+    ) -> TorqueEstimate<S> {
+        // One comparison on the common path; NaN fails it.
+        let (torsion, torsion_bad) = if torsion.abs() <= self.torsion_range {
+            (torsion, false)
+        } else if let Some(negative) = count_negative {
+            // From counts: finite, with the sign of the count.
+            let r = self.torsion_range;
+            (if negative { r.neg() } else { r }, true)
+        } else if torsion > S::ZERO {
+            (self.torsion_range, true)
+        } else if torsion < S::ZERO {
+            (self.torsion_range.neg(), true)
+        } else {
+            (S::ZERO, true)
+        };
+        let torque_bad = !torque_finite && !S::all_finite(&[motor_torque]);
+        let motor_torque = if torque_bad { S::ZERO } else { motor_torque };
+        let flexspline_torsion = torsion
+            .add(self.wave_generator.output_torsion(motor_torque))
+            .sub(kin_err);
+        // Out of the branch or beyond `max_torque` exactly when |Δθ_f|
+        // exceeds the prepared limit (both tests are monotone in |Δθ_f|):
+        // one comparison, and no `tan` on the saturated path. The torsion
+        // and the kinematic error are finite here, so `Δθ_f` is too.
+        let saturated = flexspline_torsion.abs() > self.torsion_limit;
+        let torque = if saturated {
+            let limit = self.max_torque;
+            if flexspline_torsion < S::ZERO {
+                limit.neg()
             } else {
-                (S::ZERO, true)
-            };
-            let torque_bad = !torque_finite && !S::all_finite(&[motor_torque]);
-            let motor_torque = if torque_bad { S::ZERO } else { motor_torque };
-            let flexspline_torsion = torsion
-                .add(self.wave_generator.output_torsion(motor_torque))
-                .sub(kin_err);
-            // Out of the branch or beyond `max_torque` exactly when |Δθ_f|
-            // exceeds the prepared limit (both tests are monotone in |Δθ_f|):
-            // one comparison, and no `tan` on the saturated path. The torsion
-            // and the kinematic error are finite here, so `Δθ_f` is too.
-            let saturated = flexspline_torsion.abs() > self.torsion_limit;
-            let torque = if saturated {
-                let limit = self.max_torque;
-                if flexspline_torsion < S::ZERO {
-                    limit.neg()
-                } else {
-                    limit
-                }
-            } else {
-                self.flexspline.torque_in_branch(flexspline_torsion)
-            };
-            TorqueEstimate {
-                torque,
-                torsion,
-                flexspline_torsion,
-                saturated,
-                link_count_invalid,
-                invalid_input: torsion_bad || torque_bad,
+                limit
             }
+        } else {
+            self.flexspline.torque_in_branch(flexspline_torsion)
+        };
+        TorqueEstimate {
+            torque,
+            torsion,
+            flexspline_torsion,
+            saturated,
+            link_count_invalid,
+            invalid_input: torsion_bad || torque_bad,
         }
     }
 
-    inlined_except_on_armv6m! {
-        /// One estimate from raw encoder readings: the link-side absolute count
-        /// (`[0, L)`; larger values are reduced modulo `L` and flagged), the
-        /// free-running motor counter, and the motor torque command `τ_w` in
-        /// stored motor-torque units.
-        ///
-        /// **Signs** (errata E2.10). The counts follow eq. (2.13): the motor
-        /// angle `θ_wi` increases in the direction that, through the gear,
-        /// turns the link *backwards* (`θ_w = −N θ_f`, eq. 2.4), so a rigid
-        /// motion leaves `Δθ = θ_fo + θ_wi/N` at zero. `τ_w` is the motor torque
-        /// positive in the direction that drives the link *forward* (opposite
-        /// to increasing `θ_wi`). The estimate has the sign of the torsion: a
-        /// motor driving a locked link forward gives `Δθ < 0` and a negative
-        /// `torque`. For the chapter-4 convention `q_m = N q_l` pass the motor
-        /// counter negated; the transmitted torque `τ_t` of eq. (4.1) is then
-        /// `−torque`.
-        pub fn update(
-            &self,
-            st: &mut TorqueEstimatorState,
-            link_count: u32,
-            motor_counter: u32,
-            motor_torque: S,
-        ) -> TorqueEstimate<S> {
-            self.update_with(st, link_count, motor_counter, motor_torque, false)
-        }
+    /// One estimate from raw encoder readings: the link-side absolute count
+    /// (`[0, L)`; larger values are reduced modulo `L` and flagged), the
+    /// free-running motor counter, and the motor torque command `τ_w` in
+    /// stored motor-torque units.
+    ///
+    /// **Signs** (errata E2.10). The counts follow eq. (2.13): the motor
+    /// angle `θ_wi` increases in the direction that, through the gear,
+    /// turns the link *backwards* (`θ_w = −N θ_f`, eq. 2.4), so a rigid
+    /// motion leaves `Δθ = θ_fo + θ_wi/N` at zero. `τ_w` is the motor torque
+    /// positive in the direction that drives the link *forward* (opposite
+    /// to increasing `θ_wi`). The estimate has the sign of the torsion: a
+    /// motor driving a locked link forward gives `Δθ < 0` and a negative
+    /// `torque`. For the chapter-4 convention `q_m = N q_l` pass the motor
+    /// counter negated; the transmitted torque `τ_t` of eq. (4.1) is then
+    /// `−torque`.
+    #[cfg_attr(not(armv6m), inline(always))]
+    #[cfg_attr(armv6m, inline)]
+    pub fn update(
+        &self,
+        st: &mut TorqueEstimatorState,
+        link_count: u32,
+        motor_counter: u32,
+        motor_torque: S,
+    ) -> TorqueEstimate<S> {
+        self.update_with(st, link_count, motor_counter, motor_torque, false)
     }
 
-    inlined_except_on_armv6m! {
-        /// [`update`](Self::update), told whether the motor torque is known to
-        /// be finite (`torque_finite`: it is then not tested; the joint passes
-        /// the mode manager's previous command, which is limited).
-        pub(crate) fn update_with(
-            &self,
-            st: &mut TorqueEstimatorState,
-            link_count: u32,
-            motor_counter: u32,
-            motor_torque: S,
-            torque_finite: bool,
-        ) -> TorqueEstimate<S> {
-            self.advance(st, motor_counter);
-            let c_l = self.l_div.div_rem_or_skip::<HAS_DIVIDE>(link_count).1;
-            // The kinematic error first: its phases need only `c_l` and the
-            // motor position within the revolution, and fewer values are live
-            // across it than across the torsion's 64-bit products.
-            let kin_err = self.kinematic_error_from_counts(c_l, st.motor_in_turn);
-            let (mn, lmn, half) = (self.mn, self.lmn, self.half_lmn);
-            // p < MN and every product below are exact in 64 bits (LMN ≤ 2⁴⁶
-            // is validated).
-            let p = mul_add_below(st.motor_turn, self.m, st.motor_in_turn, mn);
-            // D ∈ [0, 2·LMN); reduce to [−LMN/2, LMN/2).
-            let mut d = mul_wide(c_l, mn) + mul_wide(self.l, p);
-            if d >= half {
-                d -= lmn;
-            }
-            if d >= half {
-                d -= lmn;
-            }
-            // The flag formed where it is used (not kept live across the
-            // kinematic error and the products).
-            let invalid = link_count >= self.l;
-            self.estimate_from_counts(d, kin_err, motor_torque, torque_finite, invalid)
+    /// [`update`](Self::update), told whether the motor torque is known to
+    /// be finite (`torque_finite`: it is then not tested; the joint passes
+    /// the mode manager's previous command, which is limited).
+    #[cfg_attr(not(armv6m), inline(always))]
+    #[cfg_attr(armv6m, inline)]
+    pub(crate) fn update_with(
+        &self,
+        st: &mut TorqueEstimatorState,
+        link_count: u32,
+        motor_counter: u32,
+        motor_torque: S,
+        torque_finite: bool,
+    ) -> TorqueEstimate<S> {
+        self.advance(st, motor_counter);
+        let c_l = self.l_div.div_rem_or_skip::<HAS_DIVIDE>(link_count).1;
+        // The kinematic error first: its phases need only `c_l` and the
+        // motor position within the revolution, and fewer values are live
+        // across it than across the torsion's 64-bit products.
+        let kin_err = self.kinematic_error_from_counts(c_l, st.motor_in_turn);
+        let (mn, lmn, half) = (self.mn, self.lmn, self.half_lmn);
+        // p < MN and every product below are exact in 64 bits (LMN ≤ 2⁴⁶
+        // is validated).
+        let p = mul_add_below(st.motor_turn, self.m, st.motor_in_turn, mn);
+        // D ∈ [0, 2·LMN); reduce to [−LMN/2, LMN/2).
+        let mut d = mul_wide(c_l, mn) + mul_wide(self.l, p);
+        if d >= half {
+            d -= lmn;
         }
+        if d >= half {
+            d -= lmn;
+        }
+        // The flag formed where it is used (not kept live across the
+        // kinematic error and the products).
+        let invalid = link_count >= self.l;
+        self.estimate_from_counts(d, kin_err, motor_torque, torque_finite, invalid)
     }
 
     /// Steps 3–4 from the torsion in counts `D` of `2π/(LMN)` (the reduced
@@ -1017,35 +1015,31 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         self.estimate_from_counts(d, kin_err, motor_torque, false, link_count_invalid)
     }
 
-    inlined_except_on_armv6m! {
-        /// [`estimate_from_torsion_counts`](Self::estimate_from_torsion_counts)
-        /// with `torque_finite` as in [`update_with`](Self::update_with).
-        fn estimate_from_counts(
-            &self,
-            d: i64,
-            kin_err: S,
-            motor_torque: S,
-            torque_finite: bool,
-            link_count_invalid: bool,
-        ) -> TorqueEstimate<S> {
-            let torsion = torsion_of_counts(d, &self.torsion_per_count);
-            // Floats: the clamp takes the sign of the count (the torsion is
-            // finite). Fixed point keeps the comparisons (folded at compile
-            // time).
-            let negative = if S::FLOAT {
-                Some(d < 0)
-            } else {
-                None
-            };
-            self.finish(
-                torsion,
-                negative,
-                kin_err,
-                motor_torque,
-                torque_finite,
-                link_count_invalid,
-            )
-        }
+    /// [`estimate_from_torsion_counts`](Self::estimate_from_torsion_counts)
+    /// with `torque_finite` as in [`update_with`](Self::update_with).
+    #[cfg_attr(not(armv6m), inline(always))]
+    #[cfg_attr(armv6m, inline)]
+    fn estimate_from_counts(
+        &self,
+        d: i64,
+        kin_err: S,
+        motor_torque: S,
+        torque_finite: bool,
+        link_count_invalid: bool,
+    ) -> TorqueEstimate<S> {
+        let torsion = torsion_of_counts(d, &self.torsion_per_count);
+        // Floats: the clamp takes the sign of the count (the torsion is
+        // finite). Fixed point keeps the comparisons (folded at compile
+        // time).
+        let negative = if S::FLOAT { Some(d < 0) } else { None };
+        self.finish(
+            torsion,
+            negative,
+            kin_err,
+            motor_torque,
+            torque_finite,
+            link_count_invalid,
+        )
     }
 
     /// One estimate from angles in radians (stored angle units): the link

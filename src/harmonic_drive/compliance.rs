@@ -18,7 +18,6 @@
 //! `S = f64`, so each formula exists once.
 
 use crate::error::{combination, finite, gear_ratio, in_range, increasing, positive, ParamError};
-use crate::scalar::target::own_function_on_armv6m;
 use crate::scalar::{units::Units, Coef, Scalar};
 
 /// The catalogue's piecewise-linear torsion curve, eq. (2.11), odd in the
@@ -433,17 +432,17 @@ impl<S: Scalar> FlexsplineConfig<S> {
         }
     }
 
-    own_function_on_armv6m! {
-        /// Eq. (3.10) without the branch test, for a caller that has already
-        /// bounded the torsion (see [`torsion_within`](Self::torsion_within)):
-        /// the argument of `tan` is then at most `atan(c_f·max_torque) ≤
-        /// atan 7.5` (the estimator's validated limit), inside the domain of
-        /// `tan_bounded` ([`kernels::i16f16::tan_bounded`](crate::scalar::kernels::i16f16::tan_bounded) on fixed point) (`atan 8`), which it takes.
-        pub(crate) fn torque_in_branch(&self, torsion: S) -> S {
-            self.angle_of(torsion)
-                .tan_bounded()
-                .mul_coef(&self.torque_per_tan)
-        }
+    /// Eq. (3.10) without the branch test, for a caller that has already
+    /// bounded the torsion (see [`torsion_within`](Self::torsion_within)):
+    /// the argument of `tan` is then at most `atan(c_f·max_torque) ≤
+    /// atan 7.5` (the estimator's validated limit), inside the domain of
+    /// `tan_bounded` ([`kernels::i16f16::tan_bounded`](crate::scalar::kernels::i16f16::tan_bounded) on fixed point) (`atan 8`), which it takes.
+    #[cfg_attr(armv6m, inline(never))]
+    #[cfg_attr(not(armv6m), inline(always))]
+    pub(crate) fn torque_in_branch(&self, torsion: S) -> S {
+        self.angle_of(torsion)
+            .tan_bounded()
+            .mul_coef(&self.torque_per_tan)
     }
 
     /// The argument `Δθ_f c_f K_f0` of `tan` in eq. (3.10), stored units.
