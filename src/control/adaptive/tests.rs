@@ -893,3 +893,186 @@ fn robust_layer_slope_stays_within_the_gain() {
         prev = v;
     }
 }
+
+/// Every boundary layer is validated against `[2⁻¹⁶, 30 000]` in its
+/// stored unit, written here in SI: `ε_r` and `ε_velocity` in rad/s
+/// (scale 1), `ε_F4` in mN·m·s²/rad² (scale 10³, its regressor
+/// component's unit on `I16F16`). Both ends are accepted, the next `f64`
+/// outward is rejected with the field's name and the SI range.
+#[test]
+fn boundary_layers_are_accepted_to_their_quantization_limits() {
+    let base = RobustAdaptiveDesign::table_4_1();
+    let cases: [(&str, f64, fn(&mut RobustAdaptiveDesign) -> &mut f64); 3] = [
+        ("eps_r", 1.0, |d| &mut d.eps_r),
+        ("eps_velocity", 1.0, |d| &mut d.eps_velocity),
+        ("eps_f[3]", 1e3, |d| &mut d.eps_f[3]),
+    ];
+    for (name, scale, field) in cases {
+        let (min, max) = (libm::exp2(-16.0) / scale, 30_000.0 / scale);
+        for (v, ok) in [
+            (min, true),
+            (max, true),
+            (min.next_down(), false),
+            (max.next_up(), false),
+        ] {
+            let mut d = base;
+            *field(&mut d) = v;
+            match RobustAdaptiveParams::try_new(d) {
+                Ok(_) => assert!(ok, "{name} = {v:e} accepted"),
+                Err(e) => {
+                    assert!(!ok, "{name} = {v:e} rejected: {e}");
+                    assert_eq!(
+                        e,
+                        ParamError::OutOfRange {
+                            name,
+                            value: v,
+                            min,
+                            max
+                        },
+                        "{name} = {v:e}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// Each combination and range of `try_new` at its edge, on the Table 4.1
+/// design with one field moved: the largest accepted value passes, the
+/// next `f64` is rejected under the field's (or the combination's) name.
+/// The edges, from the documentation: `ρ_τt ≤ 30·N` (with the other
+/// uncertainties 0, so that `K_r` is exactly 30), `λ² I_m ≤ 1e8`,
+/// `K_I T ≤ 1e8`, `μ_j T ≤ [1e8, 1e8, 1e8, 1e14]`,
+/// `ρ_Fj ≤ [1e8, 1e8, 1e8, 1e11]`.
+#[test]
+fn combinations_are_accepted_to_their_documented_edges() {
+    let base = RobustAdaptiveDesign::table_4_1();
+    let check = |what: &str, name: &str, at: RobustAdaptiveDesign, past: RobustAdaptiveDesign| {
+        if let Err(e) = RobustAdaptiveParams::try_new(at) {
+            panic!("{what} at its edge rejected: {e}");
+        }
+        match RobustAdaptiveParams::try_new(past) {
+            Ok(_) => panic!("{what} past its edge accepted"),
+            Err(e) => assert_eq!(e.name(), name, "{what}: {e}"),
+        }
+    };
+    // ρ_τt ≤ 30·N (N = 100).
+    let mut at = base;
+    at.uncertainty = UncertaintyBounds {
+        boundary_layer: 0.0,
+        nonparametric_friction: 0.0,
+        base_acceleration: 0.0,
+        torque_estimate: 3000.0,
+    };
+    assert_eq!(at.ratio, 100.0);
+    let mut past = at;
+    past.uncertainty.torque_estimate = 3000f64.next_up();
+    check("rho_tau", "uncertainty.torque_estimate", at, past);
+    // λ² I_m ≤ 1e8 with I_m = 1 kg·m² (and no base acceleration).
+    let (mut at, mut past) = (base, base);
+    for d in [&mut at, &mut past] {
+        d.rotor_inertia = 1.0;
+        d.uncertainty.base_acceleration = 0.0; // `≤ 30/I_m`
+    }
+    at.lambda = 1e4;
+    past.lambda = 1e4f64.next_up();
+    check("lambda", "lambda²·rotor_inertia", at, past);
+    // K_I T ≤ 1e8.
+    let t = base.sample_period;
+    let (mut at, mut past) = (base, base);
+    at.integral_gain = 1e8 / t;
+    past.integral_gain = (1e8 / t).next_up();
+    assert!(at.integral_gain * t <= 1e8 && past.integral_gain * t > 1e8);
+    check("K_I", "integral_gain·sample_period", at, past);
+    // μ_j T and ρ_Fj.
+    for (j, (mu_t, rho)) in [(1e8, 1e8), (1e8, 1e8), (1e8, 1e8), (1e14, 1e11)]
+        .into_iter()
+        .enumerate()
+    {
+        let (mut at, mut past) = (base, base);
+        at.adaptation_gain[j] = mu_t / t;
+        past.adaptation_gain[j] = (mu_t / t).next_up();
+        assert!(at.adaptation_gain[j] * t <= mu_t && past.adaptation_gain[j] * t > mu_t);
+        check("mu", ADAPTATION_STEP[j], at, past);
+        let b = base.friction_bounds;
+        let (lo, hi) = (
+            FrictionParams::from_array(b.min()),
+            FrictionParams::from_array(b.max()),
+        );
+        let with = |v: f64| {
+            let mut var = b.variable();
+            var[j] = v;
+            let mut d = base;
+            d.friction_bounds = FrictionBounds::try_new(lo, hi, var).unwrap();
+            d
+        };
+        check("rho_F", VARIABLE_BOUND[j], with(rho), with(rho.next_up()));
+    }
+}
+
+/// A state made from SI values reads them back on every backend: the
+/// stored integral is `z` times the motor-torque scale (10³ on `I16F16`,
+/// 1 on floats), `integral_si` is `z` again, the stored friction is the
+/// SI estimate times its parameter scales; the integral range is closed
+/// at `±integral_limit` and named past it. After steps of the law on
+/// `I16F16` the getters return the state's fields, residual included (it
+/// is non-zero there).
+#[test]
+fn state_from_si_reads_back_on_every_backend() {
+    fn check<S: Scalar + core::fmt::Debug>(scale: f64, ps: [f64; 4]) {
+        let p = table();
+        let cfg = RobustAdaptiveConfig::<S>::new(&p);
+        let d = p.design();
+        let f = d.initial_friction;
+        let lim = d.integral_limit;
+        for z in [-lim, -0.3 * lim, 0.7 * lim, lim] {
+            let st = cfg.state(f, z).unwrap();
+            let stored = S::from_f64(z * scale);
+            assert_eq!(st.integral(), stored, "{}", S::NAME);
+            assert!(
+                (st.integral_si() - z).abs() <= 0.5 / scale + 1e-6 * lim,
+                "{}",
+                S::NAME
+            );
+            let want = f.to_array();
+            for j in 0..4 {
+                assert_eq!(
+                    st.friction()[j],
+                    S::from_f64(want[j] * ps[j]),
+                    "{} {j}",
+                    S::NAME
+                );
+            }
+        }
+        for z in [lim.next_up(), (-lim).next_down()] {
+            let e = cfg.state(f, z).unwrap_err();
+            assert_eq!(e.name(), "integral", "{}: {e}", S::NAME);
+        }
+    }
+    check::<f64>(1.0, [1.0; 4]);
+    check::<f32>(1.0, [1.0; 4]);
+    check::<I16F16>(1e3, [1e3, 1e3, 1e3, 1.0]);
+
+    let p = table();
+    let cfg = RobustAdaptiveConfig::<I16F16>::new(&p);
+    let mut st = cfg.initial_state();
+    let x = ControlInput {
+        desired_velocity: I16F16::from_f64(0.5),
+        motor_velocity: I16F16::from_f64(0.8),
+        motor_position: I16F16::from_f64(0.01),
+        ..Default::default()
+    };
+    for _ in 0..50 {
+        let _ = cfg.update(&mut st, &x);
+    }
+    assert_eq!(st.friction(), st.friction);
+    assert_eq!(st.integral(), st.integral);
+    assert_eq!(st.friction_residual(), st.friction_residual);
+    assert!(
+        st.friction_residual.iter().any(|&r| r != 0),
+        "{:?}",
+        st.friction_residual
+    );
+    assert!(st.integral != I16F16::ZERO);
+    assert_eq!(st.integral_si(), st.integral.to_f64() / 1e3);
+}
