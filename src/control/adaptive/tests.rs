@@ -1076,3 +1076,93 @@ fn state_from_si_reads_back_on_every_backend() {
     assert!(st.integral != I16F16::ZERO);
     assert_eq!(st.integral_si(), st.integral.to_f64() / 1e3);
 }
+
+/// Layers that every backend represents exactly come back unchanged from
+/// `quantized_design`, on all three backends; chosen at or above 1 rad/s
+/// (a layer below 1 is its own remainder modulo 1), with `ε_F4 = 0.5`
+/// stored as 500 on `I16F16`.
+#[test]
+fn quantized_design_returns_exact_layers_unchanged() {
+    let mut d = RobustAdaptiveDesign::table_4_1();
+    d.eps_r = 2.5;
+    d.eps_velocity = 1.5;
+    d.eps_f = [1.25, 3.0, 2.0, 0.5];
+    let p = RobustAdaptiveParams::try_new(d).unwrap();
+    fn layers(d: RobustAdaptiveDesign) -> (f64, f64, [f64; 4]) {
+        (d.eps_r, d.eps_velocity, d.eps_f)
+    }
+    let want = layers(d);
+    assert_eq!(
+        layers(RobustAdaptiveConfig::<f64>::new(&p).quantized_design()),
+        want
+    );
+    assert_eq!(
+        layers(RobustAdaptiveConfig::<f32>::new(&p).quantized_design()),
+        want
+    );
+    assert_eq!(
+        layers(RobustAdaptiveConfig::<I16F16>::new(&p).quantized_design()),
+        want
+    );
+}
+
+/// The torque limit is closed: a law of exactly `±torque_limit` passes
+/// unflagged, one step beyond is clamped and flagged, on every backend.
+#[test]
+fn torque_limit_is_closed_and_flags_only_beyond() {
+    fn check<S: Scalar + core::fmt::Debug>(beyond: impl Fn(S) -> S) {
+        let cfg = RobustAdaptiveConfig::<S>::new(&table());
+        let l = cfg.torque_limit();
+        assert!(l > S::ZERO);
+        assert_eq!(cfg.limit(l), (l, false), "{}", S::NAME);
+        assert_eq!(cfg.limit(l.neg()), (l.neg(), false), "{}", S::NAME);
+        assert_eq!(cfg.limit(beyond(l)), (l, true), "{}", S::NAME);
+        assert_eq!(cfg.limit(beyond(l).neg()), (l.neg(), true), "{}", S::NAME);
+    }
+    check::<f64>(|l| l.next_up());
+    check::<f32>(|l| l.next_up());
+    check::<I16F16>(|l| I16F16::from_bits(l.to_bits() + 1));
+}
+
+/// The integral's anti-windup (eq. 4.19's `z = K_I ∫ r dt`, frozen while
+/// the law is saturated and `r` would drive it further): with the law
+/// inside `±torque_limit` (its edges included) `z` moves by `K_I T r`
+/// whatever the signs; with the law beyond `+limit` it moves only for
+/// `r > 0`, beyond `−limit` only for `r < 0`.
+#[test]
+fn integral_freezes_only_when_it_would_wind_up() {
+    let p = table();
+    let d = p.design();
+    let cfg = RobustAdaptiveConfig::<f64>::new(&p);
+    let l = cfg.torque_limit();
+    let step = |law: f64, r: f64| {
+        let mut st = cfg.initial_state();
+        let t = ActiveTerms {
+            law,
+            e: 0.0,
+            r,
+            ry: [0.0; 4],
+            valid: true,
+        };
+        cfg.commit_valid(&mut st, &t);
+        st.integral_si()
+    };
+    let moved = |r: f64| d.integral_gain * d.sample_period * r;
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-15;
+    for (law, r, moves) in [
+        (0.5 * l, 0.1, true),
+        (0.5 * l, -0.1, true),
+        (-0.5 * l, 0.1, true),
+        (l, -0.1, true),
+        (-l, 0.1, true),
+        (2.0 * l, 0.1, true),
+        (2.0 * l, -0.1, false),
+        (-2.0 * l, -0.1, true),
+        (-2.0 * l, 0.1, false),
+    ] {
+        let z = step(law, r);
+        let want = if moves { moved(r) } else { 0.0 };
+        assert!(close(z, want), "law {law}, r {r}: z {z}, want {want}");
+        assert!(want == 0.0 || want.abs() > 1e-4);
+    }
+}
