@@ -823,3 +823,109 @@ fn overflowing_rejoin_offset_is_dropped() {
     cfg.update(&mut st3, &near);
     assert!(st3.rejoin_offset().0 > 490.0);
 }
+
+/// Every validated range of `try_new` and `with_release` at its edge: the
+/// edge is accepted, the next `f64` past it is rejected under the field's
+/// name (`enter_passive ≤ 30 000` N·m, `rejoin_bandwidth ≤ 0.5/T`
+/// (= 125 rad/s at Table 4.1's 4 ms, below the 1e5 cap), the bias time
+/// constant `≥ T`, the release speed `≤ 30 000` rad/s).
+#[test]
+fn ranges_are_accepted_to_their_edges() {
+    let settings = |f: &dyn Fn(&mut ModeSettings)| {
+        let mut s = ModeSettings {
+            active: RobustAdaptiveParams::table_4_1().unwrap(),
+            passive: PassiveParams::table_4_1(2000.0).unwrap(),
+            enter_passive: 2.0,
+            exit_passive: 1.0,
+            debounce: 3,
+            dwell: 0,
+            rejoin_bandwidth: 10.0,
+            bias_time_constant: 0.1,
+            collision: None,
+        };
+        f(&mut s);
+        ModeParams::try_new(s)
+    };
+    let t = RobustAdaptiveParams::table_4_1()
+        .unwrap()
+        .design()
+        .sample_period;
+    assert_eq!(t, 0.004);
+    let edges: [(&str, f64, f64, fn(&mut ModeSettings, f64)); 3] = [
+        ("enter_passive", 30_000.0, 30_000f64.next_up(), |s, v| {
+            s.enter_passive = v
+        }),
+        ("rejoin_bandwidth", 125.0, 125f64.next_up(), |s, v| {
+            s.rejoin_bandwidth = v
+        }),
+        ("bias_time_constant", 0.004, 0.004f64.next_down(), |s, v| {
+            s.bias_time_constant = v
+        }),
+    ];
+    for (name, at, past, set) in edges {
+        assert!(settings(&|s| set(s, at)).is_ok(), "{name} = {at}");
+        let e = settings(&|s| set(s, past)).unwrap_err();
+        assert_eq!(e.name(), name, "{name} = {past}: {e}");
+    }
+    let p = settings(&|_| {}).unwrap();
+    let rule = |speed| ReleaseRule { speed, samples: 3 };
+    assert!(p.with_release(rule(30_000.0)).is_ok());
+    let e = p.with_release(rule(30_000f64.next_up())).unwrap_err();
+    assert_eq!(e.name(), "rule.speed", "{e}");
+}
+
+/// The state's getters after a switch, on every backend: the bias is the
+/// stored field and reads in N·m as the field over the motor-torque scale
+/// (10³ on `I16F16`), non-zero after the switch; the frame is the one set;
+/// the collision latch reads the latch, before and after a collision.
+#[test]
+fn state_getters_read_the_state() {
+    fn check<S: Scalar + core::fmt::Debug>(scale: f64) {
+        let cfg = ModeConfig::<S>::new(&params(1, 0, None));
+        let mut st = cfg.initial_state();
+        // A motor ahead of its reference: an active command, then a torque
+        // over `enter` switches to Passive with a bias.
+        let mut x = quantize::<S>(&ControlInput {
+            motor_position: 2e-3,
+            joint_torque: 3.0,
+            ..Default::default()
+        });
+        let o = cfg.update(&mut st, &x);
+        assert!(o.switched, "{}", S::NAME);
+        assert_eq!(st.bias(), st.bias, "{}", S::NAME);
+        assert!(st.bias != S::ZERO, "{}", S::NAME);
+        assert_eq!(st.bias_si(), st.bias.to_f64() / scale, "{}", S::NAME);
+        st.set_frame(-3);
+        assert_eq!(st.frame(), -3);
+        st.set_frame(7);
+        assert_eq!(st.frame(), 7);
+        x.joint_torque = S::ZERO;
+        let _ = cfg.update(&mut st, &x);
+        assert!(!st.collision_latched() && !st.latched);
+    }
+    check::<f64>(1.0);
+    check::<f32>(1.0);
+    check::<I16F16>(1e3);
+
+    let col = CollisionParams::try_new(CollisionSettings {
+        threshold: 3.0,
+        release_threshold: 1.0,
+        debounce: 1,
+        release: 2,
+        reaction: CollisionReaction::Stop,
+    })
+    .unwrap();
+    let cfg = ModeConfig::<f64>::new(&params(5, 0, Some(col)));
+    let mut st = cfg.initial_state();
+    let x = ControlInput {
+        joint_torque: 3.5,
+        ..Default::default()
+    };
+    assert!(!st.collision_latched());
+    let mut k = 0;
+    while !cfg.update(&mut st, &x).collision {
+        k += 1;
+        assert!(k < 5);
+    }
+    assert!(st.latched && st.collision_latched());
+}
