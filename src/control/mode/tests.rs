@@ -874,9 +874,9 @@ fn ranges_are_accepted_to_their_edges() {
     assert_eq!(e.name(), "rule.speed", "{e}");
 }
 
-/// The state's getters after a switch, on every backend: the bias is the
-/// stored field and reads in N·m as the field over the motor-torque scale
-/// (10³ on `I16F16`), non-zero after the switch; the frame is the one set;
+/// The state's getters after a switch, on every backend: the bias and the
+/// last command are the stored values and read in N·m as those over the
+/// motor-torque scale (10³ on `I16F16`), non-zero after the switch; the frame is the one set;
 /// the collision latch reads the latch, before and after a collision.
 #[test]
 fn state_getters_read_the_state() {
@@ -887,14 +887,24 @@ fn state_getters_read_the_state() {
         // over `enter` switches to Passive with a bias.
         let mut x = quantize::<S>(&ControlInput {
             motor_position: 2e-3,
-            joint_torque: 3.0,
             ..Default::default()
         });
+        let before = cfg.update(&mut st, &x);
+        assert!(!before.switched && before.torque != S::ZERO, "{}", S::NAME);
+        x.joint_torque = S::from_f64(3.0 * S::UNITS.link_torque);
         let o = cfg.update(&mut st, &x);
         assert!(o.switched, "{}", S::NAME);
         assert_eq!(st.bias(), st.bias, "{}", S::NAME);
         assert!(st.bias != S::ZERO, "{}", S::NAME);
         assert_eq!(st.bias_si(), st.bias.to_f64() / scale, "{}", S::NAME);
+        assert_eq!(st.last_torque(), o.torque, "{}", S::NAME);
+        assert!(o.torque != S::ZERO, "{}", S::NAME);
+        assert_eq!(
+            st.last_torque_si(),
+            o.torque.to_f64() / scale,
+            "{}",
+            S::NAME
+        );
         st.set_frame(-3);
         assert_eq!(st.frame(), -3);
         st.set_frame(7);
