@@ -939,3 +939,35 @@ fn state_getters_read_the_state() {
     }
     assert!(st.latched && st.collision_latched());
 }
+
+/// The rejoin offset in SI is the stored offset and rate (angle and speed
+/// scales are 1 on every backend), read a few samples after a return to
+/// Active 0.5 rad away from the reference, when both are non-zero.
+#[test]
+fn rejoin_offset_reads_in_si_on_every_backend() {
+    fn check<S: Scalar + core::fmt::Debug>() {
+        let cfg = ModeConfig::<S>::new(&params(1, 0, None));
+        let mut st = cfg.initial_state();
+        let push = quantize::<S>(&ControlInput {
+            joint_torque: 3.0,
+            ..Default::default()
+        });
+        cfg.update(&mut st, &push);
+        let x = quantize::<S>(&ControlInput {
+            motor_position: 0.5,
+            ..Default::default()
+        });
+        for _ in 0..5 {
+            cfg.update(&mut st, &x);
+        }
+        assert_eq!(st.mode(), JointMode::Active);
+        let (o, r) = st.rejoin_offset();
+        let (o_si, r_si) = st.rejoin_offset_si();
+        assert_eq!((o_si, r_si), (o.to_f64(), r.to_f64()), "{}", S::NAME);
+        assert!(o_si > 0.3 && o_si < 0.5, "{}: {o_si}", S::NAME);
+        assert!(r_si < -0.5, "{}: {r_si}", S::NAME);
+    }
+    check::<f64>();
+    check::<f32>();
+    check::<I16F16>();
+}
