@@ -942,7 +942,7 @@ fn state_getters_read_the_state() {
 
 /// The rejoin offset in SI is the stored offset and rate (angle and speed
 /// scales are 1 on every backend), read a few samples after a return to
-/// Active 0.5 rad away from the reference, when both are non-zero.
+/// Active 2.5 rad away from the reference, when both are beyond ±1.
 #[test]
 fn rejoin_offset_reads_in_si_on_every_backend() {
     fn check<S: Scalar + core::fmt::Debug>() {
@@ -954,7 +954,7 @@ fn rejoin_offset_reads_in_si_on_every_backend() {
         });
         cfg.update(&mut st, &push);
         let x = quantize::<S>(&ControlInput {
-            motor_position: 0.5,
+            motor_position: 2.5,
             ..Default::default()
         });
         for _ in 0..5 {
@@ -964,8 +964,9 @@ fn rejoin_offset_reads_in_si_on_every_backend() {
         let (o, r) = st.rejoin_offset();
         let (o_si, r_si) = st.rejoin_offset_si();
         assert_eq!((o_si, r_si), (o.to_f64(), r.to_f64()), "{}", S::NAME);
-        assert!(o_si > 0.3 && o_si < 0.5, "{}: {o_si}", S::NAME);
-        assert!(r_si < -0.5, "{}: {r_si}", S::NAME);
+        // Beyond ±1, so that neither is its own remainder modulo 1.
+        assert!(o_si > 1.5 && o_si < 2.5, "{}: {o_si}", S::NAME);
+        assert!(r_si < -2.0, "{}: {r_si}", S::NAME);
     }
     check::<f64>();
     check::<f32>();
