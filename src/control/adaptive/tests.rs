@@ -902,7 +902,8 @@ fn robust_layer_slope_stays_within_the_gain() {
 #[test]
 fn boundary_layers_are_accepted_to_their_quantization_limits() {
     let base = RobustAdaptiveDesign::table_4_1();
-    let cases: [(&str, f64, fn(&mut RobustAdaptiveDesign) -> &mut f64); 3] = [
+    type Field = fn(&mut RobustAdaptiveDesign) -> &mut f64;
+    let cases: [(&str, f64, Field); 3] = [
         ("eps_r", 1.0, |d| &mut d.eps_r),
         ("eps_velocity", 1.0, |d| &mut d.eps_velocity),
         ("eps_f[3]", 1e3, |d| &mut d.eps_f[3]),

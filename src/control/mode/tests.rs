@@ -851,7 +851,8 @@ fn ranges_are_accepted_to_their_edges() {
         .design()
         .sample_period;
     assert_eq!(t, 0.004);
-    let edges: [(&str, f64, f64, fn(&mut ModeSettings, f64)); 3] = [
+    type Set = fn(&mut ModeSettings, f64);
+    let edges: [(&str, f64, f64, Set); 3] = [
         ("enter_passive", 30_000.0, 30_000f64.next_up(), |s, v| {
             s.enter_passive = v
         }),
