@@ -973,3 +973,22 @@ fn rejoin_offset_reads_in_si_on_every_backend() {
     check::<f32>();
     check::<I16F16>();
 }
+
+/// The documented switching bound by hand: `2·ε·L` on the floats (`ε` the
+/// machine epsilon, `L` the stored limit, 0.188 N·m for Table 4.1), 0 on
+/// `I16F16`, whose bumpless transfer is exact.
+#[test]
+fn switch_jump_bound_by_hand() {
+    let p = params(1, 0, None);
+    let l = 0.188;
+    let b64 = ModeConfig::<f64>::new(&p).switch_jump_bound();
+    assert_eq!(b64, 2.0 * f64::EPSILON * l);
+    let c32 = ModeConfig::<f32>::new(&p);
+    assert_eq!(c32.torque_limit(), 0.188f32);
+    let b32 = c32.switch_jump_bound();
+    assert_eq!(b32, (2.0 * f32::EPSILON as f64 * 0.188f32 as f64) as f32);
+    assert_eq!(
+        ModeConfig::<I16F16>::new(&p).switch_jump_bound(),
+        I16F16::ZERO
+    );
+}
