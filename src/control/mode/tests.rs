@@ -992,3 +992,27 @@ fn switch_jump_bound_by_hand() {
         I16F16::ZERO
     );
 }
+
+/// Both switching thresholds are strict (module docs): with debounce 1
+/// and no dwell, an interaction of exactly `enter` (2 N·m) keeps Active
+/// and the next `f64` above switches; in Passive exactly `exit` (1 N·m)
+/// keeps Passive and the next `f64` below returns.
+#[test]
+fn switching_thresholds_are_strict() {
+    let cfg = ModeConfig::<f64>::new(&params(1, 0, None));
+    let mut st = cfg.initial_state();
+    for tau in [2.0, -2.0] {
+        assert_eq!(step(&cfg, &mut st, tau).mode, JointMode::Active, "{tau}");
+    }
+    assert_eq!(
+        step(&cfg, &mut st, -(2f64.next_up())).mode,
+        JointMode::Passive
+    );
+    for tau in [1.0, -1.0] {
+        assert_eq!(step(&cfg, &mut st, tau).mode, JointMode::Passive, "{tau}");
+    }
+    assert_eq!(
+        step(&cfg, &mut st, 1f64.next_down()).mode,
+        JointMode::Active
+    );
+}
