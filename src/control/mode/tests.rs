@@ -1016,3 +1016,45 @@ fn switching_thresholds_are_strict() {
         JointMode::Active
     );
 }
+
+/// A second collision while the Stop reaction holds the joint keeps the
+/// first hold point and is not a switch (the motor has been pushed on
+/// meanwhile: a re-seeded hold would move to where it is now).
+#[test]
+fn a_second_collision_in_hold_keeps_the_hold_point() {
+    let col = CollisionParams::try_new(CollisionSettings {
+        threshold: 3.0,
+        release_threshold: 1.0,
+        debounce: 1,
+        release: 2,
+        reaction: CollisionReaction::Stop,
+    })
+    .unwrap();
+    let cfg = ModeConfig::<f64>::new(&params(5, 0, Some(col)));
+    let mut st = cfg.initial_state();
+    let mut x = ControlInput {
+        motor_position: 0.7,
+        desired_position: 0.7,
+        joint_torque: 3.5,
+        ..Default::default()
+    };
+    let o = cfg.update(&mut st, &x);
+    assert!(o.switched && o.mode == JointMode::Hold && o.collision);
+    // The detector releases; the motor is pushed to 0.9 rad.
+    x.joint_torque = 0.0;
+    x.motor_position = 0.9;
+    for _ in 0..4 {
+        let o = cfg.update(&mut st, &x);
+        assert_eq!((o.mode, o.reference_position), (JointMode::Hold, 0.7));
+    }
+    // A new onset in Hold.
+    x.joint_torque = 3.5;
+    let mut onset = false;
+    for _ in 0..3 {
+        let o = cfg.update(&mut st, &x);
+        onset |= o.collision;
+        assert!(!o.switched && o.mode == JointMode::Hold);
+        assert_eq!(o.reference_position, 0.7);
+    }
+    assert!(onset && st.collision_latched());
+}
