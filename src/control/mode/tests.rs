@@ -1058,3 +1058,13 @@ fn a_second_collision_in_hold_keeps_the_hold_point() {
     }
     assert!(onset && st.collision_latched());
 }
+
+/// `output_revolution` (used by the joint-step proofs to copy a manager's
+/// revolution) returns what `with_output_revolution` set.
+#[test]
+fn output_revolution_reads_back() {
+    let cfg = ModeConfig::<f64>::new(&params(1, 0, None));
+    for rev in [628.3185307179587, 314.1592653589793] {
+        assert_eq!(cfg.with_output_revolution(rev).output_revolution(), rev);
+    }
+}
