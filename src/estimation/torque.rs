@@ -187,9 +187,11 @@ impl Divisor {
     /// library's division there and dearer than the instruction elsewhere.
     /// The callers pass [`HAS_DIVIDE`]; the tests run both forms on the
     /// host.
+    /// `d` is the divisor as the caller already holds it (equal to this
+    /// one's), so that the test reads no other field.
     #[inline(always)]
-    fn div_rem_or_skip<const DIVIDE: bool>(&self, x: u32) -> (u32, u32) {
-        if DIVIDE || x >= self.d.get() {
+    fn div_rem_or_skip<const DIVIDE: bool>(&self, x: u32, d: u32) -> (u32, u32) {
+        if DIVIDE || x >= d {
             self.div_rem(x)
         } else {
             (0, x)
@@ -777,7 +779,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         let (m, n) = (self.m, self.n);
         let (mut in_turn, turn) = (st.motor_in_turn, st.motor_turn);
         let mag = delta.unsigned_abs();
-        let (q, r) = self.m_div.div_rem_or_skip::<HAS_DIVIDE>(mag);
+        let (q, r) = self.m_div.div_rem_or_skip::<HAS_DIVIDE>(mag, m);
         let turn = if delta >= 0 {
             // in_turn + r < 2M, compared without overflow.
             let mut carry = q;
@@ -787,7 +789,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             } else {
                 in_turn += r;
             }
-            let c = self.n_div.div_rem_or_skip::<HAS_DIVIDE>(carry).1;
+            let c = self.n_div.div_rem_or_skip::<HAS_DIVIDE>(carry, n).1;
             if c >= n - turn {
                 c - (n - turn)
             } else {
@@ -801,7 +803,7 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
             } else {
                 in_turn -= r;
             }
-            let b = self.n_div.div_rem_or_skip::<HAS_DIVIDE>(borrow).1;
+            let b = self.n_div.div_rem_or_skip::<HAS_DIVIDE>(borrow, n).1;
             if b > turn {
                 turn + (n - b)
             } else {
@@ -975,7 +977,10 @@ impl<S: Scalar> TorqueEstimatorConfig<S> {
         torque_finite: bool,
     ) -> TorqueEstimate<S> {
         self.advance(st, motor_counter);
-        let c_l = self.l_div.div_rem_or_skip::<HAS_DIVIDE>(link_count).1;
+        let c_l = self
+            .l_div
+            .div_rem_or_skip::<HAS_DIVIDE>(link_count, self.l)
+            .1;
         // The kinematic error first: its phases need only `c_l` and the
         // motor position within the revolution, and fewer values are live
         // across it than across the torsion's 64-bit products.

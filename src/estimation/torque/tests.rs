@@ -35,8 +35,16 @@ fn reciprocal_division_is_exact_on_edges() {
             );
             // Both forms of the skip: with and without a divide instruction.
             let div = Divisor::new(d);
-            assert_eq!(div.div_rem_or_skip::<false>(x), (x / d, x % d), "{x} / {d}");
-            assert_eq!(div.div_rem_or_skip::<true>(x), (x / d, x % d), "{x} / {d}");
+            assert_eq!(
+                div.div_rem_or_skip::<false>(x, d),
+                (x / d, x % d),
+                "{x} / {d}"
+            );
+            assert_eq!(
+                div.div_rem_or_skip::<true>(x, d),
+                (x / d, x % d),
+                "{x} / {d}"
+            );
         }
     }
 }
@@ -48,7 +56,7 @@ proptest! {
     fn reciprocal_division_is_exact(x: u32, d in 1u32.., small in 1u32..5000) {
         for d in [d, small] {
             prop_assert_eq!(div_rem_reciprocal(x, d, reciprocal(d)), (x / d, x % d));
-            prop_assert_eq!(Divisor::new(d).div_rem_or_skip::<false>(x), (x / d, x % d));
+            prop_assert_eq!(Divisor::new(d).div_rem_or_skip::<false>(x, d), (x / d, x % d));
         }
     }
 }
