@@ -845,6 +845,216 @@ mod tests {
         RobustAdaptiveParams::try_new(table_4_1_known_stribeck_shape()).unwrap();
     }
 
+    /// Every range of the joint at its documented edge: the edge accepted,
+    /// the next `f64` (or count) beyond it rejected by name.
+    #[test]
+    fn joint_ranges_at_their_edges() {
+        let d = table_4_1_known_stribeck_shape();
+        let accepts = |j: SampledJoint| sampled_pole_radius(&d, &j).is_ok();
+        let rejects = |j: SampledJoint| sampled_pole_radius(&d, &j).unwrap_err();
+        let j = joint();
+        for t in [1e-6, 0.1] {
+            assert!(accepts(SampledJoint {
+                sample_period: t,
+                ..j
+            }));
+        }
+        for t in [1e-6f64.next_down(), 0.1f64.next_up()] {
+            let e = rejects(SampledJoint {
+                sample_period: t,
+                ..j
+            });
+            assert!(
+                matches!(e, ParamError::OutOfRange { name: "sample_period", min, max, .. }
+                    if min == 1e-6 && max == 0.1),
+                "{e}"
+            );
+        }
+        assert!(accepts(SampledJoint { ratio: 1.0, ..j }));
+        assert_eq!(
+            rejects(SampledJoint {
+                ratio: 1.0f64.next_down(),
+                ..j
+            })
+            .name(),
+            "ratio"
+        );
+        // Ordered ranges: equal ends accepted, reversed ones rejected.
+        let k = 9e3;
+        assert!(accepts(SampledJoint {
+            stiffness: [k, k],
+            ..j
+        }));
+        assert!(matches!(
+            rejects(SampledJoint {
+                stiffness: [k, k.next_down()],
+                ..j
+            }),
+            ParamError::NotIncreasing {
+                lower: "stiffness[0]",
+                upper: "stiffness[1]",
+                ..
+            }
+        ));
+        assert_eq!(
+            rejects(SampledJoint {
+                stiffness: [0.0, k],
+                ..j
+            })
+            .name(),
+            "stiffness[0]"
+        );
+        assert_eq!(
+            rejects(SampledJoint {
+                stiffness: [k, 0.0],
+                ..j
+            })
+            .name(),
+            "stiffness[1]"
+        );
+        let il = 0.05;
+        assert!(accepts(SampledJoint {
+            link_inertia: [il, il],
+            ..j
+        }));
+        assert!(matches!(
+            rejects(SampledJoint {
+                link_inertia: [il, il.next_down()],
+                ..j
+            }),
+            ParamError::NotIncreasing {
+                lower: "link_inertia[0]",
+                upper: "link_inertia[1]",
+                ..
+            }
+        ));
+        assert_eq!(
+            rejects(SampledJoint {
+                link_inertia: [0.0, il],
+                ..j
+            })
+            .name(),
+            "link_inertia[0]"
+        );
+        assert_eq!(
+            rejects(SampledJoint {
+                link_inertia: [il, 0.0],
+                ..j
+            })
+            .name(),
+            "link_inertia[1]"
+        );
+        assert_eq!(
+            rejects(SampledJoint {
+                rotor_inertia: 0.0,
+                ..j
+            })
+            .name(),
+            "rotor_inertia"
+        );
+        assert!(accepts(SampledJoint {
+            motor_counts_per_rev: 1,
+            ..j
+        }));
+        assert!(matches!(
+            rejects(SampledJoint {
+                motor_counts_per_rev: 0,
+                ..j
+            }),
+            ParamError::NotPositive {
+                name: "motor_counts_per_rev",
+                ..
+            }
+        ));
+        assert_eq!(
+            rejects(SampledJoint {
+                max_motor_speed: 0.0,
+                ..j
+            })
+            .name(),
+            "max_motor_speed"
+        );
+        // ρ_max in (0, 1).
+        assert!(accepts(SampledJoint {
+            max_pole_radius: 1.0f64.next_down(),
+            ..j
+        }));
+        assert!(matches!(
+            rejects(SampledJoint { max_pole_radius: 1.0, ..j }),
+            ParamError::OutOfRange { name: "max_pole_radius", min, max, .. } if min == 0.0 && max == 1.0
+        ));
+        assert!(matches!(
+            rejects(SampledJoint {
+                max_pole_radius: 0.0,
+                ..j
+            }),
+            ParamError::NotPositive {
+                name: "max_pole_radius",
+                ..
+            }
+        ));
+    }
+
+    /// A base for another drive is rejected with the joint's value as the
+    /// only accepted one; an invalid base names its own field; the
+    /// messages carry the numbers.
+    #[test]
+    fn mismatched_or_invalid_base_is_named() {
+        let mut base = table_4_1_known_stribeck_shape();
+        base.rotor_inertia = 2e-5;
+        let e = design_for_period(&base, &joint()).unwrap_err();
+        assert_eq!(
+            e,
+            DesignError::Param(ParamError::OutOfRange {
+                name: "rotor_inertia",
+                value: 2e-5,
+                min: 1.14e-5,
+                max: 1.14e-5
+            })
+        );
+        assert_eq!(
+            std::format!("{e}"),
+            std::format!(
+                "{}",
+                ParamError::OutOfRange {
+                    name: "rotor_inertia",
+                    value: 2e-5,
+                    min: 1.14e-5,
+                    max: 1.14e-5
+                }
+            )
+        );
+        let mut base = table_4_1_known_stribeck_shape();
+        base.ratio = 50.0;
+        assert_eq!(
+            design_for_period(&base, &joint()).unwrap_err(),
+            DesignError::Param(ParamError::OutOfRange {
+                name: "ratio",
+                value: 50.0,
+                min: 100.0,
+                max: 100.0
+            })
+        );
+        let mut base = table_4_1_known_stribeck_shape();
+        base.lambda = -1.0;
+        assert!(matches!(
+            design_for_period(&base, &joint()),
+            Err(DesignError::Param(e)) if e.name() == "lambda"
+        ));
+        let e = DesignError::NoSampledDesign {
+            sample_period: 0.004,
+            smallest_radius: 1.5,
+            max_pole_radius: 0.9,
+        };
+        let text = std::format!("{e}");
+        assert!(
+            text.contains("sample_period = 0.004 s")
+                && text.contains("1.5")
+                && text.contains("0.9"),
+            "{text}"
+        );
+    }
+
     #[test]
     fn bad_inputs_name_their_field() {
         let base = RobustAdaptiveDesign::table_4_1();

@@ -420,3 +420,296 @@ proptest! {
         prop_assert!((c.torque as f64 - a32.torque).abs() <= 16.0 * f32::EPSILON as f64 * big);
     }
 }
+
+/// A valid setting to move one field of at a time (every check passes
+/// with room: `Î_m K_p/N = 0.5`).
+fn settings() -> PassiveSettings {
+    PassiveSettings {
+        rotor_inertia: 0.5,
+        gain: 2.0,
+        ratio: 2.0,
+        eps_velocity: 0.01,
+        nominal_friction: RobustFriction::nominal(),
+        torque_limit: 1.0,
+    }
+}
+
+/// Every validated range of `try_new` at its documented edge: the edge
+/// accepted, the next `f64` beyond it rejected with the field's name.
+#[test]
+fn try_new_ranges_at_their_edges() {
+    let ok = |s: PassiveSettings| PassiveParams::try_new(s).map(|p| p.settings() == s);
+    let name = |s: PassiveSettings| PassiveParams::try_new(s).unwrap_err().name();
+    let s = settings();
+    // Î_m > 0.
+    assert_eq!(
+        ok(PassiveSettings {
+            rotor_inertia: 1e-300,
+            ..s
+        }),
+        Ok(true)
+    );
+    assert!(matches!(
+        PassiveParams::try_new(PassiveSettings {
+            rotor_inertia: 0.0,
+            ..s
+        }),
+        Err(ParamError::NotPositive {
+            name: "rotor_inertia",
+            ..
+        })
+    ));
+    // K_p ≥ 0, finite.
+    assert_eq!(ok(PassiveSettings { gain: 0.0, ..s }), Ok(true));
+    assert!(matches!(
+        PassiveParams::try_new(PassiveSettings { gain: -1e-300, ..s }),
+        Err(ParamError::Negative { name: "gain", .. })
+    ));
+    assert!(matches!(
+        PassiveParams::try_new(PassiveSettings {
+            gain: f64::NAN,
+            ..s
+        }),
+        Err(ParamError::NotFinite { name: "gain", .. })
+    ));
+    // N ≥ 1.
+    assert_eq!(ok(PassiveSettings { ratio: 1.0, ..s }), Ok(true));
+    assert_eq!(
+        name(PassiveSettings {
+            ratio: 1.0f64.next_down(),
+            ..s
+        }),
+        "ratio"
+    );
+    // ε_q̇ ≥ 2⁻¹⁶.
+    let eps = 1.0 / 65536.0;
+    assert_eq!(
+        ok(PassiveSettings {
+            eps_velocity: eps,
+            ..s
+        }),
+        Ok(true)
+    );
+    assert!(matches!(
+        PassiveParams::try_new(PassiveSettings { eps_velocity: eps.next_down(), ..s }),
+        Err(ParamError::OutOfRange { name: "eps_velocity", min, .. }) if min == eps
+    ));
+    assert_eq!(
+        name(PassiveSettings {
+            eps_velocity: 0.0,
+            ..s
+        }),
+        "eps_velocity"
+    );
+    // The limit in (0, 16].
+    assert_eq!(
+        ok(PassiveSettings {
+            torque_limit: 16.0,
+            ..s
+        }),
+        Ok(true)
+    );
+    assert!(matches!(
+        PassiveParams::try_new(PassiveSettings { torque_limit: 16.0f64.next_up(), ..s }),
+        Err(ParamError::OutOfRange { name: "torque_limit", max, .. }) if max == 16.0
+    ));
+    assert!(matches!(
+        PassiveParams::try_new(PassiveSettings {
+            torque_limit: 0.0,
+            ..s
+        }),
+        Err(ParamError::NotPositive {
+            name: "torque_limit",
+            ..
+        })
+    ));
+    // Î_m K_p / N ≤ 10⁶: with Î_m = 0.5 and N = 2 the largest gain is
+    // 4·10⁶ (0.5·4e6/2 = 1e6 exactly, every operation exact).
+    assert_eq!(ok(PassiveSettings { gain: 4e6, ..s }), Ok(true));
+    assert!(matches!(
+        PassiveParams::try_new(PassiveSettings { gain: 4e6f64.next_up(), ..s }),
+        Err(ParamError::OutOfRange { name: "gain", max, .. }) if max == 4e6
+    ));
+    // The nominal friction is validated under its own path.
+    let mut f = s.nominal_friction;
+    f.coulomb = -1e-3;
+    assert_eq!(
+        name(PassiveSettings {
+            nominal_friction: f,
+            ..s
+        }),
+        "nominal_friction.coulomb"
+    );
+    // K_p = 0 has no finite apparent inertia.
+    let free = PassiveParams::try_new(PassiveSettings { gain: 0.0, ..s }).unwrap();
+    assert_eq!(free.apparent_motor_inertia(), f64::INFINITY);
+}
+
+/// `characteristics`' inputs at their edges and the two degenerate hands
+/// (no stiffness): a damper alone leaves one pole at 0 (decay 0, `ζ = ∞`),
+/// nothing at all leaves the joint free (`ω_n = ζ = 0`).
+#[test]
+fn characteristics_edges_and_degenerate_hands() {
+    let p = frictionless(1.14e-5, 2000.0, 100.0);
+    let j = 1e4 / 2000.0 + 0.05;
+    let damper = HandContact {
+        stiffness: 0.0,
+        damping: 2.0,
+        link_inertia: 0.05,
+    };
+    let ch = p.characteristics(&damper, 1.0).unwrap();
+    assert_eq!(ch.natural_frequency, 0.0);
+    assert_eq!(ch.damping_ratio, f64::INFINITY);
+    assert_eq!(ch.decay_rate, 0.0);
+    let mut re = [ch.continuous_poles[0].re, ch.continuous_poles[1].re];
+    re.sort_by(f64::total_cmp);
+    assert!(
+        (re[0] + 2.0 / j).abs() <= 1e-12 / j && re[1] == 0.0,
+        "{re:?}"
+    );
+    assert!(ch.continuous_poles.iter().all(|p| p.im == 0.0));
+    let free = HandContact {
+        damping: 0.0,
+        ..damper
+    };
+    let ch = p.characteristics(&free, 1e-3).unwrap();
+    assert_eq!((ch.natural_frequency, ch.damping_ratio), (0.0, 0.0));
+    assert_eq!(ch.decay_rate, 0.0);
+    // A free joint keeps its position and speed: a double discrete pole
+    // at 1, which rounding splits by about √ε (1e-8).
+    assert!((ch.spectral_radius - 1.0).abs() < 1e-7, "{ch:?}");
+    // T in (0, 1] s.
+    assert!(matches!(
+        p.characteristics(&free, 1.0f64.next_up()),
+        Err(ParamError::OutOfRange { name: "sample_period", max, .. }) if max == 1.0
+    ));
+    for (hand, field) in [
+        (
+            HandContact {
+                damping: -1e-300,
+                ..free
+            },
+            "damping",
+        ),
+        (
+            HandContact {
+                link_inertia: -1e-300,
+                ..free
+            },
+            "link_inertia",
+        ),
+        (
+            HandContact {
+                stiffness: f64::NAN,
+                ..free
+            },
+            "stiffness",
+        ),
+    ] {
+        assert_eq!(p.characteristics(&hand, 1e-3).unwrap_err().name(), field);
+    }
+}
+
+/// The eigenvalues of 3×3 matrices with known spectra: a triangular one
+/// (its diagonal), real roots of either sign (both branches of the
+/// cancellation-free quadratic formula) and a rotation block (a complex
+/// pair `a ± ib`).
+#[test]
+fn eigenvalues3_of_known_spectra() {
+    let sorted = |p: [Pole; 3]| {
+        let mut v: std::vec::Vec<(f64, f64)> = p.iter().map(|p| (p.re, p.im)).collect();
+        v.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+        v
+    };
+    let close = |got: std::vec::Vec<(f64, f64)>, want: [(f64, f64); 3]| {
+        for (g, w) in got.iter().zip(want.iter()) {
+            assert!(
+                (g.0 - w.0).abs() < 1e-9 && (g.1 - w.1).abs() < 1e-9,
+                "{got:?} vs {want:?}"
+            );
+        }
+    };
+    let tri = [[0.5, 3.0, -1.0], [0.0, -0.25, 2.0], [0.0, 0.0, 0.9]];
+    close(
+        sorted(eigenvalues3(&tri)),
+        [(-0.25, 0.0), (0.5, 0.0), (0.9, 0.0)],
+    );
+    let neg = [[-0.7, 1.0, 0.0], [0.0, -0.2, 0.0], [0.0, 0.0, 0.4]];
+    close(
+        sorted(eigenvalues3(&neg)),
+        [(-0.7, 0.0), (-0.2, 0.0), (0.4, 0.0)],
+    );
+    let pos = [[0.7, 0.0, 0.0], [1.0, 0.2, 0.0], [0.0, 5.0, -0.4]];
+    close(
+        sorted(eigenvalues3(&pos)),
+        [(-0.4, 0.0), (0.2, 0.0), (0.7, 0.0)],
+    );
+    let rot = [[0.3, -0.4, 0.0], [0.4, 0.3, 0.0], [0.0, 0.0, -0.6]];
+    close(
+        sorted(eigenvalues3(&rot)),
+        [(-0.6, 0.0), (0.3, -0.4), (0.3, 0.4)],
+    );
+    // e^A of a diagonal and of a nilpotent matrix, by hand.
+    let e = expm3([[1.0, 0.0, 0.0], [0.0, -2.0, 0.0], [0.0, 0.0, 0.0]]);
+    let want = [
+        [1f64.exp(), 0.0, 0.0],
+        [0.0, (-2f64).exp(), 0.0],
+        [0.0, 0.0, 1.0],
+    ];
+    let n = expm3([[0.0, 3.0, 0.0], [0.0, 0.0, 2.0], [0.0, 0.0, 0.0]]);
+    // I + N + N²/2 with N² = [[0, 0, 6], 0, 0].
+    let want_n = [[1.0, 3.0, 3.0], [0.0, 1.0, 2.0], [0.0, 0.0, 1.0]];
+    for r in 0..3 {
+        for c in 0..3 {
+            assert!((e[r][c] - want[r][c]).abs() <= 1e-14 * want[r][c].abs().max(1.0));
+            assert!((n[r][c] - want_n[r][c]).abs() <= 1e-14 * want_n[r][c].abs().max(1.0));
+        }
+    }
+}
+
+/// The output flags on every backend: a law inside the limit is returned
+/// unflagged, one beyond it is clamped to `±limit` and flagged saturated,
+/// and a non-finite input gives 0 with both flags. The configured
+/// nominal friction and limit read back in stored units (mN·m on I16F16).
+#[test]
+fn output_flags_and_stored_settings_on_every_backend() {
+    fn check<S: Scalar + core::fmt::Debug>(nan: Option<S>) {
+        let p = params(2000.0);
+        let cfg = PassiveConfig::<S>::new(&p);
+        let mt = S::UNITS.motor_torque;
+        assert_eq!(cfg.torque_limit(), S::from_f64(0.188 * mt));
+        assert_eq!(
+            cfg.nominal_friction(),
+            FrictionConfig::<S>::quantize(&p.nominal_friction())
+        );
+        let input = |tau: f64| ControlInput {
+            joint_torque: S::from_f64(tau),
+            ..Default::default()
+        };
+        // At rest: τ_m = τ̂_t/N (1 − Î_m K_p) = 0.977 τ̂_t/100 N·m.
+        let small = cfg.update(&input(1.0));
+        assert!(!small.saturated && !small.invalid_input);
+        assert_eq!(small.torque, small.law_torque);
+        let want = 0.977 / 100.0 * mt;
+        assert!((small.torque.to_f64() - want).abs() <= 1e-3 * want);
+        for (tau, sign) in [(30.0, 1.0), (-30.0, -1.0)] {
+            let out = cfg.update(&input(tau));
+            assert!(out.saturated && !out.invalid_input, "{out:?}");
+            assert_eq!(out.torque.to_f64(), sign * cfg.torque_limit().to_f64());
+            assert!(out.law_torque.to_f64().abs() > cfg.torque_limit().to_f64());
+        }
+        if let Some(nan) = nan {
+            let bad = ControlInput {
+                joint_torque: nan,
+                ..Default::default()
+            };
+            let out = cfg.update(&bad);
+            assert_eq!(out.torque, S::ZERO);
+            assert_eq!(out.law_torque, S::ZERO);
+            assert!(out.saturated && out.invalid_input);
+        }
+    }
+    check::<f64>(Some(f64::NAN));
+    check::<f32>(Some(f32::INFINITY));
+    check::<I16F16>(None);
+}
