@@ -1055,6 +1055,60 @@ mod tests {
         );
     }
 
+    /// The caps are the largest layers the law accepts: each cap passes
+    /// [`RobustAdaptiveParams::try_new`] and the next `f64` above it is
+    /// rejected, naming the layer.
+    #[test]
+    fn layer_caps_are_the_largest_accepted_layers() {
+        let base = table_4_1_known_stribeck_shape();
+        let check = |set: &dyn Fn(&mut RobustAdaptiveDesign, f64), cap: f64, name: &str| {
+            let mut d = base;
+            set(&mut d, cap);
+            assert!(RobustAdaptiveParams::try_new(d).is_ok(), "{name} = {cap}");
+            set(&mut d, cap.next_up());
+            assert_eq!(RobustAdaptiveParams::try_new(d).unwrap_err().name(), name);
+        };
+        check(&|d, v| d.eps_r = v, layer_cap(None), "eps_r");
+        check(&|d, v| d.eps_velocity = v, layer_cap(None), "eps_velocity");
+        let names = ["eps_f[0]", "eps_f[1]", "eps_f[2]", "eps_f[3]"];
+        for (j, name) in names.iter().enumerate() {
+            check(&|d, v| d.eps_f[j] = v, layer_cap(Some(j)), name);
+        }
+    }
+
+    /// The regressor bounds against a dense search over `|q̇| ≤ q̇_max`:
+    /// `|Y_4| = f_s q̇² e^{−f_τ q̇²}` peaks at `q̇² = 1/f_τ` when that speed
+    /// is reached, and at `q̇_max` otherwise; the slope adds
+    /// `ρ_Fj Y_j²/ε_Fj` to `K_r/ε_r`.
+    #[test]
+    fn regressor_bounds_match_a_search_over_speed() {
+        let d = RobustAdaptiveDesign::table_4_1();
+        let fs = d.friction_bounds.max()[2];
+        let ft = d.friction_bounds.min()[3];
+        for qd in [0.5, 3.0, 100.0] {
+            let y = regressor_bounds(&d, qd);
+            let n = 200_000;
+            let search = (0..=n)
+                .map(|i| {
+                    let v = qd * i as f64 / n as f64;
+                    fs * v * v * (-ft * v * v).exp()
+                })
+                .fold(0.0f64, f64::max);
+            assert_eq!(&y[..3], &[qd, 1.0, 1.0]);
+            assert!(
+                y[3] >= search * (1.0 - 1e-12) && y[3] - search <= 1e-6 * search,
+                "{qd}: {y:?} vs {search}"
+            );
+            let rho = d.friction_bounds.variable();
+            let mut s = d.robust_gain() / d.eps_r;
+            for j in 0..4 {
+                s += rho[j] * y[j] * y[j] / d.eps_f[j];
+            }
+            assert!((robust_slope_at(&d, qd) - s).abs() <= 1e-12 * s);
+            assert!(rho[3] > 0.0 && y[3] > 0.0);
+        }
+    }
+
     #[test]
     fn bad_inputs_name_their_field() {
         let base = RobustAdaptiveDesign::table_4_1();

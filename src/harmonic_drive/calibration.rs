@@ -337,6 +337,33 @@ mod tests {
             }
         }
 
+        /// Midpoints spread over ±0.1 P (far more than encoder noise): the
+        /// deviations are averaged around a reference that must sit within
+        /// a few tenths of a pitch of their mean, or some of them wrap to
+        /// the wrong side. The result still minimises the brute-force
+        /// criterion (each deviation is below half a pitch, so the
+        /// criterion's minimiser is their mean).
+        #[test]
+        fn spread_midpoints_give_the_least_squares_offset(
+            n in 2u32..40, frac in 0.0f64..1.0, lag in -0.3f64..0.3, first in 0usize..40,
+            noise in proptest::collection::vec(-0.1f64..0.1, 80),
+        ) {
+            let p = TAU / n as f64;
+            let (cw, ccw) = readings(n, frac * p, lag, first, &noise);
+            let got = encoder_offset(&cw, &ccw, n).unwrap();
+            prop_assert!((0.0..p).contains(&got));
+            // The mean of the midpoints' deviations, from the readings'
+            // construction: (noise_i + noise_{n+i})/2 pitches each.
+            let k = n as usize;
+            let mean = (0..k).map(|i| 0.5 * (noise[i] + noise[k + i])).sum::<f64>() / k as f64;
+            let d = (got - (frac + mean) * p).rem_euclid(p);
+            prop_assert!(d.min(p - d) <= 1e-9 * p, "{} vs {}", got / p, frac + mean);
+            let at_got = brute_force_cost(&cw, &ccw, got);
+            for dx in [-1e-3 * p, 1e-3 * p, -1e-6 * p, 1e-6 * p] {
+                prop_assert!(at_got <= brute_force_cost(&cw, &ccw, got + dx) * (1.0 + 1e-9) + 1e-24);
+            }
+        }
+
         /// Where nothing wraps (readings in [0, 2π), numbered from the index
         /// nearest 0) the result equals the printed eq. (2.38) to rounding,
         /// for noisy readings too.
@@ -381,6 +408,46 @@ mod tests {
         assert_eq!(printed_index, 0);
         let got = absolute_motor_position(0.0, theta0, 0.0, n).unwrap();
         assert!((got + p).abs() < 1e-12);
+    }
+
+    /// Midpoints at `offset + {−0.3, 0, +0.3} P` (a symmetric spread, so
+    /// the least-squares offset is `offset` itself): the reference the
+    /// deviations are taken from must be the circular mean; a reference a
+    /// quarter pitch off wraps the outer deviation to the other side.
+    #[test]
+    fn widely_spread_midpoints_keep_their_mean() {
+        let n = 50;
+        let p = TAU / n as f64;
+        for frac in [0.1, 0.25, 0.5, 0.6, 0.75, 0.95] {
+            let mids = [frac - 0.3, frac, frac + 0.3];
+            let cw: Vec<f64> = mids.iter().map(|m| signed((m + 0.1) * p)).collect();
+            let ccw: Vec<f64> = mids.iter().map(|m| signed((m - 0.1) * p)).collect();
+            let got = encoder_offset(&cw, &ccw, n).unwrap() / p;
+            let d = (got - frac).rem_euclid(1.0);
+            assert!(d.min(1.0 - d) < 1e-9, "offset {frac}: {got}");
+        }
+    }
+
+    /// The circular mean is undefined when the mean resultant length of
+    /// the midpoints' phases is at most 1e-9: two midpoints half a pitch
+    /// (phase π) apart, moved by a phase `ε`, have a resultant of about
+    /// `ε` over two readings; rejected at `ε = 1.5e-9`, accepted at `3e-9`,
+    /// and the error reports that length.
+    #[test]
+    fn undefined_circular_mean_at_its_threshold() {
+        let pi = core::f64::consts::PI;
+        match encoder_offset(&[0.0, pi + 1.5e-9], &[0.0, pi + 1.5e-9], 1) {
+            Err(ParamError::NotRepresentable {
+                name: "readings",
+                value,
+            }) => {
+                let (s, c) = (libm::sin(pi + 1.5e-9), 1.0 + libm::cos(pi + 1.5e-9));
+                let want = libm::hypot(s, c) / 2.0;
+                assert!((value - want).abs() <= 1e-6 * want, "{value} vs {want}");
+            }
+            other => panic!("{other:?}"),
+        }
+        assert!(encoder_offset(&[0.0, pi + 3e-9], &[0.0, pi + 3e-9], 1).is_ok());
     }
 
     #[test]
