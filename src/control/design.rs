@@ -786,6 +786,80 @@ mod tests {
         assert!(r >= 1.0 - 1e-6, "{r}");
     }
 
+    /// `closed_loop` against the sampled law simulated from its physical
+    /// description: the two masses `J_m ẍ_m = u − k(x_m − x_l)`,
+    /// `J_l ẍ_l = k(x_m − x_l)` integrated by RK4 (4000 steps per period,
+    /// `ωh < 10⁻³`) under the held torque of the law as the module docs
+    /// write it (`ė = (x − x_prev)/T`, `r = ė + λx`,
+    /// `u = −λI_m(ė + r) − S r + ν ė − z + k δ`, `z⁺ = z + K_I T r`). The
+    /// map of one period on `s = [c, ċ, δ, δ̇, x_prev, z]` (linear: columns
+    /// from unit states) must be `A`, with integral action so that every
+    /// row and column takes part.
+    #[test]
+    fn closed_loop_is_the_simulated_period_map() {
+        let (t, jm, jl, k) = (0.004, 1.14e-5, 1e-5, 0.9);
+        let (lambda, slope, nu, ki) = (50.0, 0.01, 0.002, 5.0);
+        let a = closed_loop(t, jm, jl, k, lambda, slope, nu, ki);
+        let j = jm + jl;
+        let alpha = jl / j;
+        let period = |s: [f64; 6]| -> [f64; 6] {
+            let [c, cd, d, dd, x_prev, z] = s;
+            let (mut xm, mut vm) = (c + alpha * d, cd + alpha * dd);
+            let (mut xl, mut vl) = (c - (jm / j) * d, cd - (jm / j) * dd);
+            let ed = (xm - x_prev) / t;
+            let r = ed + lambda * xm;
+            let u = -lambda * jm * (ed + r) - slope * r + nu * ed - z + k * (xm - xl);
+            let f = |x: [f64; 4]| {
+                let spring = k * (x[0] - x[2]);
+                [x[1], (u - spring) / jm, x[3], spring / jl]
+            };
+            let steps = 4000;
+            let h = t / steps as f64;
+            let mut x = [xm, vm, xl, vl];
+            for _ in 0..steps {
+                let add = |x: [f64; 4], k: [f64; 4], w: f64| {
+                    [
+                        x[0] + w * k[0],
+                        x[1] + w * k[1],
+                        x[2] + w * k[2],
+                        x[3] + w * k[3],
+                    ]
+                };
+                let k1 = f(x);
+                let k2 = f(add(x, k1, 0.5 * h));
+                let k3 = f(add(x, k2, 0.5 * h));
+                let k4 = f(add(x, k3, h));
+                for i in 0..4 {
+                    x[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+                }
+            }
+            [xm, vm, xl, vl] = x;
+            let xm_sample = c + alpha * d;
+            [
+                (jm * xm + jl * xl) / j,
+                (jm * vm + jl * vl) / j,
+                xm - xl,
+                vm - vl,
+                xm_sample,
+                z + ki * t * r,
+            ]
+        };
+        for col in 0..6 {
+            let mut e = [0.0; 6];
+            e[col] = 1.0;
+            let got = period(e);
+            let size = (0..6).map(|i| a[i][col].abs()).fold(0.0f64, f64::max);
+            for row in 0..6 {
+                let want = a[row][col];
+                assert!(
+                    (got[row] - want).abs() <= 1e-7 * want.abs() + 1e-9 * size,
+                    "A[{row}][{col}] = {want}, simulated {}",
+                    got[row]
+                );
+            }
+        }
+    }
+
     /// Errata E4.4 on the joint: Table 4.1's law sampled at 4 ms is
     /// unstable by a wide margin (its loop gain across the ε_r layer alone
     /// is `T K_r/(ε_r I_m) = 596`).
