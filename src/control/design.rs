@@ -753,6 +753,20 @@ mod tests {
         assert!(roots_inside(&q, 1.0 + 1e-9));
     }
 
+    /// A NaN anywhere in the polynomial is never called stable: at the
+    /// constant or leading coefficient (the first comparison) or inside
+    /// (it reaches the recursion's next leading coefficient).
+    #[test]
+    fn roots_inside_rejects_nan() {
+        let stable = [0.001, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0];
+        assert!(roots_inside(&stable, 1.0));
+        for i in [0, 3, 5, 6] {
+            let mut p = stable;
+            p[i] = f64::NAN;
+            assert!(!roots_inside(&p, 1.0), "NaN at {i}");
+        }
+    }
+
     /// Faddeev–LeVerrier against the rigid case solved by hand: with the
     /// spring made stiff and the link light the loop is the rigid motor
     /// under `u = −D ė − P x` and `K_I = 0`, whose non-trivial poles with

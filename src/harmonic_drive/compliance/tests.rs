@@ -93,6 +93,77 @@ fn cubic_inverse_is_finite_for_huge_torques() {
     }
 }
 
+/// The local stiffness is the slope of the segment a torque lies on,
+/// the knee itself on the lower one, either sign; inside a segment it is
+/// the slope of [`CataloguePiecewise::torque`] (a central difference).
+#[test]
+fn piecewise_local_stiffness_is_the_segment_slope() {
+    let c = CataloguePiecewise::try_new(CatalogueCurve {
+        k1: 8.4e3,
+        k2: 9.4e3,
+        k3: 1.2e4,
+        t1: 3.9,
+        t2: 12.0,
+    })
+    .unwrap();
+    for (t, k) in [
+        (0.0, 8.4e3),
+        (2.0, 8.4e3),
+        (3.9, 8.4e3),
+        (3.9f64.next_up(), 9.4e3),
+        (8.0, 9.4e3),
+        (12.0, 9.4e3),
+        (12.0f64.next_up(), 1.2e4),
+        (40.0, 1.2e4),
+    ] {
+        assert_eq!(c.local_stiffness(t), k, "{t}");
+        assert_eq!(c.local_stiffness(-t), k, "{}", -t);
+    }
+    // Inside each segment it is the slope of the inverse curve.
+    for (t, k) in [(2.0, 8.4e3), (8.0, 9.4e3), (40.0, 1.2e4)] {
+        let x = c.torsion(t);
+        let h = 1e-9 * x;
+        let slope = (c.torque(x + h) - c.torque(x - h)) / (2.0 * h);
+        assert!((slope - k).abs() <= 1e-4 * k, "{t}: {slope}");
+    }
+}
+
+/// `a3 ≥ 0`: zero accepted (the linear spring), the next `f64` below
+/// rejected by name; `a1 > 0`.
+#[test]
+fn cubic_ranges_at_their_edges() {
+    let ok = CubicStiffness::try_new(CubicStiffnessSettings {
+        a1: 1e-300,
+        a3: 0.0,
+    })
+    .unwrap();
+    assert_eq!(
+        ok.settings(),
+        CubicStiffnessSettings {
+            a1: 1e-300,
+            a3: 0.0
+        }
+    );
+    assert!(matches!(
+        CubicStiffness::try_new(CubicStiffnessSettings {
+            a1: 1.0,
+            a3: -1e-300
+        }),
+        Err(ParamError::Negative { name: "a3", .. })
+    ));
+    assert!(matches!(
+        CubicStiffness::try_new(CubicStiffnessSettings {
+            a1: 1.0,
+            a3: f64::NAN
+        }),
+        Err(ParamError::NotFinite { name: "a3", .. })
+    ));
+    assert!(matches!(
+        CubicStiffness::try_new(CubicStiffnessSettings { a1: 0.0, a3: 1.0 }),
+        Err(ParamError::NotPositive { name: "a1", .. })
+    ));
+}
+
 #[test]
 fn piecewise_rejects_unordered_knees() {
     assert_eq!(
