@@ -767,6 +767,23 @@ mod tests {
         }
     }
 
+    /// The radius of a diagonal matrix is its largest entry's magnitude
+    /// (to the bisection's 1e-9); beyond 1e12 it is reported as infinite.
+    #[test]
+    fn pole_radius_of_diagonal_matrices() {
+        for (big, want) in [(0.3, 0.3), (-0.95, 0.95), (5.0, 5.0), (3e5, 3e5)] {
+            let mut a = [[0.0; 6]; 6];
+            a[0][0] = 0.1;
+            a[2][2] = big;
+            a[4][4] = -0.2;
+            let r = pole_radius(&a);
+            assert!((r - want).abs() <= 2e-9 * want, "{big}: {r}");
+        }
+        let mut a = [[0.0; 6]; 6];
+        a[1][1] = 1e13;
+        assert_eq!(pole_radius(&a), f64::INFINITY);
+    }
+
     /// Faddeev–LeVerrier against the rigid case solved by hand: with the
     /// spring made stiff and the link light the loop is the rigid motor
     /// under `u = −D ė − P x` and `K_I = 0`, whose non-trivial poles with

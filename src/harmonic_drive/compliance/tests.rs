@@ -164,6 +164,56 @@ fn cubic_ranges_at_their_edges() {
     ));
 }
 
+/// The cubic through the knees, by hand where the numbers are exact, and
+/// every curve no admissible cubic fits rejected as `NotRepresentable`
+/// naming `a3`: knees that soften (`K2 < K1`, `a3 < 0`), knees that
+/// stiffen so fast that `a1 ≤ 0`, and knees whose cube overflows.
+#[test]
+fn cubic_through_knees_accepts_exactly_the_admissible_curves() {
+    let curve = |k1: f64, k2: f64, t1: f64, t2: f64| {
+        CataloguePiecewise::try_new(CatalogueCurve {
+            k1,
+            k2,
+            k3: 1.0,
+            t1,
+            t2,
+        })
+        .unwrap()
+    };
+    // A linear curve (K1 = K2 = 1, knees at 1 and 2 N·m): x1 = 1, x2 = 2,
+    // det = 1·8 − 2·1 = 6, a1 = (1·8 − 2·1)/6 = 1, a3 = (1·2 − 2·1)/6 = 0.
+    let q = CubicStiffness::through_catalogue_knees(&curve(1.0, 1.0, 1.0, 2.0)).unwrap();
+    assert_eq!((q.a1(), q.a3()), (1.0, 0.0));
+    // Softening: K2 = 0.5 K1 puts the second knee at x2 = 3; the cubic
+    // through (1, 1) and (3, 2): a3 = (1·2 − 3·1)/(1·27 − 3·1) = −1/24.
+    match CubicStiffness::through_catalogue_knees(&curve(1.0, 0.5, 1.0, 2.0)) {
+        Err(ParamError::NotRepresentable { name: "a3", value }) => {
+            assert!((value + 1.0 / 24.0).abs() < 1e-15, "{value}")
+        }
+        other => panic!("{other:?}"),
+    }
+    // Stiffening fast: (1, 1) and (1.099, 100) need a1 < 0 (a3 > 0).
+    let stiff = curve(1.0, 1000.0, 1.0, 100.0);
+    let (x1, x2) = (stiff.torsion_at_t1(), stiff.torsion_at_t2());
+    let det = x1 * x2.powi(3) - x2 * x1.powi(3);
+    assert!((1.0 * x2.powi(3) - 100.0 * x1.powi(3)) / det < 0.0);
+    assert!(matches!(
+        CubicStiffness::through_catalogue_knees(&stiff),
+        Err(ParamError::NotRepresentable { name: "a3", value }) if value > 0.0
+    ));
+    // Knees at 1e308 and 1.5e308 N·m (x1 = 1, x2 = 1.5 rad): T1 x2³
+    // overflows, so a1 = ∞ while a3 = (1.5e308 − 1.5e308)/det = 0.
+    assert!(matches!(
+        CubicStiffness::through_catalogue_knees(&curve(1e308, 1e308, 1e308, 1.5e308)),
+        Err(ParamError::NotRepresentable { name: "a3", value }) if value == 0.0
+    ));
+    // x1 = 1e300 rad: its cube overflows, the solution is not finite.
+    assert!(matches!(
+        CubicStiffness::through_catalogue_knees(&curve(1e-300, 1e-300, 1.0, 2.0)),
+        Err(ParamError::NotRepresentable { name: "a3", .. })
+    ));
+}
+
 #[test]
 fn piecewise_rejects_unordered_knees() {
     assert_eq!(
