@@ -214,6 +214,21 @@ fn cubic_through_knees_accepts_exactly_the_admissible_curves() {
     ));
 }
 
+/// A linear spring (`a3 = 0`) inverts to `τ/a1` exactly, up to the
+/// largest torque taken (1e300 N·m), with no overflow on the way (for a
+/// stiff one too: `τ a1` would overflow at `a1 = 2e9`).
+#[test]
+fn linear_cubic_inverts_exactly() {
+    for a1 in [8.0e3, 2.0e9] {
+        let q = CubicStiffness::try_new(CubicStiffnessSettings { a1, a3: 0.0 }).unwrap();
+        for t in [5.0, -2.5e-3, 1e200, 1e300, -f64::MAX] {
+            let want = t.clamp(-1e300, 1e300) / a1;
+            let got = q.torsion(t);
+            assert!((got - want).abs() <= 1e-15 * want.abs(), "{a1}, {t}: {got}");
+        }
+    }
+}
+
 #[test]
 fn piecewise_rejects_unordered_knees() {
     assert_eq!(
