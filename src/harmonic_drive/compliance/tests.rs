@@ -229,6 +229,24 @@ fn linear_cubic_inverts_exactly() {
     }
 }
 
+/// Newton's stop is relative to the torsion: a tiny torque on a spring
+/// whose torsion is far below 1 rad still inverts to full precision
+/// (`τ(Δθ(τ)) = τ` within 1e-13), from 1e-11 N·m up to 1e300 N·m.
+#[test]
+fn cubic_inverse_is_exact_for_tiny_torsions() {
+    for (a1, a3) in [(1.166e-3, 1.743e11), (8.0e3, 2.0e9), (1e-3, 1e12)] {
+        let q = CubicStiffness::try_new(CubicStiffnessSettings { a1, a3 }).unwrap();
+        for t in [1.5e-11, 3e-9, 1e-6, 1e-3, 1.0, 1e3, 1e100, 1e300] {
+            let x = q.torsion(t);
+            let back = q.torque(x);
+            assert!(
+                (back - t).abs() <= 1e-13 * t,
+                "{a1}, {a3}, {t}: {x} gives {back}"
+            );
+        }
+    }
+}
+
 #[test]
 fn piecewise_rejects_unordered_knees() {
     assert_eq!(
