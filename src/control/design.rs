@@ -354,18 +354,21 @@ fn roots_inside(p: &[f64; 7], radius: f64) -> bool {
     true
 }
 
-/// The spectral radius of `A` to 1e-9, by bisection on [`roots_inside`].
+/// The spectral radius `ρ` of `A` by bisection on [`roots_inside`], within
+/// `2·10⁻¹² · max(1, ρ)`; `∞` when it exceeds 2³⁹ (5.5e11) or `A` is not
+/// finite. Both loops are bounded: the bracket is the first power of two
+/// `2^k ≥ ρ` (`k < 40`, so `2^k < 2 max(1, ρ)`), then 40 halvings of
+/// `[0, 2^k]` leave it `2^{k−40} < 10⁻¹² · 2^k` wide.
 fn pole_radius(a: &[[f64; 6]; 6]) -> f64 {
     let p = characteristic(a);
-    let (mut lo, mut hi) = (0.0f64, 1.0f64);
-    while !roots_inside(&p, hi) {
-        lo = hi;
-        hi *= 2.0;
-        if hi > 1e12 {
-            return f64::INFINITY;
-        }
-    }
-    while hi - lo > 1e-9 * hi {
+    let Some(mut hi) = (0..40)
+        .map(|k| libm::ldexp(1.0, k))
+        .find(|&r| roots_inside(&p, r))
+    else {
+        return f64::INFINITY;
+    };
+    let mut lo = 0.0;
+    for _ in 0..40 {
         let mid = 0.5 * (lo + hi);
         if roots_inside(&p, mid) {
             hi = mid;
