@@ -940,6 +940,79 @@ mod tests {
         assert!((p.robust_slope - s_capped).abs() < 1e-12);
     }
 
+    /// The worst radius is the largest over the sixteen corners the module
+    /// docs list, each built here from the documented quantities: `S` at
+    /// rest (`K_r/ε_r`) and at the maximum speed, the friction slope 0 and
+    /// `ν = b_max + (f_c,max + f_s,max)/ε_q̇`, both stiffnesses and both
+    /// link inertias (link side, reflected by `N²`).
+    #[test]
+    fn worst_radius_is_the_worst_documented_corner() {
+        let mut d = table_4_1_known_stribeck_shape();
+        // A narrow friction layer, so that ν is large enough to matter.
+        d.eps_velocity = 0.05;
+        d.lambda = 40.0;
+        d.eps_r = 300.0;
+        let j = joint();
+        let fmax = d.friction_bounds.max();
+        let nu = fmax[0] + (fmax[1] + fmax[2]) / 0.05;
+        let rest = d.robust_gain() / 300.0;
+        let moving = robust_slope_at(&d, j.max_motor_speed);
+        let mut worst = 0.0f64;
+        let mut radii = std::vec::Vec::new();
+        let built = corners(&d, &j);
+        for il in j.link_inertia {
+            for k in j.stiffness {
+                for s in [rest, moving] {
+                    for n in [0.0, nu] {
+                        let a = closed_loop(
+                            0.004,
+                            1.14e-5,
+                            il / 1e4,
+                            k / 1e4,
+                            40.0,
+                            s,
+                            n,
+                            d.integral_gain,
+                        );
+                        assert!(built.contains(&a), "corner I_l {il}, K {k}, S {s}, ν {n}");
+                        let r = pole_radius(&a);
+                        radii.push(r);
+                        worst = worst.max(r);
+                    }
+                }
+            }
+        }
+        assert_eq!(sampled_pole_radius(&d, &j).unwrap(), worst);
+        // Every corner counts: the radii differ, and ν moves them.
+        assert!(radii.windows(2).any(|w| w[0] != w[1]));
+        assert!(
+            (0..16).step_by(2).all(|i| radii[i] != radii[i + 1]),
+            "{radii:?}"
+        );
+    }
+
+    /// Criterion item 3 (a count of speed and position moves `r` by at
+    /// most half the layer) holds for every encoder resolution, and binds
+    /// on a coarse encoder: with 4 counts per revolution the layer is
+    /// wider than with 2000.
+    #[test]
+    fn quantisation_item_holds_for_coarse_encoders() {
+        let base = table_4_1_known_stribeck_shape();
+        let mut widths = std::vec::Vec::new();
+        for m in [4u32, 6, 2000] {
+            let j = SampledJoint {
+                motor_counts_per_rev: m,
+                ..joint()
+            };
+            let p = design_for_period(&base, &j).unwrap();
+            let d = p.params.design();
+            let q = TAU / m as f64;
+            assert!(q / 0.004 + d.lambda * q <= d.eps_r / 2.0, "{m}: {d:?}");
+            widths.push(d.eps_r);
+        }
+        assert!(widths[0] > widths[2], "{widths:?}");
+    }
+
     /// Table 4.1's own base (Stribeck shape adapted over `[0.01, 10]`)
     /// has no sampled design at 4 ms, and says so with a typed error.
     #[test]
