@@ -523,3 +523,72 @@ proptest! {
         prop_assert!((got - exact).abs() <= bound_lsb / 65536.0, "{got} vs {exact}");
     }
 }
+
+/// The estimator's torsion limit is the torsion of eq. (2.26) at the
+/// limit torque, `atan(c_f τ_max)/(c_f K_f0)`, on every backend (up to
+/// the backend's rounding of the torque at that torsion), and the
+/// in-branch torque there is within the limit: the torque test binds
+/// before the `tan` domain does (`c_f τ_max ≤ 7.5 < 8`).
+#[test]
+fn torsion_within_is_the_torsion_of_the_limit() {
+    fn check<S: Scalar>(tol: f64) {
+        let p = shd17();
+        let cfg = FlexsplineConfig::<S>::new(&p);
+        let u = S::UNITS;
+        for tau_max in [20.0, 100.0, 7.5 / 0.0449] {
+            let limit = S::from_f64(tau_max * u.link_torque);
+            let a = cfg.torsion_within(limit, p.max_torsion() * u.torsion);
+            let want = libm::atan(0.0449 * tau_max) / (0.0449 * 8.336e3);
+            let got = a.to_f64() / u.torsion;
+            assert!(
+                (got - want).abs() <= tol * want,
+                "{tau_max}: {got} vs {want} ({})",
+                (got - want) / want
+            );
+            assert!(cfg.torque_in_branch(a).abs() <= limit);
+            assert!(cfg.torque_in_branch(a.neg()).abs() <= limit);
+        }
+    }
+    check::<f64>(1e-12);
+    check::<f32>(1e-6);
+    check::<I16F16>(1e-3);
+}
+
+/// The wave generator's largest torsion is the limit of eq. (2.29) as the
+/// torque grows, `1/(c_w K_w0)`, approached from below; the product
+/// `c_w K_w0` must be at least `1/f64::MAX` (so that limit is finite),
+/// named as the product when it is not.
+#[test]
+fn wave_generator_max_torsion_and_its_product_range() {
+    let p = WaveGeneratorParams::try_new(WaveGeneratorSettings {
+        k_w0: 400.0,
+        c_w: 0.5,
+    })
+    .unwrap();
+    assert_eq!(p.max_torsion(), 1.0 / 200.0);
+    for t in [4.0, 10.0, 40.0] {
+        let x = p.torsion(t);
+        let gap = (1.0 - x / p.max_torsion()).abs();
+        assert!(
+            x < p.max_torsion() && gap <= 2.0 * (-0.5 * t).exp(),
+            "{t}: {x}"
+        );
+    }
+    // c_w at its smallest (1e-6): K_w0 = 1e-300 gives a product of
+    // 1e-306 (accepted), K_w0 = 1e-303 one of 1e-309 < 1/f64::MAX.
+    assert!(WaveGeneratorParams::try_new(WaveGeneratorSettings {
+        k_w0: 1e-300,
+        c_w: 1e-6,
+    })
+    .is_ok());
+    assert!(matches!(
+        WaveGeneratorParams::try_new(WaveGeneratorSettings {
+            k_w0: 1e-303,
+            c_w: 1e-6,
+        }),
+        Err(ParamError::CombinationOutOfRange {
+            name: "c_w·k_w0",
+            ..
+        })
+    ));
+}
