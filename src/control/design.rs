@@ -694,6 +694,7 @@ pub fn design_for_period(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::friction::{FrictionBounds, FrictionParams};
 
     fn joint() -> SampledJoint {
         SampledJoint {
@@ -1011,6 +1012,42 @@ mod tests {
             widths.push(d.eps_r);
         }
         assert!(widths[0] > widths[2], "{widths:?}");
+    }
+
+    /// A box with no Coulomb or Stribeck friction (`f_c = f_s = 0`, viscous
+    /// only, `ρ_F4 > 0`): the Stribeck regressor bound is 0, so `ε_F4` keeps
+    /// the base's value (a layer of `0 · G/S` would be rejected), and with
+    /// nothing for the velocity layer to smooth `ε_q̇` is the largest one,
+    /// the cap.
+    #[test]
+    fn viscous_only_box_keeps_its_layers() {
+        let mut base = table_4_1_known_stribeck_shape();
+        let (mut lo, mut hi, mut rho) = (
+            base.friction_bounds.min(),
+            base.friction_bounds.max(),
+            base.friction_bounds.variable(),
+        );
+        for j in [1, 2] {
+            lo[j] = 0.0;
+            hi[j] = 0.0;
+            rho[j] = 0.0;
+        }
+        rho[3] = 1e-3;
+        base.friction_bounds = FrictionBounds::try_new(
+            FrictionParams::from_array(lo),
+            FrictionParams::from_array(hi),
+            rho,
+        )
+        .unwrap();
+        base.initial_friction.coulomb = 0.0;
+        base.initial_friction.stribeck = 0.0;
+        RobustAdaptiveParams::try_new(base).unwrap();
+        assert_eq!(regressor_bounds(&base, 100.0)[3], 0.0);
+        let p = design_for_period(&base, &joint()).unwrap();
+        let d = p.params.design();
+        assert_eq!(d.eps_f[3], base.eps_f[3]);
+        assert_eq!(d.eps_velocity, layer_cap(None));
+        assert!(p.pole_radius <= 0.9);
     }
 
     /// Table 4.1's own base (Stribeck shape adapted over `[0.01, 10]`)
