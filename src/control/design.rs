@@ -1050,6 +1050,34 @@ mod tests {
         assert!(p.pole_radius <= 0.9);
     }
 
+    /// `K_I` is the largest rung of the half-decade ladder below the
+    /// base's (`K_I,base·10^{−n/2}`) that keeps item 1: the chosen rung
+    /// holds the pole radius, the rung above it does not.
+    #[test]
+    fn integral_gain_is_the_largest_rung_that_holds() {
+        let base = table_4_1_known_stribeck_shape();
+        for (t, k, il, n_want) in [(1e-3, 1e5, 0.01, 2), (4e-3, 8e3, 0.03, 5)] {
+            let j = SampledJoint {
+                sample_period: t,
+                stiffness: [k, k],
+                link_inertia: [il, il],
+                max_pole_radius: 0.95,
+                ..joint()
+            };
+            let p = design_for_period(&base, &j).unwrap();
+            let d = p.params.design();
+            let rung = |n: i32| base.integral_gain * 10f64.powf(-n as f64 / 2.0);
+            assert!(
+                (d.integral_gain - rung(n_want)).abs() <= 1e-12 * rung(n_want),
+                "{d:?}"
+            );
+            assert!(p.pole_radius <= 0.95);
+            let mut above = *d;
+            above.integral_gain = rung(n_want - 1);
+            assert!(sampled_pole_radius(&above, &j).unwrap() > 0.95, "{above:?}");
+        }
+    }
+
     /// Table 4.1's own base (Stribeck shape adapted over `[0.01, 10]`)
     /// has no sampled design at 4 ms, and says so with a typed error.
     #[test]
