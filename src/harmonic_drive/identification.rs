@@ -268,6 +268,46 @@ mod tests {
         assert!((p.flexspline().c_f() - 0.012).abs() > 0.03);
     }
 
+    /// The scaled catalogue by hand: a drive rated 32 N·m (scale 2), `K2 =
+    /// 2e4`, `N = 50` has `K1 = 2e4·8.4/9.4`, knees at 7.8 and 24 N·m, the
+    /// loss of the SHD-17-100 and a starting torque of `0.012·2·(100/50)
+    /// = 0.048` N·m.
+    #[test]
+    fn scaled_catalogue_by_hand() {
+        let c = CatalogueData::scaled_from_shd17(32.0, 2e4, 50.0).unwrap();
+        assert!((c.k1 - 2e4 * 8.4 / 9.4).abs() <= 1e-12 * c.k1);
+        assert_eq!((c.k2, c.t1, c.t2, c.ratio), (2e4, 7.8, 24.0, 50.0));
+        assert_eq!(c.hysteresis_loss, 2.9e-4);
+        assert!(
+            (c.starting_torque - 0.048).abs() <= 1e-15,
+            "{}",
+            c.starting_torque
+        );
+    }
+
+    /// `K2/K1 ≥ ((T1+T2)/T1)²` is rejected on `k2` with the range it had:
+    /// `(K1, K1 r²)`, here `r = (1 + 3)/1 = 4`, so at most `16 K1`.
+    #[test]
+    fn too_fast_stiffening_names_its_range() {
+        let c = CatalogueData {
+            k1: 1e3,
+            k2: 1.6e4,
+            t1: 1.0,
+            t2: 3.0,
+            ..CatalogueData::SHD_17_100
+        };
+        assert_eq!(
+            c.identify().unwrap_err(),
+            ParamError::OutOfRange {
+                name: "k2",
+                value: 1.6e4,
+                min: 1e3,
+                max: 1.6e4
+            }
+        );
+        assert!(CatalogueData { k2: 1.59e4, ..c }.identify().is_ok());
+    }
+
     #[test]
     fn nonsense_inputs_are_rejected_by_name() {
         let ok = CatalogueData::SHD_17_100;
