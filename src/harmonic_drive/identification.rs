@@ -308,6 +308,46 @@ mod tests {
         assert!(CatalogueData { k2: 1.59e4, ..c }.identify().is_ok());
     }
 
+    /// A derived constant out of its model's range is named as the
+    /// combination of catalogue fields it comes from: a soft catalogue
+    /// (`K1 = 1`, `K2 = 1.5` N·m/rad, knees 1 and 2 N·m: `K_f0 = 0.9375`,
+    /// `c_f = 2√(0.5/7.5)`, a largest torsion `π/(2 c_f K_f0) = 3.2` rad
+    /// beyond 1 rad), and a starting torque of 1e-7 N·m (`c_w = 1e7`
+    /// beyond 1e6).
+    #[test]
+    fn derived_constants_are_named_by_their_fields() {
+        let soft = CatalogueData {
+            k1: 1.0,
+            k2: 1.5,
+            t1: 1.0,
+            t2: 2.0,
+            ..CatalogueData::SHD_17_100
+        };
+        match soft.identify().unwrap_err() {
+            ParamError::CombinationOutOfRange { name, value, .. } => {
+                assert_eq!(name, "π/(2·c_f·k_f0) from k1, k2, t1, t2");
+                let c_f = 2.0 * (0.5f64 / 7.5).sqrt();
+                let want = core::f64::consts::PI / (2.0 * c_f * 0.9375);
+                assert!((value - want).abs() <= 1e-12 * want, "{value} vs {want}");
+            }
+            other => panic!("{other:?}"),
+        }
+        let weak = CatalogueData {
+            starting_torque: 1e-7,
+            ..CatalogueData::SHD_17_100
+        };
+        match weak.identify().unwrap_err() {
+            ParamError::CombinationOutOfRange { name, value, .. } => {
+                assert_eq!(
+                    name,
+                    "c_w = 2/(ratio·k_w0·hysteresis_loss) = 1/starting_torque"
+                );
+                assert!((value - 1e7).abs() <= 1e-6, "{value}");
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+
     #[test]
     fn nonsense_inputs_are_rejected_by_name() {
         let ok = CatalogueData::SHD_17_100;
