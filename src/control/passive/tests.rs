@@ -713,3 +713,30 @@ fn output_flags_and_stored_settings_on_every_backend() {
     check::<f32>(Some(f32::INFINITY));
     check::<I16F16>(None);
 }
+
+/// An underdamped hand gives a conjugate pair, by hand: `J = 0.05 +
+/// 100²/2000 = 5.05`, `s = (−5 ± i√(4·5.05·200 − 25))/(2·5.05)`; an
+/// overdamped one two distinct real poles `(−B ± √(B² − 4JK))/(2J)`.
+#[test]
+fn continuous_poles_by_hand() {
+    let p = frictionless(1.14e-5, 2000.0, 100.0);
+    let j: f64 = 5.05;
+    let hand = HandContact {
+        stiffness: 200.0,
+        damping: 5.0,
+        link_inertia: 0.05,
+    };
+    let [a, b] = p.characteristics(&hand, 1e-3).unwrap().continuous_poles;
+    let (re, im) = (-5.0 / (2.0 * j), (4.0 * j * 200.0 - 25.0).sqrt() / (2.0 * j));
+    assert!((a.re - re).abs() < 1e-12 && (b.re - re).abs() < 1e-12);
+    assert!((a.im - im).abs() < 1e-12 && (b.im + im).abs() < 1e-12, "{a:?} {b:?}");
+    let stiff = HandContact {
+        damping: 100.0,
+        ..hand
+    };
+    let [a, b] = p.characteristics(&stiff, 1e-3).unwrap().continuous_poles;
+    let r = (100.0f64 * 100.0 - 4.0 * j * 200.0).sqrt();
+    assert!((a.re - (-100.0 + r) / (2.0 * j)).abs() < 1e-12, "{a:?}");
+    assert!((b.re - (-100.0 - r) / (2.0 * j)).abs() < 1e-12, "{b:?}");
+    assert_eq!((a.im, b.im), (0.0, 0.0));
+}
