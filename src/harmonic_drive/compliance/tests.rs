@@ -566,6 +566,10 @@ fn wave_generator_max_torsion_and_its_product_range() {
     })
     .unwrap();
     assert_eq!(p.max_torsion(), 1.0 / 200.0);
+    // Eq. (2.27): K_w0 e^{c_w |τ|}, 400 e at ±2 N·m.
+    for t in [2.0, -2.0] {
+        assert!((p.local_stiffness(t) - 400.0 * 1f64.exp()).abs() < 1e-12);
+    }
     for t in [4.0, 10.0, 40.0] {
         let x = p.torsion(t);
         let gap = (1.0 - x / p.max_torsion()).abs();
