@@ -650,10 +650,11 @@ fn eigenvalues3_of_known_spectra() {
         [(-0.6, 0.0), (0.3, -0.4), (0.3, 0.4)],
     );
     // e^A of a diagonal and of a nilpotent matrix, by hand.
-    let e = expm3([[1.0, 0.0, 0.0], [0.0, -2.0, 0.0], [0.0, 0.0, 0.0]]);
+    // (Norm 5: 20 Taylor terms need the scaling and squaring here.)
+    let e = expm3([[5.0, 0.0, 0.0], [0.0, -3.0, 0.0], [0.0, 0.0, 0.0]]);
     let want = [
-        [1f64.exp(), 0.0, 0.0],
-        [0.0, (-2f64).exp(), 0.0],
+        [5f64.exp(), 0.0, 0.0],
+        [0.0, (-3f64).exp(), 0.0],
         [0.0, 0.0, 1.0],
     ];
     let n = expm3([[0.0, 3.0, 0.0], [0.0, 0.0, 2.0], [0.0, 0.0, 0.0]]);
