@@ -728,9 +728,15 @@ fn continuous_poles_by_hand() {
         link_inertia: 0.05,
     };
     let [a, b] = p.characteristics(&hand, 1e-3).unwrap().continuous_poles;
-    let (re, im) = (-5.0 / (2.0 * j), (4.0 * j * 200.0 - 25.0).sqrt() / (2.0 * j));
+    let (re, im) = (
+        -5.0 / (2.0 * j),
+        (4.0 * j * 200.0 - 25.0).sqrt() / (2.0 * j),
+    );
     assert!((a.re - re).abs() < 1e-12 && (b.re - re).abs() < 1e-12);
-    assert!((a.im - im).abs() < 1e-12 && (b.im + im).abs() < 1e-12, "{a:?} {b:?}");
+    assert!(
+        (a.im - im).abs() < 1e-12 && (b.im + im).abs() < 1e-12,
+        "{a:?} {b:?}"
+    );
     let stiff = HandContact {
         damping: 100.0,
         ..hand
