@@ -50,16 +50,21 @@ fn shd17() -> FlexsplineParams {
     .unwrap()
 }
 
-#[test]
-fn piecewise_is_continuous_at_the_knees_and_odd() {
-    let c = CataloguePiecewise::try_new(CatalogueCurve {
+/// The SHD-17-100's catalogue curve with a third slope of 1.2e4 N·m/rad.
+fn shd17_curve() -> CataloguePiecewise {
+    CataloguePiecewise::try_new(CatalogueCurve {
         k1: 8.4e3,
         k2: 9.4e3,
         k3: 1.2e4,
         t1: 3.9,
         t2: 12.0,
     })
-    .unwrap();
+    .unwrap()
+}
+
+#[test]
+fn piecewise_is_continuous_at_the_knees_and_odd() {
+    let c = shd17_curve();
     for t in [3.9, 12.0] {
         let below = c.torsion(t - 1e-9);
         let above = c.torsion(t + 1e-9);
@@ -98,14 +103,7 @@ fn cubic_inverse_is_finite_for_huge_torques() {
 /// the slope of [`CataloguePiecewise::torque`] (a central difference).
 #[test]
 fn piecewise_local_stiffness_is_the_segment_slope() {
-    let c = CataloguePiecewise::try_new(CatalogueCurve {
-        k1: 8.4e3,
-        k2: 9.4e3,
-        k3: 1.2e4,
-        t1: 3.9,
-        t2: 12.0,
-    })
-    .unwrap();
+    let c = shd17_curve();
     for (t, k) in [
         (0.0, 8.4e3),
         (2.0, 8.4e3),
@@ -278,14 +276,7 @@ fn piecewise_rejects_unordered_knees() {
 
 #[test]
 fn cubic_passes_through_the_knees() {
-    let c = CataloguePiecewise::try_new(CatalogueCurve {
-        k1: 8.4e3,
-        k2: 9.4e3,
-        k3: 1.2e4,
-        t1: 3.9,
-        t2: 12.0,
-    })
-    .unwrap();
+    let c = shd17_curve();
     let q = CubicStiffness::through_catalogue_knees(&c).unwrap();
     assert!((q.torque(c.torsion_at_t1()) - 3.9).abs() < 1e-9);
     assert!((q.torque(c.torsion_at_t2()) - 12.0).abs() < 1e-9);
