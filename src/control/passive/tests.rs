@@ -708,6 +708,15 @@ fn output_flags_and_stored_settings_on_every_backend() {
             assert_eq!(out.torque, S::ZERO);
             assert_eq!(out.law_torque, S::ZERO);
             assert!(out.saturated && out.invalid_input);
+            // A non-finite desired torque alone (the law is then ±∞, not
+            // NaN) is an invalid input too.
+            let wish = ControlInput {
+                desired_joint_torque: nan,
+                ..Default::default()
+            };
+            let out = cfg.update(&wish);
+            assert_eq!(out.torque, S::ZERO);
+            assert!(out.saturated && out.invalid_input, "{out:?}");
         }
     }
     check::<f64>(Some(f64::NAN));
